@@ -1,0 +1,149 @@
+// impactgen: the command-line face of the library. Each subcommand parses its
+// arguments, builds a problem, calls the library and chooses a printer.
+#include "print/answer.hpp"
+#include "print/expression.hpp"
+#include "print/formulas.hpp"
+#include "symbolic/named_classes.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+using namespace impactgen;
+
+namespace {
+
+problem load(const std::string& what)
+{
+    if (const named_class* c = find_named_class(what))
+        return c->build();
+    if (!std::filesystem::exists(what)) {
+        std::string names;
+        for (const named_class& c : named_classes())
+            names += (names.empty() ? "" : ", ") + c.name;
+        throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
+    }
+    problem p = load_problem_file(what);
+    for (const std::string& w : p.warnings)
+        std::cerr << "impactgen: warning: " << what << ": " << w << "\n";
+    return p;
+}
+
+int cmd_list()
+{
+    for (const named_class& c : named_classes()) {
+        derivation d = derive(c.build());
+        std::printf("%-16s %2zu unknowns  %s\n", c.name.c_str(), d.count_unknowns(), c.description.c_str());
+    }
+    return 0;
+}
+
+int cmd_solve(const std::string& what, bool json)
+{
+    problem p = load(what);
+    auto params = p.parameters();
+    if (!params.empty()) {
+        std::string names;
+        for (const auto& s : params)
+            names += (names.empty() ? "" : ", ") + s.get_name();
+        throw input_error(what + ": solve needs numbers, but the problem has symbols (" + names +
+                          "); use 'impactgen formulas' for closed forms");
+    }
+    derivation d = derive(p);
+    solution s = solve(d);
+    if (json)
+        std::cout << print::answer_json(d, s, false).dump(2) << "\n";
+    else
+        std::cout << print::answer_text(d, s);
+    return 0;
+}
+
+int cmd_formulas(const std::string& what, const std::string& format)
+{
+    problem p = load(what);
+    derivation d = derive(p);
+    solution s = solve(d);
+    if (format == "json")
+        std::cout << print::answer_json(d, s, true).dump(2) << "\n";
+    else if (format == "latex")
+        std::cout << print::formulas_latex(d, s);
+    else
+        std::cout << print::formulas_text(d, s);
+    return 0;
+}
+
+int cmd_bench(int repeats)
+{
+    using clock = std::chrono::steady_clock;
+    double total = 0;
+    std::printf("%-16s %12s %12s   (best of %d, derivation + closed-form solution)\n", "class", "ms", "steps", repeats);
+    for (const named_class& c : named_classes()) {
+        double best = 1e300;
+        std::size_t steps = 0;
+        for (int r = 0; r < repeats; ++r) {
+            auto t0 = clock::now();
+            derivation d = derive(c.build());
+            solution s = solve(d);
+            auto t1 = clock::now();
+            steps = s.steps.size();
+            best = std::min(best, std::chrono::duration<double, std::milli>(t1 - t0).count());
+        }
+        total += best;
+        std::printf("%-16s %12.3f %12zu\n", c.name.c_str(), best, steps);
+    }
+    std::printf("%-16s %12.3f   (target: < 250 ms for all six)\n", "all classes", total);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"impactgen: derive, solve, teach and generate code for smooth rigid-body impact"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("impactgen ") + IMPACTGEN_VERSION);
+
+    auto* list = app.add_subcommand("list", "List the named impact classes: name, unknowns, description");
+
+    std::string what;
+    bool json = false;
+    auto* solve_cmd = app.add_subcommand("solve", "Solve a numeric problem file exactly (rational arithmetic)");
+    solve_cmd->add_option("problem", what, "PROBLEM.json in the impact problem format")->required();
+    solve_cmd->add_flag("--json", json, "print the answer object of the problem format (decimals)");
+
+    std::string format = "text";
+    auto* formulas = app.add_subcommand("formulas", "Closed-form formulas for a named class or a problem file");
+    formulas->add_option("problem", what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
+    formulas->add_option("--format", format, "text, latex or json")->check(CLI::IsMember({"text", "latex", "json"}));
+
+    int repeats = 5;
+    auto* bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
+    bench->add_option("--repeats", repeats, "repetitions per class (best is reported)")->check(CLI::Range(1, 1000));
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    try {
+        if (*list)
+            return cmd_list();
+        if (*solve_cmd)
+            return cmd_solve(what, json);
+        if (*formulas)
+            return cmd_formulas(what, format);
+        if (*bench)
+            return cmd_bench(repeats);
+    } catch (const input_error& e) {
+        std::cerr << "impactgen: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "impactgen: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,133 @@
+// An independent formulation, to catch errors in the derivation itself:
+// generalized velocities u = (v_C, w) per movable body, mass matrix
+// M = diag(m 1, I_C), constraint Jacobians J (contact normal, pivots), and the
+// KKT system
+//     [ M  -J^T ] [ u'     ]   [ M u ]
+//     [ J   0   ] [ lambda ] = [ c   ],   c = -e J_c u (contact), 0 (pivot)
+// lambda = (N, R_1, ...). Solved with Eigen's FullPivLU.
+#pragma once
+
+#include "numeric_problem.hpp"
+
+namespace impactgen::numeric {
+
+template <typename T> answer<T> solve_generalized(const problem<T>& p)
+{
+    using M = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+    using V = Eigen::Matrix<T, Eigen::Dynamic, 1>;
+    const int dim = p.dimension;
+    const int nw = dim == 2 ? 1 : 3;
+    const vec<T> n = p.normal / p.normal.norm();
+    const std::size_t ids[2] = {p.body1, p.body2};
+
+    // Degrees of freedom: bodies of finite mass in contact (a pinned particle
+    // keeps its translational freedom; the pivot row then holds it).
+    std::vector<int> off(p.bodies.size(), -1);
+    int ndof = 0;
+    for (std::size_t i : ids) {
+        if (p.bodies[i].infinite_mass)
+            continue;
+        off[i] = ndof;
+        ndof += dim + (p.bodies[i].particle ? 0 : nw);
+    }
+    const int ncon = 1 + dim * static_cast<int>(p.pivots.size());
+    M K = M::Zero(ndof + ncon, ndof + ncon);
+    V rhs = V::Zero(ndof + ncon);
+    V u = V::Zero(ndof);
+    M J = M::Zero(ncon, ndof);
+    V c = V::Zero(ncon);
+
+    // Jacobian row of the velocity of point q along a, for body i: v.a + (w x (q - C)).a
+    auto point_row = [&](int r, std::size_t i, const vec<T>& q, const vec<T>& a, T s) {
+        const auto& b = p.bodies[i];
+        for (int k = 0; k < dim; ++k)
+            J(r, off[i] + k) += s * a[k];
+        if (!b.particle) {
+            vec<T> g = (q - b.position).cross(a);
+            for (int k = 0; k < nw; ++k)
+                J(r, off[i] + dim + k) += s * g[dim == 2 ? 2 : k];
+        }
+    };
+    for (std::size_t i : ids) {
+        const auto& b = p.bodies[i];
+        if (off[i] < 0)
+            continue;
+        for (int k = 0; k < dim; ++k) {
+            K(off[i] + k, off[i] + k) = b.mass;
+            u[off[i] + k] = b.velocity[k];
+        }
+        if (!b.particle) {
+            if (dim == 2) {
+                K(off[i] + 2, off[i] + 2) = b.inertia(2, 2);
+                u[off[i] + 2] = b.angular_velocity[2];
+            } else {
+                K.block(off[i] + 3, off[i] + 3, 3, 3) = b.inertia;
+                u.segment(off[i] + 3, 3) = b.angular_velocity;
+            }
+        }
+    }
+    // Contact row: (v_B - v_A).n; a body without DOFs contributes a known velocity.
+    T known = 0;
+    for (std::size_t i : ids) {
+        const auto& b = p.bodies[i];
+        const T s = i == p.body1 ? T(-1) : T(1);
+        vec<T> q = p.point - b.position;
+        if (off[i] >= 0) {
+            point_row(0, i, p.point, n, s);
+            if (b.particle)
+                known += s * b.angular_velocity.cross(q).dot(n);
+        } else {
+            known += s * (b.velocity + b.angular_velocity.cross(q)).dot(n);
+        }
+    }
+    T approach = (J.row(0) * u)(0) + known;
+    c[0] = -p.restitution * approach - known;
+    for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+        const auto& pv = p.pivots[k];
+        const auto& b = p.bodies[pv.body];
+        for (int a = 0; a < dim; ++a) {
+            int r = 1 + dim * static_cast<int>(k) + a;
+            point_row(r, pv.body, pv.point, vec<T>::Unit(a), 1);
+            // A particle keeps its spin: its pivot holds v + w x (E - C) = 0.
+            c[r] = b.particle ? -b.angular_velocity.cross(pv.point - b.position)[a] : T(0);
+        }
+    }
+    K.topRightCorner(ndof, ncon) = -J.transpose();
+    K.bottomLeftCorner(ncon, ndof) = J;
+    rhs.head(ndof) = K.topLeftCorner(ndof, ndof) * u;
+    rhs.tail(ncon) = c;
+
+    answer<T> out;
+    Eigen::FullPivLU<M> lu(K);
+    if (!lu.isInvertible())
+        return out;
+    V x = lu.solve(rhs);
+    if (!x.allFinite())
+        return out;
+    out.ok = true;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        vec<T> v = p.bodies[i].velocity, w = p.bodies[i].angular_velocity;
+        if (off[i] >= 0) {
+            for (int k = 0; k < dim; ++k)
+                v[k] = x[off[i] + k];
+            if (!p.bodies[i].particle) {
+                if (dim == 2)
+                    w[2] = x[off[i] + 2];
+                else
+                    w = x.segment(off[i] + 3, 3);
+            }
+        }
+        out.velocity.push_back(v);
+        out.angular_velocity.push_back(w);
+    }
+    out.normal_impulse = x[ndof];
+    for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+        vec<T> R = vec<T>::Zero();
+        for (int a = 0; a < dim; ++a)
+            R[a] = x[ndof + 1 + dim * static_cast<int>(k) + a];
+        out.pivot_impulses.push_back(R);
+    }
+    return out;
+}
+
+} // namespace impactgen::numeric

@@ -1,0 +1,96 @@
+#include "answer.hpp"
+
+#include "expression.hpp"
+
+#include <sstream>
+
+namespace impactgen::print {
+using namespace GiNaC;
+
+namespace {
+
+struct valuer {
+    const solution& s;
+    bool symbolic;
+    nlohmann::ordered_json operator()(const ex& e) const
+    {
+        ex v = tidy(s.expand_steps(e));
+        if (symbolic)
+            return parser_syntax(v);
+        return to_double(v);
+    }
+};
+
+} // namespace
+
+nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool symbolic)
+{
+    const problem& p = d.prob;
+    valuer val{s, symbolic};
+    nlohmann::ordered_json out, bodies = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        nlohmann::ordered_json b, v = nlohmann::ordered_json::array();
+        for (int c = 0; c < p.dimension; ++c)
+            v.push_back(val(s.after[i].velocity[c]));
+        b["velocity"] = v;
+        if (p.dimension == 2) {
+            b["angular_velocity"] = val(s.after[i].angular_velocity[2]);
+        } else {
+            nlohmann::ordered_json w = nlohmann::ordered_json::array();
+            for (int c = 0; c < 3; ++c)
+                w.push_back(val(s.after[i].angular_velocity[c]));
+            b["angular_velocity"] = w;
+        }
+        bodies[p.bodies[i].name] = b;
+    }
+    out["bodies"] = bodies;
+    out["normal_impulse"] = val(s.normal_impulse * d.normal_length);
+    nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
+    for (const vec3& R : s.pivot_impulses) {
+        nlohmann::ordered_json r = nlohmann::ordered_json::array();
+        for (int c = 0; c < p.dimension; ++c)
+            r.push_back(val(R[c]));
+        pivots.push_back(r);
+    }
+    out["pivot_impulses"] = pivots;
+    out["kinetic_energy"] = {{"before", val(s.energy_before)}, {"after", val(s.energy_after)}, {"lost", val(s.energy_lost)}};
+    return out;
+}
+
+std::string answer_text(const derivation& d, const solution& s)
+{
+    const problem& p = d.prob;
+    std::ostringstream os;
+    auto show = [&](const ex& e) {
+        ex v = tidy(s.expand_steps(e));
+        std::string exact = parser_syntax(v), dec = decimal(v);
+        return exact == dec ? exact : exact + " = " + dec;
+    };
+    auto show_vec = [&](const vec3& v, int n) {
+        std::string r = "(";
+        for (int c = 0; c < n; ++c)
+            r += (c ? ", " : "") + show(v[c]);
+        return r + ")";
+    };
+    os << "Impact of " << p.bodies[p.contact.body1].name << " (body 1) on " << p.bodies[p.contact.body2].name
+       << " (body 2), e = " << p.restitution << "\n\n";
+    os << "After impact:\n";
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        os << "  " << p.bodies[i].name << ":\n";
+        os << "    velocity          " << show_vec(s.after[i].velocity, p.dimension) << "\n";
+        if (p.dimension == 2)
+            os << "    angular velocity  " << show(s.after[i].angular_velocity[2]) << "\n";
+        else
+            os << "    angular velocity  " << show_vec(s.after[i].angular_velocity, 3) << "\n";
+    }
+    os << "  normal impulse      " << show(s.normal_impulse * d.normal_length) << "\n";
+    for (std::size_t k = 0; k < s.pivot_impulses.size(); ++k)
+        os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(s.pivot_impulses[k], p.dimension) << "\n";
+    os << "Kinetic energy:\n";
+    os << "  before  " << show(s.energy_before) << "\n";
+    os << "  after   " << show(s.energy_after) << "\n";
+    os << "  lost    " << show(s.energy_lost) << "\n";
+    return os.str();
+}
+
+} // namespace impactgen::print

@@ -1,0 +1,51 @@
+#include "expression.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace impactgen::print {
+using namespace GiNaC;
+
+std::string parser_syntax(const ex& e)
+{
+    std::ostringstream os;
+    os << e;
+    return os.str();
+}
+
+std::string latex(const ex& e)
+{
+    std::ostringstream os;
+    os << GiNaC::latex << e;
+    return os.str();
+}
+
+double to_double(const ex& e)
+{
+    ex v = e.evalf();
+    if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
+        throw std::invalid_argument("not a real number: " + parser_syntax(e));
+    double d = ex_to<numeric>(v).to_double();
+    if (!std::isfinite(d))
+        throw std::invalid_argument("not a finite number: " + parser_syntax(e));
+    return d == 0 ? 0.0 : d; // no "-0"
+}
+
+std::string decimal(const ex& e)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.15g", to_double(e));
+    return buf;
+}
+
+ex tidy(const ex& e)
+{
+    std::size_t nodes = 0;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end() && nodes < 800; ++it)
+        ++nodes;
+    return nodes < 800 ? e.normal() : e;
+}
+
+} // namespace impactgen::print

@@ -1,0 +1,280 @@
+#include "derivation.hpp"
+
+namespace impactgen {
+using namespace GiNaC;
+
+const char* principle_name(principle p)
+{
+    switch (p) {
+    case principle::smooth_contact: return "smooth contact";
+    case principle::system_momentum: return "linear momentum of the system";
+    case principle::angular_momentum: return "angular momentum";
+    case principle::linear_impulse: return "linear impulse-momentum";
+    case principle::pivot_fixed: return "pivot fixed";
+    case principle::restitution: return "restitution";
+    }
+    return "?";
+}
+
+namespace {
+bool single_char_label(const std::string& s) { return s.size() == 1; }
+}
+
+std::string quantity_name(const std::string& base, const std::string& axis, const std::string& label, bool after)
+{
+    std::string sub = single_char_label(label) ? axis + label : axis + "," + label;
+    return base + (after ? "'" : "") + "_" + sub;
+}
+
+std::string quantity_tex(const std::string& base_tex, const std::string& axis, const std::string& label, bool after)
+{
+    std::string sub = single_char_label(label) ? axis + label : axis + ",\\mathrm{" + label + "}";
+    return base_tex + (after ? "'" : "") + "_{" + sub + "}";
+}
+
+lst derivation::unknown_symbols() const
+{
+    lst l;
+    for (const unknown& u : unknowns)
+        l.append(u.sym);
+    return l;
+}
+
+namespace {
+
+bool is_axis(const vec3& n, int& axis)
+{
+    int nonzero = 0;
+    for (int i = 0; i < 3; ++i)
+        if (!n[i].is_zero()) {
+            ++nonzero;
+            axis = i;
+        }
+    return nonzero == 1;
+}
+
+// e_t and e_b for the contact normal: world axes when n lies along one,
+// otherwise the projection of the world axis least parallel to n.
+void contact_frame(derivation& d)
+{
+    const vec3& n = d.n_hat;
+    int k = 0;
+    if (d.prob.dimension == 2) {
+        d.t_dir = {n[1], -n[0], 0};
+        d.b_dir = zero_vec();
+        d.frame_is_world = is_axis(n, k);
+        return;
+    }
+    if (is_axis(n, k)) {
+        vec3 t = zero_vec();
+        t[(k + 2) % 3] = 1;
+        d.t_dir = t;
+        d.b_dir = cross(t, n);
+        d.frame_is_world = true;
+        return;
+    }
+    int pick = -1;
+    for (int i = 0; i < 3 && pick < 0; ++i)
+        if (n[i].is_zero())
+            pick = i;
+    if (pick < 0) {
+        bool numeric_n = is_a<numeric>(n[0].evalf()) && is_a<numeric>(n[1].evalf()) && is_a<numeric>(n[2].evalf());
+        pick = 2;
+        if (numeric_n) {
+            double best = 2;
+            for (int i = 0; i < 3; ++i) {
+                double c = std::abs(ex_to<numeric>(n[i].evalf()).to_double());
+                if (c < best) {
+                    best = c;
+                    pick = i;
+                }
+            }
+        }
+    }
+    vec3 a = zero_vec();
+    a[pick] = 1;
+    vec3 t = a - dot(a, n) * n;
+    for (ex& c : t)
+        c = c.normal();
+    d.t_dir = t;
+    d.b_dir = cross(t, n);
+    for (ex& c : d.b_dir)
+        c = c.normal();
+}
+
+symbol fresh(const std::string& name, const std::string& tex) { return symbol(name, tex); }
+
+} // namespace
+
+derivation derive(const problem& p)
+{
+    validate(p);
+    derivation d;
+    d.prob = p;
+    const int dim = p.dimension;
+    const auto& ax = p.axes;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    d.impulse_form = !p.pivots.empty();
+
+    d.normal_length = sqrt(dot(p.contact.normal, p.contact.normal).expand());
+    for (int i = 0; i < 3; ++i)
+        d.n_hat[i] = (p.contact.normal[i] / d.normal_length).normal();
+    contact_frame(d);
+
+    // Unknowns and post-impact velocities.
+    d.velocity_after.resize(p.bodies.size());
+    d.angular_velocity_after.resize(p.bodies.size());
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        const body& b = p.bodies[i];
+        d.velocity_after[i] = b.velocity;
+        d.angular_velocity_after[i] = b.angular_velocity;
+        bool in_contact = i == i1 || i == i2;
+        if (!in_contact || p.immovable(i))
+            continue;
+        for (int c = 0; c < dim; ++c) {
+            symbol s = fresh(quantity_name("v", ax[c], b.label, true), quantity_tex("v", ax[c], b.label, true));
+            d.unknowns.push_back({s, unknown_kind::velocity, i, c, "velocity of the centre of mass of " + b.name + " after impact, " + ax[c] + " component"});
+            d.velocity_after[i][c] = s;
+        }
+        if (!b.particle) {
+            for (int c = (dim == 2 ? 2 : 0); c < 3; ++c) {
+                symbol s = fresh(quantity_name("w", ax[c], b.label, true), quantity_tex("\\omega", ax[c], b.label, true));
+                d.unknowns.push_back({s, unknown_kind::angular_velocity, i, c, "angular velocity of " + b.name + " after impact, " + ax[c] + " component"});
+                d.angular_velocity_after[i][c] = s;
+            }
+        }
+    }
+    if (d.impulse_form) {
+        symbol N = fresh("N", "N");
+        d.unknowns.push_back({N, unknown_kind::normal_impulse, 0, 0, "normal impulse (integral of N dt), on " + p.bodies[i2].name + " along +n and on " + p.bodies[i1].name + " along -n"});
+        d.normal_impulse = N;
+        for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+            vec3 R = zero_vec();
+            const std::string& lbl = p.bodies[p.pivots[k].body].label;
+            for (int c = 0; c < dim; ++c) {
+                symbol s = fresh(quantity_name("R", ax[c], lbl, false), quantity_tex("R", ax[c], lbl, false));
+                d.unknowns.push_back({s, unknown_kind::pivot_impulse, k, c, "impulse of the pivot on " + p.bodies[p.pivots[k].body].name + ", " + ax[c] + " component"});
+                R[c] = s;
+            }
+            d.pivot_impulse.push_back(R);
+        }
+    } else {
+        d.normal_impulse = 0;
+    }
+
+    // Contact point velocities, v_A = v_C1 + w_1 x r_{A C1}.
+    auto point_velocity = [&](std::size_t i, const vec3& v, const vec3& w) {
+        return v + cross(w, p.contact.point - p.bodies[i].position);
+    };
+    d.vA = point_velocity(i1, p.bodies[i1].velocity, p.bodies[i1].angular_velocity);
+    d.vB = point_velocity(i2, p.bodies[i2].velocity, p.bodies[i2].angular_velocity);
+    d.vA_after = point_velocity(i1, d.velocity_after[i1], d.angular_velocity_after[i1]);
+    d.vB_after = point_velocity(i2, d.velocity_after[i2], d.angular_velocity_after[i2]);
+
+    int label = 0;
+    auto add = [&](ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies) {
+        d.equations.push_back({std::to_string(++label), lhs, rhs, why, std::move(reason), std::move(bodies)});
+    };
+    auto world_components = [&](const vec3& lhs, const vec3& rhs, principle why, const std::string& reason,
+                                 std::vector<std::size_t> bodies, bool angular) {
+        int first = angular && dim == 2 ? 2 : 0;
+        int last = angular || dim == 3 ? 3 : 2;
+        for (int c = first; c < last; ++c)
+            add(lhs[c], rhs[c], why, reason + " (" + ax[c] + " component)", bodies);
+    };
+    const std::size_t contact_bodies[2] = {i1, i2};
+
+    if (!d.impulse_form) {
+        // (a) Smooth contact: no impulse along e_t, e_b.
+        for (std::size_t i : contact_bodies) {
+            if (p.immovable(i))
+                continue;
+            const body& b = p.bodies[i];
+            add(dot(d.velocity_after[i], d.t_dir), dot(b.velocity, d.t_dir), principle::smooth_contact,
+                "the bodies are smooth, so no impulse acts on " + b.name + " along e_t: its centre-of-mass velocity along e_t is unchanged", {i});
+            if (dim == 3)
+                add(dot(d.velocity_after[i], d.b_dir), dot(b.velocity, d.b_dir), principle::smooth_contact,
+                    "no impulse acts on " + b.name + " along e_b: its centre-of-mass velocity along e_b is unchanged", {i});
+        }
+        // (b) Linear momentum of the system along n.
+        if (!p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass) {
+            ex before = 0, after = 0;
+            for (std::size_t i : contact_bodies) {
+                before += p.bodies[i].mass * dot(p.bodies[i].velocity, d.n_hat);
+                after += p.bodies[i].mass * dot(d.velocity_after[i], d.n_hat);
+            }
+            add(after, before, principle::system_momentum,
+                "the impulse N n is internal to the system of both bodies, so their linear momentum along n is conserved", {i1, i2});
+        } else {
+            std::size_t inf = p.bodies[i1].infinite_mass ? i1 : i2;
+            d.remarks.push_back("Linear momentum of the system along n is not useful: " + p.bodies[inf].name +
+                                " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero).");
+            d.remarks.push_back("The velocities of " + p.bodies[inf].name +
+                                " are unchanged: a finite impulse cannot change the motion of an infinite mass, so it gives no angular momentum equation either.");
+        }
+        // (c) Angular momentum about O, each body separately.
+        for (std::size_t i : contact_bodies) {
+            const body& b = p.bodies[i];
+            if (p.immovable(i))
+                continue;
+            if (b.particle) {
+                d.remarks.push_back(b.name + " is a particle (no rotational inertia): it has no angular velocity unknowns and its angular momentum about O gives no new equation.");
+                continue;
+            }
+            vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
+            vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
+            vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
+            world_components(Ha, Hb, principle::angular_momentum,
+                             "the impulse on " + b.name + " passes through O, which is fixed in the inertial frame, so its angular momentum about O is conserved",
+                             {i}, true);
+        }
+    } else {
+        // Constrained collision: impulse-momentum with N and R unknown.
+        for (std::size_t i : contact_bodies) {
+            const body& b = p.bodies[i];
+            if (b.infinite_mass)
+                continue;
+            const ex s = i == i1 ? -1 : 1;
+            const pivot* pv = p.pivot_of(i);
+            vec3 R = zero_vec();
+            if (pv)
+                R = d.pivot_impulse[static_cast<std::size_t>(pv - p.pivots.data())];
+            vec3 impulse = (s * d.normal_impulse) * d.n_hat + R;
+            vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
+            world_components(dp, impulse, principle::linear_impulse,
+                             "the change of linear momentum of " + b.name + " equals the impulses on it: " +
+                                 (i == i1 ? "-N n" : "+N n") + (pv ? " and the pivot impulse R" : ""),
+                             {i}, false);
+            if (!b.particle) {
+                vec3 ref = pv ? pv->point : p.contact.point;
+                vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) +
+                          cross(b.position - ref, dp);
+                vec3 moment = pv ? cross(p.contact.point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
+                world_components(dH, moment, principle::angular_momentum,
+                                 pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change of angular momentum of " + b.name + " about E is the moment of the contact impulse"
+                                    : "the impulse on " + b.name + " passes through O, fixed in the inertial frame, so its angular momentum about O is conserved",
+                                 {i}, true);
+            }
+            if (pv && !b.particle) {
+                vec3 vE = d.velocity_after[i] + cross(d.angular_velocity_after[i], pv->point - b.position);
+                world_components(vE, zero_vec(), principle::pivot_fixed,
+                                 "the pivot E of " + b.name + " is fixed: v'_C + w' x r_{E C} = 0", {i}, false);
+            }
+            if (pv && b.particle)
+                d.remarks.push_back(b.name + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot takes the whole contact impulse.");
+        }
+        for (std::size_t i : contact_bodies)
+            if (p.bodies[i].infinite_mass)
+                d.remarks.push_back("The velocities of " + p.bodies[i].name + " (infinite mass) are unchanged by the finite impulse.");
+    }
+    // (d) Newton's restitution law on the contact points.
+    add(dot(d.vB_after - d.vA_after, d.n_hat), -p.restitution * dot(d.vB - d.vA, d.n_hat), principle::restitution,
+        "Newton's coefficient of restitution: the normal velocity of separation of the contact points is e times their velocity of approach", {i1, i2});
+
+    for (std::size_t i = 0; i < p.bodies.size(); ++i)
+        if (i != i1 && i != i2)
+            d.remarks.push_back(p.bodies[i].name + " takes no part in the contact: its velocities are unchanged.");
+    return d;
+}
+
+} // namespace impactgen

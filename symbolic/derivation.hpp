@@ -1,0 +1,84 @@
+// The equations of one impact, written the way the lecture notes write them:
+// every equation carries the principle it comes from and the bodies involved.
+//
+// Free bodies (no pivots) -- the notes' unconstrained impact:
+//   smooth contact        (v'_i - v_i) . e_t = 0, (v'_i - v_i) . e_b = 0      (each movable body)
+//   system momentum       sum_i m_i v'_i . n = sum_i m_i v_i . n          (both bodies of finite mass)
+//   angular momentum at O I_i w'_i + r_{C_i O} x m_i v'_i = I_i w_i + r_{C_i O} x m_i v_i
+//   restitution           (v'_B - v'_A) . n = -e (v_B - v_A) . n,  v_A = v_C1 + w_1 x r_{A C1}
+// With a pivot -- the notes' constrained collision: impulse-momentum for each
+// body with the normal impulse N and the pivot impulses R as further unknowns:
+//   linear impulse        m_i (v'_i - v_i) = s_i N n + R_i               (s_1 = -1, s_2 = +1)
+//   angular impulse       about the pivot E (or about O for a free body)
+//   pivot fixed           v'_i + w'_i x r_{E C_i} = 0
+//   restitution           as above
+#pragma once
+
+#include "problem.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen {
+
+enum class principle {
+    smooth_contact,   ///< no tangential impulse: tangential COM velocity unchanged
+    system_momentum,  ///< the contact impulse is internal to the pair of bodies
+    angular_momentum, ///< about O (or the pivot), where the impulsive moment vanishes
+    linear_impulse,   ///< impulse-momentum of one body with the unknown impulses
+    pivot_fixed,      ///< the pivot point does not move
+    restitution       ///< Newton's law on the contact points' normal velocities
+};
+const char* principle_name(principle p);
+
+struct equation {
+    std::string label;                 ///< "1", "2", ... in the order derived
+    ex lhs, rhs;
+    principle why;
+    std::string reason;                ///< one sentence: why this equation holds
+    std::vector<std::size_t> bodies;   ///< indices into problem::bodies
+};
+
+enum class unknown_kind { velocity, angular_velocity, normal_impulse, pivot_impulse };
+
+struct unknown {
+    GiNaC::symbol sym;
+    unknown_kind kind;
+    std::size_t owner = 0;  ///< body index, or pivot index for pivot impulses
+    int component = 0;      ///< world axis 0..2
+    std::string meaning;
+};
+
+struct derivation {
+    problem prob;
+    bool impulse_form = false;         ///< true when a pivot makes the impulses unknowns
+    std::vector<unknown> unknowns;
+    std::vector<equation> equations;
+    std::vector<std::string> remarks;  ///< principles that give no usable equation, and why
+
+    vec3 n_hat;                        ///< unit normal n / |n|
+    ex normal_length;                  ///< |n|
+    vec3 t_dir, b_dir;                 ///< tangent directions (b_dir zero in 2-D); not unit in general
+    bool frame_is_world = false;       ///< e_t, e_n, e_b are world axes (up to sign)
+
+    /// Velocity, angular velocity after impact: unknown symbols, or the
+    /// values before for bodies the impact does not change.
+    std::vector<vec3> velocity_after, angular_velocity_after;
+    std::vector<vec3> pivot_impulse;   ///< in unknown symbols (impulse form only)
+    ex normal_impulse;                 ///< the unknown N (impulse form only), else 0
+    vec3 vA, vB, vA_after, vB_after;   ///< contact point velocities
+
+    std::size_t count_equations() const { return equations.size(); }
+    std::size_t count_unknowns() const { return unknowns.size(); }
+    /// All the unknown symbols, in order.
+    GiNaC::lst unknown_symbols() const;
+};
+
+derivation derive(const problem& p);
+
+/// Names a symbol of a body's quantity for printing: base, axis, body label,
+/// e.g. ("v", "t", "1", true) -> v'_t1.
+std::string quantity_name(const std::string& base, const std::string& axis, const std::string& body_label, bool after);
+std::string quantity_tex(const std::string& base_tex, const std::string& axis, const std::string& body_label, bool after);
+
+} // namespace impactgen

@@ -1,0 +1,159 @@
+#include "named_classes.hpp"
+
+namespace impactgen {
+using namespace GiNaC;
+
+namespace {
+
+ex S(const std::string& name, const std::string& tex = "") { return symbol_named(name, tex); }
+
+// Body "1" or "2" with the notes' symbols: m1, v_t1, v_n1, v_b1, w_t1, ..., position r_t1 ... of C1 relative to O.
+body free_body(const std::string& k, int dim, bool rigid, bool full_inertia)
+{
+    body b;
+    b.name = b.label = k;
+    b.mass = S("m" + k);
+    const char* ax[3] = {"t", "n", "b"};
+    for (int c = 0; c < dim; ++c) {
+        b.position[c] = S(std::string("r_") + ax[c] + k, std::string("r_{") + ax[c] + k + "}");
+        b.velocity[c] = S(std::string("v_") + ax[c] + k, std::string("v_{") + ax[c] + k + "}");
+    }
+    b.particle = !rigid;
+    if (!rigid)
+        return b;
+    if (dim == 2) {
+        b.inertia[2][2] = S("I" + k, "I_{" + k + "}");
+        b.angular_velocity[2] = S("w_b" + k, "\\omega_{b" + k + "}");
+        return b;
+    }
+    for (int c = 0; c < 3; ++c)
+        b.angular_velocity[c] = S(std::string("w_") + ax[c] + k, std::string("\\omega_{") + ax[c] + k + "}");
+    for (int r = 0; r < 3; ++r)
+        for (int c = r; c < 3; ++c) {
+            if (!full_inertia && r != c)
+                continue;
+            std::string nm = "I" + k + "_" + ax[r] + ax[c];
+            ex s = S(nm, "I^{" + k + "}_{" + std::string(ax[r]) + ax[c] + "}");
+            b.inertia[r][c] = s;
+            b.inertia[c][r] = s;
+        }
+    return b;
+}
+
+problem base(const std::string& name, int dim)
+{
+    problem p;
+    p.source = name;
+    p.dimension = dim;
+    p.restitution = S("e");
+    p.axes = {"t", "n", "b"};
+    p.contact.body1 = 0;
+    p.contact.body2 = 1;
+    p.contact.normal = {0, 1, 0};
+    return p;
+}
+
+problem central_direct()
+{
+    problem p = base("central-direct", 2);
+    body b1 = free_body("1", 2, false, false), b2 = free_body("2", 2, false, false);
+    // Centres on the line of impact (the n axis), velocities along it.
+    b1.position = {0, -S("R1", "R_{1}"), 0};
+    b2.position = {0, S("R2", "R_{2}"), 0};
+    b1.velocity[0] = 0;
+    b2.velocity[0] = 0;
+    p.bodies = {b1, b2};
+    return p;
+}
+
+problem central_oblique()
+{
+    problem p = base("central-oblique", 3);
+    body b1 = free_body("1", 3, false, false), b2 = free_body("2", 3, false, false);
+    b1.position = {0, -S("R1", "R_{1}"), 0};
+    b2.position = {0, S("R2", "R_{2}"), 0};
+    p.bodies = {b1, b2};
+    return p;
+}
+
+problem noncentral_3d()
+{
+    problem p = base("noncentral-3d", 3);
+    p.bodies = {free_body("1", 3, true, true), free_body("2", 3, true, true)};
+    return p;
+}
+
+problem massive_3d()
+{
+    problem p = base("massive-3d", 3);
+    body b2 = free_body("2", 3, true, true);
+    b2.infinite_mass = true;
+    b2.mass = 0;
+    b2.particle = true; // an infinite mass needs no inertia: its motion is given
+    b2.inertia = zero_mat();
+    p.bodies = {free_body("1", 3, true, true), b2};
+    return p;
+}
+
+problem planar()
+{
+    problem p = base("planar", 2);
+    p.bodies = {free_body("1", 2, true, false), free_body("2", 2, true, false)};
+    return p;
+}
+
+// The notes' worked example: a ball (particle, m1, speed v1) strikes the lower
+// end B of a uniform rod AB (m2, length l) hanging at rest from a hinge at A.
+// Here e_n = x (horizontal, the ball's motion), the rod along -y, A at the origin.
+problem pinned_planar()
+{
+    problem p;
+    p.source = "pinned-planar";
+    p.dimension = 2;
+    p.restitution = S("e");
+    p.axes = {"x", "y", "z"};
+    ex l = S("l"), m1 = S("m1"), m2 = S("m2");
+    body ball;
+    ball.name = ball.label = "1";
+    ball.mass = m1;
+    ball.position = {0, -l, 0};
+    ball.velocity = {S("v1", "v_{1}"), 0, 0};
+    body rod;
+    rod.name = rod.label = "2";
+    rod.mass = m2;
+    rod.particle = false;
+    rod.inertia[2][2] = m2 * l * l / 12;
+    rod.position = {0, -l / 2, 0};
+    p.bodies = {ball, rod};
+    p.contact.body1 = 0;
+    p.contact.body2 = 1;
+    p.contact.point = {0, -l, 0};
+    p.contact.normal = {1, 0, 0};
+    p.pivots = {pivot{1, zero_vec()}};
+    return p;
+}
+
+} // namespace
+
+const std::vector<named_class>& named_classes()
+{
+    static const std::vector<named_class> all = {
+        {"central-direct", "two particles, centres and velocities on the line of impact", central_direct},
+        {"central-oblique", "two spheres, centres on the line of impact, oblique 3-D velocities", central_oblique},
+        {"noncentral-3d", "two free rigid bodies in 3-D with full inertia tensors", noncentral_3d},
+        {"massive-3d", "a free rigid body strikes a moving body of infinite mass", massive_3d},
+        {"planar", "smooth planar impact of two free rigid bodies (e_b a principal axis)", planar},
+        {"pinned-planar", "a ball strikes the end of a rod hinged at a fixed point (unknown pivot impulse)", pinned_planar},
+    };
+    return all;
+}
+
+const named_class* find_named_class(const std::string& name)
+{
+    for (const named_class& c : named_classes())
+        if (c.name == name)
+            return &c;
+    return nullptr;
+}
+
+} // namespace impactgen

@@ -1,0 +1,23 @@
+// The impact classes of the lecture notes as ready-made problems, with
+// symbols named as the notes name them (contact frame e_t, e_n, e_b = world x, y, z).
+#pragma once
+
+#include "problem.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen {
+
+struct named_class {
+    std::string name;
+    std::string description;
+    problem (*build)();
+};
+
+/// All named classes, in the order of the notes.
+const std::vector<named_class>& named_classes();
+/// The class of that name, or nullptr.
+const named_class* find_named_class(const std::string& name);
+
+} // namespace impactgen

@@ -1,0 +1,542 @@
+#include "problem.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cfloat>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace impactgen {
+using namespace GiNaC;
+
+namespace {
+
+std::map<std::string, symbol>& symbol_registry()
+{
+    static std::map<std::string, symbol> registry;
+    return registry;
+}
+
+// "v_t1" -> "v_{t1}", "m1" -> "m_{1}", "omega" stays (GiNaC prints Greek names itself).
+std::string default_tex(const std::string& name)
+{
+    auto us = name.find('_');
+    if (us != std::string::npos && us + 1 < name.size())
+        return name.substr(0, us) + "_{" + name.substr(us + 1) + "}";
+    std::size_t d = name.size();
+    while (d > 0 && std::isdigit(static_cast<unsigned char>(name[d - 1])))
+        --d;
+    if (d > 0 && d < name.size())
+        return name.substr(0, d) + "_{" + name.substr(d) + "}";
+    return "";
+}
+
+bool is_ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// Exact value of a decimal literal: 0.8 -> 4/5, 1e-3 -> 1/1000.
+numeric exact_decimal(const std::string& lit, const std::string& where)
+{
+    std::string mant = lit, expo;
+    auto epos = lit.find_first_of("eE");
+    if (epos != std::string::npos) {
+        mant = lit.substr(0, epos);
+        expo = lit.substr(epos + 1);
+    }
+    bool negative = false;
+    if (!mant.empty() && (mant[0] == '-' || mant[0] == '+')) {
+        negative = mant[0] == '-';
+        mant.erase(0, 1);
+    }
+    std::string digits;
+    long scale = 0;
+    bool seen_point = false;
+    for (char c : mant) {
+        if (c == '.') {
+            seen_point = true;
+            continue;
+        }
+        if (!std::isdigit(static_cast<unsigned char>(c)))
+            throw input_error(where + ": \"" + lit + "\" is not a number");
+        digits += c;
+        if (seen_point)
+            --scale;
+    }
+    if (digits.empty())
+        throw input_error(where + ": \"" + lit + "\" is not a number");
+    if (!expo.empty()) {
+        if (expo.size() > 6)
+            throw input_error(where + ": the exponent of " + lit + " is out of range (non-finite number)");
+        scale += std::stol(expo);
+    }
+    if (scale > 400 || scale < -400)
+        throw input_error(where + ": " + lit + " is out of the range of double (non-finite number)");
+    numeric value(digits.c_str());
+    value *= pow(numeric(10), numeric(scale));
+    return negative ? -value : value;
+}
+
+// Rewrites decimal literals inside an expression string as exact rationals
+// and registers every identifier as a shared symbol; returns the rewritten text.
+std::string prepare_expression(const std::string& s, symtab& table, const std::string& where)
+{
+    static const std::set<std::string> functions = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan",
+                                                    "exp", "log", "abs", "pow", "sinh", "cosh", "tanh"};
+    std::string out;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        char c = s[i];
+        if (is_ident_start(c)) {
+            std::size_t j = i;
+            while (j < s.size() && is_ident_char(s[j]))
+                ++j;
+            std::string id = s.substr(i, j - i);
+            std::size_t k = j;
+            while (k < s.size() && std::isspace(static_cast<unsigned char>(s[k])))
+                ++k;
+            bool call = k < s.size() && s[k] == '(';
+            std::string lower = id;
+            std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+            if (lower == "inf" || lower == "infinity" || lower == "nan")
+                throw input_error(where + ": \"" + s + "\" is not a finite value (only a mass may be \"inf\")");
+            if (call) {
+                if (!functions.count(id))
+                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + s + "\"");
+            } else if (id == "I") {
+                throw input_error(where + ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
+            } else if (id != "Pi" && id != "Euler" && id != "Catalan") {
+                table[id] = symbol_named(id);
+            }
+            out += id;
+            i = j;
+        } else if (std::isdigit(static_cast<unsigned char>(c)) || (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
+            std::size_t j = i;
+            while (j < s.size() && (std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '.'))
+                ++j;
+            if (j < s.size() && (s[j] == 'e' || s[j] == 'E')) {
+                std::size_t k = j + 1;
+                if (k < s.size() && (s[k] == '+' || s[k] == '-'))
+                    ++k;
+                if (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) {
+                    j = k;
+                    while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j])))
+                        ++j;
+                }
+            }
+            std::ostringstream os;
+            os << "(" << exact_decimal(s.substr(i, j - i), where) << ")";
+            out += os.str();
+            i = j;
+        } else {
+            out += c;
+            ++i;
+        }
+    }
+    return out;
+}
+
+bool is_real_number(const ex& e) { return is_a<numeric>(e) && ex_to<numeric>(e).is_real(); }
+
+void check_finite(const ex& e, const std::string& where)
+{
+    if (e.has(I))
+        throw input_error(where + ": the value is not real");
+    if (!is_a<numeric>(e))
+        return;
+    const numeric& n = ex_to<numeric>(e);
+    if (!n.is_real())
+        throw input_error(where + ": the value is not real");
+    if (abs(n) > numeric(DBL_MAX))
+        throw input_error(where + ": the value is out of the range of double (non-finite number)");
+}
+
+std::string show(const ex& e)
+{
+    std::ostringstream os;
+    os << e;
+    return os.str();
+}
+
+// ---- reading the JSON format -------------------------------------------------
+
+const json_value& require(const json_value& obj, const std::string& key, const std::string& where)
+{
+    const json_value* v = obj.find(key);
+    if (!v)
+        throw input_error(where + ": missing key \"" + key + "\"");
+    return *v;
+}
+
+ex scalar(const json_value& v, const std::string& where)
+{
+    if (v.is_number() || v.is_string())
+        return parse_value(v.text(), v.is_string(), where);
+    throw input_error(where + ": expected a number or an expression string, got " + json_value::kind_name(v.type()));
+}
+
+vec3 vector_of(const json_value& v, int dim, const std::string& where)
+{
+    if (!v.is_array())
+        throw input_error(where + ": expected a list of " + std::to_string(dim) + " values, got " +
+                          json_value::kind_name(v.type()));
+    if (static_cast<int>(v.items().size()) != dim)
+        throw input_error(where + ": expected " + std::to_string(dim) + " components for a " + std::to_string(dim) +
+                          "-D problem, got " + std::to_string(v.items().size()));
+    vec3 r = zero_vec();
+    for (int i = 0; i < dim; ++i)
+        r[i] = scalar(v.items()[i], where + "[" + std::to_string(i) + "]");
+    return r;
+}
+
+void warn_unknown_keys(const json_value& obj, std::initializer_list<const char*> known, const std::string& where,
+                       std::vector<std::string>& warnings)
+{
+    for (const auto& m : obj.members()) {
+        bool ok = false;
+        for (const char* k : known)
+            ok = ok || m.first == k;
+        if (!ok)
+            warnings.push_back(where + (where.empty() ? "" : ".") + m.first + ": unknown key, ignored");
+    }
+}
+
+std::size_t body_index(const problem& p, const json_value& v, const std::string& where)
+{
+    if (!v.is_string())
+        throw input_error(where + ": expected a body name (a string), got " + json_value::kind_name(v.type()));
+    for (std::size_t i = 0; i < p.bodies.size(); ++i)
+        if (p.bodies[i].name == v.text())
+            return i;
+    throw input_error(where + ": unknown body \"" + v.text() + "\"");
+}
+
+} // namespace
+
+symbol symbol_named(const std::string& name, const std::string& tex_name)
+{
+    auto& reg = symbol_registry();
+    auto it = reg.find(name);
+    if (it != reg.end())
+        return it->second;
+    std::string tex = tex_name.empty() ? default_tex(name) : tex_name;
+    symbol s = tex.empty() ? symbol(name) : symbol(name, tex);
+    reg.emplace(name, s);
+    return s;
+}
+
+ex parse_value(const std::string& text, bool is_string, const std::string& where)
+{
+    ex value;
+    if (!is_string) {
+        value = exact_decimal(text, where);
+    } else {
+        std::string t = text;
+        if (t.find_first_not_of(" \t") == std::string::npos)
+            throw input_error(where + ": empty expression");
+        symtab table;
+        std::string prepared = prepare_expression(t, table, where);
+        parser reader(table, true);
+        try {
+            value = reader(prepared);
+        } catch (const std::exception& e) {
+            throw input_error(where + ": cannot read the expression \"" + text + "\" (" + e.what() + ")");
+        }
+    }
+    check_finite(value, where);
+    return value;
+}
+
+std::vector<symbol> problem::parameters() const
+{
+    exset found;
+    auto collect = [&](const ex& e) {
+        for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+            if (is_a<symbol>(*it))
+                found.insert(*it);
+    };
+    auto collect_v = [&](const vec3& v) {
+        for (const ex& e : v)
+            collect(e);
+    };
+    collect(restitution);
+    for (const body& b : bodies) {
+        if (!b.infinite_mass)
+            collect(b.mass);
+        for (const auto& row : b.inertia)
+            collect_v(row);
+        collect_v(b.position);
+        collect_v(b.velocity);
+        collect_v(b.angular_velocity);
+    }
+    collect_v(contact.point);
+    collect_v(contact.normal);
+    for (const pivot& pv : pivots)
+        collect_v(pv.point);
+    std::vector<symbol> r;
+    for (const ex& e : found)
+        r.push_back(ex_to<symbol>(e));
+    std::sort(r.begin(), r.end(), [](const symbol& a, const symbol& b) { return a.get_name() < b.get_name(); });
+    return r;
+}
+
+const pivot* problem::pivot_of(std::size_t b) const
+{
+    for (const pivot& pv : pivots)
+        if (pv.body == b)
+            return &pv;
+    return nullptr;
+}
+
+bool problem::immovable(std::size_t b) const
+{
+    return bodies[b].infinite_mass || (bodies[b].particle && pivot_of(b) != nullptr);
+}
+
+void validate(const problem& p)
+{
+    if (p.dimension != 2 && p.dimension != 3)
+        throw input_error("dimension: must be 2 or 3");
+    if (p.bodies.size() < 2)
+        throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
+    if (is_real_number(p.restitution)) {
+        const numeric& e = ex_to<numeric>(p.restitution);
+        if (e < 0 || e > 1)
+            throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        const body& b = p.bodies[i];
+        std::string where = "bodies[" + std::to_string(i) + "] (\"" + b.name + "\")";
+        if (!names.insert(b.name).second)
+            throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + b.name + "\"");
+        if (!b.infinite_mass && is_real_number(b.mass) && ex_to<numeric>(b.mass) <= 0)
+            throw input_error(where + ".mass: must be > 0 (or \"inf\"), got " + show(b.mass));
+        if (b.particle)
+            continue;
+        // Symmetric positive-definite (Sylvester: leading principal minors > 0).
+        for (int r = 0; r < 3; ++r)
+            for (int c = r + 1; c < 3; ++c)
+                if (!(b.inertia[r][c] - b.inertia[c][r]).expand().is_zero())
+                    throw input_error(where + ".inertia: not symmetric (entry [" + std::to_string(r) + "][" +
+                                      std::to_string(c) + "] is " + show(b.inertia[r][c]) + ", [" + std::to_string(c) +
+                                      "][" + std::to_string(r) + "] is " + show(b.inertia[c][r]) + ")");
+        const mat3& J = b.inertia;
+        std::vector<ex> minors;
+        if (p.dimension == 2) {
+            minors = {J[2][2]};
+        } else {
+            minors = {J[0][0], J[0][0] * J[1][1] - J[0][1] * J[1][0], det(J)};
+        }
+        for (const ex& m : minors) {
+            ex v = m.expand();
+            if (is_real_number(v) && ex_to<numeric>(v) <= 0)
+                throw input_error(where + ".inertia: not positive-definite" +
+                                  std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
+        }
+    }
+    const contact_spec& c = p.contact;
+    if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
+        throw input_error("contact.bodies: unknown body");
+    if (c.body1 == c.body2)
+        throw input_error("contact.bodies: repeated body \"" + p.bodies[c.body1].name + "\" (a body cannot strike itself)");
+    ex nn = dot(c.normal, c.normal).expand();
+    if (nn.is_zero())
+        throw input_error("contact.normal: the normal must not be zero");
+    std::set<std::size_t> pinned;
+    for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+        const pivot& pv = p.pivots[k];
+        std::string where = "pivots[" + std::to_string(k) + "]";
+        if (pv.body >= p.bodies.size())
+            throw input_error(where + ".body: unknown body");
+        const body& b = p.bodies[pv.body];
+        if (!pinned.insert(pv.body).second)
+            throw input_error(where + ".body: body \"" + b.name +
+                              "\" has a second pivot; the pivot impulses would be statically indeterminate "
+                              "(at most one pivot per body)");
+        if (b.infinite_mass)
+            throw input_error(where + ".body: body \"" + b.name + "\" has infinite mass; a pivot on it takes no part in the impact");
+        // The pivot point E of the body must be at rest: v + w x (E - C) = 0.
+        vec3 vE = b.velocity + cross(b.angular_velocity, pv.point - b.position);
+        for (int i = 0; i < 3; ++i)
+            if (!vE[i].expand().is_zero())
+                throw input_error(where + ": the pivot point of body \"" + b.name +
+                                  "\" moves before impact (v + w x (E - C) has component " + p.axes[i] + " = " +
+                                  show(vE[i].expand()) + "); a pivot is a fixed point");
+    }
+    std::size_t b1 = c.body1, b2 = c.body2;
+    if (p.immovable(b1) && p.immovable(b2))
+        throw input_error("contact.bodies: neither \"" + p.bodies[b1].name + "\" nor \"" + p.bodies[b2].name +
+                          "\" can move (infinite mass or pinned particle): no impulse can act");
+    // Approach: (v_B - v_A) . n < 0 is an impact; >= 0 separates or rests.
+    const body& A = p.bodies[b1];
+    const body& B = p.bodies[b2];
+    vec3 vA = A.velocity + cross(A.angular_velocity, c.point - A.position);
+    vec3 vB = B.velocity + cross(B.angular_velocity, c.point - B.position);
+    ex approach = dot(vB - vA, c.normal).expand();
+    if (is_real_number(approach) && ex_to<numeric>(approach) >= 0)
+        throw input_error(std::string("contact: not an impact: the contact points ") +
+                          (approach.is_zero() ? "rest relative to each other" : "separate") +
+                          " along the normal ((v_B - v_A).n = " + show(approach) + " >= 0)");
+}
+
+problem read_problem(const std::string& text, const std::string& source)
+{
+    json_value root = json_value::parse(text);
+    if (!root.is_object())
+        throw input_error(std::string("problem: expected a JSON object, got ") + json_value::kind_name(root.type()));
+    problem p;
+    p.source = source;
+    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description"}, "",
+                      p.warnings);
+
+    const json_value& dim = require(root, "dimension", "problem");
+    if (!dim.is_number() || (dim.text() != "2" && dim.text() != "3"))
+        throw input_error("dimension: must be 2 or 3, got " + (dim.text().empty() ? json_value::kind_name(dim.type()) : dim.text()));
+    p.dimension = dim.text() == "2" ? 2 : 3;
+    const int d = p.dimension;
+    p.restitution = scalar(require(root, "restitution", "problem"), "restitution");
+
+    const json_value& bodies = require(root, "bodies", "problem");
+    if (!bodies.is_array())
+        throw input_error(std::string("bodies: expected a list, got ") + json_value::kind_name(bodies.type()));
+    for (std::size_t i = 0; i < bodies.items().size(); ++i) {
+        const json_value& jb = bodies.items()[i];
+        std::string where = "bodies[" + std::to_string(i) + "]";
+        if (!jb.is_object())
+            throw input_error(where + ": expected an object, got " + json_value::kind_name(jb.type()));
+        warn_unknown_keys(jb, {"name", "mass", "inertia", "position", "velocity", "angular_velocity"}, where, p.warnings);
+        body b;
+        const json_value& name = require(jb, "name", where);
+        if (!name.is_string() || name.text().empty())
+            throw input_error(where + ".name: expected a non-empty string");
+        b.name = b.label = name.text();
+        where += " (\"" + b.name + "\")";
+        const json_value& mass = require(jb, "mass", where);
+        std::string lower = mass.text();
+        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        if (mass.is_string() && (lower == "inf" || lower == "infinity" || lower == "+inf")) {
+            b.infinite_mass = true;
+        } else {
+            b.mass = scalar(mass, where + ".mass");
+        }
+        if (const json_value* in = jb.find("inertia")) {
+            std::string w = where + ".inertia";
+            if (d == 2) {
+                ex I = scalar(*in, w);
+                if (is_real_number(I) && ex_to<numeric>(I) < 0)
+                    throw input_error(w + ": not positive-definite (must be > 0, or 0 for a particle)");
+                if (!I.is_zero()) {
+                    b.particle = false;
+                    b.inertia[2][2] = I;
+                }
+            } else if (!in->is_array()) {
+                ex I = scalar(*in, w);
+                if (!I.is_zero())
+                    throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz] (0 for a particle)");
+            } else if (in->items().size() == 3 && !in->items()[0].is_array()) {
+                for (int k = 0; k < 3; ++k)
+                    b.inertia[k][k] = scalar(in->items()[k], w + "[" + std::to_string(k) + "]");
+                b.particle = false;
+            } else if (in->items().size() == 3) {
+                for (int r = 0; r < 3; ++r)
+                    b.inertia[r] = vector_of(in->items()[r], 3, w + "[" + std::to_string(r) + "]");
+                b.particle = false;
+            } else {
+                throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz], got a list of " +
+                                  std::to_string(in->items().size()));
+            }
+            if (!b.particle) {
+                bool all_zero = true;
+                for (const auto& row : b.inertia)
+                    for (const ex& e : row)
+                        all_zero = all_zero && e.is_zero();
+                b.particle = all_zero;
+            }
+        }
+        b.position = vector_of(require(jb, "position", where), d, where + ".position");
+        b.velocity = vector_of(require(jb, "velocity", where), d, where + ".velocity");
+        if (const json_value* w = jb.find("angular_velocity")) {
+            if (d == 2)
+                b.angular_velocity[2] = scalar(*w, where + ".angular_velocity");
+            else
+                b.angular_velocity = vector_of(*w, 3, where + ".angular_velocity");
+        }
+        p.bodies.push_back(b);
+    }
+    if (p.bodies.size() < 2)
+        throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
+    {
+        std::set<std::string> names;
+        for (std::size_t i = 0; i < p.bodies.size(); ++i)
+            if (!names.insert(p.bodies[i].name).second)
+                throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + p.bodies[i].name + "\"");
+    }
+
+    const json_value& jc = require(root, "contact", "problem");
+    if (!jc.is_object())
+        throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
+    warn_unknown_keys(jc, {"bodies", "point", "normal"}, "contact", p.warnings);
+    const json_value& cb = require(jc, "bodies", "contact");
+    if (!cb.is_array() || cb.items().size() != 2)
+        throw input_error("contact.bodies: expected a list of the two bodies that touch");
+    p.contact.body1 = body_index(p, cb.items()[0], "contact.bodies[0]");
+    p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
+    p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
+    p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
+
+    if (const json_value* jp = root.find("pivots")) {
+        if (!jp->is_array())
+            throw input_error(std::string("pivots: expected a list, got ") + json_value::kind_name(jp->type()));
+        for (std::size_t k = 0; k < jp->items().size(); ++k) {
+            const json_value& jv = jp->items()[k];
+            std::string where = "pivots[" + std::to_string(k) + "]";
+            if (!jv.is_object())
+                throw input_error(where + ": expected an object, got " + json_value::kind_name(jv.type()));
+            warn_unknown_keys(jv, {"body", "point"}, where, p.warnings);
+            pivot pv;
+            pv.body = body_index(p, require(jv, "body", where), where + ".body");
+            pv.point = vector_of(require(jv, "point", where), d, where + ".point");
+            p.pivots.push_back(pv);
+        }
+    }
+    validate(p);
+    return p;
+}
+
+problem load_problem_file(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw input_error(path + ": cannot open the problem file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    try {
+        return read_problem(ss.str(), path);
+    } catch (const input_error& e) {
+        throw input_error(path + ": " + e.what());
+    }
+}
+
+problem substitute(const problem& p, const ex& values)
+{
+    problem q = p;
+    auto sv = [&](vec3& v) { v = subs(v, values); };
+    q.restitution = p.restitution.subs(values);
+    for (body& b : q.bodies) {
+        b.mass = b.mass.subs(values);
+        for (auto& row : b.inertia)
+            sv(row);
+        sv(b.position);
+        sv(b.velocity);
+        sv(b.angular_velocity);
+    }
+    sv(q.contact.point);
+    sv(q.contact.normal);
+    for (pivot& pv : q.pivots)
+        sv(pv.point);
+    return q;
+}
+
+} // namespace impactgen

@@ -1,0 +1,76 @@
+// The model of one smooth impact: bodies, one contact, optional pivots and
+// Newton's coefficient of restitution. Every quantity is a GiNaC expression,
+// so the same model carries numbers (exact rationals) or symbols.
+#pragma once
+
+#include "json_value.hpp"
+#include "vector_algebra.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen {
+
+/// The one symbol of a given name, shared by every problem in the process
+/// (GiNaC compares symbols by identity, not by name).
+GiNaC::symbol symbol_named(const std::string& name, const std::string& tex_name = "");
+
+struct body {
+    std::string name;
+    std::string label;           ///< short label used in symbol names ("1", "2", or the name)
+    bool infinite_mass = false;  ///< an immovable-by-impulse body (wall, ground, bat)
+    ex mass = 0;                 ///< m > 0; unused when infinite_mass
+    bool particle = true;        ///< no rotational inertia: angular velocity is left unchanged
+    mat3 inertia = zero_mat();   ///< about the centre of mass, world axes; planar: only [2][2]
+    vec3 position = zero_vec();  ///< centre of mass C
+    vec3 velocity = zero_vec();  ///< of C, just before impact
+    vec3 angular_velocity = zero_vec(); ///< planar: only [2]
+};
+
+struct pivot {
+    std::size_t body = 0;        ///< index into problem::bodies
+    vec3 point = zero_vec();     ///< the fixed point E
+};
+
+struct contact_spec {
+    std::size_t body1 = 0, body2 = 1; ///< A is on body 1, B on body 2
+    vec3 point = zero_vec();          ///< the contact point O
+    vec3 normal = zero_vec();         ///< from body 1 into body 2; any non-zero length
+};
+
+struct problem {
+    std::string source;               ///< named class or file it came from
+    int dimension = 3;                ///< 2 (planar) or 3
+    ex restitution = 0;
+    std::vector<body> bodies;
+    contact_spec contact;
+    std::vector<pivot> pivots;
+    std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
+    std::vector<std::string> warnings; ///< e.g. keys that were ignored
+
+    /// Every symbol the problem's values contain, sorted by name.
+    std::vector<GiNaC::symbol> parameters() const;
+    bool is_numeric() const { return parameters().empty(); }
+    /// The pivot of a body, or nullptr.
+    const pivot* pivot_of(std::size_t body) const;
+    /// True when the impulse cannot move the body (infinite mass, or a pinned particle).
+    bool immovable(std::size_t body) const;
+};
+
+/// Checks everything the problem format requires that can be decided for the
+/// values at hand (numbers are checked exactly; symbols are assumed valid).
+/// Throws input_error naming the key.
+void validate(const problem& p);
+
+/// Reads a problem in the format of shared/problem-format.md; validates it.
+problem read_problem(const std::string& json_text, const std::string& source);
+problem load_problem_file(const std::string& path);
+
+/// Parses one value of the problem format (a JSON number's text or an
+/// expression string) into an exact expression; `where` names the key.
+ex parse_value(const std::string& text, bool is_string, const std::string& where);
+
+/// The problem with every symbol replaced (symbol == value list).
+problem substitute(const problem& p, const GiNaC::ex& symbol_values);
+
+} // namespace impactgen

@@ -1,0 +1,251 @@
+#include "solution.hpp"
+
+#include <set>
+
+namespace impactgen {
+using namespace GiNaC;
+
+ex kinetic_energy(const problem& p, const std::vector<vec3>& v, const std::vector<vec3>& w)
+{
+    ex T = 0;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        const body& b = p.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        T += b.mass * dot(v[i], v[i]) / 2;
+        if (!b.particle)
+            T += dot(w[i], mul(b.inertia, w[i])) / 2;
+    }
+    return T;
+}
+
+namespace {
+
+bool atomic(const ex& e)
+{
+    return is_a<numeric>(e) || is_a<symbol>(e) || (is_a<GiNaC::mul>(e) && e.nops() == 2 && is_a<numeric>(e.op(1)) && is_a<symbol>(e.op(0)));
+}
+
+class step_builder {
+public:
+    step_builder(solution& s, const problem& p) : s_(s)
+    {
+        for (const symbol& x : p.parameters())
+            taken_.insert(x.get_name());
+    }
+    /// A named step, or the value itself when it is too simple to name.
+    ex add(const std::string& name, const std::string& tex, const ex& value, const std::string& meaning, bool force = false)
+    {
+        if (!force && atomic(value))
+            return value;
+        std::string n = name, t = tex;
+        while (taken_.count(n)) {
+            n += "_";
+            t += "{}'";
+        }
+        taken_.insert(n);
+        symbol sym(n, t);
+        s_.steps.push_back({sym, value, meaning});
+        return sym;
+    }
+
+private:
+    solution& s_;
+    std::set<std::string> taken_;
+};
+
+std::string sub(const std::string& label) { return label.size() == 1 ? label : "," + label; }
+std::string tsub(const std::string& label) { return label.size() == 1 ? label : "\\mathrm{" + label + "}"; }
+
+} // namespace
+
+ex solution::expand_steps(const ex& e) const
+{
+    ex r = e;
+    for (auto it = steps.rbegin(); it != steps.rend(); ++it)
+        r = r.subs(it->sym == it->value);
+    return r;
+}
+
+lst solution::step_values(const ex& input_values) const
+{
+    lst values;
+    for (const step& st : steps) {
+        ex v = st.value.subs(input_values).subs(values);
+        values.append(st.sym == v);
+    }
+    return values;
+}
+
+solution solve(const derivation& d)
+{
+    const problem& p = d.prob;
+    solution s;
+    step_builder sb(s, p);
+    const int dim = p.dimension;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const vec3& n = d.n_hat;
+    const vec3& O = p.contact.point;
+
+    struct side {
+        std::size_t index;
+        ex sign;
+        ex w = 0;          // effective inverse mass at the contact point along n
+        vec3 g = zero_vec(); // angular velocity change per unit impulse along s n: I^{-1} (r x n)
+        vec3 arm = zero_vec(); // d = C - E of a pinned body
+        bool pinned = false;
+    };
+    side sides[2] = {{i1, -1}, {i2, 1}};
+
+    for (side& sd : sides) {
+        const body& b = p.bodies[sd.index];
+        const std::string L = b.label;
+        if (p.immovable(sd.index))
+            continue;
+        const pivot* pv = p.pivot_of(sd.index);
+        sd.pinned = pv != nullptr;
+        // Lever of the contact normal about C (free) or about E (pinned).
+        vec3 r = sd.pinned ? O - pv->point : O - b.position;
+        vec3 tau = cross(r, n);
+        mat3 J = b.inertia;
+        if (sd.pinned) {
+            sd.arm = b.position - pv->point;
+            ex dd = dot(sd.arm, sd.arm);
+            for (int a = 0; a < 3; ++a)
+                for (int c = 0; c < 3; ++c)
+                    J[a][c] = J[a][c] + b.mass * ((a == c ? dd : ex(0)) - sd.arm[a] * sd.arm[c]);
+            if (dim == 2)
+                J[2][2] = b.inertia[2][2] + b.mass * dd;
+        }
+        const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
+        if (!b.particle) {
+            if (dim == 2) {
+                ex t = sb.add("tau_" + L, "\\tau_{" + tsub(L) + "}", tau[2].normal(),
+                              "lever arm of the normal about " + where + " of " + b.name + ": (r x n)_z");
+                ex Iz = sd.pinned ? sb.add("I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2].normal(),
+                                           "moment of inertia of " + b.name + " about its pivot E: I_C + m |C - E|^2")
+                                  : J[2][2];
+                sd.g = {0, 0, t / Iz};
+                sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + t * t / Iz;
+            } else {
+                vec3 t;
+                for (int c = 0; c < 3; ++c)
+                    t[c] = sb.add("tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tau[c].normal(),
+                                  "lever arm r x n of the normal about " + where + " of " + b.name + ", " + p.axes[c] + " component");
+                mat3 Js = J;
+                if (sd.pinned)
+                    for (int a = 0; a < 3; ++a)
+                        for (int c = a; c < 3; ++c) {
+                            ex v = sb.add("I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
+                                          J[a][c].normal(), "inertia tensor of " + b.name + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                            Js[a][c] = v;
+                            Js[c][a] = v;
+                        }
+                mat3 adj = adjugate(Js);
+                ex D = sb.add("D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + b.name + (sd.pinned ? " about E" : ""));
+                vec3 at = mul(adj, t);
+                for (int c = 0; c < 3; ++c)
+                    sd.g[c] = sb.add("g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}", at[c] / D,
+                                     "I^{-1} (r x n) for " + b.name + ", " + p.axes[c] + " component: change of angular velocity per unit impulse");
+                sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
+            }
+        } else {
+            sd.w = 1 / b.mass;
+        }
+        sd.w = sb.add("w_" + L, "w_{" + tsub(L) + "}", sd.w,
+                      "effective inverse mass of " + b.name + " at the contact point along n");
+    }
+
+    ex u = sb.add("u", "u", dot(d.vB - d.vA, n).normal(),
+                  "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
+    ex k_value = sides[0].w + sides[1].w;
+    if (s.expand_steps(k_value).normal().is_zero())
+        throw input_error("contact: no impulse can act: neither body can move along the normal at the contact point "
+                          "(the line of impact passes through the pivot of a body that cannot otherwise move)");
+    ex k = sb.add("k", "k", k_value, "effective inverse mass of the contact: w_1 + w_2");
+    ex N = sb.add("N", "N", -(1 + p.restitution) * u / k, "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
+    s.normal_impulse = N;
+
+    // Every body after impact.
+    s.after.resize(p.bodies.size());
+    for (std::size_t i = 0; i < p.bodies.size(); ++i)
+        s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
+    s.pivot_impulses.assign(p.pivots.size(), zero_vec());
+    for (const side& sd : sides) {
+        const body& b = p.bodies[sd.index];
+        if (b.infinite_mass)
+            continue;
+        const pivot* pv = p.pivot_of(sd.index);
+        vec3 dv = zero_vec(), dw = zero_vec();
+        if (!p.immovable(sd.index)) {
+            dw = (sd.sign * N) * sd.g;
+            dv = sd.pinned ? cross(dw, sd.arm) : (sd.sign * N / b.mass) * n;
+        }
+        for (int c = 0; c < 3; ++c) {
+            s.after[sd.index].velocity[c] = b.velocity[c] + dv[c];
+            s.after[sd.index].angular_velocity[c] = b.angular_velocity[c] + dw[c];
+        }
+        if (pv) {
+            std::size_t k_index = static_cast<std::size_t>(pv - p.pivots.data());
+            s.pivot_impulses[k_index] = b.mass * dv - (sd.sign * N) * n;
+            if (dim == 2)
+                s.pivot_impulses[k_index][2] = 0;
+        }
+    }
+
+    // Unknown == value, in the derivation's unknowns.
+    for (const unknown& un : d.unknowns) {
+        ex v;
+        switch (un.kind) {
+        case unknown_kind::velocity: v = s.after[un.owner].velocity[un.component]; break;
+        case unknown_kind::angular_velocity: v = s.after[un.owner].angular_velocity[un.component]; break;
+        case unknown_kind::normal_impulse: v = N; break;
+        case unknown_kind::pivot_impulse: v = s.pivot_impulses[un.owner][un.component]; break;
+        }
+        s.unknown_values.append(un.sym == v);
+    }
+
+    std::vector<vec3> v0, w0, v1, w1;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        v0.push_back(p.bodies[i].velocity);
+        w0.push_back(p.bodies[i].angular_velocity);
+        v1.push_back(s.after[i].velocity);
+        w1.push_back(s.after[i].angular_velocity);
+    }
+    // Energy lost, through the work of the contact impulse: a body that moves
+    // under the impulse s N n at its contact point gains s N (a + a')/2 with
+    // a the normal velocity of that point, a' = a + s N w; pivot impulses act at
+    // fixed points and do no work.
+    ex lost = 0;
+    const vec3* contact_velocity[2] = {&d.vA, &d.vB};
+    for (int k = 0; k < 2; ++k) {
+        const side& sd = sides[k];
+        if (p.immovable(sd.index))
+            continue;
+        ex a = dot(*contact_velocity[k], n);
+        lost -= sd.sign * N * a + N * N * sd.w / 2;
+    }
+    s.energy_before = kinetic_energy(p, v0, w0);
+    s.energy_lost = sb.add("T_lost", "T_{\\mathrm{lost}}", lost, "kinetic energy lost, T - T' (bodies of finite mass)", true);
+    s.energy_after = s.energy_before - s.energy_lost;
+    s.energy_after_direct = kinetic_energy(p, v1, w1);
+    return s;
+}
+
+std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values)
+{
+    std::vector<ex> r;
+    lst steps = s.step_values(input_values);
+    lst unknowns;
+    for (const ex& rel : s.unknown_values)
+        unknowns.append(rel.lhs() == rel.rhs().subs(input_values).subs(steps));
+    for (const equation& eq : d.equations) {
+        ex res = (eq.lhs - eq.rhs).subs(input_values).subs(unknowns);
+        if (is_a<lst>(input_values) && ex_to<lst>(input_values).nops() == 0)
+            res = s.expand_steps(res);
+        r.push_back(res.normal());
+    }
+    return r;
+}
+
+} // namespace impactgen
