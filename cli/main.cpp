@@ -4,19 +4,20 @@
 #include "print/expression.hpp"
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
+#include "cli/commands.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 
 using namespace impactgen;
 
-namespace {
 
-problem load(const std::string& what)
+problem impactgen::cli::load(const std::string& what)
 {
     if (const named_class* c = find_named_class(what))
         return c->build();
@@ -31,6 +32,9 @@ problem load(const std::string& what)
         std::cerr << "impactgen: warning: " << what << ": " << w << "\n";
     return p;
 }
+
+namespace {
+using impactgen::cli::load;
 
 int cmd_list()
 {
@@ -123,6 +127,10 @@ int main(int argc, char** argv)
     auto* bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
     bench->add_option("--repeats", repeats, "repetitions per class (best is reported)")->check(CLI::Range(1, 1000));
 
+    std::function<int()> extra_action;
+    impactgen::cli::register_explain(app, extra_action);
+    impactgen::cli::register_codegen(app, extra_action);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -138,6 +146,8 @@ int main(int argc, char** argv)
             return cmd_formulas(what, format);
         if (*bench)
             return cmd_bench(repeats);
+        if (extra_action)
+            return extra_action();
     } catch (const input_error& e) {
         std::cerr << "impactgen: error: " << e.what() << "\n";
         return 1;

@@ -1,0 +1,22 @@
+// Subcommands that live in files of their own. Each register_* adds its
+// subcommand to the app and, from its parse callback, sets `action` to the
+// function that runs it. Errors are thrown (impactgen::input_error for bad
+// input); main() prints them as one line and exits 1.
+#pragma once
+
+#include "symbolic/problem.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace impactgen::cli {
+
+/// A named class or a problem file (warnings about ignored keys go to stderr).
+problem load(const std::string& class_or_file);
+
+void register_explain(CLI::App& app, std::function<int()>& action);
+void register_codegen(CLI::App& app, std::function<int()>& action);
+
+} // namespace impactgen::cli
