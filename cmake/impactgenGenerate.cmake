@@ -78,17 +78,22 @@ function(impactgen_generate target)
     list(APPEND options --params "${params}")
   endif()
 
-  # DEPENDS on the executable target: a target-level dependency when it is
-  # built in this tree, and a file-level one (on the built or the imported
-  # executable) so that a new impactgen regenerates the header.
+  # The stamp records that the command ran, so the rule is up to date even
+  # when impactgen leaves an unchanged header untouched (users of an unchanged
+  # solver then do not recompile). DEPENDS on the executable target: a target-level dependency
+  # when impactgen is built in this tree, and a file-level one on the built or
+  # the imported executable, so that a new impactgen regenerates the header.
+  set(stamp "${CMAKE_CURRENT_BINARY_DIR}/impactgen/${target}.stamp")
   add_custom_command(
-    OUTPUT "${header}"
+    OUTPUT "${stamp}"
+    BYPRODUCTS "${header}"
     COMMAND "${CMAKE_COMMAND}" -E make_directory "${include_dir}"
     COMMAND impactgen::impactgen codegen "${problem}" --output "${header}" ${options}
+    COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
     DEPENDS "${problem}" impactgen::impactgen
     COMMENT "impactgen: generating ${target}.hpp from ${arg_PROBLEM}"
     VERBATIM)
-  add_custom_target(${target}_generate DEPENDS "${header}")
+  add_custom_target(${target}_generate DEPENDS "${stamp}")
 
   # An INTERFACE library's dependencies are followed by whatever links to it,
   # so every consumer is built after the header exists.
