@@ -1,4 +1,91 @@
-// impactgen codegen: not yet implemented (issue 4).
+// impactgen codegen: one dependency-free C++17 header with the specialised
+// closed form of a named class or problem file (see codegen/codegen.hpp).
 #include "cli/commands.hpp"
+#include "codegen/codegen.hpp"
 
-void impactgen::cli::register_codegen(CLI::App&, std::function<int()>&) {}
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep)
+{
+    std::vector<std::string> r;
+    std::string item;
+    std::istringstream is(s);
+    while (std::getline(is, item, sep))
+        if (!item.empty())
+            r.push_back(item);
+    return r;
+}
+
+struct codegen_args {
+    std::string what, out_dir, output, name, ns = "impactgen::generated", params, set;
+    bool inverse_inertia = false, inverse_mass = false;
+};
+
+int run(const codegen_args& a, CLI::Option* params_opt)
+{
+    using namespace impactgen;
+    problem p = cli::load(a.what);
+    codegen::options o;
+    o.source = a.what;
+    o.version = IMPACTGEN_VERSION;
+    o.ns = a.ns;
+    if (a.name.empty()) {
+        std::string stem = std::filesystem::path(a.what).stem().string();
+        for (char& c : stem)
+            if (c == '-' || c == '.' || c == ' ')
+                c = '_';
+        o.name = stem;
+    } else {
+        o.name = a.name;
+    }
+    o.params_given = params_opt->count() > 0;
+    o.params = split(a.params, ',');
+    for (const std::string& kv : split(a.set, ',')) {
+        auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+            throw input_error("--set " + kv + ": expected SYMBOL=VALUE");
+        o.set.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+    }
+    o.inverse_inertia = a.inverse_inertia;
+    o.inverse_mass = a.inverse_mass;
+    codegen::header h = codegen::generate(p, o);
+    std::string path = a.output;
+    if (path.empty() && !a.out_dir.empty())
+        path = (std::filesystem::path(a.out_dir) / (o.name + ".hpp")).string();
+    if (path.empty()) {
+        std::cout << h.text;
+        return 0;
+    }
+    auto parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty())
+        std::filesystem::create_directories(parent);
+    bool wrote = codegen::write_if_changed(path, h.text);
+    std::cerr << "impactgen: " << path << (wrote ? " written" : " unchanged") << " (" << h.formula.add << " add/sub, "
+              << h.formula.mul << " mul, " << h.formula.div << " div, " << h.formula.sqrt << " sqrt)\n";
+    return 0;
+}
+
+} // namespace
+
+void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& action)
+{
+    auto args = std::make_shared<codegen_args>();
+    auto* cmd = app.add_subcommand("codegen", "Generate a dependency-free C++17 header with the specialised closed form");
+    cmd->add_option("problem", args->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
+    cmd->add_option("--out", args->out_dir, "write DIR/NAME.hpp (only when its content changes)");
+    cmd->add_option("-o,--output", args->output, "write exactly this file (only when its content changes); overrides --out");
+    cmd->add_option("--name", args->name, "function name (default: class or file stem, '-' -> '_')");
+    cmd->add_option("--namespace", args->ns, "namespace of the generated code (default impactgen::generated)");
+    auto* params = cmd->add_option("--params", args->params,
+                                   "comma-separated symbols (or quantity names such as m1, v_x_ball, I1_tt) that stay "
+                                   "function parameters, in this order; every other value is folded in as a constant");
+    cmd->add_option("--set", args->set, "values of symbols that are not parameters, e.g. m1=2,l=1/2 (exact)");
+    cmd->add_flag("--inverse-inertia", args->inverse_inertia,
+                  "3-D inertia inputs of free bodies are the inverse tensors (engine convention)");
+    cmd->add_flag("--inverse-mass", args->inverse_mass, "mass inputs are inverse masses 1/m (engine convention)");
+    cmd->parse_complete_callback([args, params, &action] { action = [args, params] { return run(*args, params); }; });
+}

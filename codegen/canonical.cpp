@@ -1,0 +1,265 @@
+#include "canonical.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+namespace impactgen::codegen {
+using namespace GiNaC;
+
+std::string number_text(const numeric& x)
+{
+    std::ostringstream os;
+    os << x;
+    return os.str();
+}
+
+void canonical_pool::bind_step(const symbol& sym, int index, const std::string& name)
+{
+    cnode n;
+    n.kind = cnode::step;
+    n.step_index = index;
+    n.name = name;
+    n.key = "$" + name;
+    step_syms_[sym] = intern(std::move(n));
+}
+
+int canonical_pool::intern(cnode n)
+{
+    auto it = by_key_.find(n.key);
+    if (it != by_key_.end())
+        return it->second;
+    int id = static_cast<int>(nodes_.size());
+    by_key_.emplace(n.key, id);
+    nodes_.push_back(std::move(n));
+    return id;
+}
+
+int canonical_pool::node_of(const scaled& s)
+{
+    if (s.node < 0) {
+        cnode n;
+        n.kind = cnode::constant;
+        n.value = s.scale;
+        n.key = "#" + number_text(s.scale);
+        return intern(std::move(n));
+    }
+    if (s.scale == 1)
+        return s.node;
+    cnode m;
+    m.kind = cnode::mul;
+    m.value = s.scale;
+    const cnode& inner = at(s.node);
+    if (inner.kind == cnode::mul) {
+        m.value *= inner.value;
+        m.factors = inner.factors;
+    } else
+        m.factors = {{s.node, 1}};
+    m.key = "[" + number_text(m.value) + ":";
+    for (auto& f : m.factors)
+        m.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
+    m.key += "]";
+    return intern(std::move(m));
+}
+
+scaled canonical_pool::convert(const ex& e)
+{
+    if (is_a<numeric>(e)) {
+        const numeric& x = ex_to<numeric>(e);
+        if (!x.is_real())
+            throw std::runtime_error("code generation: complex number " + number_text(x));
+        return {x, -1};
+    }
+    if (is_a<symbol>(e)) {
+        auto it = step_syms_.find(e);
+        if (it != step_syms_.end())
+            return {1, it->second};
+        cnode n;
+        n.kind = cnode::input;
+        n.name = ex_to<symbol>(e).get_name();
+        n.key = n.name;
+        return {1, intern(std::move(n))};
+    }
+    if (is_a<add>(e)) {
+        std::map<int, numeric> coeff;
+        numeric constant = 0;
+        for (std::size_t i = 0; i < e.nops(); ++i) {
+            scaled t = convert(e.op(i));
+            if (t.node < 0) {
+                constant += t.scale;
+                continue;
+            }
+            const cnode& tn = at(t.node);
+            if (tn.kind == cnode::add) {
+                for (auto& [c, id] : tn.terms)
+                    coeff[id] += t.scale * c;
+                constant += t.scale * tn.value;
+            } else {
+                coeff[t.node] += t.scale;
+            }
+        }
+        std::vector<std::pair<numeric, int>> terms;
+        for (auto& [id, c] : coeff)
+            if (!c.is_zero())
+                terms.push_back({c, id});
+        if (terms.empty())
+            return {constant, -1};
+        if (terms.size() == 1 && constant.is_zero())
+            return {terms[0].first, terms[0].second};
+        std::sort(terms.begin(), terms.end(), [&](const auto& a, const auto& b) { return at(a.second).key < at(b.second).key; });
+        numeric sign = terms[0].first < 0 ? -1 : 1;
+        cnode n;
+        n.kind = cnode::add;
+        n.value = sign * constant;
+        for (auto& t : terms)
+            n.terms.push_back({sign * t.first, t.second});
+        n.key = "(";
+        for (auto& [c, id] : n.terms)
+            n.key += number_text(c) + "*" + at(id).key + ";";
+        n.key += "|" + number_text(n.value) + ")";
+        return {sign, intern(std::move(n))};
+    }
+    if (is_a<mul>(e) || is_a<power>(e)) {
+        numeric coeff = 1;
+        std::map<int, int> expo;
+        auto take = [&](const scaled& f, int k) {
+            if (f.scale.is_zero() && k < 0)
+                throw std::runtime_error("code generation: division by zero");
+            coeff *= pow(f.scale, numeric(k)); // exact for integer k
+            if (f.node < 0)
+                return;
+            const cnode& fn = at(f.node);
+            if (fn.kind == cnode::mul) {
+                coeff *= pow(fn.value, numeric(k));
+                for (auto& [id, x] : fn.factors)
+                    expo[id] += x * k;
+            } else {
+                expo[f.node] += k;
+            }
+        };
+        auto factor = [&](const ex& f) {
+            if (is_a<power>(f)) {
+                const ex& b = f.op(0);
+                const ex& x = f.op(1);
+                if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_rational())
+                    throw std::runtime_error("code generation: power with a non-rational exponent");
+                numeric q = ex_to<numeric>(x);
+                if (q.is_integer()) {
+                    take(convert(b), q.to_int());
+                    return;
+                }
+                if (q.denom() != 2)
+                    throw std::runtime_error("code generation: only integer and half-integer powers are supported");
+                // b^(p/2) = sqrt(b)^p
+                cnode s;
+                s.kind = cnode::sqrt_;
+                s.arg = node_of(convert(b));
+                s.key = "sqrt(" + at(s.arg).key + ")";
+                take({1, intern(std::move(s))}, q.numer().to_int());
+                return;
+            }
+            take(convert(f), 1);
+        };
+        if (is_a<power>(e))
+            factor(e);
+        else
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                factor(e.op(i));
+        std::vector<std::pair<int, int>> factors;
+        for (auto& [id, x] : expo)
+            if (x != 0)
+                factors.push_back({id, x});
+        if (factors.empty() || coeff.is_zero())
+            return {coeff, -1};
+        if (factors.size() == 1 && factors[0].second == 1)
+            return {coeff, factors[0].first};
+        std::sort(factors.begin(), factors.end(), [&](const auto& a, const auto& b) { return at(a.first).key < at(b.first).key; });
+        cnode n;
+        n.kind = cnode::mul;
+        n.value = 1;
+        n.factors = std::move(factors);
+        n.key = "[1:";
+        for (auto& f : n.factors)
+            n.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
+        n.key += "]";
+        return {coeff, intern(std::move(n))};
+    }
+    std::ostringstream os;
+    os << e;
+    throw std::runtime_error("code generation: cannot express " + os.str() + " in C++ arithmetic");
+}
+
+std::string canonical_pool::print_factor(int id) const
+{
+    const cnode& n = at(id);
+    if (n.kind == cnode::add || (n.kind == cnode::constant && (n.value < 0 || !n.value.is_integer())) ||
+        (n.kind == cnode::mul))
+        return "(" + print(id) + ")";
+    return print(id);
+}
+
+std::string canonical_pool::print(const scaled& s) const
+{
+    if (s.node < 0)
+        return number_text(s.scale);
+    if (s.scale == 1)
+        return print(s.node);
+    if (s.scale == -1)
+        return "-" + print_factor(s.node);
+    return number_text(s.scale) + "*" + print_factor(s.node);
+}
+
+std::string canonical_pool::print(int id) const
+{
+    const cnode& n = at(id);
+    switch (n.kind) {
+    case cnode::constant: return number_text(n.value);
+    case cnode::input:
+    case cnode::step: return n.name;
+    case cnode::sqrt_: return "sqrt(" + print(n.arg) + ")";
+    case cnode::add: {
+        std::string s;
+        bool first = true;
+        for (auto& [c, t] : n.terms) {
+            numeric a = abs(c);
+            std::string term = a == 1 ? print_factor(t) : number_text(a) + "*" + print_factor(t);
+            if (at(t).kind == cnode::mul && at(t).value == 1)
+                term = a == 1 ? print(t) : number_text(a) + "*" + print(t);
+            s += first ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ");
+            s += term;
+            first = false;
+        }
+        if (!n.value.is_zero())
+            s += (n.value < 0 ? " - " : " + ") + number_text(abs(n.value));
+        return s;
+    }
+    case cnode::mul: {
+        std::string num, den;
+        int nden = 0;
+        for (auto& [f, x] : n.factors) {
+            std::string base = print_factor(f);
+            int k = x < 0 ? -x : x;
+            std::string p = k == 1 ? base : base + "^" + std::to_string(k);
+            std::string& dst = x > 0 ? num : den;
+            dst += (dst.empty() ? "" : "*") + p;
+            if (x < 0)
+                ++nden;
+        }
+        numeric a = n.value;
+        std::string sign = a < 0 ? "-" : "";
+        a = abs(a);
+        if (a.numer() != 1 || num.empty())
+            num = number_text(a.numer()) + (num.empty() ? "" : "*" + num);
+        if (a.denom() != 1) {
+            den = number_text(a.denom()) + (den.empty() ? "" : "*" + den);
+            ++nden;
+        }
+        if (den.empty())
+            return sign + num;
+        return sign + num + "/" + (nden > 1 ? "(" + den + ")" : den);
+    }
+    }
+    return "?";
+}
+
+} // namespace impactgen::codegen

@@ -1,0 +1,703 @@
+#include "codegen.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+namespace impactgen::codegen {
+using namespace GiNaC;
+
+namespace {
+
+bool is_identifier(const std::string& s)
+{
+    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
+        return false;
+    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+std::string identifier(const std::string& s)
+{
+    std::string r;
+    for (char c : s)
+        r += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (r.empty() || std::isdigit(static_cast<unsigned char>(r[0])))
+        r = "_" + r;
+    return r;
+}
+
+// Quantity suffix of a body: "1" -> "1", "ball" -> "_ball".
+std::string sfx(const std::string& label) { return label.size() == 1 ? label : "_" + identifier(label); }
+
+const std::set<std::string>& reserved()
+{
+    static const std::set<std::string> r = {
+        "out", "fail", "T", "in", "detail", "check_sum", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
+        "case", "char", "const", "continue", "default", "delete", "do", "double", "else", "enum", "false", "float",
+        "for", "if", "inline", "int", "long", "namespace", "new", "return", "short", "signed", "sizeof", "static",
+        "struct", "switch", "template", "this", "true", "typename", "union", "unsigned", "void", "while"};
+    return r;
+}
+
+struct quantity {
+    std::string name;
+    ex* value;
+    std::string meaning;
+};
+
+// Every liftable quantity of the problem, in problem order; inertia entries
+// (r <= c) stand for both symmetric entries.
+std::vector<quantity> quantities(problem& p)
+{
+    std::vector<quantity> q;
+    const int dim = p.dimension;
+    const auto& ax = p.axes;
+    q.push_back({"e", &p.restitution, "coefficient of restitution, 0 <= e <= 1"});
+    for (body& b : p.bodies) {
+        const std::string s = sfx(b.label), sub = b.label.size() == 1 ? b.label : "_" + identifier(b.label);
+        if (!b.infinite_mass)
+            q.push_back({"m" + s, &b.mass, "mass of " + b.name + " (> 0)"});
+        if (!b.particle && !b.infinite_mass) {
+            if (dim == 2)
+                q.push_back({"I" + s, &b.inertia[2][2], "moment of inertia of " + b.name + " about its centre of mass (> 0)"});
+            else
+                for (int r = 0; r < 3; ++r)
+                    for (int c = r; c < 3; ++c)
+                        q.push_back({"I" + s + "_" + ax[r] + ax[c], &b.inertia[r][c],
+                                     "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
+        }
+        for (int c = 0; c < dim; ++c)
+            q.push_back({"r_" + ax[c] + sub, &b.position[c], "centre of mass of " + b.name + ", " + ax[c]});
+        for (int c = 0; c < dim; ++c)
+            q.push_back({"v_" + ax[c] + sub, &b.velocity[c], "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
+        for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
+            q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c], "angular velocity of " + b.name + " before impact, " + ax[c]});
+    }
+    for (int c = 0; c < dim; ++c)
+        q.push_back({"O_" + ax[c], &p.contact.point[c], "contact point, " + ax[c]});
+    for (int c = 0; c < dim; ++c)
+        q.push_back({"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
+    for (pivot& pv : p.pivots)
+        for (int c = 0; c < dim; ++c) {
+            const std::string& l = p.bodies[pv.body].label;
+            q.push_back({"E_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), &pv.point[c], "pivot of " + p.bodies[pv.body].name + ", " + ax[c]});
+        }
+    return q;
+}
+
+void symmetrise(problem& p)
+{
+    for (body& b : p.bodies)
+        for (int r = 0; r < 3; ++r)
+            for (int c = r + 1; c < 3; ++c)
+                b.inertia[c][r] = b.inertia[r][c];
+}
+
+std::vector<std::string> symbols_in(const ex& e)
+{
+    std::set<std::string> s;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            s.insert(ex_to<symbol>(*it).get_name());
+    return {s.begin(), s.end()};
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep)
+{
+    std::string r;
+    for (const std::string& s : v)
+        r += (r.empty() ? "" : sep) + s;
+    return r;
+}
+
+} // namespace
+
+std::vector<std::pair<std::string, ex>> quantity_names(const problem& p)
+{
+    problem q = p;
+    std::vector<std::pair<std::string, ex>> r;
+    for (const quantity& x : quantities(q))
+        r.push_back({x.name, *x.value});
+    return r;
+}
+
+problem specialise(const problem& p, const options& o)
+{
+    problem q = p;
+    std::set<std::string> symbols;
+    for (const symbol& s : q.parameters())
+        symbols.insert(s.get_name());
+    lst values;
+    std::set<std::string> given;
+    for (const auto& [name, text] : o.set) {
+        if (!symbols.count(name))
+            throw input_error("--set " + name + ": the problem has no symbol " + name +
+                              (symbols.empty() ? " (it has none)" : " (its symbols: " + join({symbols.begin(), symbols.end()}, ", ") + ")"));
+        bool is_number = !text.empty() && (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '.') &&
+                         text.find_first_not_of("0123456789.eE+-") == std::string::npos;
+        values.append(symbol_named(name) == parse_value(text, !is_number, "--set " + name));
+        given.insert(name);
+    }
+    if (values.nops() > 0)
+        q = substitute(q, values);
+    if (!o.params_given)
+        return q;
+    std::set<std::string> now;
+    for (const symbol& s : q.parameters())
+        now.insert(s.get_name());
+    std::set<std::string> wanted;
+    for (const std::string& name : o.params) {
+        if (!wanted.insert(name).second)
+            throw input_error("--params: " + name + " is named twice");
+        if (given.count(name))
+            throw input_error("--params: " + name + " is also given a value with --set");
+        if (now.count(name))
+            continue;
+        bool lifted = false;
+        for (quantity& x : quantities(q))
+            if (x.name == name) {
+                if (!is_a<numeric>(*x.value))
+                    throw input_error("--params: the quantity " + name + " is the expression " + [&] {
+                        std::ostringstream os;
+                        os << *x.value;
+                        return os.str();
+                    }() + "; name its symbols instead");
+                *x.value = symbol_named(name);
+                lifted = true;
+            }
+        if (!lifted) {
+            std::vector<std::string> names;
+            for (const auto& [n, v] : quantity_names(q))
+                if (is_a<numeric>(v))
+                    names.push_back(n);
+            throw input_error("--params: " + name + " is neither a symbol of the problem" +
+                              (now.empty() ? "" : " (" + join({now.begin(), now.end()}, ", ") + ")") +
+                              " nor a numeric quantity of it (" + join(names, ", ") + ")");
+        }
+        symmetrise(q);
+    }
+    for (const symbol& s : q.parameters())
+        if (!wanted.count(s.get_name()))
+            throw input_error("symbol " + s.get_name() + " is not in --params and has no value: give it one with --set " +
+                              s.get_name() + "=VALUE, or add it to --params");
+    return q;
+}
+
+plan make_plan(const problem& p, const options& o)
+{
+    plan pl;
+    pl.prob = specialise(p, o);
+    const problem& q = pl.prob;
+    pl.deriv = derive(q);
+    pl.sol = solve(pl.deriv);
+    solution& s = pl.sol;
+    const derivation& d = pl.deriv;
+    const int dim = q.dimension;
+    const auto& ax = q.axes;
+
+    // Step names as C++ identifiers.
+    std::set<std::string> taken;
+    for (const symbol& x : q.parameters())
+        taken.insert(x.get_name());
+    auto find_step = [&](const std::string& name) -> step* {
+        for (step& st : s.steps)
+            if (st.sym.get_name() == name)
+                return &st;
+        return nullptr;
+    };
+
+    // Engine conventions: replacements of input symbols (old name -> new symbols in order).
+    std::map<std::string, std::vector<symbol>> replaced;
+    std::map<std::string, std::string> meaning;
+    {
+        problem tmp = q;
+        for (const quantity& x : quantities(tmp))
+            if (is_a<symbol>(*x.value))
+                meaning.emplace(ex_to<symbol>(*x.value).get_name(), x.meaning);
+    }
+    lst mass_subs;
+    auto rewrite_all = [&](const ex& rel) {
+        for (step& st : s.steps)
+            st.value = st.value.subs(rel);
+        for (body_state& b : s.after)
+            for (int c = 0; c < 3; ++c) {
+                b.velocity[c] = b.velocity[c].subs(rel);
+                b.angular_velocity[c] = b.angular_velocity[c].subs(rel);
+            }
+        for (vec3& r : s.pivot_impulses)
+            for (ex& c : r)
+                c = c.subs(rel);
+        s.normal_impulse = s.normal_impulse.subs(rel);
+        s.energy_lost = s.energy_lost.subs(rel);
+    };
+    if (o.inverse_inertia) {
+        bool any = false;
+        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+            const body& b = q.bodies[i];
+            if (dim != 3 || b.particle || b.infinite_mass || q.pivot_of(i))
+                continue;
+            bool symbolic = false;
+            for (auto& row : b.inertia)
+                for (auto& c : row)
+                    symbolic = symbolic || !is_a<numeric>(c);
+            if (!symbolic)
+                continue; // a known tensor is inverted exactly at generation time
+            const std::string L = b.label, sub = L.size() == 1 ? L : "," + L;
+            vec3 tau = cross(q.contact.point - b.position, d.n_hat);
+            vec3 t;
+            for (int c = 0; c < 3; ++c) {
+                step* ts = find_step("tau_" + ax[c] + sub);
+                t[c] = ts ? ex(ts->sym) : tau[c].normal();
+            }
+            mat3 K;
+            for (int r = 0; r < 3; ++r)
+                for (int c = r; c < 3; ++c) {
+                    std::string nm = "inv_I" + sfx(L) + "_" + ax[r] + ax[c];
+                    symbol k = symbol_named(nm);
+                    K[r][c] = K[c][r] = k;
+                    meaning[nm] = "inverse inertia tensor of " + b.name + " (world axes), " + ax[r] + ax[c] + " entry";
+                    const ex& old = b.inertia[r][c];
+                    if (is_a<symbol>(old))
+                        replaced[ex_to<symbol>(old).get_name()].push_back(k);
+                    else
+                        throw input_error("--inverse-inertia: the inertia entry " + ax[r] + ax[c] + " of " + b.name +
+                                          " is neither a number nor a single symbol");
+                }
+            vec3 g = mul(K, t);
+            for (int c = 0; c < 3; ++c) {
+                step* gs = find_step("g_" + ax[c] + sub);
+                if (!gs)
+                    throw std::logic_error("--inverse-inertia: no step g_" + ax[c] + sub);
+                gs->value = g[c];
+            }
+            // The determinant of the tensor is no longer needed.
+            s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(), [&](const step& st) { return st.sym.get_name() == "D_" + sub; }),
+                          s.steps.end());
+            any = true;
+        }
+        if (!any)
+            throw input_error("--inverse-inertia: no free 3-D rigid body with a symbolic inertia tensor takes part in the contact");
+    }
+    if (o.inverse_mass) {
+        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+            const body& b = q.bodies[i];
+            if (b.infinite_mass || is_a<numeric>(b.mass))
+                continue;
+            if (!is_a<symbol>(b.mass))
+                throw input_error("--inverse-mass: the mass of " + b.name + " is neither a number nor a single symbol");
+            std::string nm = "inv_" + ex_to<symbol>(b.mass).get_name();
+            symbol im = symbol_named(nm);
+            meaning[nm] = "inverse mass 1/m of " + b.name + " (> 0)";
+            replaced[ex_to<symbol>(b.mass).get_name()].push_back(im);
+            mass_subs.append(b.mass == 1 / im);
+        }
+        if (mass_subs.nops() == 0)
+            throw input_error("--inverse-mass: no body in the contact has a symbolic mass");
+        rewrite_all(mass_subs);
+    }
+
+    // Inputs in order: --params as given, else first appearance in the problem.
+    std::vector<std::string> order;
+    if (o.params_given) {
+        order = o.params;
+    } else {
+        std::set<std::string> seen;
+        problem tmp = q;
+        for (const quantity& x : quantities(tmp))
+            for (const std::string& nm : symbols_in(*x.value))
+                if (seen.insert(nm).second)
+                    order.push_back(nm);
+    }
+    std::set<std::string> done;
+    for (const std::string& nm : order) {
+        auto r = replaced.find(nm);
+        std::vector<symbol> syms = r == replaced.end() ? std::vector<symbol>{symbol_named(nm)} : r->second;
+        for (const symbol& x : syms) {
+            if (!done.insert(x.get_name()).second)
+                continue;
+            if (!is_identifier(x.get_name()) || reserved().count(x.get_name()))
+                throw input_error("symbol " + x.get_name() + " cannot be a C++ parameter name: rename it in the problem");
+            pl.inputs.push_back(x);
+            auto m = meaning.find(x.get_name());
+            if (m != meaning.end()) {
+                pl.input_meaning.push_back(m->second);
+            } else {
+                std::vector<std::string> where;
+                problem tmp = q;
+                for (const quantity& qq : quantities(tmp))
+                    if (qq.value->has(x))
+                        where.push_back(qq.name);
+                pl.input_meaning.push_back("appears in " + join(where, ", "));
+            }
+        }
+    }
+    for (const std::string& nm : done)
+        taken.insert(nm);
+
+    // Outputs: the post-impact state of the bodies in contact, then impulses and energy.
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        const std::string sub = b.label.size() == 1 ? b.label : "_" + identifier(b.label);
+        for (int c = 0; c < dim; ++c)
+            pl.outputs.push_back({"v_" + ax[c] + sub, s.after[i].velocity[c],
+                                  "velocity of the centre of mass of " + b.name + " after impact, " + ax[c]});
+        if (!b.particle)
+            for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
+                pl.outputs.push_back({"w_" + ax[c] + sub, s.after[i].angular_velocity[c],
+                                      "angular velocity of " + b.name + " after impact, " + ax[c]});
+    }
+    pl.outputs.push_back({"normal_impulse", s.normal_impulse * d.normal_length,
+                          "normal impulse, integral of N dt >= 0 along the given normal: on " + q.bodies[q.contact.body2].name +
+                              " along +n, on " + q.bodies[q.contact.body1].name + " along -n"});
+    for (std::size_t k = 0; k < q.pivots.size(); ++k) {
+        const std::string& l = q.bodies[q.pivots[k].body].label;
+        for (int c = 0; c < dim; ++c)
+            pl.outputs.push_back({"R_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), s.pivot_impulses[k][c],
+                                  "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
+    }
+    ex u = 0;
+    for (const step& st : s.steps)
+        if (st.sym.get_name() == "u")
+            u = st.sym;
+    pl.outputs.push_back({"approach_velocity", u, "(v_B - v_A).n before impact along the unit normal (< 0)"});
+    pl.outputs.push_back({"energy_lost", s.energy_lost, "kinetic energy lost, T - T' (bodies of finite mass)"});
+    return pl;
+}
+
+namespace {
+
+std::string counts_text(const op_counts& c)
+{
+    return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
+           std::to_string(c.sqrt) + " sqrt";
+}
+
+std::string wrap_comment(const std::string& lhs, const std::string& rhs)
+{
+    // One formula per line; long right-hand sides continue on indented lines.
+    std::string out = "//   " + lhs + " = ";
+    std::size_t col = out.size();
+    std::string word;
+    std::istringstream is(rhs);
+    bool first = true;
+    while (is >> word) {
+        if (!first && col + 1 + word.size() > 110) {
+            out += "\n//       ";
+            col = 9;
+        } else if (!first) {
+            out += " ";
+            ++col;
+        }
+        out += word;
+        col += word.size();
+        first = false;
+    }
+    return out + "\n";
+}
+
+} // namespace
+
+header generate(const problem& p, const options& o)
+{
+    if (!is_identifier(o.name) || reserved().count(o.name))
+        throw input_error("--name " + o.name + ": not a usable C++ identifier");
+    {
+        std::string rest = o.ns;
+        std::size_t pos;
+        while (!rest.empty()) {
+            pos = rest.find("::");
+            std::string part = rest.substr(0, pos);
+            if (!is_identifier(part))
+                throw input_error("--namespace " + o.ns + ": not a C++ namespace name");
+            rest = pos == std::string::npos ? "" : rest.substr(pos + 2);
+        }
+    }
+    plan pl = make_plan(p, o);
+    const solution& s = pl.sol;
+    const problem& q = pl.prob;
+
+    // Canonical trees of the steps and outputs, then the straight-line program.
+    canonical_pool pool;
+    program prog;
+    std::set<std::string> taken;
+    for (const symbol& x : pl.inputs)
+        taken.insert(x.get_name());
+    std::vector<std::string> step_names;
+    std::vector<scaled> step_values;
+    std::map<int, std::string> names;
+    for (std::size_t i = 0; i < s.steps.size(); ++i) {
+        const step& st = s.steps[i];
+        std::string nm = identifier(st.sym.get_name());
+        while (taken.count(nm) || reserved().count(nm))
+            nm += "_";
+        taken.insert(nm);
+        scaled v = pool.convert(st.value);
+        pool.bind_step(st.sym, static_cast<int>(i), nm);
+        step_names.push_back(nm);
+        step_values.push_back(v);
+        prog.set_owner(nm);
+        int id = prog.lower(pool, v);
+        prog.set_step(static_cast<int>(i), id);
+        if (!prog.is_leaf(id) && !names.count(id))
+            names[id] = nm;
+    }
+    std::vector<std::pair<std::string, int>> outs;
+    std::vector<scaled> out_values;
+    for (const output_value& ov : pl.outputs) {
+        scaled v = pool.convert(ov.value);
+        out_values.push_back(v);
+        prog.set_owner(ov.field);
+        outs.push_back({ov.field, prog.lower(pool, v)});
+    }
+    // Validity checks, each right after the value it tests.
+    std::vector<check> checks;
+    auto add_check = [&](const ex& value, check::kind_t kind, const std::string& status, const std::string& comment) {
+        if (is_a<numeric>(value))
+            return; // constants were validated when the problem was read
+        prog.set_owner("check");
+        checks.push_back({kind, prog.lower(pool, pool.convert(value)), status, comment});
+    };
+    add_check(q.restitution, check::unit_interval, "invalid_restitution", "0 <= e <= 1");
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        ex m = b.mass;
+        if (o.inverse_mass && is_a<symbol>(m))
+            m = symbol_named("inv_" + ex_to<symbol>(m).get_name());
+        add_check(m, check::positive, "invalid_mass", (o.inverse_mass ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
+        if (!b.particle && q.dimension == 2)
+            add_check(b.inertia[2][2], check::positive, "invalid_inertia", "moment of inertia of " + b.name + " > 0, finite");
+    }
+    for (std::size_t i = 0; i < s.steps.size(); ++i) {
+        const std::string nm = s.steps[i].sym.get_name();
+        if (nm.rfind("D_", 0) == 0)
+            add_check(s.steps[i].sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
+        else if (nm == "u")
+            add_check(s.steps[i].sym, check::negative, "not_approaching", "the contact points approach: u < 0");
+        else if (nm == "k")
+            add_check(s.steps[i].sym, check::positive, "singular", "effective inverse mass k > 0, finite");
+    }
+    std::vector<std::string> input_names;
+    for (const symbol& x : pl.inputs)
+        input_names.push_back(x.get_name());
+    emitted em = emit_cpp(prog, outs, checks, names, input_names);
+
+    // Inputs the outputs do not depend on still count for the finiteness check.
+    std::set<std::string> reached;
+    for (std::size_t i = 0; i < prog.size(); ++i)
+        if (prog.at(static_cast<int>(i)).kind == op::input)
+            reached.insert(prog.at(static_cast<int>(i)).name);
+    std::vector<std::string> sum_terms;
+    for (const auto& [field, id] : outs)
+        if (prog.at(id).kind != op::constant)
+            sum_terms.push_back("out." + field);
+    std::vector<std::string> unused_inputs;
+    for (const std::string& nm : input_names)
+        if (!reached.count(nm)) {
+            sum_terms.push_back(nm);
+            unused_inputs.push_back(nm);
+        }
+
+    // ---- the header text
+    const std::string R = o.name + "_result";
+    std::ostringstream h;
+    std::string command = "impactgen codegen " + o.source + " --name " + o.name + " --namespace " + o.ns;
+    if (o.params_given)
+        command += " --params " + join(o.params, ",");
+    if (!o.set.empty()) {
+        std::vector<std::string> kv;
+        for (auto& [k, v] : o.set)
+            kv.push_back(k + "=" + v);
+        command += " --set " + join(kv, ",");
+    }
+    if (o.inverse_inertia)
+        command += " --inverse-inertia";
+    if (o.inverse_mass)
+        command += " --inverse-mass";
+    h << "// Generated by impactgen " << o.version << " from " << o.source << ". Do not edit: regenerate.\n";
+    h << "//   " << command << "\n";
+    h << "// Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.\n";
+    h << "// Arithmetic per call: " << counts_text(em.formula) << " (closed form);\n";
+    h << "//   validity checks: " << counts_text(em.checks) << " + " << (sum_terms.empty() ? 0 : sum_terms.size() - 1)
+      << " add (finiteness of the result), and comparisons.\n";
+    h << "#pragma once\n\n";
+    if (em.uses_sqrt)
+        h << "#include <cmath>\n\n";
+    std::string guard = "IMPACTGEN_GENERATED_COMMON_";
+    for (char c : o.ns)
+        guard += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
+    h << "namespace " << o.ns << " {\n\n";
+    h << "#ifndef " << guard << "\n#define " << guard << "\n";
+    h << R"(/// Why a call computed no post-impact state (the result is then all zeros).
+enum class impact_status : int {
+    ok = 0,
+    non_finite_input,    ///< an input is infinite or NaN
+    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
+    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_restitution, ///< e outside [0, 1]
+    not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
+    singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
+    overflow             ///< finite inputs whose result overflows
+};
+
+inline constexpr const char* to_string(impact_status s) noexcept
+{
+    switch (s) {
+    case impact_status::ok: return "ok";
+    case impact_status::non_finite_input: return "non-finite input";
+    case impact_status::invalid_mass: return "invalid mass";
+    case impact_status::invalid_inertia: return "invalid inertia";
+    case impact_status::invalid_restitution: return "invalid restitution";
+    case impact_status::not_approaching: return "not approaching";
+    case impact_status::singular: return "singular effective mass";
+    case impact_status::overflow: return "overflow";
+    }
+    return "?";
+}
+
+/// Floating-point operations of one call of a generated function.
+struct op_count {
+    int add, mul, div, sqrt;
+};
+
+namespace detail {
+template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+{
+    return (finite(x) && ... && finite(y));
+}
+} // namespace detail
+#endif
+
+)";
+    // Result struct.
+    h << "/// Post-impact state of " << o.name << " (units as the inputs).\n";
+    h << "template <typename T> struct " << R << " {\n";
+    for (const output_value& ov : pl.outputs)
+        h << "    T " << ov.field << "; ///< " << ov.meaning << "\n";
+    h << "};\n\n";
+
+    // Formula block.
+    h << "// Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,\n";
+    h << "// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):\n";
+    h << "//   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a particle;\n";
+    h << "//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)\n";
+    h << "//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points approach)\n";
+    h << "//   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)\n";
+    h << "//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i\n";
+    h << "//   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n\n";
+    if (o.inverse_inertia)
+        h << "// Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = inv_I_i (r_i x n).\n";
+    if (o.inverse_mass)
+        h << "// Input convention: inverse masses inv_m = 1/m.\n";
+    h << "// This problem, step by step (canonical order):\n";
+    for (std::size_t i = 0; i < s.steps.size(); ++i)
+        h << wrap_comment(step_names[i], pool.print(step_values[i]));
+    for (std::size_t i = 0; i < pl.outputs.size(); ++i)
+        h << wrap_comment("out." + pl.outputs[i].field, pool.print(out_values[i]));
+
+    // The function.
+    std::string params;
+    for (const std::string& nm : input_names)
+        params += "T " + nm + ", ";
+    h << "\n/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
+    h << "/// (then every member of out is zero). T: float, double, long double or alike.\n";
+    for (std::size_t i = 0; i < input_names.size(); ++i)
+        h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
+    h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
+    if (em.uses_sqrt)
+        h << "    using std::sqrt;\n";
+    if (!input_names.empty()) {
+        h << "    auto fail = [&](impact_status why) noexcept {\n";
+        h << "        out = " << R << "<T>{};\n";
+        h << "        return detail::all_finite(" << join(input_names, ", ") << ") ? why : impact_status::non_finite_input;\n";
+        h << "    };\n";
+    }
+    h << em.code;
+    if (!sum_terms.empty()) {
+        // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
+        std::vector<std::string> level = sum_terms;
+        while (level.size() > 1) {
+            std::vector<std::string> next;
+            for (std::size_t i = 0; i + 1 < level.size(); i += 2)
+                next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
+                               (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
+            if (level.size() % 2)
+                next.push_back(level.back());
+            level = next;
+        }
+        std::vector<std::string> each;
+        for (const std::string& t : sum_terms)
+            each.push_back(t);
+        h << "    const T check_sum = " << level[0] << ";\n";
+        h << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(each, ", ") << "))\n";
+        h << "        return fail(impact_status::overflow);\n";
+    }
+    h << "    return impact_status::ok;\n}\n\n";
+
+    // Array form, names, counts.
+    h << "/// The same with the inputs in an array, in the order of " << o.name << "_input_names.\n";
+    h << "template <typename T>\ninline impact_status " << o.name << "(const T* in, " << R << "<T>& out) noexcept\n{\n";
+    if (input_names.empty())
+        h << "    (void)in;\n";
+    h << "    return " << o.name << "(";
+    for (std::size_t i = 0; i < input_names.size(); ++i)
+        h << "in[" << i << "], ";
+    h << "out);\n}\n\n";
+    h << "inline constexpr int " << o.name << "_input_count = " << input_names.size() << ";\n";
+    h << "inline constexpr int " << o.name << "_output_count = " << pl.outputs.size() << ";\n";
+    h << "inline constexpr const char* " << o.name << "_input_names[] = {";
+    for (const std::string& nm : input_names)
+        h << "\"" << nm << "\", ";
+    h << "nullptr};\n";
+    h << "inline constexpr const char* " << o.name << "_output_names[] = {";
+    for (const output_value& ov : pl.outputs)
+        h << "\"" << ov.field << "\", ";
+    h << "nullptr};\n";
+    h << "/// Arithmetic of the closed form per call (validity checks not included).\n";
+    h << "inline constexpr op_count " << o.name << "_ops{" << em.formula.add << ", " << em.formula.mul << ", "
+      << em.formula.div << ", " << em.formula.sqrt << "};\n\n";
+    h << "/// The members of r in the order of " << o.name << "_output_names.\n";
+    h << "template <typename T> inline void " << o.name << "_to_array(const " << R << "<T>& r, T* a) noexcept\n{\n";
+    for (std::size_t i = 0; i < pl.outputs.size(); ++i)
+        h << "    a[" << i << "] = r." << pl.outputs[i].field << ";\n";
+    h << "}\n\n} // namespace " << o.ns << "\n";
+
+    header out;
+    out.text = h.str();
+    out.formula = em.formula;
+    out.checks = em.checks;
+    out.inputs = input_names;
+    for (const output_value& ov : pl.outputs)
+        out.outputs.push_back(ov.field);
+    (void)unused_inputs;
+    return out;
+}
+
+bool write_if_changed(const std::string& path, const std::string& text)
+{
+    {
+        std::ifstream in(path, std::ios::binary);
+        if (in) {
+            std::stringstream ss;
+            ss << in.rdbuf();
+            if (ss.str() == text)
+                return false;
+        }
+    }
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out)
+        throw input_error("cannot write " + path);
+    out << text;
+    if (!out)
+        throw input_error("cannot write " + path);
+    return true;
+}
+
+} // namespace impactgen::codegen

@@ -1,0 +1,69 @@
+// Code generation: a problem (named class or problem file), specialised by the
+// caller's choice of parameters, becomes one dependency-free C++17 header with
+// a noexcept function template that computes the post-impact state.
+//
+//   problem --(--set, --params: fold the rest in)--> derive --> solve (named steps)
+//           --> canonical trees (canonical.hpp) --> straight-line program with
+//               value numbering = CSE (program.hpp) --> C++ (emit_cpp)
+#pragma once
+
+#include "program.hpp"
+#include "symbolic/solution.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impactgen::codegen {
+
+struct options {
+    std::string name;                    ///< function name (a C++ identifier)
+    std::string ns = "impactgen::generated";
+    std::string source;                  ///< what the banner names as the input (class or file as given)
+    std::string version;                 ///< impactgen's version, for the banner
+    bool params_given = false;
+    std::vector<std::string> params;     ///< symbols or quantity names that stay parameters, in order
+    std::vector<std::pair<std::string, std::string>> set; ///< symbol = value folded in as constants
+    bool inverse_inertia = false;        ///< 3-D inertia inputs of free bodies are I^{-1} (engine convention)
+    bool inverse_mass = false;           ///< mass inputs are 1/m (engine convention)
+};
+
+/// The problem with --set values folded in and the quantities named in
+/// --params made symbols; throws input_error when a symbol is neither a
+/// parameter nor given a value.
+problem specialise(const problem& p, const options& o);
+
+/// The name of each liftable quantity of a problem ("m1", "v_x_ball", ...)
+/// with its current value, in problem order.
+std::vector<std::pair<std::string, GiNaC::ex>> quantity_names(const problem& p);
+
+struct output_value {
+    std::string field;     ///< member of the result struct
+    GiNaC::ex value;       ///< in inputs and steps
+    std::string meaning;
+};
+
+/// The closed form prepared for code generation: solution steps (rewritten
+/// for the engine input conventions), outputs, and the function's inputs in order.
+struct plan {
+    problem prob;                        ///< specialised
+    derivation deriv;
+    solution sol;
+    std::vector<GiNaC::symbol> inputs;   ///< function parameters, in order
+    std::vector<std::string> input_meaning;
+    std::vector<output_value> outputs;
+};
+plan make_plan(const problem& p, const options& o);
+
+struct header {
+    std::string text;
+    op_counts formula, checks;
+    std::vector<std::string> inputs, outputs;
+};
+header generate(const problem& p, const options& o);
+
+/// Writes text to path unless the file already holds exactly that text;
+/// returns true when it wrote.
+bool write_if_changed(const std::string& path, const std::string& text);
+
+} // namespace impactgen::codegen

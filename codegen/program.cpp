@@ -1,0 +1,431 @@
+#include "program.hpp"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+namespace impactgen::codegen {
+using GiNaC::numeric;
+
+int program::make(op o)
+{
+    o.owner = owner_;
+    ops_.push_back(std::move(o));
+    return static_cast<int>(ops_.size()) - 1;
+}
+
+int program::input(const std::string& name)
+{
+    auto it = inputs_.find(name);
+    if (it != inputs_.end())
+        return it->second;
+    op o;
+    o.kind = op::input;
+    o.name = name;
+    int id = make(o);
+    inputs_[name] = id;
+    return id;
+}
+
+int program::constant(const numeric& x)
+{
+    std::string key = number_text(x);
+    auto it = constants_.find(key);
+    if (it != constants_.end())
+        return it->second;
+    op o;
+    o.kind = op::constant;
+    o.value = x;
+    int id = make(o);
+    constants_[key] = id;
+    return id;
+}
+
+int program::negate(int a)
+{
+    const op& x = at(a);
+    if (x.kind == op::constant)
+        return constant(-x.value);
+    if (x.kind == op::neg)
+        return x.a;
+    auto key = std::make_tuple(int(op::neg), a, -1);
+    auto it = memo_.find(key);
+    if (it != memo_.end())
+        return it->second;
+    op o;
+    o.kind = op::neg;
+    o.a = a;
+    int id = make(o);
+    memo_[key] = id;
+    return id;
+}
+
+int program::square_root(int a)
+{
+    if (at(a).kind == op::constant && at(a).value.is_zero())
+        return a;
+    auto key = std::make_tuple(int(op::sqrt_), a, -1);
+    auto it = memo_.find(key);
+    if (it != memo_.end())
+        return it->second;
+    op o;
+    o.kind = op::sqrt_;
+    o.a = a;
+    int id = make(o);
+    memo_[key] = id;
+    return id;
+}
+
+int program::binary(op::kind_t k, int a, int b)
+{
+    const op& x = at(a);
+    const op& y = at(b);
+    const bool cx = x.kind == op::constant, cy = y.kind == op::constant;
+    if (cx && cy) {
+        switch (k) {
+        case op::add: return constant(x.value + y.value);
+        case op::sub: return constant(x.value - y.value);
+        case op::mul: return constant(x.value * y.value);
+        case op::div:
+            if (y.value.is_zero())
+                throw std::runtime_error("code generation: division by zero");
+            return constant(x.value / y.value);
+        default: break;
+        }
+    }
+    if (k == op::add && cx && x.value.is_zero())
+        return b;
+    if ((k == op::add || k == op::sub) && cy && y.value.is_zero())
+        return a;
+    if (k == op::mul) {
+        if ((cx && x.value.is_zero()) || (cy && y.value.is_zero()))
+            return constant(0);
+        if (cx && x.value == 1)
+            return b;
+        if (cy && y.value == 1)
+            return a;
+        if (cy && y.value == -1)
+            return negate(a);
+    }
+    if (k == op::div && cy && y.value == 1)
+        return a;
+    if (k == op::add || k == op::mul)
+        if (a > b)
+            std::swap(a, b);
+    auto key = std::make_tuple(int(k), a, b);
+    auto it = memo_.find(key);
+    if (it != memo_.end())
+        return it->second;
+    op o;
+    o.kind = k;
+    o.a = a;
+    o.b = b;
+    int id = make(o);
+    memo_[key] = id;
+    return id;
+}
+
+int program::lower(const canonical_pool& pool, const scaled& s)
+{
+    if (s.node < 0)
+        return constant(s.scale);
+    numeric a = abs(s.scale);
+    if (s.scale < 0 && a == 1 && pool.at(s.node).kind == cnode::add)
+        return lower_add(pool, s.node, true); // -(x - y) as y - x
+    int v = lower(pool, s.node);
+    if (a != 1)
+        v = binary(op::mul, v, constant(a));
+    return s.scale < 0 ? negate(v) : v;
+}
+
+// A sum, starting from its first positive term so that it needs no negation
+// unless every term is negative.
+int program::lower_add(const canonical_pool& pool, int cid, bool negated)
+{
+    auto memo = lowered_neg_.find(cid);
+    if (negated && memo != lowered_neg_.end())
+        return memo->second;
+    const cnode& n = pool.at(cid);
+    std::vector<std::pair<numeric, int>> terms;
+    for (auto& [c, t] : n.terms)
+        terms.push_back({negated ? -c : c, t});
+    numeric konst = negated ? -n.value : n.value;
+    std::stable_partition(terms.begin(), terms.end(), [](const auto& t) { return t.first > 0; });
+    int r = -1;
+    bool all_negative = terms.front().first < 0;
+    for (auto& [c, t] : terms) {
+        int v = lower(pool, t);
+        numeric a = abs(c);
+        if (a != 1)
+            v = binary(op::mul, v, constant(a));
+        if (r < 0)
+            r = v;
+        else
+            r = binary(all_negative || c > 0 ? op::add : op::sub, r, v);
+    }
+    if (all_negative) {
+        if (!konst.is_zero())
+            r = binary(op::sub, constant(konst), r);
+        else
+            r = negate(r);
+    } else if (!konst.is_zero()) {
+        r = binary(konst < 0 ? op::sub : op::add, r, constant(abs(konst)));
+    }
+    if (negated)
+        lowered_neg_[cid] = r;
+    return r;
+}
+
+int program::lower(const canonical_pool& pool, int cid)
+{
+    auto memo = lowered_.find(cid);
+    if (memo != lowered_.end())
+        return memo->second;
+    const cnode& n = pool.at(cid);
+    int r = -1;
+    switch (n.kind) {
+    case cnode::constant: r = constant(n.value); break;
+    case cnode::input: r = input(n.name); break;
+    case cnode::step: {
+        auto it = step_op_.find(n.step_index);
+        if (it == step_op_.end())
+            throw std::logic_error("code generation: step " + n.name + " used before it is defined");
+        r = it->second;
+        break;
+    }
+    case cnode::sqrt_: r = square_root(lower(pool, n.arg)); break;
+    case cnode::add: r = lower_add(pool, cid, false); break;
+    case cnode::mul: {
+        int num = -1, den = -1;
+        for (auto& [f, x] : n.factors) {
+            int v = lower(pool, f);
+            int& acc = x > 0 ? num : den;
+            for (int k = 0; k < (x > 0 ? x : -x); ++k)
+                acc = acc < 0 ? v : binary(op::mul, acc, v);
+        }
+        numeric a = abs(n.value);
+        if (a.numer() != 1)
+            num = num < 0 ? constant(a.numer()) : binary(op::mul, num, constant(a.numer()));
+        if (a.denom() != 1) {
+            // a rational coefficient p/q folds into one constant factor
+            if (num < 0)
+                num = constant(1 / numeric(a.denom()));
+            else
+                num = binary(op::mul, num, constant(1 / numeric(a.denom())));
+        }
+        if (den >= 0)
+            r = num < 0 ? reciprocal(den) : binary(op::mul, num, reciprocal(den));
+        else
+            r = num < 0 ? constant(1) : num;
+        if (n.value < 0)
+            r = negate(r);
+        break;
+    }
+    }
+    lowered_[cid] = r;
+    return r;
+}
+
+// ---------------------------------------------------------------------------
+// Emission
+
+namespace {
+
+struct printer {
+    const program& prog;
+    const std::vector<bool>& materialised;
+    const std::vector<int>& refs;
+    const std::map<int, std::string>& var;
+    op_counts* counts;
+
+    bool inline_recip(int id) const
+    {
+        const op& o = prog.at(id);
+        return o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1 &&
+               !materialised[static_cast<std::size_t>(id)] && refs[static_cast<std::size_t>(id)] == 1;
+    }
+
+    // precedence: 1 = additive, 2 = multiplicative, 3 = unary, 4 = atom
+    std::string text(int id, int& prec, bool top = false) const
+    {
+        const op& o = prog.at(id);
+        if (!top && (materialised[static_cast<std::size_t>(id)] || o.kind == op::input)) {
+            prec = 4;
+            return o.kind == op::input ? o.name : var.at(id);
+        }
+        switch (o.kind) {
+        case op::input: prec = 4; return o.name;
+        case op::constant: prec = 4; return literal(o.value);
+        case op::neg: {
+            int p;
+            std::string s = text(o.a, p);
+            prec = 3;
+            return "-" + (p < 3 ? "(" + s + ")" : s);
+        }
+        case op::sqrt_: {
+            int p;
+            std::string s = text(o.a, p);
+            ++counts->sqrt;
+            prec = 4;
+            return "sqrt(" + s + ")";
+        }
+        case op::add:
+        case op::sub: {
+            int pa, pb;
+            std::string sa = text(o.a, pa), sb = text(o.b, pb);
+            ++counts->add;
+            prec = 1;
+            if (o.kind == op::sub && pb <= 1)
+                sb = "(" + sb + ")";
+            return sa + (o.kind == op::add ? " + " : " - ") + sb;
+        }
+        case op::mul:
+        case op::div: {
+            int a = o.a, b = o.b;
+            bool as_div = o.kind == op::div;
+            if (o.kind == op::mul) {
+                if (inline_recip(a) && !inline_recip(b))
+                    std::swap(a, b);
+                if (inline_recip(b)) {
+                    as_div = true;
+                    b = prog.at(b).b;
+                }
+            }
+            int pa, pb;
+            std::string sa = text(a, pa), sb = text(b, pb);
+            if (as_div)
+                ++counts->div;
+            else
+                ++counts->mul;
+            prec = 2;
+            if (pa < 2)
+                sa = "(" + sa + ")";
+            if (pb < 2 || (as_div && pb == 2))
+                sb = "(" + sb + ")";
+            return sa + (as_div ? " / " : " * ") + sb;
+        }
+        }
+        return "?";
+    }
+
+    static std::string literal(const numeric& x)
+    {
+        auto integer = [](const numeric& k) {
+            // exact in T when |k| <= 2^53 (and written as an integer literal); otherwise via long double
+            if (abs(k) <= numeric(9007199254740992LL))
+                return "T(" + number_text(k) + ")";
+            return "T(" + number_text(k) + ".0L)";
+        };
+        if (!x.is_rational())
+            return "T(" + number_text(x) + "L)";
+        if (x.is_integer())
+            return integer(x);
+        return "(" + integer(x.numer()) + " / " + integer(x.denom()) + ")";
+    }
+};
+
+} // namespace
+
+emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
+                 const std::vector<check>& checks, const std::map<int, std::string>& names,
+                 const std::vector<std::string>& inputs)
+{
+    const std::size_t n = prog.size();
+    std::vector<bool> reach(n, false), materialised(n, false);
+    std::vector<int> refs(n, 0);
+    std::vector<int> stack;
+    auto root = [&](int id) {
+        ++refs[static_cast<std::size_t>(id)];
+        stack.push_back(id);
+    };
+    for (auto& o : outputs)
+        root(o.second);
+    for (auto& c : checks)
+        root(c.op_id);
+    while (!stack.empty()) {
+        int id = stack.back();
+        stack.pop_back();
+        if (reach[static_cast<std::size_t>(id)])
+            continue;
+        reach[static_cast<std::size_t>(id)] = true;
+        const op& o = prog.at(id);
+        for (int c : {o.a, o.b})
+            if (c >= 0) {
+                ++refs[static_cast<std::size_t>(c)];
+                stack.push_back(c);
+            }
+    }
+    std::set<int> checked;
+    for (auto& c : checks)
+        checked.insert(c.op_id);
+    std::map<int, std::string> var;
+    std::set<std::string> used_names(inputs.begin(), inputs.end());
+    std::map<std::string, int> part_counter;
+    for (std::size_t i = 0; i < n; ++i) {
+        const int id = static_cast<int>(i);
+        if (!reach[i] || prog.is_leaf(id))
+            continue;
+        bool named = names.count(id) > 0;
+        if (named || refs[i] >= 2 || checked.count(id)) {
+            materialised[i] = true;
+            std::string nm;
+            if (named) {
+                nm = names.at(id);
+            } else {
+                const op& o = prog.at(id);
+                bool recip = o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1;
+                if (recip && (prog.at(o.b).kind == op::input || var.count(o.b)))
+                    nm = "inv_" + (prog.at(o.b).kind == op::input ? prog.at(o.b).name : var[o.b]);
+                else
+                    nm = o.owner + "_p" + std::to_string(++part_counter[o.owner]);
+            }
+            while (used_names.count(nm))
+                nm += "_";
+            used_names.insert(nm);
+            var[id] = nm;
+        }
+    }
+
+    emitted out;
+    printer pr{prog, materialised, refs, var, &out.formula};
+    std::string& code = out.code;
+    auto emit_checks = [&](int id) {
+        for (const check& c : checks) {
+            if (c.op_id != id)
+                continue;
+            int p;
+            std::string x = pr.text(id, p);
+            std::string cond;
+            switch (c.kind) {
+            case check::positive: cond = x + " > T(0) && detail::finite(" + x + ")"; break;
+            case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
+            case check::negative: cond = x + " < T(0)"; break;
+            }
+            code += "    if (!(" + cond + ")) // " + c.comment + "\n";
+            code += "        return fail(impact_status::" + c.status + ");\n";
+        }
+    };
+    std::set<int> input_checked;
+    for (const check& c : checks)
+        if (prog.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
+            emit_checks(c.op_id);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!materialised[i])
+            continue;
+        int p;
+        code += "    const T " + var[static_cast<int>(i)] + " = " + pr.text(static_cast<int>(i), p, true) + ";\n";
+        emit_checks(static_cast<int>(i));
+        if (prog.at(static_cast<int>(i)).kind == op::sqrt_)
+            out.uses_sqrt = true;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (reach[i] && prog.at(static_cast<int>(i)).kind == op::sqrt_)
+            out.uses_sqrt = true;
+    for (auto& [field, id] : outputs) {
+        int p;
+        code += "    out." + field + " = " + pr.text(id, p) + ";\n";
+    }
+    return out;
+}
+
+} // namespace impactgen::codegen

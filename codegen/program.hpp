@@ -1,0 +1,84 @@
+// A straight-line program of binary floating-point operations, built from
+// canonical trees with value numbering: every (operation, operand, operand)
+// exists once, so common subexpressions are computed once. Products are
+// folded left to right in canonical order, so shared leading factors are
+// shared too; a division x / y is lowered as x * (1 / y), and the emitter
+// prints it back as x / y unless 1 / y is used more than once (one division
+// and several multiplications instead of several divisions).
+#pragma once
+
+#include "canonical.hpp"
+
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace impactgen::codegen {
+
+struct op {
+    enum kind_t { input, constant, add, sub, mul, div, neg, sqrt_ } kind = constant;
+    int a = -1, b = -1;
+    GiNaC::numeric value;  ///< constant
+    std::string name;      ///< input
+    std::string owner;     ///< the step or output being lowered when this op was created
+};
+
+struct op_counts {
+    int add = 0, mul = 0, div = 0, sqrt = 0;
+};
+
+class program {
+public:
+    /// The ops of the canonical node; step nodes resolve through set_step.
+    int lower(const canonical_pool& pool, int cid);
+    int lower(const canonical_pool& pool, const scaled& s);
+    void set_step(int step_index, int op_id) { step_op_[step_index] = op_id; }
+    void set_owner(const std::string& owner) { owner_ = owner; }
+
+    int input(const std::string& name);
+    int constant(const GiNaC::numeric& x);
+    int binary(op::kind_t k, int a, int b);
+    int negate(int a);
+    int square_root(int a);
+    int reciprocal(int a) { return binary(op::div, constant(1), a); }
+
+    const op& at(int id) const { return ops_[static_cast<std::size_t>(id)]; }
+    std::size_t size() const { return ops_.size(); }
+    bool is_leaf(int id) const { return at(id).kind == op::input || at(id).kind == op::constant; }
+
+private:
+    int make(op o);
+    int lower_add(const canonical_pool& pool, int cid, bool negated);
+    std::map<int, int> lowered_neg_;
+    std::vector<op> ops_;
+    std::map<std::tuple<int, int, int>, int> memo_;
+    std::map<std::string, int> inputs_, constants_;
+    std::map<int, int> lowered_;
+    std::map<int, int> step_op_;
+    std::string owner_;
+};
+
+/// What the emitted code checks and which status it returns when the check fails.
+struct check {
+    enum kind_t { positive, unit_interval, negative } kind;
+    int op_id;
+    std::string status;   ///< enumerator of impact_status
+    std::string comment;
+};
+
+struct emitted {
+    std::string code;     ///< the function body, indented by 4
+    op_counts formula;    ///< arithmetic of the closed form
+    op_counts checks;     ///< arithmetic spent on validity checks
+    bool uses_sqrt = false;
+};
+
+/// Emits straight-line C++ for the outputs (field name, op) with the checks
+/// placed right after the values they test. `names` gives ops their variable
+/// names (the solution's step names). `inputs` are the function parameters.
+emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
+                 const std::vector<check>& checks, const std::map<int, std::string>& names,
+                 const std::vector<std::string>& inputs);
+
+} // namespace impactgen::codegen
