@@ -255,14 +255,14 @@ plan make_plan(const problem& p, const options& o)
             mat3 K;
             for (int r = 0; r < 3; ++r)
                 for (int c = r; c < 3; ++c) {
-                    std::string nm = "inv_I" + sfx(L) + "_" + ax[r] + ax[c];
-                    symbol k = symbol_named(nm);
-                    K[r][c] = K[c][r] = k;
-                    meaning[nm] = "inverse inertia tensor of " + b.name + " (world axes), " + ax[r] + ax[c] + " entry";
                     const ex& old = b.inertia[r][c];
-                    if (is_a<symbol>(old))
+                    if (is_a<symbol>(old)) {
+                        std::string nm = "inv_" + ex_to<symbol>(old).get_name();
+                        symbol k = symbol_named(nm);
+                        K[r][c] = K[c][r] = k;
+                        meaning[nm] = "inverse inertia tensor of " + b.name + " (world axes), " + ax[r] + ax[c] + " entry";
                         replaced[ex_to<symbol>(old).get_name()].push_back(k);
-                    else
+                    } else
                         throw input_error("--inverse-inertia: the inertia entry " + ax[r] + ax[c] + " of " + b.name +
                                           " is neither a number nor a single symbol");
                 }
@@ -344,28 +344,29 @@ plan make_plan(const problem& p, const options& o)
             continue;
         const std::string sub = b.label.size() == 1 ? b.label : "_" + identifier(b.label);
         for (int c = 0; c < dim; ++c)
-            pl.outputs.push_back({"v_" + ax[c] + sub, s.after[i].velocity[c],
+            pl.outputs.push_back({output_value::velocity, i, c, "v_" + ax[c] + sub, s.after[i].velocity[c],
                                   "velocity of the centre of mass of " + b.name + " after impact, " + ax[c]});
         if (!b.particle)
             for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
-                pl.outputs.push_back({"w_" + ax[c] + sub, s.after[i].angular_velocity[c],
+                pl.outputs.push_back({output_value::angular_velocity, i, c, "w_" + ax[c] + sub, s.after[i].angular_velocity[c],
                                       "angular velocity of " + b.name + " after impact, " + ax[c]});
     }
-    pl.outputs.push_back({"normal_impulse", s.normal_impulse * d.normal_length,
-                          "normal impulse, integral of N dt >= 0 along the given normal: on " + q.bodies[q.contact.body2].name +
+    // N is the impulse along the unit normal (as `impactgen solve` reports it), whatever |n| was given.
+    pl.outputs.push_back({output_value::normal_impulse, 0, 0, "normal_impulse", s.normal_impulse,
+                          "normal impulse, integral of N dt >= 0 along the unit normal: on " + q.bodies[q.contact.body2].name +
                               " along +n, on " + q.bodies[q.contact.body1].name + " along -n"});
     for (std::size_t k = 0; k < q.pivots.size(); ++k) {
         const std::string& l = q.bodies[q.pivots[k].body].label;
         for (int c = 0; c < dim; ++c)
-            pl.outputs.push_back({"R_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), s.pivot_impulses[k][c],
+            pl.outputs.push_back({output_value::pivot_impulse, k, c, "R_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), s.pivot_impulses[k][c],
                                   "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
     }
     ex u = 0;
     for (const step& st : s.steps)
         if (st.sym.get_name() == "u")
             u = st.sym;
-    pl.outputs.push_back({"approach_velocity", u, "(v_B - v_A).n before impact along the unit normal (< 0)"});
-    pl.outputs.push_back({"energy_lost", s.energy_lost, "kinetic energy lost, T - T' (bodies of finite mass)"});
+    pl.outputs.push_back({output_value::approach_velocity, 0, 0, "approach_velocity", u, "(v_B - v_A).n before impact along the unit normal (< 0)"});
+    pl.outputs.push_back({output_value::energy_lost, 0, 0, "energy_lost", s.energy_lost, "kinetic energy lost, T - T' (bodies of finite mass)"});
     return pl;
 }
 
@@ -474,8 +475,13 @@ header generate(const problem& p, const options& o)
         if (!b.particle && q.dimension == 2)
             add_check(b.inertia[2][2], check::positive, "invalid_inertia", "moment of inertia of " + b.name + " > 0, finite");
     }
+    bool has_k = false;
+    for (const step& st : s.steps)
+        has_k = has_k || st.sym.get_name() == "k";
     for (std::size_t i = 0; i < s.steps.size(); ++i) {
         const std::string nm = s.steps[i].sym.get_name();
+        if (nm == "N" && !has_k) // k = w_1 + w_2 too simple to be a step: N's denominator
+            add_check(s.steps[i].value.denom(), check::positive, "singular", "effective inverse mass k > 0, finite");
         if (nm.rfind("D_", 0) == 0)
             add_check(s.steps[i].sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
         else if (nm == "u")

@@ -38,6 +38,10 @@ problem specialise(const problem& p, const options& o);
 std::vector<std::pair<std::string, GiNaC::ex>> quantity_names(const problem& p);
 
 struct output_value {
+    enum kind_t { velocity, angular_velocity, normal_impulse, pivot_impulse, approach_velocity, energy_lost };
+    kind_t kind;
+    std::size_t index = 0; ///< body (velocities) or pivot (pivot impulse)
+    int component = 0;     ///< world axis
     std::string field;     ///< member of the result struct
     GiNaC::ex value;       ///< in inputs and steps
     std::string meaning;

@@ -142,6 +142,8 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
     const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
     const T inv_m1 = T(1) / m1;
     const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    if (!(w_1 > T(0) && detail::finite(w_1))) // effective inverse mass k > 0, finite
+        return fail(impact_status::singular);
     const T u_p1 = r_t1 * w_b1;
     const T u_p2 = r_b1 * w_t1;
     const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
