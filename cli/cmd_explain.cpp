@@ -1,4 +1,42 @@
-// impactgen explain: not yet implemented (issue 3).
+// impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex]:
+// the derivation walked through the way the lecture notes do it.
 #include "cli/commands.hpp"
+#include "print/explain.hpp"
+#include "symbolic/named_classes.hpp"
 
-void impactgen::cli::register_explain(CLI::App&, std::function<int()>&) {}
+#include <iostream>
+#include <memory>
+
+namespace impactgen::cli {
+
+void register_explain(CLI::App& app, std::function<int()>& action)
+{
+    struct options {
+        std::string what;
+        std::string format = "text";
+    };
+    auto opt = std::make_shared<options>();
+    auto* cmd = app.add_subcommand("explain", "Walk through the derivation and solution the way the lecture notes do");
+    cmd->add_option("problem", opt->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
+    cmd->add_option("--format", opt->format, "text (default), markdown or latex (a complete document)")
+        ->check(CLI::IsMember({"text", "markdown", "latex"}));
+    cmd->callback([opt, &action] {
+        action = [opt] {
+            problem p = load(opt->what);
+            derivation d = derive(p);
+            solution s = solve(d);
+            print::worked_example example;
+            bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
+            print::document doc = print::explain(d, s, has_example ? &example : nullptr);
+            if (opt->format == "markdown")
+                std::cout << print::explain_markdown(doc);
+            else if (opt->format == "latex")
+                std::cout << print::explain_latex(doc);
+            else
+                std::cout << print::explain_text(doc);
+            return 0;
+        };
+    });
+}
+
+} // namespace impactgen::cli

@@ -1,0 +1,606 @@
+// explain(): the explanation document, section by section as the notes go:
+// set-up, impulses, equations, count and solution, checks.
+#include "explain.hpp"
+
+#include "canonical.hpp"
+#include "expression.hpp"
+
+#include <map>
+
+namespace impactgen::print {
+using namespace GiNaC;
+
+namespace {
+
+std::string body_ref(const problem& p, std::size_t i)
+{
+    const body& b = p.bodies[i];
+    std::string role = i == p.contact.body1 ? "body 1" : i == p.contact.body2 ? "body 2" : "body";
+    return b.name == b.label && (b.name == "1" || b.name == "2") ? role : role + " (" + b.name + ")";
+}
+
+std::string number_word(std::size_t n) { return std::to_string(n); }
+
+// Print-only symbols: names for quantities that are not GiNaC symbols of the problem.
+symbol show(const std::string& name, const std::string& tex) { return symbol(name, tex); }
+
+paragraph& vector_span(paragraph& p, const vec3& v, int n)
+{
+    p.w("(");
+    for (int c = 0; c < n; ++c) {
+        if (c)
+            p.w(", ");
+        p.m(v[c]);
+    }
+    return p.w(")");
+}
+
+int count_nodes(const ex& e, int limit)
+{
+    int n = 0;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end() && n < limit; ++it)
+        ++n;
+    return n;
+}
+bool printable(const ex& e) { return count_nodes(e, 400) < 400; }
+
+// The limit of a rational function of eps as eps -> 0 (numerator and
+// denominator are polynomials in eps once normalised). Sets `finite`.
+ex limit_at_zero(const ex& f, const symbol& eps, bool& finite)
+{
+    ex nd = f.normal().numer_denom();
+    ex num = nd.op(0).expand(), den = nd.op(1).expand();
+    int a = num.is_zero() ? 1 << 20 : num.ldegree(eps), b = den.ldegree(eps);
+    finite = a >= b;
+    if (a > b)
+        return 0;
+    if (a < b)
+        return 0;
+    ex r = (num.coeff(eps, a) / den.coeff(eps, b)).normal();
+    return printable(r) ? factor(r) : r;
+}
+
+// Equations come in groups: the same reason for several components.
+std::string base_reason(const std::string& reason, std::string& component)
+{
+    std::size_t k = reason.rfind(" (");
+    if (k != std::string::npos && reason.size() > 12 && reason.compare(reason.size() - 11, 11, " component)") == 0) {
+        component = reason.substr(k + 2, reason.size() - k - 3);
+        return reason.substr(0, k);
+    }
+    component.clear();
+    return reason;
+}
+
+const step* find_step(const solution& s, const std::string& name)
+{
+    for (const step& st : s.steps) {
+        std::string n = st.sym.get_name();
+        while (n.size() > name.size() && n.back() == '_')
+            n.pop_back();
+        if (n == name)
+            return &st;
+    }
+    return nullptr;
+}
+
+// Substitutes the steps named in `names` (and only those), latest first.
+ex expand_some(const solution& s, const ex& e, const std::vector<std::string>& names)
+{
+    ex r = e;
+    for (auto it = s.steps.rbegin(); it != s.steps.rend(); ++it)
+        for (const std::string& n : names)
+            if (find_step(s, n) == &*it)
+                r = r.subs(it->sym == it->value);
+    return r;
+}
+
+math_row row(const ex& lhs, const ex& rhs, const std::string& tag = "", const std::string& note = "")
+{
+    math_row r;
+    r.tag = tag;
+    r.lhs = lhs;
+    r.rhs = rhs;
+    if (!note.empty())
+        r.note.w(note);
+    return r;
+}
+
+math_row note_row(const std::string& text, const std::string& tex, const ex& rhs, const std::string& note = "")
+{
+    math_row r = row(0, rhs, "", note);
+    r.lhs_note = {text, tex};
+    return r;
+}
+
+std::string decimal_note(const ex& v)
+{
+    ex x = v.evalf();
+    if (!is_a<numeric>(v) || ex_to<numeric>(v).is_integer() || !is_a<numeric>(x))
+        return "";
+    return "≈ " + decimal(v);
+}
+
+// ---------------------------------------------------------------- sections
+
+section setup_section(const derivation& d)
+{
+    const problem& p = d.prob;
+    const int dim = p.dimension;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    section sec{"1. Set-up", {}};
+
+    sec.para(paragraph()
+                 .w(std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact: point A of " + body_ref(p, i1) +
+                    " strikes point B of " + body_ref(p, i2) +
+                    ". The impulsive forces change the velocities instantly without changing the positions."));
+    if (is_a<symbol>(p.restitution))
+        sec.para(paragraph().w("Newton's coefficient of restitution is ").m(p.restitution).w(" (0 ≤ e ≤ 1)."));
+    else
+        sec.para(paragraph().w("Newton's coefficient of restitution is e = ").m(p.restitution).w("."));
+
+    std::vector<paragraph> bodies;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        const body& b = p.bodies[i];
+        paragraph q;
+        q.w(body_ref(p, i) + ": ");
+        if (b.infinite_mass)
+            q.w("infinite mass (its motion is given; the impulse cannot change it)");
+        else
+            q.w("mass ").m(b.mass);
+        if (b.particle) {
+            q.w(", a particle (no rotational inertia)");
+        } else if (dim == 2) {
+            q.w(", moment of inertia about C (along e_b) ").m(b.inertia[2][2]);
+        } else {
+            q.w(", inertia tensor about C with rows ");
+            for (int r = 0; r < 3; ++r) {
+                if (r)
+                    q.w(", ");
+                vector_span(q, b.inertia[r], 3);
+            }
+        }
+        q.w("; centre of mass C at ");
+        vector_span(q, b.position, dim);
+        q.w("; before impact v_C = ");
+        vector_span(q, b.velocity, dim);
+        if (!b.particle || b.infinite_mass) {
+            q.w(", ω = ");
+            if (dim == 2)
+                q.m(b.angular_velocity[2]);
+            else
+                vector_span(q, b.angular_velocity, 3);
+        }
+        q.w(".");
+        if (const pivot* pv = p.pivot_of(i)) {
+            q.w(" Pinned at the fixed point E = ");
+            vector_span(q, pv->point, dim);
+            q.w(": it can only rotate about E.");
+        }
+        bodies.push_back(q);
+    }
+    sec.list(bodies);
+
+    paragraph frame;
+    frame.w("The contact point O = ");
+    vector_span(frame, p.contact.point, dim);
+    frame.w(" is a geometric point, fixed in the inertial frame, where A and B coincide. The contact frame: e_n = ");
+    vector_span(frame, d.n_hat, dim);
+    frame.w(" (the common normal, from body 1 into body 2), e_t along ");
+    vector_span(frame, d.t_dir, dim);
+    if (dim == 3) {
+        frame.w(", e_b along ");
+        vector_span(frame, d.b_dir, 3);
+    } else {
+        frame.w(", and e_b normal to the plane of motion");
+    }
+    frame.w(".");
+    if (p.axes[0] == "t")
+        frame.w(" The world axes are named t, n, b: a component with subscript t, n or b is along e_t, e_n or e_b.");
+    else if (d.frame_is_world)
+        frame.w(" These are world axes (up to sign), so components can be read off directly.");
+    sec.para(frame);
+
+    // Known and unknown.
+    paragraph known;
+    known.w("Known before impact: the velocities v_C and angular velocities ω of both bodies (above). "
+            "To be found after impact:");
+    sec.para(known);
+    std::vector<math_row> unknown_rows;
+    for (const unknown& u : d.unknowns) {
+        math_row r;
+        r.lhs_note = {"", ""};
+        r.lhs = u.sym;
+        r.rel = "";
+        r.note.w(u.meaning);
+        unknown_rows.push_back(r);
+    }
+    sec.rows(unknown_rows);
+
+    // Why this many.
+    std::vector<paragraph> why;
+    std::string sum;
+    for (std::size_t i : {i1, i2}) {
+        const body& b = p.bodies[i];
+        std::size_t nv = 0, nw = 0;
+        for (const unknown& u : d.unknowns)
+            if (u.owner == i && u.kind == unknown_kind::velocity)
+                ++nv;
+            else if (u.owner == i && u.kind == unknown_kind::angular_velocity)
+                ++nw;
+        paragraph q;
+        q.w(body_ref(p, i) + ": " + number_word(nv + nw) + " unknowns");
+        if (b.infinite_mass)
+            q.w(" -- infinite mass: a finite impulse does not affect it, v′_C = v_C and ω′ = ω (the notes' m2 → ∞ case)");
+        else if (p.immovable(i))
+            q.w(" -- a particle pinned at a fixed point cannot move");
+        else if (b.particle)
+            q.w(" -- a particle: " + number_word(nv) + " velocity components, no angular velocity");
+        else if (dim == 2)
+            q.w(" -- planar: v′_C has 2 components in the e_n-e_t plane and ω′ only a component along e_b, "
+                "because C lies in the plane and e_b is a principal axis at C");
+        else
+            q.w(" -- 3 components of v′_C and 3 of ω′");
+        if (p.pivot_of(i) && !p.immovable(i))
+            q.w(" (the pin at E also ties v′_C to ω′, an extra equation)");
+        why.push_back(q);
+        sum += (sum.empty() ? "" : " + ") + std::to_string(nv + nw);
+    }
+    if (d.impulse_form) {
+        std::size_t nr = 0;
+        for (const unknown& u : d.unknowns)
+            if (u.kind == unknown_kind::pivot_impulse)
+                ++nr;
+        why.push_back(paragraph().w("impulses: 1 + " + std::to_string(nr) +
+                                    " -- with a pivot the notes write impulse-momentum for each body separately, so the normal impulse ∫N dt "
+                                    "and the " + std::to_string(nr) + " components of the pivot's reaction impulse become unknowns too"));
+        sum += " + 1 + " + std::to_string(nr);
+    }
+    sec.para(paragraph().w("Two free rigid bodies in 3-D have 3 + 3 unknowns each: 12 in all. Here:"));
+    sec.list(why);
+    sec.para(paragraph().w("Number of unknowns: " + sum + " = " + std::to_string(d.count_unknowns()) + "."));
+    return sec;
+}
+
+section impulse_section(const derivation& d)
+{
+    const problem& p = d.prob;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    section sec{"2. The impulses (impulse-momentum diagram in words)", {}};
+    std::vector<paragraph> items;
+    items.push_back(paragraph().w("At the contact the normal reaction N acts along e_n for a very short time; its impulse ∫N dt acts on " +
+                                  body_ref(p, i2) + " along +e_n and on " + body_ref(p, i1) + " along -e_n (action and reaction)."));
+    items.push_back(paragraph().w(std::string("The bodies are smooth: the tangential impulse ∫T dt = 0, so no impulse acts along e_t") +
+                                  (p.dimension == 3 ? " or e_b." : ".")));
+    for (const pivot& pv : p.pivots) {
+        paragraph q;
+        q.w("The pin at E = ");
+        vector_span(q, pv.point, p.dimension);
+        q.w(" exerts an unknown reaction impulse R on " + body_ref(p, pv.body) + ".");
+        items.push_back(q);
+    }
+    for (std::size_t i : {i1, i2})
+        if (p.bodies[i].infinite_mass)
+            items.push_back(paragraph().w(body_ref(p, i) + " has infinite mass: the finite impulse ∫N dt does not change its motion."));
+    items.push_back(paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+    sec.list(items);
+
+    std::vector<math_row> rows;
+    for (std::size_t i : {i1, i2}) {
+        const body& b = p.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        std::string L = b.label.size() == 1 ? b.label : "," + b.label;
+        std::string sign = i == i1 ? "-" : "";
+        const pivot* pv = p.pivot_of(i);
+        math_row r;
+        r.lhs_note = {"m" + L + " (v′_C" + L + " - v_C" + L + ")", "m_{" + L + "} (\\underline{v}'_{C" + L + "} - \\underline{v}_{C" + L + "})"};
+        r.rel = "=";
+        r.rhs = 0;
+        r.lhs_note.text += " = " + sign + "∫N dt e_n" + (pv ? " + R" : "");
+        r.lhs_note.tex += " = " + sign + "\\int N\\,dt\\;\\hat{\\underline{e}}_n" + (pv ? " + \\underline{R}" : "");
+        r.rel = "";
+        r.note.w("impulse-momentum of " + body_ref(p, i));
+        rows.push_back(r);
+    }
+    sec.rows(rows);
+    return sec;
+}
+
+section equations_section(const derivation& d)
+{
+    const problem& p = d.prob;
+    section sec{"3. The equations", {}};
+    if (d.impulse_form)
+        sec.para(paragraph().w("A body is pinned, so, as in the notes' constrained collision, impulse-momentum is written for each body "
+                               "separately, with ∫N dt and the pivot impulse as unknowns; angular impulse is taken about the pivot E, "
+                               "fixed in the inertial frame, where the pivot impulse has no moment."));
+    else
+        sec.para(paragraph().w("The bodies are unconstrained, so the notes use conservation laws in which the unknown impulse ∫N dt "
+                               "does not appear: tangential momentum of each body, linear momentum of the system along e_n, "
+                               "angular momentum of each body about O, and restitution."));
+
+    std::size_t k = 0;
+    while (k < d.equations.size()) {
+        std::string comp, base = base_reason(d.equations[k].reason, comp);
+        principle why = d.equations[k].why;
+        std::vector<math_row> rows;
+        std::size_t j = k;
+        for (; j < d.equations.size(); ++j) {
+            std::string c, b2 = base_reason(d.equations[j].reason, c);
+            if (b2 != base || d.equations[j].why != why)
+                break;
+            math_row r = row(d.equations[j].lhs, d.equations[j].rhs, d.equations[j].label, c);
+            rows.push_back(r);
+        }
+        std::string title = principle_name(why);
+        title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+        sec.para(paragraph().w(title + ": " + base + "."));
+        if (why == principle::restitution) {
+            const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+            sec.para(paragraph().w("e = -(v′_Bn - v′_An)/(v_Bn - v_An): the velocities are those of the contact points A and B, not of the "
+                                   "centres of mass. As A and C1 are both points of body 1, and B and C2 of body 2:"));
+            const vec3& n = d.n_hat;
+            std::vector<math_row> pv;
+            pv.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n", "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                  dot(d.vA, n).expand()));
+            pv.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n", "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                  dot(d.vA_after, n).expand()));
+            pv.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n", "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                  dot(d.vB, n).expand()));
+            pv.push_back(note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n", "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                  dot(d.vB_after, n).expand(),
+                                  p.bodies[i2].infinite_mass || p.immovable(i2) ? "B is on a body the impulse cannot move: v′_Bn = v_Bn" : ""));
+            (void)i1;
+            sec.rows(pv);
+            sec.para(paragraph().w("and (v′_Bn - v′_An) = -e (v_Bn - v_An) reads:"));
+        }
+        sec.rows(rows);
+        k = j;
+    }
+    if (!d.remarks.empty()) {
+        sec.para(paragraph().w("Where a principle gives no usable equation:"));
+        std::vector<paragraph> items;
+        for (const std::string& r : d.remarks)
+            items.push_back(paragraph().w(r));
+        sec.list(items);
+    }
+    return sec;
+}
+
+section solution_section(const derivation& d, const solution& s)
+{
+    section sec{"4. Count check and solution", {}};
+    const bool ok = d.count_equations() == d.count_unknowns();
+    sec.para(paragraph().w(std::to_string(d.count_equations()) + " equations for " + std::to_string(d.count_unknowns()) +
+                           " unknowns: " + (ok ? "the count matches, the system can be solved." : "THE COUNT DOES NOT MATCH.")));
+    sec.para(paragraph().w("Every unknown changes linearly with the normal impulse N (= ∫N dt along e_n): a free body gets "
+                           "v′_C = v_C ± N e_n/m and ω′ = ω ± N I⁻¹(r × e_n), a pinned body turns about E. "
+                           "Restitution then fixes N. In closed form, through named intermediates:"));
+    sec.rows({note_row("w_i = 1/m_i + (r_i × e_n)·I_i⁻¹(r_i × e_n)", "w_i = \\frac{1}{m_i} + (\\underline{r}_i\\times\\hat{\\underline{e}}_n)\\cdot \\underline{\\underline{I}}_i^{-1}(\\underline{r}_i\\times\\hat{\\underline{e}}_n)", 0,
+                       "effective inverse mass of body i at the contact point along e_n, r_i = O - C_i; about the pivot E for a pinned body "
+                       "(without 1/m_i); 0 for a body the impulse cannot move"),
+              note_row("u = (v_B - v_A)·e_n", "u = (\\underline{v}_B - \\underline{v}_A)\\cdot\\hat{\\underline{e}}_n", 0,
+                       "normal velocity of approach, negative for an impact"),
+              note_row("N = -(1 + e)·u/(w_1 + w_2)", "N = -\\frac{(1 + e)\\,u}{w_1 + w_2}", 0,
+                       "the restitution equation solved for the normal impulse")});
+    // The notation rows above carry no value: mark them by an empty relation.
+    for (math_row& r : sec.blocks.back().math)
+        r.rel = "";
+
+    std::vector<math_row> steps;
+    for (const step& st : s.steps)
+        steps.push_back(row(st.sym, st.value, "", st.meaning));
+    sec.para(paragraph().w("The steps, in order:"));
+    sec.rows(steps);
+    std::vector<math_row> unknowns;
+    for (std::size_t i = 0; i < d.unknowns.size(); ++i)
+        unknowns.push_back(row(d.unknowns[i].sym, s.unknown_values.op(i).rhs(), "", d.unknowns[i].meaning));
+    sec.para(paragraph().w("Each unknown:"));
+    sec.rows(unknowns);
+    return sec;
+}
+
+// Exact numbers for every step and unknown, with the equations as numbers.
+void numbers_walk(section& sec, const derivation& d, const solution& s, const ex& values)
+{
+    lst steps = s.step_values(values);
+    std::vector<math_row> eqs;
+    for (const equation& eq : d.equations)
+        eqs.push_back(row(eq.lhs.subs(values).expand(), eq.rhs.subs(values).expand(), eq.label));
+    sec.para(paragraph().w("The equations with these numbers:"));
+    sec.rows(eqs);
+    std::vector<math_row> rows;
+    for (std::size_t i = 0; i < s.steps.size(); ++i) {
+        // The step's formula with the inputs substituted, then its number.
+        ex formula = s.steps[i].value.subs(values);
+        ex v = steps.op(i).rhs().normal();
+        math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
+        if (!is_a<numeric>(formula) && printable(formula)) {
+            out.rhs = formula;
+            out.note = paragraph().w("= ").m(v).w(decimal_note(v).empty() ? "" : " " + decimal_note(v));
+        }
+        rows.push_back(out);
+    }
+    sec.para(paragraph().w("Step by step (each step with the numbers of the earlier ones):"));
+    sec.rows(rows);
+    lst unknown_numbers;
+    std::vector<math_row> answers;
+    for (std::size_t i = 0; i < d.unknowns.size(); ++i) {
+        ex v = s.unknown_values.op(i).rhs().subs(values).subs(steps).normal();
+        unknown_numbers.append(d.unknowns[i].sym == v);
+        answers.push_back(row(d.unknowns[i].sym, v, "", decimal_note(v)));
+    }
+    sec.para(paragraph().w("The unknowns:"));
+    sec.rows(answers);
+    bool all_zero = true;
+    for (const ex& r : residuals(d, s, values))
+        all_zero = all_zero && r.is_zero();
+    sec.para(paragraph().w(all_zero ? "Substituted back, every equation (1)-(" + d.equations.back().label + ") holds exactly."
+                                    : "Substituted back, SOME EQUATION DOES NOT HOLD: this is a bug."));
+}
+
+section checks_section(const derivation& d, const solution& s, const worked_example* example)
+{
+    const problem& p = d.prob;
+    section sec{"5. Checks", {}};
+
+    // A copy of the problem with a symbol for e, to vary e.
+    ex e_val = p.restitution;
+    symbol e_sym = is_a<symbol>(e_val) ? ex_to<symbol>(e_val) : symbol_named("e");
+    problem pe = p;
+    pe.restitution = e_sym;
+    derivation de = is_a<symbol>(e_val) ? d : derive(pe);
+    solution se = is_a<symbol>(e_val) ? s : solve(de);
+    if (!is_a<symbol>(e_val))
+        sec.para(paragraph().w("To vary e, the checks below keep e as a symbol; the problem has e = ").m(e_val).w("."));
+
+    const std::vector<std::string> core = {"T_lost", "N", "k", "u"};
+    ex lost = expand_some(se, se.energy_lost, core);
+    const step* u_step = find_step(se, "u");
+    const step* k_step = find_step(se, "k");
+    const step* N_step = find_step(se, "N");
+    ex N_val = N_step ? N_step->value : ex(se.normal_impulse);
+    ex u = u_step ? ex(u_step->sym) : ex(0);
+    // k as N's formula has it: w_1 + w_2, or w_1 alone against an infinite mass.
+    ex kk = k_step ? ex(k_step->sym) : (u_step ? (-(1 + e_sym) * u / N_val).normal() : ex(0));
+
+    // Energy.
+    sec.para(paragraph().w("Kinetic energy lost (bodies of finite mass), the work of the contact impulse:"));
+    std::vector<math_row> energy;
+    const step* lost_step = find_step(se, "T_lost");
+    if (lost_step)
+        energy.push_back(row(lost_step->sym, lost_step->value));
+    ex textbook = kk.is_zero() ? ex(0) : (1 - e_sym * e_sym) * pow(u, 2) / (2 * kk);
+    bool textbook_ok = !kk.is_zero() && u_step && (lost - expand_some(se, textbook, core)).normal().is_zero();
+    if (textbook_ok && lost_step)
+        energy.push_back(row(lost_step->sym, textbook, "", "with N = -(1 + e)·u/k substituted and normal(): 1 - e² ≥ 0 and k > 0, so T_lost ≥ 0"));
+    ex at_one = lost.subs(e_sym == 1).normal();
+    if (lost_step)
+        energy.push_back(row(lost_step->sym, at_one, "", "at e = 1 (substitute e = 1, normal())"));
+    sec.rows(energy);
+    if (at_one.is_zero())
+        sec.para(paragraph().w("At e = 1 no energy is lost: the elastic impact conserves kinetic energy."));
+    else
+        sec.para(paragraph().w("At e = 1 the loss is not zero: a moving body of infinite mass does work on the other body, and "
+                               "its own energy is not counted (see problem-format: that is physics, not an error)."));
+
+    // Limits of e.
+    ex N = se.normal_impulse;
+    ex sep_symbolic = -e_sym * u;
+    sec.para(paragraph().w("The limits of e, in the normal impulse and the normal velocity of separation (v′_B - v′_A)·e_n = -e·u "
+                           "(equation (" + de.equations.back().label + ")):"));
+    std::vector<math_row> lim;
+    math_row r0 = row(N, N_val.subs(e_sym == 0), "e = 0", "plastic: the contact points move on together,");
+    r0.note.w(" (v′_B - v′_A)·e_n = ").m(sep_symbolic.subs(e_sym == 0));
+    math_row r1 = row(N, N_val.subs(e_sym == 1), "e = 1", "elastic: twice the plastic impulse,");
+    r1.note.w(" (v′_B - v′_A)·e_n = ").m(sep_symbolic.subs(e_sym == 1)).w(" = |u|, the contact points separate as fast as they approached");
+    lim.push_back(r0);
+    lim.push_back(r1);
+    sec.rows(lim);
+
+    // m2 -> infinity.
+    const std::size_t i2 = p.contact.body2;
+    const body& b2 = p.bodies[i2];
+    if (b2.infinite_mass) {
+        sec.para(paragraph().w("m2 → ∞: body 2 already has infinite mass; the notes' massive case, w_2 = 0 and N = -(1 + e)·u/w_1."));
+    } else if (p.immovable(i2)) {
+        sec.para(paragraph().w("m2 → ∞: body 2 cannot move under the impulse already (w_2 = 0)."));
+    } else {
+        symbol eps("eps", "\\varepsilon");
+        problem pm = pe;
+        body& bm = pm.bodies[i2];
+        bm.mass = bm.mass / eps;
+        for (auto& r : bm.inertia)
+            for (ex& c : r)
+                c = c / eps;
+        derivation dm = derive(pm);
+        solution sm = solve(dm);
+        // Expand only the steps that depend on eps (body 2's and those after
+        // them); body 1's steps stay named, so the limit reads like the notes.
+        lst eps_steps;
+        for (const step& st : sm.steps) {
+            ex v = st.value.subs(eps_steps);
+            if (v.has(eps))
+                eps_steps.append(st.sym == v.normal());
+        }
+        auto in_eps = [&](const ex& e) { return e.subs(eps_steps); };
+        bool finite = true;
+        ex N_inf = limit_at_zero(in_eps(sm.normal_impulse), eps, finite);
+        const step* w2 = find_step(sm, "w_" + b2.label);
+        bool w2_finite = true;
+        ex w2_inf = w2 ? limit_at_zero(in_eps(w2->sym), eps, w2_finite) : ex(0);
+        paragraph q;
+        q.w("m2 → ∞: let body 2 grow heavy with its shape kept, m2 → m2/ε and its inertia → I/ε, and take ε → 0 "
+            "(the limit of a rational function of ε):");
+        sec.para(q);
+        std::vector<math_row> rows;
+        math_row rw = row(show("w_2", "w_2"), w2_inf, "", "body 2 no longer yields at B");
+        rw.rel = "→";
+        rows.push_back(rw);
+        if (finite) {
+            math_row rn = row(N, N_inf, "", "finite: the notes' massive case, N = -(1 + e)·u/w_1");
+            rn.rel = "→";
+            ex N_inputs = sm.expand_steps(N_inf);
+            if (printable(N_inputs)) {
+                N_inputs = N_inputs.normal();
+                if (printable(N_inputs))
+                    rn.note = paragraph().w("= ").m(factor(N_inputs)).w(": finite, the notes' massive case N = -(1 + e)·u/w_1");
+            }
+            rows.push_back(rn);
+            // Body 2's velocity change.
+            ex dv = 0;
+            for (int c = 0; c < 3; ++c) {
+                ex ch = in_eps(sm.after[i2].velocity[c] - pm.bodies[i2].velocity[c]);
+                bool f = true;
+                ex l = limit_at_zero(ch, eps, f);
+                dv += l * l;
+            }
+            math_row rv = note_row("|v′_C2 - v_C2|²", "|\\underline{v}'_{C_2} - \\underline{v}_{C_2}|^2", dv.normal(),
+                                   "ω′_2 ≈ ω_2 and v′_C2 ≈ v_C2: body 2 is unaffected");
+            rv.rel = "→";
+            rows.push_back(rv);
+        }
+        sec.rows(rows);
+    }
+
+    // Numbers.
+    if (p.is_numeric()) {
+        sec.para(paragraph().w("The problem is numeric: every step and unknown above is an exact number."));
+        numbers_walk(sec, d, s, lst{});
+    } else if (example) {
+        sec.para(paragraph().w("Worked example (" + example->caption + "): substitute"));
+        std::vector<math_row> vals;
+        for (const ex& rel : example->values)
+            vals.push_back(row(rel.lhs(), rel.rhs()));
+        sec.rows(vals);
+        numbers_walk(sec, d, s, example->values);
+    }
+    return sec;
+}
+
+} // namespace
+
+bool notes_example(const std::string& class_name, worked_example& out)
+{
+    if (class_name != "pinned-planar")
+        return false;
+    out.caption = "the notes' example: a ball of 0.5 kg at 5 m/s strikes the lower end of a hanging rod of 2 kg and 1 m, e = 0.8";
+    out.values = lst{symbol_named("m1") == numeric(1, 2), symbol_named("v1") == 5, symbol_named("m2") == 2,
+                     symbol_named("l") == 1, symbol_named("e") == numeric(4, 5)};
+    return true;
+}
+
+document explain(const derivation& d, const solution& s, const worked_example* example)
+{
+    document doc;
+    doc.title = "Smooth impact: " + d.prob.source;
+    doc.sections.push_back(setup_section(d));
+    doc.sections.push_back(impulse_section(d));
+    doc.sections.push_back(equations_section(d));
+    doc.sections.push_back(solution_section(d, s));
+    doc.sections.push_back(checks_section(d, s, example));
+    return doc;
+}
+
+} // namespace impactgen::print

@@ -1,0 +1,87 @@
+// impactgen explain: a walk through the derivation of one impact, the way the
+// lecture notes (shared/seed/impact-of-rigid-bodies.md) set it up and solve it.
+//
+// One seam: explain() builds an explanation document once, from the
+// derivation and its solution -- sections of paragraphs, lists and displayed
+// equations, where every formula is a GiNaC expression (lhs, rhs) and not
+// text. Each output format is a small printer over that document; all of them
+// print expressions through the deterministic canonical printer
+// (canonical.hpp), so the output is byte-stable and can be kept as golden files.
+#pragma once
+
+#include "symbolic/solution.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen::print {
+
+/// Notation that is not a GiNaC expression (vector identities, operators):
+/// the same formula for a terminal and for LaTeX, side by side.
+struct notation {
+    std::string text, tex;
+};
+
+/// One piece of running text: words, an expression, or notation.
+struct span {
+    enum kind { words, math, note } k = words;
+    std::string text;
+    GiNaC::ex expr;
+    notation formula;
+};
+
+struct paragraph {
+    std::vector<span> spans;
+    paragraph& w(const std::string& t) { spans.push_back({span::words, t, 0, {}}); return *this; }
+    paragraph& m(const GiNaC::ex& e) { spans.push_back({span::math, "", e, {}}); return *this; }
+    paragraph& n(const std::string& text, const std::string& tex) { spans.push_back({span::note, "", 0, {text, tex}}); return *this; }
+};
+
+/// A displayed relation lhs REL rhs with an optional tag "(3)" and a note.
+struct math_row {
+    std::string tag;
+    GiNaC::ex lhs, rhs;
+    std::string rel = "=";                 ///< "=", "->" (a limit), "<=", ">="
+    notation lhs_note;                     ///< used instead of lhs when lhs_note.text is set
+    paragraph note;                        ///< printed under or beside the row
+};
+
+struct block {
+    enum kind { text, list, rows } k = text;
+    paragraph para;                        ///< text
+    std::vector<paragraph> items;          ///< list
+    std::vector<math_row> math;            ///< rows
+};
+
+struct section {
+    std::string title;
+    std::vector<block> blocks;
+    section& para(const paragraph& p) { blocks.push_back({block::text, p, {}, {}}); return *this; }
+    section& list(const std::vector<paragraph>& items) { blocks.push_back({block::list, {}, items, {}}); return *this; }
+    section& rows(const std::vector<math_row>& r) { blocks.push_back({block::rows, {}, {}, r}); return *this; }
+};
+
+struct document {
+    std::string title;
+    std::vector<section> sections;
+};
+
+/// Values for a worked example in the symbols of a problem (symbol == value).
+struct worked_example {
+    std::string caption;
+    GiNaC::lst values;
+};
+
+/// The worked example of the notes for a named class, if the notes have one
+/// (pinned-planar: ball 0.5 kg at 5 m/s, rod 2 kg of 1 m, e = 0.8).
+bool notes_example(const std::string& class_name, worked_example& out);
+
+/// The explanation of one impact. `example` (optional, may be null): values to
+/// substitute into every step of a symbolic problem at the end.
+document explain(const derivation& d, const solution& s, const worked_example* example = nullptr);
+
+std::string explain_text(const document& doc);      ///< Unicode, wrapped at 100 columns
+std::string explain_markdown(const document& doc);  ///< $...$ math (GiNaC-compatible LaTeX)
+std::string explain_latex(const document& doc);     ///< a complete amsmath document for pdflatex
+
+} // namespace impactgen::print
