@@ -27,7 +27,8 @@ if(STEP STREQUAL "install")
             lib/cmake/impactgen/impactgenGenerate.cmake
             include/impactgen/symbolic/problem.hpp
             include/impactgen/print/formulas.hpp
-            include/impactgen/numeric/momentum_solver.hpp)
+            include/impactgen/numeric/momentum_solver.hpp
+            include/impactgen/generated/central_direct.hpp)
     if(NOT EXISTS "${PREFIX}/${f}")
       message(FATAL_ERROR "package test: ${PREFIX}/${f} was not installed")
     endif()
