@@ -1,8 +1,10 @@
 // The symbolic engine as a C++ library (impactgen::symbolic, impactgen::print):
 // derive the equations of an impact, solve them in closed form, print the
-// formulas, and check the physics symbolically.
+// formulas, check the physics symbolically, and (impactgen::codegen) make the
+// C++ solver in-process, as `impactgen codegen` does.
 //
 //   derive [ball-on-ground.json]
+#include "codegen/codegen.hpp"
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
 #include "symbolic/solution.hpp"
@@ -71,6 +73,19 @@ int main(int argc, char** argv)
         expect_zero(sb.expand_steps(sb.normal_impulse) + (1 + e) * m * vy, "normal impulse is -(1 + e) m vy");
         expect_zero(sb.expand_steps(sb.energy_lost) - (1 - e * e) * m * vy * vy / 2,
                     "energy lost is (1 - e^2) m vy^2 / 2");
+
+        codegen::options o;
+        o.name = "ball_hits_ground";
+        o.ns = "consumer";
+        o.source = argv[1];
+        o.params_given = true;
+        o.params = {"e", "vx", "vy"};
+        const codegen::header h = codegen::generate(p, o);
+        const bool made = h.text.find("impact_status ball_hits_ground(T e, T vx, T vy,") != std::string::npos;
+        std::printf("%s: codegen: %zu inputs, %zu outputs, %d add/sub, %d mul, %d div per call\n", made ? "ok  " : "FAIL",
+                    h.inputs.size(), h.outputs.size(), h.formula.add, h.formula.mul, h.formula.div);
+        if (!made)
+            ++failures;
     }
     return failures == 0 ? 0 : 1;
 }
