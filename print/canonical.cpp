@@ -207,7 +207,8 @@ printed print_product(const ex& e, syntax sx)
 struct term {
     numeric coeff;
     ex rest;
-    std::string key;
+    std::string key;       ///< canonical text of rest, without a leading sign
+    bool negative = false; ///< the sign the term prints with
 };
 
 std::vector<term> sorted_terms(const ex& s)
@@ -229,7 +230,11 @@ std::vector<term> sorted_terms(const ex& s)
         } else {
             tm.rest = t;
         }
-        tm.key = print_product(tm.rest, syntax::text).s;
+        printed r = print_product(tm.rest, syntax::text);
+        // rest may print with a sign of its own (a canonicalised inner sum).
+        bool rest_negative = r.negative && !r.s.empty() && r.s[0] == '-';
+        tm.key = rest_negative ? r.s.substr(1) : r.s;
+        tm.negative = tm.coeff.is_negative() != rest_negative;
         terms.push_back(tm);
     }
     // Numbers first ("1 + e"), otherwise by text; equal texts by coefficient.
@@ -239,7 +244,9 @@ std::vector<term> sorted_terms(const ex& s)
             return an;
         if (a.key != b.key)
             return a.key < b.key;
-        return a.coeff < b.coeff;
+        if (a.negative != b.negative)
+            return b.negative;
+        return abs(a.coeff) < abs(b.coeff);
     });
     return terms;
 }
@@ -252,22 +259,22 @@ int sum_sign(const ex& s)
     int balance = 0;
     const term* lead = nullptr;
     for (const term& t : terms) {
-        balance += t.coeff.is_negative() ? -1 : 1;
+        balance += t.negative ? -1 : 1;
         if (!lead || t.key.size() > lead->key.size())
             lead = &t;
     }
     if (balance != 0)
         return balance > 0 ? 1 : -1;
     if (!terms.empty() && terms.front().rest.is_equal(1)) // a number: 1 - e², 1 - e
-        return terms.front().coeff.is_negative() ? -1 : 1;
-    return !lead || !lead->coeff.is_negative() ? 1 : -1;
+        return terms.front().negative ? -1 : 1;
+    return !lead || !lead->negative ? 1 : -1;
 }
 
 printed print_sum(const ex& e, syntax sx)
 {
     std::vector<term> terms = sorted_terms(e);
     // Positive terms first, each group in canonical order.
-    std::stable_partition(terms.begin(), terms.end(), [](const term& t) { return !t.coeff.is_negative(); });
+    std::stable_partition(terms.begin(), terms.end(), [](const term& t) { return !t.negative; });
     std::string out;
     for (std::size_t i = 0; i < terms.size(); ++i) {
         const term& t = terms[i];
@@ -290,7 +297,7 @@ printed print_sum(const ex& e, syntax sx)
         else
             out += (neg ? " - " : " + ") + body;
     }
-    return {out, p_sum, !terms.empty() && terms.front().coeff.is_negative()};
+    return {out, p_sum, !terms.empty() && terms.front().negative};
 }
 
 printed print_ex_uncached(const ex& e, syntax sx);

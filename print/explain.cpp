@@ -418,7 +418,8 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
         math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
         if (!is_a<numeric>(formula) && printable(formula)) {
             out.rhs = formula;
-            out.note = paragraph().w("= ").m(v).w(decimal_note(v).empty() ? "" : " " + decimal_note(v));
+            out.has_then = true;
+            out.then = v;
         }
         rows.push_back(out);
     }

@@ -43,6 +43,8 @@ struct math_row {
     GiNaC::ex lhs, rhs;
     std::string rel = "=";                 ///< "=", "->" (a limit), "<=", ">="
     notation lhs_note;                     ///< used instead of lhs when lhs_note.text is set
+    bool has_then = false;                 ///< lhs = rhs = then: a formula and its value
+    GiNaC::ex then;
     paragraph note;                        ///< printed under or beside the row
 };
 

@@ -161,6 +161,8 @@ std::string tex_row(const math_row& r)
     std::string left = r.lhs_note.text.empty() ? canonical_latex(r.lhs) : r.lhs_note.tex;
     if (!r.rel.empty())
         left += " " + tex_rel(r.rel) + " " + canonical_latex(r.rhs);
+    if (r.has_then)
+        left += " = " + canonical_latex(r.then);
     return left;
 }
 
@@ -193,6 +195,8 @@ std::string explain_text(const document& doc)
                                        text_row_left(r);
                     if (!r.rel.empty())
                         line += " " + r.rel + " " + canonical_text(r.rhs);
+                    if (r.has_then)
+                        line += " = " + canonical_text(r.then);
                     std::string note = text_spans(r.note);
                     if (note.empty()) {
                         os << line << "\n";
