@@ -328,7 +328,7 @@ struct printer {
 
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs)
+                 const std::vector<std::string>& inputs, bool branchless)
 {
     const std::size_t n = prog.size();
     std::vector<bool> reach(n, false), materialised(n, false);
@@ -401,6 +401,10 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
             case check::negative: cond = x + " < T(0)"; break;
             }
+            if (branchless) {
+                code += "    ok &= (" + cond + "); // " + c.comment + "\n";
+                continue;
+            }
             code += "    if (!(" + cond + ")) // " + c.comment + "\n";
             code += "        return fail(impact_status::" + c.status + ");\n";
         }
@@ -423,7 +427,10 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             out.uses_sqrt = true;
     for (auto& [field, id] : outputs) {
         int p;
-        code += "    out." + field + " = " + pr.text(id, p) + ";\n";
+        if (branchless)
+            code += "    const T o_" + field + " = " + pr.text(id, p) + ";\n";
+        else
+            code += "    out." + field + " = " + pr.text(id, p) + ";\n";
     }
     return out;
 }

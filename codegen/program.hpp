@@ -77,8 +77,10 @@ struct emitted {
 /// Emits straight-line C++ for the outputs (field name, op) with the checks
 /// placed right after the values they test. `names` gives ops their variable
 /// names (the solution's step names). `inputs` are the function parameters.
+/// branchless: checks accumulate into `ok` and outputs become `const T o_<field>`
+/// (the body of a vectorisable batch loop).
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs);
+                 const std::vector<std::string>& inputs, bool branchless = false);
 
 } // namespace impactgen::codegen

@@ -58,7 +58,7 @@ template <typename T> struct massive_3d_result {
     T w_t1; ///< angular velocity of 1 after impact, t
     T w_n1; ///< angular velocity of 1 after impact, n
     T w_b1; ///< angular velocity of 1 after impact, b
-    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the given normal: on 2 along +n, on 1 along -n
+    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the unit normal: on 2 along +n, on 1 along -n
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
 };
@@ -171,6 +171,137 @@ template <typename T>
 inline impact_status massive_3d(const T* in, massive_3d_result<T>& out) noexcept
 {
     return massive_3d(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out);
+}
+
+/// The same over n impacts in structure-of-arrays form: in[j][i] is input j
+/// (order of massive_3d_input_names) of impact i, out[j][i] output j. The arrays
+/// must not overlap. A first pass computes every impact without branches (it
+/// vectorises); a second pass redoes the impacts that failed a check one by one
+/// for their status (their outputs are zero).
+template <typename T>
+inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_m1 = in[1];
+    const T* const in_I1_tt = in[2];
+    const T* const in_I1_tn = in[3];
+    const T* const in_I1_tb = in[4];
+    const T* const in_I1_nn = in[5];
+    const T* const in_I1_nb = in[6];
+    const T* const in_I1_bb = in[7];
+    const T* const in_r_t1 = in[8];
+    const T* const in_r_n1 = in[9];
+    const T* const in_r_b1 = in[10];
+    const T* const in_v_t1 = in[11];
+    const T* const in_v_n1 = in[12];
+    const T* const in_v_b1 = in[13];
+    const T* const in_w_t1 = in[14];
+    const T* const in_w_n1 = in[15];
+    const T* const in_w_b1 = in[16];
+    const T* const in_r_t2 = in[17];
+    const T* const in_r_n2 = in[18];
+    const T* const in_r_b2 = in[19];
+    const T* const in_v_t2 = in[20];
+    const T* const in_v_n2 = in[21];
+    const T* const in_v_b2 = in[22];
+    const T* const in_w_t2 = in[23];
+    const T* const in_w_n2 = in[24];
+    const T* const in_w_b2 = in[25];
+    T* const out_v_t1 = out[0];
+    T* const out_v_n1 = out[1];
+    T* const out_v_b1 = out[2];
+    T* const out_w_t1 = out[3];
+    T* const out_w_n1 = out[4];
+    T* const out_w_b1 = out[5];
+    T* const out_normal_impulse = out[6];
+    T* const out_approach_velocity = out[7];
+    T* const out_energy_lost = out[8];
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+    for (long i = 0; i < n; ++i) {
+        const T e = in_e[i];
+        const T m1 = in_m1[i];
+        const T I1_tt = in_I1_tt[i];
+        const T I1_tn = in_I1_tn[i];
+        const T I1_tb = in_I1_tb[i];
+        const T I1_nn = in_I1_nn[i];
+        const T I1_nb = in_I1_nb[i];
+        const T I1_bb = in_I1_bb[i];
+        const T r_t1 = in_r_t1[i];
+        const T r_n1 = in_r_n1[i];
+        const T r_b1 = in_r_b1[i];
+        const T v_t1 = in_v_t1[i];
+        const T v_n1 = in_v_n1[i];
+        const T v_b1 = in_v_b1[i];
+        const T w_t1 = in_w_t1[i];
+        const T w_n1 = in_w_n1[i];
+        const T w_b1 = in_w_b1[i];
+        const T r_t2 = in_r_t2[i];
+        const T r_n2 = in_r_n2[i];
+        const T r_b2 = in_r_b2[i];
+        const T v_t2 = in_v_t2[i];
+        const T v_n2 = in_v_n2[i];
+        const T v_b2 = in_v_b2[i];
+        const T w_t2 = in_w_t2[i];
+        const T w_n2 = in_w_n2[i];
+        const T w_b2 = in_w_b2[i];
+        bool ok = true;
+        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
+        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
+        const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+        const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+        const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+        const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+        ok &= (D_1 > T(0) && detail::finite(D_1)); // determinant of the inertia tensor > 0, finite
+        const T inv_D_1 = T(1) / D_1;
+        const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
+        const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
+        const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+        const T inv_m1 = T(1) / m1;
+        const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+        ok &= (w_1 > T(0) && detail::finite(w_1)); // effective inverse mass k > 0, finite
+        const T u_p1 = r_t1 * w_b1;
+        const T u_p2 = r_b1 * w_t1;
+        const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
+        ok &= (u < T(0)); // the contact points approach: u < 0
+        const T N = -(u * (T(1) + e) / w_1);
+        const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
+        const T o_v_t1 = v_t1;
+        const T o_v_n1 = v_n1 - inv_m1 * N;
+        const T o_v_b1 = v_b1;
+        const T o_w_t1 = w_t1 - g_t1 * N;
+        const T o_w_n1 = w_n1 - g_n1 * N;
+        const T o_w_b1 = w_b1 - g_b1 * N;
+        const T o_normal_impulse = N;
+        const T o_approach_velocity = u;
+        const T o_energy_lost = T_lost;
+        ok &= detail::finite((((((((((((((o_v_t1 + o_v_n1) + o_v_b1) + o_w_t1) + o_w_n1) + o_w_b1) + o_normal_impulse) + o_approach_velocity) + o_energy_lost) + r_n1) + r_n2) + v_t2) + v_b2) + w_n2));
+        out_v_t1[i] = ok ? o_v_t1 : T(0);
+        out_v_n1[i] = ok ? o_v_n1 : T(0);
+        out_v_b1[i] = ok ? o_v_b1 : T(0);
+        out_w_t1[i] = ok ? o_w_t1 : T(0);
+        out_w_n1[i] = ok ? o_w_n1 : T(0);
+        out_w_b1[i] = ok ? o_w_b1 : T(0);
+        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
+        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
+        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+    }
+    for (long i = 0; i < n; ++i)
+        if (status[i] != impact_status::ok) {
+            massive_3d_result<T> r;
+            status[i] = massive_3d(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            out_v_t1[i] = r.v_t1;
+            out_v_n1[i] = r.v_n1;
+            out_v_b1[i] = r.v_b1;
+            out_w_t1[i] = r.w_t1;
+            out_w_n1[i] = r.w_n1;
+            out_w_b1[i] = r.w_b1;
+            out_normal_impulse[i] = r.normal_impulse;
+            out_approach_velocity[i] = r.approach_velocity;
+            out_energy_lost[i] = r.energy_lost;
+        }
 }
 
 inline constexpr int massive_3d_input_count = 26;

@@ -57,7 +57,7 @@ template <typename T> struct pinned_planar_result {
     T v_x2; ///< velocity of the centre of mass of 2 after impact, x
     T v_y2; ///< velocity of the centre of mass of 2 after impact, y
     T w_z2; ///< angular velocity of 2 after impact, z
-    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the given normal: on 2 along +n, on 1 along -n
+    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the unit normal: on 2 along +n, on 1 along -n
     T R_x2; ///< impulse of the pivot on 2, x
     T R_y2; ///< impulse of the pivot on 2, y
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
@@ -152,6 +152,99 @@ template <typename T>
 inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
 {
     return pinned_planar(in[0], in[1], in[2], in[3], in[4], out);
+}
+
+/// The same over n impacts in structure-of-arrays form: in[j][i] is input j
+/// (order of pinned_planar_input_names) of impact i, out[j][i] output j. The arrays
+/// must not overlap. A first pass computes every impact without branches (it
+/// vectorises); a second pass redoes the impacts that failed a check one by one
+/// for their status (their outputs are zero).
+template <typename T>
+inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_m1 = in[1];
+    const T* const in_l = in[2];
+    const T* const in_v1 = in[3];
+    const T* const in_m2 = in[4];
+    T* const out_v_x1 = out[0];
+    T* const out_v_y1 = out[1];
+    T* const out_v_x2 = out[2];
+    T* const out_v_y2 = out[3];
+    T* const out_w_z2 = out[4];
+    T* const out_normal_impulse = out[5];
+    T* const out_R_x2 = out[6];
+    T* const out_R_y2 = out[7];
+    T* const out_approach_velocity = out[8];
+    T* const out_energy_lost = out[9];
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+    for (long i = 0; i < n; ++i) {
+        const T e = in_e[i];
+        const T m1 = in_m1[i];
+        const T l = in_l[i];
+        const T v1 = in_v1[i];
+        const T m2 = in_m2[i];
+        bool ok = true;
+        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
+        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
+        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
+        const T w_1 = T(1) / m1;
+        const T I_E2_p1 = l * l;
+        const T I_E2_p2 = I_E2_p1 * m2;
+        const T I_E2 = I_E2_p2 * (T(1) / T(3));
+        const T inv_I_E2 = T(1) / I_E2;
+        const T w_2 = I_E2_p1 * inv_I_E2;
+        const T u = -v1;
+        ok &= (u < T(0)); // the contact points approach: u < 0
+        const T k = w_1 + w_2;
+        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        const T N = -(u * (T(1) + e) / k);
+        const T T_lost_p1 = N * N;
+        const T T_lost = v1 * N - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;
+        const T v_x2_p1 = l * N;
+        const T v_x2_p2 = l * v_x2_p1;
+        const T check_p1 = I_E2_p2 * (T(1) / T(12));
+        ok &= (check_p1 > T(0) && detail::finite(check_p1)); // moment of inertia of 2 > 0, finite
+        const T o_v_x1 = v1 - w_1 * N;
+        const T o_v_y1 = T(0);
+        const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
+        const T o_v_y2 = T(0);
+        const T o_w_z2 = inv_I_E2 * v_x2_p1;
+        const T o_normal_impulse = N;
+        const T o_R_x2 = (T(1) / T(2)) * inv_I_E2 * m2 * v_x2_p2 - N;
+        const T o_R_y2 = T(0);
+        const T o_approach_velocity = u;
+        const T o_energy_lost = T_lost;
+        ok &= detail::finite(((((((o_v_x1 + o_v_x2) + o_w_z2) + o_normal_impulse) + o_R_x2) + o_approach_velocity) + o_energy_lost));
+        out_v_x1[i] = ok ? o_v_x1 : T(0);
+        out_v_y1[i] = ok ? o_v_y1 : T(0);
+        out_v_x2[i] = ok ? o_v_x2 : T(0);
+        out_v_y2[i] = ok ? o_v_y2 : T(0);
+        out_w_z2[i] = ok ? o_w_z2 : T(0);
+        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
+        out_R_x2[i] = ok ? o_R_x2 : T(0);
+        out_R_y2[i] = ok ? o_R_y2 : T(0);
+        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
+        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+    }
+    for (long i = 0; i < n; ++i)
+        if (status[i] != impact_status::ok) {
+            pinned_planar_result<T> r;
+            status[i] = pinned_planar(in_e[i], in_m1[i], in_l[i], in_v1[i], in_m2[i], r);
+            out_v_x1[i] = r.v_x1;
+            out_v_y1[i] = r.v_y1;
+            out_v_x2[i] = r.v_x2;
+            out_v_y2[i] = r.v_y2;
+            out_w_z2[i] = r.w_z2;
+            out_normal_impulse[i] = r.normal_impulse;
+            out_R_x2[i] = r.R_x2;
+            out_R_y2[i] = r.R_y2;
+            out_approach_velocity[i] = r.approach_velocity;
+            out_energy_lost[i] = r.energy_lost;
+        }
 }
 
 inline constexpr int pinned_planar_input_count = 5;

@@ -58,7 +58,7 @@ template <typename T> struct planar_result {
     T v_t2; ///< velocity of the centre of mass of 2 after impact, t
     T v_n2; ///< velocity of the centre of mass of 2 after impact, n
     T w_b2; ///< angular velocity of 2 after impact, b
-    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the given normal: on 2 along +n, on 1 along -n
+    T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the unit normal: on 2 along +n, on 1 along -n
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
 };
@@ -159,6 +159,115 @@ template <typename T>
 inline impact_status planar(const T* in, planar_result<T>& out) noexcept
 {
     return planar(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+}
+
+/// The same over n impacts in structure-of-arrays form: in[j][i] is input j
+/// (order of planar_input_names) of impact i, out[j][i] output j. The arrays
+/// must not overlap. A first pass computes every impact without branches (it
+/// vectorises); a second pass redoes the impacts that failed a check one by one
+/// for their status (their outputs are zero).
+template <typename T>
+inline void planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_m1 = in[1];
+    const T* const in_I1 = in[2];
+    const T* const in_r_t1 = in[3];
+    const T* const in_r_n1 = in[4];
+    const T* const in_v_t1 = in[5];
+    const T* const in_v_n1 = in[6];
+    const T* const in_w_b1 = in[7];
+    const T* const in_m2 = in[8];
+    const T* const in_I2 = in[9];
+    const T* const in_r_t2 = in[10];
+    const T* const in_r_n2 = in[11];
+    const T* const in_v_t2 = in[12];
+    const T* const in_v_n2 = in[13];
+    const T* const in_w_b2 = in[14];
+    T* const out_v_t1 = out[0];
+    T* const out_v_n1 = out[1];
+    T* const out_w_b1 = out[2];
+    T* const out_v_t2 = out[3];
+    T* const out_v_n2 = out[4];
+    T* const out_w_b2 = out[5];
+    T* const out_normal_impulse = out[6];
+    T* const out_approach_velocity = out[7];
+    T* const out_energy_lost = out[8];
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+    for (long i = 0; i < n; ++i) {
+        const T e = in_e[i];
+        const T m1 = in_m1[i];
+        const T I1 = in_I1[i];
+        const T r_t1 = in_r_t1[i];
+        const T r_n1 = in_r_n1[i];
+        const T v_t1 = in_v_t1[i];
+        const T v_n1 = in_v_n1[i];
+        const T w_b1 = in_w_b1[i];
+        const T m2 = in_m2[i];
+        const T I2 = in_I2[i];
+        const T r_t2 = in_r_t2[i];
+        const T r_n2 = in_r_n2[i];
+        const T v_t2 = in_v_t2[i];
+        const T v_n2 = in_v_n2[i];
+        const T w_b2 = in_w_b2[i];
+        bool ok = true;
+        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
+        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
+        ok &= (I1 > T(0) && detail::finite(I1)); // moment of inertia of 1 > 0, finite
+        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
+        ok &= (I2 > T(0) && detail::finite(I2)); // moment of inertia of 2 > 0, finite
+        const T inv_I1 = T(1) / I1;
+        const T inv_m1 = T(1) / m1;
+        const T w_1 = r_t1 * r_t1 * inv_I1 + inv_m1;
+        const T inv_I2 = T(1) / I2;
+        const T inv_m2 = T(1) / m2;
+        const T w_2 = r_t2 * r_t2 * inv_I2 + inv_m2;
+        const T u_p1 = r_t1 * w_b1;
+        const T u_p2 = r_t2 * w_b2;
+        const T u = u_p1 + v_n2 - u_p2 - v_n1;
+        ok &= (u < T(0)); // the contact points approach: u < 0
+        const T k = w_1 + w_2;
+        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        const T N = -(u * (T(1) + e) / k);
+        const T T_lost_p1 = N * N;
+        const T T_lost = N * (u_p2 - v_n2) - N * (u_p1 - v_n1) - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;
+        const T o_v_t1 = v_t1;
+        const T o_v_n1 = v_n1 - inv_m1 * N;
+        const T o_w_b1 = w_b1 + inv_I1 * r_t1 * N;
+        const T o_v_t2 = v_t2;
+        const T o_v_n2 = v_n2 + inv_m2 * N;
+        const T o_w_b2 = w_b2 - inv_I2 * r_t2 * N;
+        const T o_normal_impulse = N;
+        const T o_approach_velocity = u;
+        const T o_energy_lost = T_lost;
+        ok &= detail::finite(((((((((((o_v_t1 + o_v_n1) + o_w_b1) + o_v_t2) + o_v_n2) + o_w_b2) + o_normal_impulse) + o_approach_velocity) + o_energy_lost) + r_n1) + r_n2));
+        out_v_t1[i] = ok ? o_v_t1 : T(0);
+        out_v_n1[i] = ok ? o_v_n1 : T(0);
+        out_w_b1[i] = ok ? o_w_b1 : T(0);
+        out_v_t2[i] = ok ? o_v_t2 : T(0);
+        out_v_n2[i] = ok ? o_v_n2 : T(0);
+        out_w_b2[i] = ok ? o_w_b2 : T(0);
+        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
+        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
+        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+    }
+    for (long i = 0; i < n; ++i)
+        if (status[i] != impact_status::ok) {
+            planar_result<T> r;
+            status[i] = planar(in_e[i], in_m1[i], in_I1[i], in_r_t1[i], in_r_n1[i], in_v_t1[i], in_v_n1[i], in_w_b1[i], in_m2[i], in_I2[i], in_r_t2[i], in_r_n2[i], in_v_t2[i], in_v_n2[i], in_w_b2[i], r);
+            out_v_t1[i] = r.v_t1;
+            out_v_n1[i] = r.v_n1;
+            out_w_b1[i] = r.w_b1;
+            out_v_t2[i] = r.v_t2;
+            out_v_n2[i] = r.v_n2;
+            out_w_b2[i] = r.w_b2;
+            out_normal_impulse[i] = r.normal_impulse;
+            out_approach_velocity[i] = r.approach_velocity;
+            out_energy_lost[i] = r.energy_lost;
+        }
 }
 
 inline constexpr int planar_input_count = 15;
