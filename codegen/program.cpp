@@ -396,9 +396,12 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             int p;
             std::string x = pr.text(id, p);
             std::string cond;
+            // Branchless: & instead of && so that the batch loop has no control flow.
+            const std::string both = branchless ? ") & (" : " && ";
+            const std::string l = branchless ? "(" : "", r = branchless ? ")" : "";
             switch (c.kind) {
-            case check::positive: cond = x + " > T(0) && detail::finite(" + x + ")"; break;
-            case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
+            case check::positive: cond = l + x + " > T(0)" + both + "detail::finite(" + x + ")" + r; break;
+            case check::unit_interval: cond = l + x + " >= T(0)" + both + x + " <= T(1)" + r; break;
             case check::negative: cond = x + " < T(0)"; break;
             }
             if (branchless) {

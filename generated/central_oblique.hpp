@@ -191,15 +191,15 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T v_n2 = in_v_n2[i];
         const T v_b2 = in_v_b2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
-        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
+        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
         const T w_1 = T(1) / m1;
         const T w_2 = T(1) / m2;
         const T u = v_n2 - v_n1;
         ok &= (u < T(0)); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost_p1 = N * N;
         const T T_lost = v_n1 * N - v_n2 * N - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;

@@ -247,20 +247,20 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
         const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
         const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
         const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
         const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-        ok &= (D_1 > T(0) && detail::finite(D_1)); // determinant of the inertia tensor > 0, finite
+        ok &= ((D_1 > T(0)) & (detail::finite(D_1))); // determinant of the inertia tensor > 0, finite
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
         const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
         const T inv_m1 = T(1) / m1;
         const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-        ok &= (w_1 > T(0) && detail::finite(w_1)); // effective inverse mass k > 0, finite
+        ok &= ((w_1 > T(0)) & (detail::finite(w_1))); // effective inverse mass k > 0, finite
         const T u_p1 = r_t1 * w_b1;
         const T u_p2 = r_b1 * w_t1;
         const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;

@@ -317,14 +317,14 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
-        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
+        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
         const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
         const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
         const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
         const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-        ok &= (D_1 > T(0) && detail::finite(D_1)); // determinant of the inertia tensor > 0, finite
+        ok &= ((D_1 > T(0)) & (detail::finite(D_1))); // determinant of the inertia tensor > 0, finite
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
@@ -335,7 +335,7 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb;
         const T D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb;
         const T D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3;
-        ok &= (D_2 > T(0) && detail::finite(D_2)); // determinant of the inertia tensor > 0, finite
+        ok &= ((D_2 > T(0)) & (detail::finite(D_2))); // determinant of the inertia tensor > 0, finite
         const T inv_D_2 = T(1) / D_2;
         const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
         const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
@@ -349,7 +349,7 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T u = u_p1 + u_p2 + v_n2 - u_p3 - u_p4 - v_n1;
         ok &= (u < T(0)); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost_p1 = N * N;
         const T T_lost = N * (u_p3 + v_n1 - u_p2) - N * (u_p1 + v_n2 - u_p4) - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;

@@ -299,9 +299,9 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (inv_m1 > T(0) && detail::finite(inv_m1)); // inverse mass of 1 > 0, finite
-        ok &= (inv_m2 > T(0) && detail::finite(inv_m2)); // inverse mass of 2 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((inv_m1 > T(0)) & (detail::finite(inv_m1))); // inverse mass of 1 > 0, finite
+        ok &= ((inv_m2 > T(0)) & (detail::finite(inv_m2))); // inverse mass of 2 > 0, finite
         const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
         const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
         const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
@@ -317,7 +317,7 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T u = u_p1 + u_p2 + v_n2 - u_p3 - u_p4 - v_n1;
         ok &= (u < T(0)); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
         const T N = -(u * (e + T(1)) / k);
         const T T_lost_p1 = N * N;
         const T T_lost = N * (u_p3 + v_n1 - u_p2) - N * (u_p1 + v_n2 - u_p4) - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;

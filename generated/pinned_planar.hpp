@@ -187,9 +187,9 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T v1 = in_v1[i];
         const T m2 = in_m2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
-        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
+        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
         const T w_1 = T(1) / m1;
         const T I_E2_p1 = l * l;
         const T I_E2_p2 = I_E2_p1 * m2;
@@ -199,14 +199,14 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T u = -v1;
         ok &= (u < T(0)); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost_p1 = N * N;
         const T T_lost = v1 * N - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;
         const T v_x2_p1 = l * N;
         const T v_x2_p2 = l * v_x2_p1;
         const T check_p1 = I_E2_p2 * (T(1) / T(12));
-        ok &= (check_p1 > T(0) && detail::finite(check_p1)); // moment of inertia of 2 > 0, finite
+        ok &= ((check_p1 > T(0)) & (detail::finite(check_p1))); // moment of inertia of 2 > 0, finite
         const T o_v_x1 = v1 - w_1 * N;
         const T o_v_y1 = T(0);
         const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;

@@ -213,11 +213,11 @@ inline void planar_batch(long n, const T* const* in, T* const* out, impact_statu
         const T v_n2 = in_v_n2[i];
         const T w_b2 = in_w_b2[i];
         bool ok = true;
-        ok &= (e >= T(0) && e <= T(1)); // 0 <= e <= 1
-        ok &= (m1 > T(0) && detail::finite(m1)); // mass of 1 > 0, finite
-        ok &= (I1 > T(0) && detail::finite(I1)); // moment of inertia of 1 > 0, finite
-        ok &= (m2 > T(0) && detail::finite(m2)); // mass of 2 > 0, finite
-        ok &= (I2 > T(0) && detail::finite(I2)); // moment of inertia of 2 > 0, finite
+        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
+        ok &= ((I1 > T(0)) & (detail::finite(I1))); // moment of inertia of 1 > 0, finite
+        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
+        ok &= ((I2 > T(0)) & (detail::finite(I2))); // moment of inertia of 2 > 0, finite
         const T inv_I1 = T(1) / I1;
         const T inv_m1 = T(1) / m1;
         const T w_1 = r_t1 * r_t1 * inv_I1 + inv_m1;
@@ -229,7 +229,7 @@ inline void planar_batch(long n, const T* const* in, T* const* out, impact_statu
         const T u = u_p1 + v_n2 - u_p2 - v_n1;
         ok &= (u < T(0)); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= (k > T(0) && detail::finite(k)); // effective inverse mass k > 0, finite
+        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost_p1 = N * N;
         const T T_lost = N * (u_p2 - v_n2) - N * (u_p1 - v_n1) - w_1 * T_lost_p1 * (T(1) / T(2)) - (T(1) / T(2)) * w_2 * T_lost_p1;
