@@ -74,8 +74,6 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
         vec<T> q = p.point - b.position;
         if (off[i] >= 0) {
             point_row(0, i, p.point, n, s);
-            if (b.particle)
-                known += s * b.angular_velocity.cross(q).dot(n);
         } else {
             known += s * (b.velocity + b.angular_velocity.cross(q)).dot(n);
         }
@@ -84,12 +82,10 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     c[0] = -p.restitution * approach - known;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
         const auto& pv = p.pivots[k];
-        const auto& b = p.bodies[pv.body];
         for (int a = 0; a < dim; ++a) {
             int r = 1 + dim * static_cast<int>(k) + a;
             point_row(r, pv.body, pv.point, vec<T>::Unit(a), 1);
-            // A particle keeps its spin: its pivot holds v + w x (E - C) = 0.
-            c[r] = b.particle ? -b.angular_velocity.cross(pv.point - b.position)[a] : T(0);
+            c[r] = 0;
         }
     }
     K.topRightCorner(ndof, ncon) = -J.transpose();

@@ -187,15 +187,15 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
             const auto& bd = p.bodies[i];
             const T s = i == p.body1 ? T(-1) : T(1);
             vec<T> q = p.point - bd.position;
-            known_before += s * (bd.velocity + bd.angular_velocity.cross(q)).dot(n);
+            // A particle is a point: its spin does not move its contact point.
+            const vec<T> spin = bd.particle && !bd.infinite_mass ? vec<T>::Zero() : vec<T>(bd.angular_velocity.cross(q));
+            known_before += s * (bd.velocity + spin).dot(n);
             if (p.immovable(i)) {
-                known_after += s * (bd.velocity + bd.angular_velocity.cross(q)).dot(n);
+                known_after += s * (bd.velocity + spin).dot(n);
                 continue;
             }
             velocity_dot(row, i, n, s);
-            if (bd.particle)
-                known_after += s * bd.angular_velocity.cross(q).dot(n);
-            else
+            if (!bd.particle)
                 angular_dot(row, i, q, n, s);
         }
         rhs[row++] = -p.restitution * known_before - known_after;

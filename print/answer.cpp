@@ -44,7 +44,7 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
         bodies[p.bodies[i].name] = b;
     }
     out["bodies"] = bodies;
-    out["normal_impulse"] = val(s.normal_impulse * d.normal_length);
+    out["normal_impulse"] = val(s.normal_impulse);
     nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
     for (const vec3& R : s.pivot_impulses) {
         nlohmann::ordered_json r = nlohmann::ordered_json::array();
@@ -83,7 +83,7 @@ std::string answer_text(const derivation& d, const solution& s)
         else
             os << "    angular velocity  " << show_vec(s.after[i].angular_velocity, 3) << "\n";
     }
-    os << "  normal impulse      " << show(s.normal_impulse * d.normal_length) << "\n";
+    os << "  normal impulse      " << show(s.normal_impulse) << "\n";
     for (std::size_t k = 0; k < s.pivot_impulses.size(); ++k)
         os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(s.pivot_impulses[k], p.dimension) << "\n";
     os << "Kinetic energy:\n";

@@ -163,13 +163,12 @@ derivation derive(const problem& p)
     }
 
     // Contact point velocities, v_A = v_C1 + w_1 x r_{A C1}.
-    auto point_velocity = [&](std::size_t i, const vec3& v, const vec3& w) {
-        return v + cross(w, p.contact.point - p.bodies[i].position);
-    };
-    d.vA = point_velocity(i1, p.bodies[i1].velocity, p.bodies[i1].angular_velocity);
-    d.vB = point_velocity(i2, p.bodies[i2].velocity, p.bodies[i2].angular_velocity);
-    d.vA_after = point_velocity(i1, d.velocity_after[i1], d.angular_velocity_after[i1]);
-    d.vB_after = point_velocity(i2, d.velocity_after[i2], d.angular_velocity_after[i2]);
+    const body& A = p.bodies[i1];
+    const body& B = p.bodies[i2];
+    d.vA = point_velocity(A, p.contact.point);
+    d.vB = point_velocity(B, p.contact.point);
+    d.vA_after = point_velocity(A, d.velocity_after[i1], d.angular_velocity_after[i1], p.contact.point);
+    d.vB_after = point_velocity(B, d.velocity_after[i2], d.angular_velocity_after[i2], p.contact.point);
 
     int label = 0;
     auto add = [&](ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies) {

@@ -241,7 +241,9 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
         try {
             value = reader(prepared);
         } catch (const std::exception& e) {
-            throw input_error(where + ": cannot read the expression \"" + text + "\" (" + e.what() + ")");
+            std::string why = e.what();
+            why = why.substr(0, why.find('\n'));
+            throw input_error(where + ": cannot read the expression \"" + text + "\" (" + why + ")");
         }
     }
     check_finite(value, where);
@@ -279,6 +281,13 @@ std::vector<symbol> problem::parameters() const
         r.push_back(ex_to<symbol>(e));
     std::sort(r.begin(), r.end(), [](const symbol& a, const symbol& b) { return a.get_name() < b.get_name(); });
     return r;
+}
+
+vec3 point_velocity(const body& b, const vec3& q) { return point_velocity(b, b.velocity, b.angular_velocity, q); }
+
+vec3 point_velocity(const body& b, const vec3& v, const vec3& w, const vec3& q)
+{
+    return b.particle && !b.infinite_mass ? v : v + cross(w, q - b.position);
 }
 
 const pivot* problem::pivot_of(std::size_t b) const
@@ -358,7 +367,7 @@ void validate(const problem& p)
         if (b.infinite_mass)
             throw input_error(where + ".body: body \"" + b.name + "\" has infinite mass; a pivot on it takes no part in the impact");
         // The pivot point E of the body must be at rest: v + w x (E - C) = 0.
-        vec3 vE = b.velocity + cross(b.angular_velocity, pv.point - b.position);
+        vec3 vE = point_velocity(b, pv.point);
         for (int i = 0; i < 3; ++i)
             if (!vE[i].expand().is_zero())
                 throw input_error(where + ": the pivot point of body \"" + b.name +
@@ -372,8 +381,8 @@ void validate(const problem& p)
     // Approach: (v_B - v_A) . n < 0 is an impact; >= 0 separates or rests.
     const body& A = p.bodies[b1];
     const body& B = p.bodies[b2];
-    vec3 vA = A.velocity + cross(A.angular_velocity, c.point - A.position);
-    vec3 vB = B.velocity + cross(B.angular_velocity, c.point - B.position);
+    vec3 vA = point_velocity(A, c.point);
+    vec3 vB = point_velocity(B, c.point);
     ex approach = dot(vB - vA, c.normal).expand();
     if (is_real_number(approach) && ex_to<numeric>(approach) >= 0)
         throw input_error(std::string("contact: not an impact: the contact points ") +

@@ -70,6 +70,11 @@ problem load_problem_file(const std::string& path);
 /// expression string) into an exact expression; `where` names the key.
 ex parse_value(const std::string& text, bool is_string, const std::string& where);
 
+/// Velocity of a point q of body b: v + w x (q - C); a particle is a point,
+/// so its spin does not move it (its velocity is v everywhere).
+vec3 point_velocity(const body& b, const vec3& q);
+vec3 point_velocity(const body& b, const vec3& v, const vec3& w, const vec3& q);
+
 /// The problem with every symbol replaced (symbol == value list).
 problem substitute(const problem& p, const GiNaC::ex& symbol_values);
 

@@ -235,15 +235,25 @@ solution solve(const derivation& d)
 std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values)
 {
     std::vector<ex> r;
-    lst steps = s.step_values(input_values);
-    lst unknowns;
-    for (const ex& rel : s.unknown_values)
-        unknowns.append(rel.lhs() == rel.rhs().subs(input_values).subs(steps));
+    const bool numeric_inputs = !(is_a<lst>(input_values) && input_values.nops() == 0);
+    if (numeric_inputs) {
+        lst steps = s.step_values(input_values);
+        lst unknowns;
+        for (const ex& rel : s.unknown_values)
+            unknowns.append(rel.lhs() == rel.rhs().subs(input_values).subs(steps));
+        for (const equation& eq : d.equations)
+            r.push_back((eq.lhs - eq.rhs).subs(input_values).subs(unknowns).normal());
+        return r;
+    }
+    // Symbolic: back-substitute the steps from the last to the first,
+    // normalising after each; most residuals vanish before the large
+    // definitions (inverse inertia) are ever expanded.
     for (const equation& eq : d.equations) {
-        ex res = (eq.lhs - eq.rhs).subs(input_values).subs(unknowns);
-        if (is_a<lst>(input_values) && ex_to<lst>(input_values).nops() == 0)
-            res = s.expand_steps(res);
-        r.push_back(res.normal());
+        ex res = (eq.lhs - eq.rhs).subs(s.unknown_values).normal();
+        for (auto it = s.steps.rbegin(); it != s.steps.rend() && !res.is_zero(); ++it)
+            if (res.has(it->sym))
+                res = res.subs(it->sym == it->value).normal();
+        r.push_back(res);
     }
     return r;
 }

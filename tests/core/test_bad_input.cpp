@@ -1,0 +1,209 @@
+// Every category of bad input in shared/problem-format.md is refused with a
+// message that names the problem and the key; the CLI exits 1 with one line.
+#include "symbolic/solution.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+using namespace impactgen;
+using json = nlohmann::json;
+
+namespace {
+
+json valid()
+{
+    return json::parse(R"({
+      "dimension": 2, "restitution": 0.8,
+      "bodies": [
+        {"name": "ball", "mass": 0.5, "position": [0, -1], "velocity": [5, 0]},
+        {"name": "rod", "mass": 2, "inertia": "2*1^2/12", "position": [0, -0.5], "velocity": [0, 0], "angular_velocity": 0}],
+      "contact": {"bodies": ["ball", "rod"], "point": [0, -1], "normal": [1, 0]},
+      "pivots": [{"body": "rod", "point": [0, 0]}]})");
+}
+
+json valid3d()
+{
+    return json::parse(R"({
+      "dimension": 3, "restitution": 1,
+      "bodies": [
+        {"name": "a", "mass": 1, "inertia": [1, 2, 3], "position": [0, -1, 0], "velocity": [0, 1, 0]},
+        {"name": "b", "mass": 2, "inertia": [[2, 0, 0], [0, 2, 0], [0, 0, 2]], "position": [0.5, 1, 0], "velocity": [0, 0, 0]}],
+      "contact": {"bodies": ["a", "b"], "point": [0, 0, 0], "normal": [0, 1, 0]}})");
+}
+
+struct bad_case {
+    const char* name;
+    std::function<std::string()> text;
+    std::vector<const char*> expected; // substrings of the message
+};
+
+std::string with(json j, const std::function<void(json&)>& f)
+{
+    f(j);
+    return j.dump();
+}
+
+std::vector<bad_case> cases()
+{
+    return {
+        {"malformed_json", [] { return std::string(R"({"dimension": 2,)"); }, {"malformed JSON"}},
+        {"not_an_object", [] { return std::string("[1, 2]"); }, {"expected a JSON object"}},
+        {"duplicate_key", [] { return std::string(R"({"dimension": 2, "dimension": 3})"); }, {"written twice", "dimension"}},
+        {"missing_restitution", [] { return with(valid(), [](json& j) { j.erase("restitution"); }); }, {"missing key \"restitution\""}},
+        {"missing_bodies", [] { return with(valid(), [](json& j) { j.erase("bodies"); }); }, {"missing key \"bodies\""}},
+        {"missing_normal", [] { return with(valid(), [](json& j) { j["contact"].erase("normal"); }); }, {"contact", "missing key \"normal\""}},
+        {"missing_mass", [] { return with(valid(), [](json& j) { j["bodies"][0].erase("mass"); }); }, {"bodies[0]", "missing key \"mass\""}},
+        {"missing_position", [] { return with(valid(), [](json& j) { j["bodies"][1].erase("position"); }); }, {"bodies[1]", "\"position\""}},
+        {"bad_dimension", [] { return with(valid(), [](json& j) { j["dimension"] = 4; }); }, {"dimension", "2 or 3"}},
+        {"zero_mass", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = 0; }); }, {"bodies[0]", "mass", "> 0"}},
+        {"negative_mass", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = "-2"; }); }, {"bodies[1]", "mass", "> 0"}},
+        {"mass_of_wrong_type", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = true; }); }, {"mass", "expected a number"}},
+        {"negative_inertia_2d", [] { return with(valid(), [](json& j) { j["bodies"][1]["inertia"] = -1; }); }, {"inertia", "positive-definite"}},
+        {"inertia_not_symmetric", [] { return with(valid3d(), [](json& j) { j["bodies"][1]["inertia"][0][1] = 1; }); }, {"bodies[1]", "inertia", "not symmetric"}},
+        {"inertia_not_definite", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["inertia"] = {1, -2, 3}; }); }, {"bodies[0]", "inertia", "positive-definite"}},
+        {"inertia_wrong_shape", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["inertia"] = {1, 2}; }); }, {"inertia", "3x3"}},
+        {"restitution_above_one", [] { return with(valid(), [](json& j) { j["restitution"] = 1.5; }); }, {"restitution", "[0, 1]"}},
+        {"restitution_negative", [] { return with(valid(), [](json& j) { j["restitution"] = -0.1; }); }, {"restitution", "[0, 1]"}},
+        {"zero_normal", [] { return with(valid(), [](json& j) { j["contact"]["normal"] = {0, 0}; }); }, {"contact.normal", "zero"}},
+        {"unknown_body", [] { return with(valid(), [](json& j) { j["contact"]["bodies"][1] = "bat"; }); }, {"contact.bodies[1]", "unknown body \"bat\""}},
+        {"repeated_body_name", [] { return with(valid(), [](json& j) { j["bodies"][1]["name"] = "ball"; }); }, {"bodies[1].name", "repeated body"}},
+        {"body_strikes_itself", [] { return with(valid(), [](json& j) { j["contact"]["bodies"] = {"ball", "ball"}; }); }, {"contact.bodies", "repeated body"}},
+        {"vector_too_long", [] { return with(valid(), [](json& j) { j["bodies"][0]["position"] = {0, -1, 0}; }); }, {"bodies[0]", "position", "expected 2 components"}},
+        {"vector_not_a_list", [] { return with(valid(), [](json& j) { j["contact"]["point"] = 3; }); }, {"contact.point", "expected a list"}},
+        {"angular_velocity_3d_scalar", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["angular_velocity"] = 1; }); }, {"angular_velocity", "expected a list"}},
+        {"overflowing_number", [] { return std::string(R"({"dimension": 2, "restitution": 1e999})"); }, {"restitution", "non-finite"}},
+        {"infinite_velocity", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"][0] = "inf"; }); }, {"bodies[0]", "velocity", "not a finite value"}},
+        {"nan_position", [] { return with(valid(), [](json& j) { j["bodies"][0]["position"][1] = "NaN"; }); }, {"position", "not a finite value"}},
+        {"imaginary_unit", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "I"; }); }, {"mass", "imaginary"}},
+        {"unreadable_expression", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "2*/3"; }); }, {"mass", "cannot read the expression"}},
+        {"unknown_function", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "foo(2)"; }); }, {"mass", "unknown function"}},
+        {"pivot_moves", [] { return with(valid(), [](json& j) { j["bodies"][1]["velocity"] = {1, 0}; }); }, {"pivots[0]", "moves before impact"}},
+        {"pivot_unknown_body", [] { return with(valid(), [](json& j) { j["pivots"][0]["body"] = "door"; }); }, {"pivots[0].body", "unknown body"}},
+        {"two_pivots_on_one_body", [] { return with(valid(), [](json& j) { j["pivots"].push_back({{"body", "rod"}, {"point", {0, 0}}}); }); }, {"pivots[1]", "second pivot"}},
+        {"both_infinite", [] { return with(valid(), [](json& j) { j.erase("pivots"); j["bodies"][0]["mass"] = "inf"; j["bodies"][1]["mass"] = "inf"; }); }, {"no impulse can act"}},
+        {"pinned_particle_and_wall", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = "inf"; j["pivots"][0]["body"] = "ball"; j["pivots"][0]["point"] = {0, -1}; j["bodies"][1]["velocity"] = {-1, 0}; j["bodies"][0]["velocity"] = {0, 0}; }); }, {"contact.bodies", "no impulse can act"}},
+        {"pivot_on_infinite_mass", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = "inf"; }); }, {"pivots[0].body", "infinite mass"}},
+        {"separating", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {-5, 0}; }); }, {"not an impact", "separate"}},
+        {"resting", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {0, 3}; }); }, {"not an impact", "rest"}},
+    };
+}
+
+class BadInput : public ::testing::TestWithParam<bad_case> {};
+
+TEST_P(BadInput, RefusedWithAMessageNamingTheKey)
+{
+    const bad_case& c = GetParam();
+    std::string text = c.text();
+    try {
+        problem p = read_problem(text, "case.json");
+        solve(derive(p));
+        FAIL() << c.name << ": accepted " << text;
+    } catch (const input_error& e) {
+        std::string msg = e.what();
+        for (const char* part : c.expected)
+            EXPECT_NE(msg.find(part), std::string::npos) << c.name << ": message \"" << msg << "\" lacks \"" << part << "\"";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Categories, BadInput, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<bad_case>& i) { return std::string(i.param.name); });
+
+TEST(BadInput, ContactThroughThePivotOfTheOnlyMovableBody)
+{
+    // A wall pushes the hinged rod straight through its pivot: nothing can move.
+    std::string text = with(valid(), [](json& j) {
+        j["bodies"][0] = {{"name", "wall"}, {"mass", "inf"}, {"position", {0, 1}}, {"velocity", {0, -1}}};
+        j["contact"]["point"] = {0, 0};
+        j["contact"]["normal"] = {0, -1};
+        j["contact"]["bodies"] = {"wall", "rod"};
+    });
+    try {
+        solve(derive(read_problem(text, "case.json")));
+        FAIL() << "accepted";
+    } catch (const input_error& e) {
+        EXPECT_NE(std::string(e.what()).find("no impulse can act"), std::string::npos) << e.what();
+    }
+}
+
+struct run_result {
+    int code;
+    std::string out, err;
+};
+
+run_result run_cli(const std::string& args)
+{
+    std::string base = ::testing::TempDir() + "impactgen_cli";
+    std::string cmd = std::string(IMPACTGEN_CLI) + " " + args + " >" + base + ".out 2>" + base + ".err";
+    int status = std::system(cmd.c_str());
+    auto slurp = [](const std::string& f) {
+        std::ifstream in(f);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    };
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(base + ".out"), slurp(base + ".err")};
+}
+
+TEST(Cli, EveryBadInputExitsOneWithOneLine)
+{
+    std::string file = ::testing::TempDir() + "impactgen_bad.json";
+    for (const bad_case& c : cases()) {
+        {
+            std::ofstream out(file);
+            out << c.text();
+        }
+        run_result r = run_cli("solve --json " + file);
+        EXPECT_EQ(r.code, 1) << c.name;
+        EXPECT_TRUE(r.out.empty()) << c.name << ": printed an answer for bad input: " << r.out;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.name << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("impactgen: error: ", 0), 0u) << c.name << ": " << r.err;
+    }
+}
+
+TEST(Cli, UsageErrorsExitTwo)
+{
+    EXPECT_EQ(run_cli("").code, 2);
+    EXPECT_EQ(run_cli("solve").code, 2);
+    EXPECT_EQ(run_cli("formulas planar --format html").code, 2);
+    run_result r = run_cli("formulas no-such-class");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("neither a named class"), std::string::npos) << r.err;
+    EXPECT_EQ(run_cli("solve planar").code, 1); // symbols: solve refuses, formulas is the tool
+}
+
+TEST(Cli, SolveJsonIsTheAnswerObject)
+{
+    run_result r = run_cli("solve --json " IMPACTGEN_SOURCE_DIR "/examples/problems/hinged-rod.json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    json a = json::parse(r.out);
+    EXPECT_NEAR(a["bodies"]["ball"]["velocity"][0].get<double>(), -1.0 / 7, 1e-15);
+    EXPECT_NEAR(a["bodies"]["rod"]["angular_velocity"].get<double>(), 27.0 / 7, 1e-15);
+    EXPECT_NEAR(a["normal_impulse"].get<double>(), 18.0 / 7, 1e-15);
+    ASSERT_EQ(a["pivot_impulses"].size(), 1u);
+    EXPECT_NEAR(a["pivot_impulses"][0][0].get<double>(), 9.0 / 7, 1e-15);
+    EXPECT_NEAR(a["kinetic_energy"]["before"].get<double>() - a["kinetic_energy"]["after"].get<double>(),
+                a["kinetic_energy"]["lost"].get<double>(), 1e-14);
+}
+
+TEST(Cli, FormulasJsonReadsBackWithGinacsParser)
+{
+    run_result r = run_cli("formulas pinned-planar --format json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    json a = json::parse(r.out);
+    GiNaC::symtab t;
+    for (const char* n : {"m1", "m2", "v1", "l", "e"})
+        t[n] = symbol_named(n);
+    GiNaC::parser reader(t, true);
+    GiNaC::ex w = reader(a["bodies"]["2"]["angular_velocity"].get<std::string>());
+    GiNaC::ex m1 = t["m1"], m2 = t["m2"], v1 = t["v1"], l = t["l"], e = t["e"];
+    // The notes' result for the uniform rod: w' = 3 m1 v1 (1 + e) / (l (3 m1 + m2)).
+    EXPECT_TRUE((w - 3 * m1 * v1 * (1 + e) / (l * (3 * m1 + m2))).normal().is_zero()) << w;
+    EXPECT_TRUE(a["pivot_impulses"].is_array());
+}
+
+} // namespace
