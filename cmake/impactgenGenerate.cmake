@@ -25,9 +25,13 @@
 #              is taken relative to CMAKE_CURRENT_SOURCE_DIR.
 #   NAME       the generated function's name; default: <target> made into a C
 #              identifier.
-#   NAMESPACE  the C++ namespace of the generated code (may be nested, a::b).
-#   PARAMS     the problem's symbols in the order the generated function takes
-#              them; default: the order impactgen chooses.
+#   NAMESPACE  the C++ namespace of the generated code (may be nested, a::b);
+#              default: impactgen::generated.
+#   PARAMS     the symbols (or quantity names such as m1, v_x_ball) that stay
+#              parameters of the generated function, in this order; every other
+#              value of the problem is folded in as a constant, so every symbol
+#              of the problem must be listed. Default: all the problem's
+#              symbols, in the order they appear in the problem.
 #
 # The generated header is plain C++17 with no dependency, so <target> links to
 # nothing. The executable run is the target impactgen::impactgen: the imported
@@ -56,7 +60,8 @@ function(impactgen_generate target)
   endif()
 
   get_filename_component(problem "${arg_PROBLEM}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
-  if(NOT EXISTS "${problem}")
+  get_source_file_property(problem_is_generated "${problem}" GENERATED)
+  if(NOT EXISTS "${problem}" AND NOT problem_is_generated)
     message(FATAL_ERROR "impactgen_generate(${target}): problem file ${problem} does not exist")
   endif()
 
