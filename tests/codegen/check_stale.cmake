@@ -1,3 +1,4 @@
+cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 # Regenerates every checked-in header into WORK and compares bytes.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
