@@ -133,20 +133,20 @@ derivation derive(const problem& p)
             continue;
         for (int c = 0; c < dim; ++c) {
             symbol s = fresh(quantity_name("v", ax[c], b.label, true), quantity_tex("v", ax[c], b.label, true));
-            d.unknowns.push_back({s, unknown_kind::velocity, i, c, "velocity of the centre of mass of " + b.name + " after impact, " + ax[c] + " component"});
+            d.unknowns.push_back({s, unknown_kind::velocity, i, c, "velocity of the centre of mass of " + display_name(b) + " after impact, " + ax[c] + " component"});
             d.velocity_after[i][c] = s;
         }
         if (!b.particle) {
             for (int c = (dim == 2 ? 2 : 0); c < 3; ++c) {
                 symbol s = fresh(quantity_name("w", ax[c], b.label, true), quantity_tex("\\omega", ax[c], b.label, true));
-                d.unknowns.push_back({s, unknown_kind::angular_velocity, i, c, "angular velocity of " + b.name + " after impact, " + ax[c] + " component"});
+                d.unknowns.push_back({s, unknown_kind::angular_velocity, i, c, "angular velocity of " + display_name(b) + " after impact, " + ax[c] + " component"});
                 d.angular_velocity_after[i][c] = s;
             }
         }
     }
     if (d.impulse_form) {
         symbol N = fresh("N", "N");
-        d.unknowns.push_back({N, unknown_kind::normal_impulse, 0, 0, "normal impulse (integral of N dt), on " + p.bodies[i2].name + " along +n and on " + p.bodies[i1].name + " along -n"});
+        d.unknowns.push_back({N, unknown_kind::normal_impulse, 0, 0, "normal impulse (integral of N dt), on " + display_name(p.bodies[i2]) + " along +n and on " + display_name(p.bodies[i1]) + " along -n"});
         d.normal_impulse = N;
         for (std::size_t k = 0; k < p.pivots.size(); ++k) {
             vec3 R = zero_vec();
@@ -190,10 +190,10 @@ derivation derive(const problem& p)
                 continue;
             const body& b = p.bodies[i];
             add(dot(d.velocity_after[i], d.t_dir), dot(b.velocity, d.t_dir), principle::smooth_contact,
-                "the bodies are smooth, so no impulse acts on " + b.name + " along e_t: its centre-of-mass velocity along e_t is unchanged", {i});
+                "the bodies are smooth, so no impulse acts on " + display_name(b) + " along e_t: its centre-of-mass velocity along e_t is unchanged", {i});
             if (dim == 3)
                 add(dot(d.velocity_after[i], d.b_dir), dot(b.velocity, d.b_dir), principle::smooth_contact,
-                    "no impulse acts on " + b.name + " along e_b: its centre-of-mass velocity along e_b is unchanged", {i});
+                    "no impulse acts on " + display_name(b) + " along e_b: its centre-of-mass velocity along e_b is unchanged", {i});
         }
         // (b) Linear momentum of the system along n.
         if (!p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass) {
@@ -206,9 +206,9 @@ derivation derive(const problem& p)
                 "the impulse N n is internal to the system of both bodies, so their linear momentum along n is conserved", {i1, i2});
         } else {
             std::size_t inf = p.bodies[i1].infinite_mass ? i1 : i2;
-            d.remarks.push_back("Linear momentum of the system along n is not useful: " + p.bodies[inf].name +
+            d.remarks.push_back("Linear momentum of the system along n is not useful: " + display_name(p.bodies[inf]) +
                                 " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero).");
-            d.remarks.push_back("The velocities of " + p.bodies[inf].name +
+            d.remarks.push_back("The velocities of " + display_name(p.bodies[inf]) +
                                 " are unchanged: a finite impulse cannot change the motion of an infinite mass, so it gives no angular momentum equation either.");
         }
         // (c) Angular momentum about O, each body separately.
@@ -217,14 +217,14 @@ derivation derive(const problem& p)
             if (p.immovable(i))
                 continue;
             if (b.particle) {
-                d.remarks.push_back(b.name + " is a particle (no rotational inertia): it has no angular velocity unknowns and its angular momentum about O gives no new equation.");
+                d.remarks.push_back(display_name(b) + " is a particle (no rotational inertia): it has no angular velocity unknowns and its angular momentum about O gives no new equation.");
                 continue;
             }
             vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
             vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
             vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
             world_components(Ha, Hb, principle::angular_momentum,
-                             "the impulse on " + b.name + " passes through O, which is fixed in the inertial frame, so its angular momentum about O is conserved",
+                             "the impulse on " + display_name(b) + " passes through O, which is fixed in the inertial frame, so its angular momentum about O is conserved",
                              {i}, true);
         }
     } else {
@@ -241,7 +241,7 @@ derivation derive(const problem& p)
             vec3 impulse = (s * d.normal_impulse) * d.n_hat + R;
             vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
             world_components(dp, impulse, principle::linear_impulse,
-                             "the change of linear momentum of " + b.name + " equals the impulses on it: " +
+                             "the change of linear momentum of " + display_name(b) + " equals the impulses on it: " +
                                  (i == i1 ? "-N n" : "+N n") + (pv ? " and the pivot impulse R" : ""),
                              {i}, false);
             if (!b.particle) {
@@ -250,21 +250,21 @@ derivation derive(const problem& p)
                           cross(b.position - ref, dp);
                 vec3 moment = pv ? cross(p.contact.point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
                 world_components(dH, moment, principle::angular_momentum,
-                                 pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change of angular momentum of " + b.name + " about E is the moment of the contact impulse"
-                                    : "the impulse on " + b.name + " passes through O, fixed in the inertial frame, so its angular momentum about O is conserved",
+                                 pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change of angular momentum of " + display_name(b) + " about E is the moment of the contact impulse"
+                                    : "the impulse on " + display_name(b) + " passes through O, fixed in the inertial frame, so its angular momentum about O is conserved",
                                  {i}, true);
             }
             if (pv && !b.particle) {
                 vec3 vE = d.velocity_after[i] + cross(d.angular_velocity_after[i], pv->point - b.position);
                 world_components(vE, zero_vec(), principle::pivot_fixed,
-                                 "the pivot E of " + b.name + " is fixed: v'_C + w' x r_{E C} = 0", {i}, false);
+                                 "the pivot E of " + display_name(b) + " is fixed: v'_C + w' x r_{E C} = 0", {i}, false);
             }
             if (pv && b.particle)
-                d.remarks.push_back(b.name + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot takes the whole contact impulse.");
+                d.remarks.push_back(display_name(b) + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot takes the whole contact impulse.");
         }
         for (std::size_t i : contact_bodies)
             if (p.bodies[i].infinite_mass)
-                d.remarks.push_back("The velocities of " + p.bodies[i].name + " (infinite mass) are unchanged by the finite impulse.");
+                d.remarks.push_back("The velocities of " + display_name(p.bodies[i]) + " (infinite mass) are unchanged by the finite impulse.");
     }
     // (d) Newton's restitution law on the contact points.
     add(dot(d.vB_after - d.vA_after, d.n_hat), -p.restitution * dot(d.vB - d.vA, d.n_hat), principle::restitution,
@@ -272,7 +272,7 @@ derivation derive(const problem& p)
 
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         if (i != i1 && i != i2)
-            d.remarks.push_back(p.bodies[i].name + " takes no part in the contact: its velocities are unchanged.");
+            d.remarks.push_back(display_name(p.bodies[i]) + " takes no part in the contact: its velocities are unchanged.");
     return d;
 }
 

@@ -283,6 +283,12 @@ std::vector<symbol> problem::parameters() const
     return r;
 }
 
+std::string display_name(const body& b)
+{
+    bool digits = !b.name.empty() && std::all_of(b.name.begin(), b.name.end(), [](unsigned char c) { return std::isdigit(c); });
+    return digits ? "body " + b.name : b.name;
+}
+
 vec3 point_velocity(const body& b, const vec3& q) { return point_velocity(b, b.velocity, b.angular_velocity, q); }
 
 vec3 point_velocity(const body& b, const vec3& v, const vec3& w, const vec3& q)

@@ -70,6 +70,9 @@ problem load_problem_file(const std::string& path);
 /// expression string) into an exact expression; `where` names the key.
 ex parse_value(const std::string& text, bool is_string, const std::string& where);
 
+/// The body as prose names it: "body 1" for the named classes' numbered bodies, else its name.
+std::string display_name(const body& b);
+
 /// Velocity of a point q of body b: v + w x (q - C); a particle is a point,
 /// so its spin does not move it (its velocity is v everywhere).
 vec3 point_velocity(const body& b, const vec3& q);

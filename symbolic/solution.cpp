@@ -121,9 +121,9 @@ solution solve(const derivation& d)
         if (!b.particle) {
             if (dim == 2) {
                 ex t = sb.add("tau_" + L, "\\tau_{" + tsub(L) + "}", tau[2].normal(),
-                              "lever arm of the normal about " + where + " of " + b.name + ": (r x n)_z");
+                              "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
                 ex Iz = sd.pinned ? sb.add("I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2].normal(),
-                                           "moment of inertia of " + b.name + " about its pivot E: I_C + m |C - E|^2")
+                                           "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                                   : J[2][2];
                 sd.g = {0, 0, t / Iz};
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + t * t / Iz;
@@ -131,29 +131,29 @@ solution solve(const derivation& d)
                 vec3 t;
                 for (int c = 0; c < 3; ++c)
                     t[c] = sb.add("tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tau[c].normal(),
-                                  "lever arm r x n of the normal about " + where + " of " + b.name + ", " + p.axes[c] + " component");
+                                  "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " + p.axes[c] + " component");
                 mat3 Js = J;
                 if (sd.pinned)
                     for (int a = 0; a < 3; ++a)
                         for (int c = a; c < 3; ++c) {
                             ex v = sb.add("I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
-                                          J[a][c].normal(), "inertia tensor of " + b.name + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                                          J[a][c].normal(), "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
                 mat3 adj = adjugate(Js);
-                ex D = sb.add("D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + b.name + (sd.pinned ? " about E" : ""));
+                ex D = sb.add("D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
                 vec3 at = mul(adj, t);
                 for (int c = 0; c < 3; ++c)
                     sd.g[c] = sb.add("g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}", at[c] / D,
-                                     "I^{-1} (r x n) for " + b.name + ", " + p.axes[c] + " component: change of angular velocity per unit impulse");
+                                     "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] + " component: change of angular velocity per unit impulse");
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
             }
         } else {
             sd.w = 1 / b.mass;
         }
         sd.w = sb.add("w_" + L, "w_{" + tsub(L) + "}", sd.w,
-                      "effective inverse mass of " + b.name + " at the contact point along n");
+                      "effective inverse mass of " + display_name(b) + " at the contact point along n");
     }
 
     ex u = sb.add("u", "u", dot(d.vB - d.vA, n).normal(),

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Every test: install what is missing, build everything with warnings as
+# errors, run the whole suite; then the suite again under ASan + UBSan.
+#   IMPACTGEN_SKIP_SANITIZE=1  skip the sanitizer pass (local iterations)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --tests
+jobs=$(nproc)
+start=$(date +%s)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
+cmake --build build -j"$jobs"
+(cd build && ctest --output-on-failure -j"$jobs")
+echo "impactgen: release build and tests took $(( $(date +%s) - start )) s"
+
+if [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" != "1" ]]; then
+  start=$(date +%s)
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTGEN_SANITIZE=ON \
+        -DIMPACTGEN_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
+  cmake --build build-sanitize -j"$jobs"
+  # Sanitized code runs ~5-10x slower: fewer random samples per class (the
+  # release pass above runs the full counts); every test still runs.
+  (cd build-sanitize && IMPACTGEN_SAMPLES=200 ASAN_OPTIONS=detect_leaks=0 \
+     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j"$jobs")
+  echo "impactgen: sanitizer build and tests took $(( $(date +%s) - start )) s"
+fi
