@@ -153,7 +153,7 @@ derivation derive(const problem& p)
             const std::string& lbl = p.bodies[p.pivots[k].body].label;
             for (int c = 0; c < dim; ++c) {
                 symbol s = fresh(quantity_name("R", ax[c], lbl, false), quantity_tex("R", ax[c], lbl, false));
-                d.unknowns.push_back({s, unknown_kind::pivot_impulse, k, c, "impulse of the pivot on " + p.bodies[p.pivots[k].body].name + ", " + ax[c] + " component"});
+                d.unknowns.push_back({s, unknown_kind::pivot_impulse, k, c, "impulse of the pivot on " + display_name(p.bodies[p.pivots[k].body]) + ", " + ax[c] + " component"});
                 R[c] = s;
             }
             d.pivot_impulse.push_back(R);

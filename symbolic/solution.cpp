@@ -216,14 +216,19 @@ solution solve(const derivation& d)
     // under the impulse s N n at its contact point gains s N (a + a')/2 with
     // a the normal velocity of that point, a' = a + s N w; pivot impulses act at
     // fixed points and do no work.
+    // When both bodies move this is -N u - N^2 k / 2 = (1 - e^2) u^2 / (2 k).
     ex lost = 0;
     const vec3* contact_velocity[2] = {&d.vA, &d.vB};
-    for (int k = 0; k < 2; ++k) {
-        const side& sd = sides[k];
-        if (p.immovable(sd.index))
-            continue;
-        ex a = dot(*contact_velocity[k], n);
-        lost -= sd.sign * N * a + N * N * sd.w / 2;
+    if (!p.immovable(i1) && !p.immovable(i2)) {
+        lost = -N * u - N * N * k / 2;
+    } else {
+        for (int side_index = 0; side_index < 2; ++side_index) {
+            const side& sd = sides[side_index];
+            if (p.immovable(sd.index))
+                continue;
+            ex a = dot(*contact_velocity[side_index], n);
+            lost -= sd.sign * N * a + N * N * sd.w / 2;
+        }
     }
     s.energy_before = kinetic_energy(p, v0, w0);
     s.energy_lost = sb.add("T_lost", "T_{\\mathrm{lost}}", lost, "kinetic energy lost, T - T' (bodies of finite mass)", true);

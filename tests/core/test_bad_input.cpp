@@ -42,6 +42,8 @@ struct bad_case {
     std::vector<const char*> expected; // substrings of the message
 };
 
+void PrintTo(const bad_case& c, std::ostream* os) { *os << c.name; }
+
 std::string with(json j, const std::function<void(json&)>& f)
 {
     f(j);
