@@ -30,7 +30,15 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
         off[i] = ndof;
         ndof += dim + (p.bodies[i].particle ? 0 : nw);
     }
-    const int ncon = 1 + dim * static_cast<int>(p.pivots.size());
+    // Constraint rows: the contact, then each pivot of a body in contact (a
+    // bystander's pivot takes no impulse).
+    std::vector<int> pivot_row(p.pivots.size(), -1);
+    int ncon = 1;
+    for (std::size_t k = 0; k < p.pivots.size(); ++k)
+        if (off[p.pivots[k].body] >= 0) {
+            pivot_row[k] = ncon;
+            ncon += dim;
+        }
     M K = M::Zero(ndof + ncon, ndof + ncon);
     V rhs = V::Zero(ndof + ncon);
     V u = V::Zero(ndof);
@@ -82,8 +90,10 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     c[0] = -p.restitution * approach - known;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
         const auto& pv = p.pivots[k];
+        if (pivot_row[k] < 0)
+            continue;
         for (int a = 0; a < dim; ++a) {
-            int r = 1 + dim * static_cast<int>(k) + a;
+            int r = pivot_row[k] + a;
             point_row(r, pv.body, pv.point, vec<T>::Unit(a), 1);
             c[r] = 0;
         }
@@ -119,8 +129,8 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     out.normal_impulse = x[ndof];
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
         vec<T> R = vec<T>::Zero();
-        for (int a = 0; a < dim; ++a)
-            R[a] = x[ndof + 1 + dim * static_cast<int>(k) + a];
+        for (int a = 0; a < dim && pivot_row[k] >= 0; ++a)
+            R[a] = x[ndof + pivot_row[k] + a];
         out.pivot_impulses.push_back(R);
     }
     return out;

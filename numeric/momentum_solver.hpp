@@ -76,8 +76,10 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
     if (impulse_form) {
         L.n_col = L.size++;
         for (std::size_t k = 0; k < p.pivots.size(); ++k) {
-            L.r_col.push_back(L.size);
-            L.size += dim;
+            bool in_contact = p.pivots[k].body == p.body1 || p.pivots[k].body == p.body2;
+            L.r_col.push_back(in_contact ? L.size : -1); // a bystander's pivot takes no impulse
+            if (in_contact)
+                L.size += dim;
         }
     }
     M A = M::Zero(L.size, L.size);
@@ -223,7 +225,7 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
         out.normal_impulse = x[L.n_col];
         for (int rk : L.r_col) {
             vec<T> R = vec<T>::Zero();
-            for (int c = 0; c < dim; ++c)
+            for (int c = 0; c < dim && rk >= 0; ++c)
                 R[c] = x[rk + c];
             out.pivot_impulses.push_back(R);
         }

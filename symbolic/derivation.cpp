@@ -150,6 +150,10 @@ derivation derive(const problem& p)
         d.normal_impulse = N;
         for (std::size_t k = 0; k < p.pivots.size(); ++k) {
             vec3 R = zero_vec();
+            if (p.pivots[k].body != i1 && p.pivots[k].body != i2) { // a bystander: no impulse reaches it
+                d.pivot_impulse.push_back(R);
+                continue;
+            }
             const std::string& lbl = p.bodies[p.pivots[k].body].label;
             for (int c = 0; c < dim; ++c) {
                 symbol s = fresh(quantity_name("R", ax[c], lbl, false), quantity_tex("R", ax[c], lbl, false));

@@ -215,3 +215,29 @@ TEST(ProblemFiles, SymbolicFileGivesFormulas)
 }
 
 } // namespace
+
+namespace {
+
+TEST(ProblemFiles, BystanderBodyIsUnchanged)
+{
+    // A third body, pinned, takes no part in the contact: unchanged, zero pivot impulse.
+    problem p = read_problem(R"({"dimension": 2, "restitution": 0.5,
+      "bodies": [{"name": "a", "mass": 1, "position": [0, -1], "velocity": [0, 2]},
+                 {"name": "b", "mass": 2, "inertia": 1, "position": [0.5, 1], "velocity": [0, 0]},
+                 {"name": "door", "mass": 3, "inertia": 1, "position": [5, 5], "velocity": [0, -1], "angular_velocity": 1}],
+      "contact": {"bodies": ["a", "b"], "point": [0, 0], "normal": [0, 1]},
+      "pivots": [{"body": "door", "point": [6, 5]}]})", "inline");
+    derivation d = derive(p);
+    EXPECT_EQ(d.count_equations(), d.count_unknowns());
+    solution s = solve(d);
+    for (const ex& r : residuals(d, s))
+        EXPECT_TRUE(r.is_zero()) << r;
+    EXPECT_EQ(s.after[2].angular_velocity[2], 1);
+    EXPECT_EQ(s.pivot_impulses[0][0], 0);
+    double worst_lu = 0, worst_kkt = 0;
+    check_numeric_problem(p, "bystander", worst_lu, worst_kkt);
+    EXPECT_LT(worst_lu, 1e-12); // a small well-conditioned system: round-off only
+    EXPECT_LT(worst_kkt, 1e-12);
+}
+
+} // namespace
