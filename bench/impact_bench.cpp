@@ -5,9 +5,11 @@
 //   handwritten/<class>  an engine-style impulse formula: effective mass from the
 //                        inverse inertia, P = -(1+e) v_n / k, then the velocity jumps;
 //                        same inputs as generated/<class> (it inverts the tensors itself)
-//   batch/<class>        the generated SoA batch form over arrays of 1024 impacts (fits L2)
-// and, for noncentral-3d, the engine input convention (1/m and I^{-1} given):
-//   generated-engine/noncentral-3d   vs   handwritten-engine/noncentral-3d.
+//   batch/<class>        the generated SoA batch form over arrays of 1024 impacts (fits L2;
+//                        every array 64-byte aligned; all outputs and the status written)
+// and the engine input convention (1/m and I^{-1} given, as physics engines store them):
+//   <kind>/noncentral-3d-engine and <kind>/planar-engine, generated and hand-written on the
+//   same inputs.
 // Counters: ns_per_impact; the operation counts of each generated function are
 // printed first (from the constexpr <name>_ops of its header).
 #include "central_direct.hpp"
@@ -17,11 +19,14 @@
 #include "noncentral_3d_engine.hpp"
 #include "pinned_planar.hpp"
 #include "planar.hpp"
+#include "planar_engine.hpp"
 #include "numeric/momentum_solver.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <memory>
 #include <cstdio>
 #include <map>
 #include <random>
@@ -87,9 +92,11 @@ input_set make_inputs(const char* const* names, int n_in, F fn, unsigned seed, b
                 x[static_cast<std::size_t>(jm)] = m;
             if (jim >= 0)
                 x[static_cast<std::size_t>(jim)] = 1 / m;
-            int jI = idx(std::string("I") + b);
+            int jI = idx(std::string("I") + b), jiI = idx(std::string("inv_I") + b);
             if (jI >= 0)
                 x[static_cast<std::size_t>(jI)] = m * (0.05 + U(rng));
+            if (jiI >= 0) // planar, engine convention: 1/I
+                x[static_cast<std::size_t>(jiI)] = 1 / (m * (0.05 + U(rng)));
             // 3-D tensors: m * (diagonally dominant symmetric)
             const char* ax = "tnb";
             M3 I = M3::Zero();
@@ -267,10 +274,12 @@ inline double hand_massive(const double* x, hand_out& o)
 }
 
 // planar layout: e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2
-inline double hand_planar(const double* x, hand_out& o)
+// (inverse: inv_m1, inv_I1, ..., inv_m2, inv_I2 in place of m1, I1, m2, I2: engine convention)
+template <bool inverse> inline double hand_planar(const double* x, hand_out& o)
 {
     const double nx = 0, ny = 1, e = x[0];
-    const double im1 = 1 / x[1], iI1 = 1 / x[2], im2 = 1 / x[8], iI2 = 1 / x[9];
+    const double im1 = inverse ? x[1] : 1 / x[1], iI1 = inverse ? x[2] : 1 / x[2];
+    const double im2 = inverse ? x[8] : 1 / x[8], iI2 = inverse ? x[9] : 1 / x[9];
     const double r1x = -x[3], r1y = -x[4], r2x = -x[10], r2y = -x[11]; // O - C
     const double rn1 = r1x * ny - r1y * nx, rn2 = r2x * ny - r2y * nx;
     const double k = im1 + im2 + rn1 * rn1 * iI1 + rn2 * rn2 * iI2;
@@ -338,10 +347,26 @@ inline double hand_pinned(double e, double l, double m1, double m2, double v1, h
 }
 
 // ---------------------------------------------------------------------------
+// A 64-byte aligned array of doubles (one cache line; any vector width), for the SoA batch.
+struct aligned_array {
+    struct free_it {
+        void operator()(double* p) const { std::free(p); }
+    };
+    std::unique_ptr<double[], free_it> p;
+    explicit aligned_array(std::size_t n)
+        : p(static_cast<double*>(std::aligned_alloc(64, (n * sizeof(double) + 63) / 64 * 64)))
+    {
+        for (std::size_t i = 0; i < n; ++i)
+            p[i] = 0;
+    }
+    double* data() { return p.get(); }
+    double& operator[](std::size_t i) { return p[i]; }
+};
+
 struct class_data {
     input_set in;
     std::vector<nm::problem<double>> eigen;
-    std::vector<std::vector<double>> soa_in, soa_out; // batch: [input][i]
+    std::vector<aligned_array> soa_in, soa_out; // batch: [input][i], each array 64-byte aligned
 };
 
 template <typename Result, typename F>
@@ -352,8 +377,10 @@ class_data prepare(const std::string& cls, const char* const* names, int n_in, i
     if (cls.find("engine") == std::string::npos)
         for (int i = 0; i < kImpacts; ++i)
             d.eigen.push_back(eigen_problem(cls, d.in, i));
-    d.soa_in.assign(static_cast<std::size_t>(n_in), std::vector<double>(kBatch));
-    d.soa_out.assign(static_cast<std::size_t>(n_out), std::vector<double>(kBatch));
+    for (int j = 0; j < n_in; ++j)
+        d.soa_in.emplace_back(kBatch);
+    for (int j = 0; j < n_out; ++j)
+        d.soa_out.emplace_back(kBatch);
     for (int j = 0; j < n_in; ++j)
         for (int i = 0; i < kBatch; ++i)
             d.soa_in[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = d.in.rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
@@ -450,7 +477,9 @@ int main(int argc, char** argv)
     REGISTER_CLASS("massive-3d", massive_3d)
     register_hand("handwritten/massive-3d", hand, [](const double* x, hand_out& o) { return hand_massive(x, o); });
     REGISTER_CLASS("planar", planar)
-    register_hand("handwritten/planar", hand, [](const double* x, hand_out& o) { return hand_planar(x, o); });
+    register_hand("handwritten/planar", hand, [](const double* x, hand_out& o) { return hand_planar<false>(x, o); });
+    REGISTER_CLASS("planar-engine", planar_engine)
+    register_hand("handwritten/planar-engine", hand, [](const double* x, hand_out& o) { return hand_planar<true>(x, o); });
     REGISTER_CLASS("pinned-planar", pinned_planar)
     // inputs: e, m1, l, v1, m2
     register_hand("handwritten/pinned-planar", hand, [](const double* x, hand_out& o) { return hand_pinned(x[0], x[2], x[1], x[4], x[3], o); });

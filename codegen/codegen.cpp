@@ -35,7 +35,7 @@ std::string sfx(const std::string& label) { return label.size() == 1 ? label : "
 const std::set<std::string>& reserved()
 {
     static const std::set<std::string> r = {
-        "out", "fail", "T", "in", "detail", "check_sum", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
+        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
         "case", "char", "const", "continue", "default", "delete", "do", "double", "else", "enum", "false", "float",
         "for", "if", "inline", "int", "long", "namespace", "new", "return", "short", "signed", "sizeof", "static",
         "struct", "switch", "template", "this", "true", "typename", "union", "unsigned", "void", "while"};
@@ -218,7 +218,7 @@ plan make_plan(const problem& p, const options& o)
             if (is_a<symbol>(*x.value))
                 meaning.emplace(ex_to<symbol>(*x.value).get_name(), x.meaning);
     }
-    lst mass_subs;
+    lst mass_subs, inertia_subs;
     auto rewrite_all = [&](const ex& rel) {
         for (step& st : s.steps)
             st.value = st.value.subs(rel);
@@ -237,8 +237,23 @@ plan make_plan(const problem& p, const options& o)
         bool any = false;
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
             const body& b = q.bodies[i];
-            if (dim != 3 || b.particle || b.infinite_mass || q.pivot_of(i))
+            if (b.particle || b.infinite_mass || q.pivot_of(i))
                 continue;
+            if (dim == 2) {
+                // Planar: the scalar moment of inertia I becomes its inverse inv_I (I = 1/inv_I).
+                const ex& old = b.inertia[2][2];
+                if (is_a<numeric>(old))
+                    continue;
+                if (!is_a<symbol>(old))
+                    throw input_error("--inverse-inertia: the moment of inertia of " + b.name + " is neither a number nor a single symbol");
+                std::string nm = "inv_" + ex_to<symbol>(old).get_name();
+                symbol k = symbol_named(nm);
+                meaning[nm] = "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)";
+                replaced[ex_to<symbol>(old).get_name()].push_back(k);
+                inertia_subs.append(old == 1 / k);
+                any = true;
+                continue;
+            }
             bool symbolic = false;
             for (auto& row : b.inertia)
                 for (auto& c : row)
@@ -279,7 +294,9 @@ plan make_plan(const problem& p, const options& o)
             any = true;
         }
         if (!any)
-            throw input_error("--inverse-inertia: no free 3-D rigid body with a symbolic inertia tensor takes part in the contact");
+            throw input_error("--inverse-inertia: no free rigid body with a symbolic inertia takes part in the contact");
+        if (inertia_subs.nops() > 0)
+            rewrite_all(inertia_subs);
     }
     if (o.inverse_mass) {
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
@@ -472,8 +489,18 @@ header generate(const problem& p, const options& o)
         if (o.inverse_mass && is_a<symbol>(m))
             m = symbol_named("inv_" + ex_to<symbol>(m).get_name());
         add_check(m, check::positive, "invalid_mass", (o.inverse_mass ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
-        if (!b.particle && q.dimension == 2)
-            add_check(b.inertia[2][2], check::positive, "invalid_inertia", "moment of inertia of " + b.name + " > 0, finite");
+        if (!b.particle && q.dimension == 2) {
+            ex I = b.inertia[2][2];
+            bool inv = false;
+            if (o.inverse_inertia && is_a<symbol>(I))
+                for (const symbol& x : pl.inputs)
+                    if (x.get_name() == "inv_" + ex_to<symbol>(I).get_name()) {
+                        I = x;
+                        inv = true;
+                    }
+            add_check(I, check::positive, "invalid_inertia",
+                      (inv ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
+        }
     }
     bool has_k = false;
     for (const step& st : s.steps)
@@ -582,6 +609,11 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     return (finite(x) && ... && finite(y));
 }
 } // namespace detail
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#else
+#define IMPACTGEN_COLD
+#endif
 #endif
 
 )";
@@ -601,7 +633,9 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     h << "//   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)\n";
     h << "//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i\n";
     h << "//   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n\n";
-    if (o.inverse_inertia)
+    if (o.inverse_inertia && q.dimension == 2)
+        h << "// Input convention: inverse moments of inertia inv_I = 1/I (as physics engines store them).\n";
+    else if (o.inverse_inertia)
         h << "// Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = inv_I_i (r_i x n).\n";
     if (o.inverse_mass)
         h << "// Input convention: inverse masses inv_m = 1/m.\n";
@@ -611,15 +645,39 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     for (std::size_t i = 0; i < pl.outputs.size(); ++i)
         h << wrap_comment("out." + pl.outputs[i].field, pool.print(out_values[i]));
 
-    // The function.
+    // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
+    auto balanced_sum = [](std::vector<std::string> level) {
+        while (level.size() > 1) {
+            std::vector<std::string> next;
+            for (std::size_t i = 0; i + 1 < level.size(); i += 2)
+                next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
+                               (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
+            if (level.size() % 2)
+                next.push_back(level.back());
+            level = next;
+        }
+        return level.empty() ? std::string() : level[0];
+    };
+    // The terms of the finiteness check in the branchless form (o_<field> values).
+    std::vector<std::string> fast_terms;
+    for (const auto& [field, id] : outs)
+        if (prog.at(id).kind != op::constant)
+            fast_terms.push_back("o_" + field);
+    for (const std::string& nm : unused_inputs)
+        fast_terms.push_back(nm);
+    for (const std::string& x : batch.finite_terms)
+        if (std::find(fast_terms.begin(), fast_terms.end(), x) == fast_terms.end())
+            fast_terms.push_back(x);
+
+    // The checked version: each check right after the value it tests, with its own status.
     std::string params;
     for (const std::string& nm : input_names)
         params += "T " + nm + ", ";
-    h << "\n/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
-    h << "/// (then every member of out is zero). T: float, double, long double or alike.\n";
-    for (std::size_t i = 0; i < input_names.size(); ++i)
-        h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
-    h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
+    const std::string checked = o.name + "_checked";
+    h << "\nnamespace detail {\n";
+    h << "/// " << o.name << " with each check right after the value it tests: the status of the\n";
+    h << "/// inputs that fail the fast path of " << o.name << " (every member of out is then zero).\n";
+    h << "template <typename T>\nIMPACTGEN_COLD inline impact_status " << checked << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
     if (!input_names.empty()) {
@@ -630,24 +688,34 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     }
     h << em.code;
     if (!sum_terms.empty()) {
-        // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
-        std::vector<std::string> level = sum_terms;
-        while (level.size() > 1) {
-            std::vector<std::string> next;
-            for (std::size_t i = 0; i + 1 < level.size(); i += 2)
-                next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
-                               (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
-            if (level.size() % 2)
-                next.push_back(level.back());
-            level = next;
-        }
-        std::vector<std::string> each;
-        for (const std::string& t : sum_terms)
-            each.push_back(t);
-        h << "    const T check_sum = " << level[0] << ";\n";
-        h << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(each, ", ") << "))\n";
+        h << "    const T check_sum = " << balanced_sum(sum_terms) << ";\n";
+        h << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(sum_terms, ", ") << "))\n";
         h << "        return fail(impact_status::overflow);\n";
     }
+    h << "    return impact_status::ok;\n}\n} // namespace detail\n\n";
+
+    // The function: every check folded into one flag, one branch.
+    h << "/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
+    h << "/// (then every member of out is zero). T: float, double, long double or alike.\n";
+    h << "/// The checks do not branch one by one: they are folded into one flag, and only\n";
+    h << "/// inputs that fail one of them take the slow path (detail::" << checked << ") that\n";
+    h << "/// says which check failed.\n";
+    for (std::size_t i = 0; i < input_names.size(); ++i)
+        h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
+    h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
+    if (em.uses_sqrt)
+        h << "    using std::sqrt;\n";
+    h << "    bool ok = true;\n";
+    h << batch.code;
+    if (!fast_terms.empty())
+        h << "    ok &= detail::finite(" << balanced_sum(fast_terms) << ");\n";
+    h << "    if (!ok) // some check failed (or a value is not finite): find which\n";
+    h << "        return detail::" << checked << "(";
+    for (const std::string& nm : input_names)
+        h << nm << ", ";
+    h << "out);\n";
+    for (const output_value& ov : pl.outputs)
+        h << "    out." << ov.field << " = o_" << ov.field << ";\n";
     h << "    return impact_status::ok;\n}\n\n";
 
     // Array form, names, counts.
@@ -683,28 +751,17 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
         while (std::getline(lines, line))
             h << "    " << line << "\n";
     }
-    {
-        std::vector<std::string> terms;
-        for (const auto& [field, id] : outs)
-            if (prog.at(id).kind != op::constant)
-                terms.push_back("o_" + field);
-        for (const std::string& nm : unused_inputs)
-            terms.push_back(nm);
-        if (!terms.empty()) {
-            std::string sum = terms[0];
-            for (std::size_t t = 1; t < terms.size(); ++t)
-                sum = "(" + sum + " + " + terms[t] + ")";
-            h << "        ok &= detail::finite(" << sum << ");\n";
-        }
-    }
+    if (!fast_terms.empty())
+        h << "        ok &= detail::finite(" << balanced_sum(fast_terms) << ");\n";
+    // Stored unconditionally: the second pass overwrites the outputs of failed impacts.
     for (const output_value& ov : pl.outputs)
-        h << "        out_" << ov.field << "[i] = ok ? o_" << ov.field << " : T(0);\n";
+        h << "        out_" << ov.field << "[i] = o_" << ov.field << ";\n";
     h << "        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
     h << "    }\n";
     h << "    for (long i = 0; i < n; ++i)\n";
     h << "        if (status[i] != impact_status::ok) {\n";
     h << "            " << R << "<T> r;\n";
-    h << "            status[i] = " << o.name << "(";
+    h << "            status[i] = detail::" << checked << "(";
     for (const std::string& nm : input_names)
         h << "in_" << nm << "[i], ";
     h << "r);\n";

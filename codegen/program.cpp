@@ -405,7 +405,13 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             case check::negative: cond = x + " < T(0)"; break;
             }
             if (branchless) {
-                code += "    ok &= (" + cond + "); // " + c.comment + "\n";
+                // The finiteness half of a positive check joins the one finiteness test of the results.
+                if (c.kind == check::positive) {
+                    cond = x + " > T(0)";
+                    if (std::find(out.finite_terms.begin(), out.finite_terms.end(), x) == out.finite_terms.end())
+                        out.finite_terms.push_back(x);
+                }
+                code += "    ok &= " + (c.kind == check::unit_interval ? "(" + cond + ")" : cond) + "; // " + c.comment + "\n";
                 continue;
             }
             code += "    if (!(" + cond + ")) // " + c.comment + "\n";

@@ -72,6 +72,7 @@ struct emitted {
     op_counts formula;    ///< arithmetic of the closed form
     op_counts checks;     ///< arithmetic spent on validity checks
     bool uses_sqrt = false;
+    std::vector<std::string> finite_terms; ///< branchless: values whose finiteness the caller tests (in one sum)
 };
 
 /// Emits straight-line C++ for the outputs (field name, op) with the checks

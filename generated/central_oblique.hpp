@@ -48,6 +48,11 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     return (finite(x) && ... && finite(y));
 }
 } // namespace detail
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#else
+#define IMPACTGEN_COLD
+#endif
 #endif
 
 /// Post-impact state of central_oblique (units as the inputs).
@@ -88,21 +93,11 @@ template <typename T> struct central_oblique_result {
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   R1: appears in r_n1
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   v_b1: velocity of the centre of mass of 1 before impact, b
-///   m2: mass of 2 (> 0)
-///   R2: centre of mass of 2, n
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   v_b2: velocity of the centre of mass of 2 before impact, b
+namespace detail {
+/// central_oblique with each check right after the value it tests: the status of the
+/// inputs that fail the fast path of central_oblique (every member of out is then zero).
 template <typename T>
-inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = central_oblique_result<T>{};
@@ -136,6 +131,62 @@ inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T 
     const T check_sum = (((out.v_t1 + out.v_n1) + (out.v_b1 + out.v_t2)) + ((out.v_n2 + out.v_b2) + (out.normal_impulse + out.approach_velocity))) + ((out.energy_lost + R1) + R2);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.v_t2, out.v_n2, out.v_b2, out.normal_impulse, out.approach_velocity, out.energy_lost, R1, R2))
         return fail(impact_status::overflow);
+    return impact_status::ok;
+}
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then every member of out is zero). T: float, double, long double or alike.
+/// The checks do not branch one by one: they are folded into one flag, and only
+/// inputs that fail one of them take the slow path (detail::central_oblique_checked) that
+/// says which check failed.
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   R1: appears in r_n1
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   v_b1: velocity of the centre of mass of 1 before impact, b
+///   m2: mass of 2 (> 0)
+///   R2: centre of mass of 2, n
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   v_b2: velocity of the centre of mass of 2 before impact, b
+template <typename T>
+inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+{
+    bool ok = true;
+    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+    ok &= m1 > T(0); // mass of 1 > 0, finite
+    ok &= m2 > T(0); // mass of 2 > 0, finite
+    const T w_1 = T(1) / m1;
+    const T w_2 = T(1) / m2;
+    const T u = v_n2 - v_n1;
+    ok &= u < T(0); // the contact points approach: u < 0
+    const T k = w_1 + w_2;
+    ok &= k > T(0); // effective inverse mass k > 0, finite
+    const T N = -(u * (T(1) + e) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - w_1 * N;
+    const T o_v_b1 = v_b1;
+    const T o_v_t2 = v_t2;
+    const T o_v_n2 = v_n2 + w_2 * N;
+    const T o_v_b2 = v_b2;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = T_lost;
+    ok &= detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + R1) + (R2 + m1)) + (m2 + k)));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return detail::central_oblique_checked(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.v_b1 = o_v_b1;
+    out.v_t2 = o_v_t2;
+    out.v_n2 = o_v_n2;
+    out.v_b2 = o_v_b2;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
     return impact_status::ok;
 }
 
@@ -191,14 +242,14 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T v_b2 = in_v_b2[i];
         bool ok = true;
         ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
-        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
+        ok &= m1 > T(0); // mass of 1 > 0, finite
+        ok &= m2 > T(0); // mass of 2 > 0, finite
         const T w_1 = T(1) / m1;
         const T w_2 = T(1) / m2;
         const T u = v_n2 - v_n1;
-        ok &= (u < T(0)); // the contact points approach: u < 0
+        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
+        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T o_v_t1 = v_t1;
@@ -210,22 +261,22 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((((((((o_v_t1 + o_v_n1) + o_v_b1) + o_v_t2) + o_v_n2) + o_v_b2) + o_normal_impulse) + o_approach_velocity) + o_energy_lost) + R1) + R2));
-        out_v_t1[i] = ok ? o_v_t1 : T(0);
-        out_v_n1[i] = ok ? o_v_n1 : T(0);
-        out_v_b1[i] = ok ? o_v_b1 : T(0);
-        out_v_t2[i] = ok ? o_v_t2 : T(0);
-        out_v_n2[i] = ok ? o_v_n2 : T(0);
-        out_v_b2[i] = ok ? o_v_b2 : T(0);
-        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
-        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
-        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        ok &= detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + R1) + (R2 + m1)) + (m2 + k)));
+        out_v_t1[i] = o_v_t1;
+        out_v_n1[i] = o_v_n1;
+        out_v_b1[i] = o_v_b1;
+        out_v_t2[i] = o_v_t2;
+        out_v_n2[i] = o_v_n2;
+        out_v_b2[i] = o_v_b2;
+        out_normal_impulse[i] = o_normal_impulse;
+        out_approach_velocity[i] = o_approach_velocity;
+        out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
     }
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             central_oblique_result<T> r;
-            status[i] = central_oblique(in_e[i], in_m1[i], in_R1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_m2[i], in_R2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], r);
+            status[i] = detail::central_oblique_checked(in_e[i], in_m1[i], in_R1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_m2[i], in_R2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;

@@ -48,6 +48,11 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     return (finite(x) && ... && finite(y));
 }
 } // namespace detail
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#else
+#define IMPACTGEN_COLD
+#endif
 #endif
 
 /// Post-impact state of massive_3d (units as the inputs).
@@ -91,36 +96,11 @@ template <typename T> struct massive_3d_result {
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   I1_tt: inertia tensor of 1 about its centre of mass, tt entry
-///   I1_tn: inertia tensor of 1 about its centre of mass, tn entry
-///   I1_tb: inertia tensor of 1 about its centre of mass, tb entry
-///   I1_nn: inertia tensor of 1 about its centre of mass, nn entry
-///   I1_nb: inertia tensor of 1 about its centre of mass, nb entry
-///   I1_bb: inertia tensor of 1 about its centre of mass, bb entry
-///   r_t1: centre of mass of 1, t
-///   r_n1: centre of mass of 1, n
-///   r_b1: centre of mass of 1, b
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   v_b1: velocity of the centre of mass of 1 before impact, b
-///   w_t1: angular velocity of 1 before impact, t
-///   w_n1: angular velocity of 1 before impact, n
-///   w_b1: angular velocity of 1 before impact, b
-///   r_t2: centre of mass of 2, t
-///   r_n2: centre of mass of 2, n
-///   r_b2: centre of mass of 2, b
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   v_b2: velocity of the centre of mass of 2 before impact, b
-///   w_t2: angular velocity of 2 before impact, t
-///   w_n2: angular velocity of 2 before impact, n
-///   w_b2: angular velocity of 2 before impact, b
+namespace detail {
+/// massive_3d with each check right after the value it tests: the status of the
+/// inputs that fail the fast path of massive_3d (every member of out is then zero).
 template <typename T>
-inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
+IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = massive_3d_result<T>{};
@@ -163,6 +143,86 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
     const T check_sum = (((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.normal_impulse + out.approach_velocity))) + (((out.energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2));
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.normal_impulse, out.approach_velocity, out.energy_lost, r_n1, r_n2, v_t2, v_b2, w_n2))
         return fail(impact_status::overflow);
+    return impact_status::ok;
+}
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then every member of out is zero). T: float, double, long double or alike.
+/// The checks do not branch one by one: they are folded into one flag, and only
+/// inputs that fail one of them take the slow path (detail::massive_3d_checked) that
+/// says which check failed.
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   I1_tt: inertia tensor of 1 about its centre of mass, tt entry
+///   I1_tn: inertia tensor of 1 about its centre of mass, tn entry
+///   I1_tb: inertia tensor of 1 about its centre of mass, tb entry
+///   I1_nn: inertia tensor of 1 about its centre of mass, nn entry
+///   I1_nb: inertia tensor of 1 about its centre of mass, nb entry
+///   I1_bb: inertia tensor of 1 about its centre of mass, bb entry
+///   r_t1: centre of mass of 1, t
+///   r_n1: centre of mass of 1, n
+///   r_b1: centre of mass of 1, b
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   v_b1: velocity of the centre of mass of 1 before impact, b
+///   w_t1: angular velocity of 1 before impact, t
+///   w_n1: angular velocity of 1 before impact, n
+///   w_b1: angular velocity of 1 before impact, b
+///   r_t2: centre of mass of 2, t
+///   r_n2: centre of mass of 2, n
+///   r_b2: centre of mass of 2, b
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   v_b2: velocity of the centre of mass of 2 before impact, b
+///   w_t2: angular velocity of 2 before impact, t
+///   w_n2: angular velocity of 2 before impact, n
+///   w_b2: angular velocity of 2 before impact, b
+template <typename T>
+inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
+{
+    bool ok = true;
+    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+    ok &= m1 > T(0); // mass of 1 > 0, finite
+    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+    ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
+    const T inv_D_1 = T(1) / D_1;
+    const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
+    const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
+    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+    const T inv_m1 = T(1) / m1;
+    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    ok &= w_1 > T(0); // effective inverse mass k > 0, finite
+    const T u_p1 = r_t1 * w_b1;
+    const T u_p2 = r_b1 * w_t1;
+    const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
+    ok &= u < T(0); // the contact points approach: u < 0
+    const T N = -(u * (T(1) + e) / w_1);
+    const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - inv_m1 * N;
+    const T o_v_b1 = v_b1;
+    const T o_w_t1 = w_t1 - g_t1 * N;
+    const T o_w_n1 = w_n1 - g_n1 * N;
+    const T o_w_b1 = w_b1 - g_b1 * N;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = T_lost;
+    ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1)))) + w_1);
+    if (!ok) // some check failed (or a value is not finite): find which
+        return detail::massive_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.v_b1 = o_v_b1;
+    out.w_t1 = o_w_t1;
+    out.w_n1 = o_w_n1;
+    out.w_b1 = o_w_b1;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
     return impact_status::ok;
 }
 
@@ -248,23 +308,23 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T w_b2 = in_w_b2[i];
         bool ok = true;
         ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
+        ok &= m1 > T(0); // mass of 1 > 0, finite
         const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
         const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
         const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
         const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-        ok &= ((D_1 > T(0)) & (detail::finite(D_1))); // determinant of the inertia tensor > 0, finite
+        ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
         const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
         const T inv_m1 = T(1) / m1;
         const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-        ok &= ((w_1 > T(0)) & (detail::finite(w_1))); // effective inverse mass k > 0, finite
+        ok &= w_1 > T(0); // effective inverse mass k > 0, finite
         const T u_p1 = r_t1 * w_b1;
         const T u_p2 = r_b1 * w_t1;
         const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
-        ok &= (u < T(0)); // the contact points approach: u < 0
+        ok &= u < T(0); // the contact points approach: u < 0
         const T N = -(u * (T(1) + e) / w_1);
         const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
         const T o_v_t1 = v_t1;
@@ -276,22 +336,22 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite((((((((((((((o_v_t1 + o_v_n1) + o_v_b1) + o_w_t1) + o_w_n1) + o_w_b1) + o_normal_impulse) + o_approach_velocity) + o_energy_lost) + r_n1) + r_n2) + v_t2) + v_b2) + w_n2));
-        out_v_t1[i] = ok ? o_v_t1 : T(0);
-        out_v_n1[i] = ok ? o_v_n1 : T(0);
-        out_v_b1[i] = ok ? o_v_b1 : T(0);
-        out_w_t1[i] = ok ? o_w_t1 : T(0);
-        out_w_n1[i] = ok ? o_w_n1 : T(0);
-        out_w_b1[i] = ok ? o_w_b1 : T(0);
-        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
-        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
-        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1)))) + w_1);
+        out_v_t1[i] = o_v_t1;
+        out_v_n1[i] = o_v_n1;
+        out_v_b1[i] = o_v_b1;
+        out_w_t1[i] = o_w_t1;
+        out_w_n1[i] = o_w_n1;
+        out_w_b1[i] = o_w_b1;
+        out_normal_impulse[i] = o_normal_impulse;
+        out_approach_velocity[i] = o_approach_velocity;
+        out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
     }
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             massive_3d_result<T> r;
-            status[i] = massive_3d(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            status[i] = detail::massive_3d_checked(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;

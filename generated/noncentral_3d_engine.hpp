@@ -48,6 +48,11 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     return (finite(x) && ... && finite(y));
 }
 } // namespace detail
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#else
+#define IMPACTGEN_COLD
+#endif
 #endif
 
 /// Post-impact state of noncentral_3d_engine (units as the inputs).
@@ -108,43 +113,11 @@ template <typename T> struct noncentral_3d_engine_result {
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
-///   e: coefficient of restitution, 0 <= e <= 1
-///   inv_m1: inverse mass 1/m of 1 (> 0)
-///   inv_I1_tt: inverse inertia tensor of 1 (world axes), tt entry
-///   inv_I1_tn: inverse inertia tensor of 1 (world axes), tn entry
-///   inv_I1_tb: inverse inertia tensor of 1 (world axes), tb entry
-///   inv_I1_nn: inverse inertia tensor of 1 (world axes), nn entry
-///   inv_I1_nb: inverse inertia tensor of 1 (world axes), nb entry
-///   inv_I1_bb: inverse inertia tensor of 1 (world axes), bb entry
-///   r_t1: centre of mass of 1, t
-///   r_n1: centre of mass of 1, n
-///   r_b1: centre of mass of 1, b
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   v_b1: velocity of the centre of mass of 1 before impact, b
-///   w_t1: angular velocity of 1 before impact, t
-///   w_n1: angular velocity of 1 before impact, n
-///   w_b1: angular velocity of 1 before impact, b
-///   inv_m2: inverse mass 1/m of 2 (> 0)
-///   inv_I2_tt: inverse inertia tensor of 2 (world axes), tt entry
-///   inv_I2_tn: inverse inertia tensor of 2 (world axes), tn entry
-///   inv_I2_tb: inverse inertia tensor of 2 (world axes), tb entry
-///   inv_I2_nn: inverse inertia tensor of 2 (world axes), nn entry
-///   inv_I2_nb: inverse inertia tensor of 2 (world axes), nb entry
-///   inv_I2_bb: inverse inertia tensor of 2 (world axes), bb entry
-///   r_t2: centre of mass of 2, t
-///   r_n2: centre of mass of 2, n
-///   r_b2: centre of mass of 2, b
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   v_b2: velocity of the centre of mass of 2 before impact, b
-///   w_t2: angular velocity of 2 before impact, t
-///   w_n2: angular velocity of 2 before impact, n
-///   w_b2: angular velocity of 2 before impact, b
+namespace detail {
+/// noncentral_3d_engine with each check right after the value it tests: the status of the
+/// inputs that fail the fast path of noncentral_3d_engine (every member of out is then zero).
 template <typename T>
-inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = noncentral_3d_engine_result<T>{};
@@ -190,6 +163,102 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
     const T check_sum = ((((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.v_t2 + out.v_n2))) + (((out.v_b2 + out.w_t2) + (out.w_n2 + out.w_b2)) + ((out.normal_impulse + out.approach_velocity) + (out.energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.v_t2, out.v_n2, out.v_b2, out.w_t2, out.w_n2, out.w_b2, out.normal_impulse, out.approach_velocity, out.energy_lost, inv_I1_nn, r_n1, inv_I2_nn, r_n2))
         return fail(impact_status::overflow);
+    return impact_status::ok;
+}
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then every member of out is zero). T: float, double, long double or alike.
+/// The checks do not branch one by one: they are folded into one flag, and only
+/// inputs that fail one of them take the slow path (detail::noncentral_3d_engine_checked) that
+/// says which check failed.
+///   e: coefficient of restitution, 0 <= e <= 1
+///   inv_m1: inverse mass 1/m of 1 (> 0)
+///   inv_I1_tt: inverse inertia tensor of 1 (world axes), tt entry
+///   inv_I1_tn: inverse inertia tensor of 1 (world axes), tn entry
+///   inv_I1_tb: inverse inertia tensor of 1 (world axes), tb entry
+///   inv_I1_nn: inverse inertia tensor of 1 (world axes), nn entry
+///   inv_I1_nb: inverse inertia tensor of 1 (world axes), nb entry
+///   inv_I1_bb: inverse inertia tensor of 1 (world axes), bb entry
+///   r_t1: centre of mass of 1, t
+///   r_n1: centre of mass of 1, n
+///   r_b1: centre of mass of 1, b
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   v_b1: velocity of the centre of mass of 1 before impact, b
+///   w_t1: angular velocity of 1 before impact, t
+///   w_n1: angular velocity of 1 before impact, n
+///   w_b1: angular velocity of 1 before impact, b
+///   inv_m2: inverse mass 1/m of 2 (> 0)
+///   inv_I2_tt: inverse inertia tensor of 2 (world axes), tt entry
+///   inv_I2_tn: inverse inertia tensor of 2 (world axes), tn entry
+///   inv_I2_tb: inverse inertia tensor of 2 (world axes), tb entry
+///   inv_I2_nn: inverse inertia tensor of 2 (world axes), nn entry
+///   inv_I2_nb: inverse inertia tensor of 2 (world axes), nb entry
+///   inv_I2_bb: inverse inertia tensor of 2 (world axes), bb entry
+///   r_t2: centre of mass of 2, t
+///   r_n2: centre of mass of 2, n
+///   r_b2: centre of mass of 2, b
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   v_b2: velocity of the centre of mass of 2 before impact, b
+///   w_t2: angular velocity of 2 before impact, t
+///   w_n2: angular velocity of 2 before impact, n
+///   w_b2: angular velocity of 2 before impact, b
+template <typename T>
+inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
+{
+    bool ok = true;
+    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+    ok &= inv_m1 > T(0); // inverse mass of 1 > 0, finite
+    ok &= inv_m2 > T(0); // inverse mass of 2 > 0, finite
+    const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
+    const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
+    const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
+    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    const T g_t2 = inv_I2_tt * r_b2 - inv_I2_tb * r_t2;
+    const T g_n2 = r_b2 * inv_I2_tn - r_t2 * inv_I2_nb;
+    const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
+    const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
+    const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
+    ok &= u < T(0); // the contact points approach: u < 0
+    const T k = w_1 + w_2;
+    ok &= k > T(0); // effective inverse mass k > 0, finite
+    const T N = -(u * (e + T(1)) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - inv_m1 * N;
+    const T o_v_b1 = v_b1;
+    const T o_w_t1 = w_t1 - g_t1 * N;
+    const T o_w_n1 = w_n1 - g_n1 * N;
+    const T o_w_b1 = w_b1 - g_b1 * N;
+    const T o_v_t2 = v_t2;
+    const T o_v_n2 = v_n2 + inv_m2 * N;
+    const T o_v_b2 = v_b2;
+    const T o_w_t2 = w_t2 + g_t2 * N;
+    const T o_w_n2 = g_n2 * N + w_n2;
+    const T o_w_b2 = w_b2 + g_b2 * N;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = T_lost;
+    ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + (((r_n1 + inv_I2_nn) + (r_n2 + inv_m1)) + (inv_m2 + k)));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return detail::noncentral_3d_engine_checked(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.v_b1 = o_v_b1;
+    out.w_t1 = o_w_t1;
+    out.w_n1 = o_w_n1;
+    out.w_b1 = o_w_b1;
+    out.v_t2 = o_v_t2;
+    out.v_n2 = o_v_n2;
+    out.v_b2 = o_v_b2;
+    out.w_t2 = o_w_t2;
+    out.w_n2 = o_w_n2;
+    out.w_b2 = o_w_b2;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
     return impact_status::ok;
 }
 
@@ -295,8 +364,8 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T w_b2 = in_w_b2[i];
         bool ok = true;
         ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= ((inv_m1 > T(0)) & (detail::finite(inv_m1))); // inverse mass of 1 > 0, finite
-        ok &= ((inv_m2 > T(0)) & (detail::finite(inv_m2))); // inverse mass of 2 > 0, finite
+        ok &= inv_m1 > T(0); // inverse mass of 1 > 0, finite
+        ok &= inv_m2 > T(0); // inverse mass of 2 > 0, finite
         const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
         const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
         const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
@@ -306,9 +375,9 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
         const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
         const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-        ok &= (u < T(0)); // the contact points approach: u < 0
+        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
+        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (e + T(1)) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T o_v_t1 = v_t1;
@@ -326,28 +395,28 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((((((((((((((((o_v_t1 + o_v_n1) + o_v_b1) + o_w_t1) + o_w_n1) + o_w_b1) + o_v_t2) + o_v_n2) + o_v_b2) + o_w_t2) + o_w_n2) + o_w_b2) + o_normal_impulse) + o_approach_velocity) + o_energy_lost) + inv_I1_nn) + r_n1) + inv_I2_nn) + r_n2));
-        out_v_t1[i] = ok ? o_v_t1 : T(0);
-        out_v_n1[i] = ok ? o_v_n1 : T(0);
-        out_v_b1[i] = ok ? o_v_b1 : T(0);
-        out_w_t1[i] = ok ? o_w_t1 : T(0);
-        out_w_n1[i] = ok ? o_w_n1 : T(0);
-        out_w_b1[i] = ok ? o_w_b1 : T(0);
-        out_v_t2[i] = ok ? o_v_t2 : T(0);
-        out_v_n2[i] = ok ? o_v_n2 : T(0);
-        out_v_b2[i] = ok ? o_v_b2 : T(0);
-        out_w_t2[i] = ok ? o_w_t2 : T(0);
-        out_w_n2[i] = ok ? o_w_n2 : T(0);
-        out_w_b2[i] = ok ? o_w_b2 : T(0);
-        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
-        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
-        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + (((r_n1 + inv_I2_nn) + (r_n2 + inv_m1)) + (inv_m2 + k)));
+        out_v_t1[i] = o_v_t1;
+        out_v_n1[i] = o_v_n1;
+        out_v_b1[i] = o_v_b1;
+        out_w_t1[i] = o_w_t1;
+        out_w_n1[i] = o_w_n1;
+        out_w_b1[i] = o_w_b1;
+        out_v_t2[i] = o_v_t2;
+        out_v_n2[i] = o_v_n2;
+        out_v_b2[i] = o_v_b2;
+        out_w_t2[i] = o_w_t2;
+        out_w_n2[i] = o_w_n2;
+        out_w_b2[i] = o_w_b2;
+        out_normal_impulse[i] = o_normal_impulse;
+        out_approach_velocity[i] = o_approach_velocity;
+        out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
     }
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             noncentral_3d_engine_result<T> r;
-            status[i] = noncentral_3d_engine(in_e[i], in_inv_m1[i], in_inv_I1_tt[i], in_inv_I1_tn[i], in_inv_I1_tb[i], in_inv_I1_nn[i], in_inv_I1_nb[i], in_inv_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2_tt[i], in_inv_I2_tn[i], in_inv_I2_tb[i], in_inv_I2_nn[i], in_inv_I2_nb[i], in_inv_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            status[i] = detail::noncentral_3d_engine_checked(in_e[i], in_inv_m1[i], in_inv_I1_tt[i], in_inv_I1_tn[i], in_inv_I1_tb[i], in_inv_I1_nn[i], in_inv_I1_nb[i], in_inv_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2_tt[i], in_inv_I2_tn[i], in_inv_I2_tb[i], in_inv_I2_nn[i], in_inv_I2_nb[i], in_inv_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;

@@ -48,6 +48,11 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     return (finite(x) && ... && finite(y));
 }
 } // namespace detail
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#else
+#define IMPACTGEN_COLD
+#endif
 #endif
 
 /// Post-impact state of pinned_planar (units as the inputs).
@@ -91,15 +96,11 @@ template <typename T> struct pinned_planar_result {
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   l: appears in r_y1, I2, r_y2, O_y
-///   v1: velocity of the centre of mass of 1 before impact, x
-///   m2: mass of 2 (> 0)
+namespace detail {
+/// pinned_planar with each check right after the value it tests: the status of the
+/// inputs that fail the fast path of pinned_planar (every member of out is then zero).
 template <typename T>
-inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = pinned_planar_result<T>{};
@@ -145,6 +146,66 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
         return fail(impact_status::overflow);
     return impact_status::ok;
 }
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then every member of out is zero). T: float, double, long double or alike.
+/// The checks do not branch one by one: they are folded into one flag, and only
+/// inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
+/// says which check failed.
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   l: appears in r_y1, I2, r_y2, O_y
+///   v1: velocity of the centre of mass of 1 before impact, x
+///   m2: mass of 2 (> 0)
+template <typename T>
+inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+{
+    bool ok = true;
+    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
+    ok &= m1 > T(0); // mass of 1 > 0, finite
+    ok &= m2 > T(0); // mass of 2 > 0, finite
+    const T w_1 = T(1) / m1;
+    const T I_E2_p1 = l * l;
+    const T I_E2_p2 = I_E2_p1 * m2;
+    const T I_E2 = I_E2_p2 * (T(1) / T(3));
+    const T inv_I_E2 = T(1) / I_E2;
+    const T w_2 = I_E2_p1 * inv_I_E2;
+    const T u = -v1;
+    ok &= u < T(0); // the contact points approach: u < 0
+    const T k = w_1 + w_2;
+    ok &= k > T(0); // effective inverse mass k > 0, finite
+    const T N = -(u * (T(1) + e) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T v_x2_p1 = l * N;
+    const T v_x2_p2 = l * v_x2_p1;
+    const T check_p1 = I_E2_p2 * (T(1) / T(12));
+    ok &= check_p1 > T(0); // moment of inertia of 2 > 0, finite
+    const T o_v_x1 = v1 - w_1 * N;
+    const T o_v_y1 = T(0);
+    const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
+    const T o_v_y2 = T(0);
+    const T o_w_z2 = inv_I_E2 * v_x2_p1;
+    const T o_normal_impulse = N;
+    const T o_R_x2 = (T(1) / T(2)) * inv_I_E2 * m2 * v_x2_p2 - N;
+    const T o_R_y2 = T(0);
+    const T o_approach_velocity = u;
+    const T o_energy_lost = T_lost;
+    ok &= detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + ((m2 + k) + check_p1));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return detail::pinned_planar_checked(e, m1, l, v1, m2, out);
+    out.v_x1 = o_v_x1;
+    out.v_y1 = o_v_y1;
+    out.v_x2 = o_v_x2;
+    out.v_y2 = o_v_y2;
+    out.w_z2 = o_w_z2;
+    out.normal_impulse = o_normal_impulse;
+    out.R_x2 = o_R_x2;
+    out.R_y2 = o_R_y2;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
 
 /// The same with the inputs in an array, in the order of pinned_planar_input_names.
 template <typename T>
@@ -187,8 +248,8 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T m2 = in_m2[i];
         bool ok = true;
         ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= ((m1 > T(0)) & (detail::finite(m1))); // mass of 1 > 0, finite
-        ok &= ((m2 > T(0)) & (detail::finite(m2))); // mass of 2 > 0, finite
+        ok &= m1 > T(0); // mass of 1 > 0, finite
+        ok &= m2 > T(0); // mass of 2 > 0, finite
         const T w_1 = T(1) / m1;
         const T I_E2_p1 = l * l;
         const T I_E2_p2 = I_E2_p1 * m2;
@@ -196,15 +257,15 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T inv_I_E2 = T(1) / I_E2;
         const T w_2 = I_E2_p1 * inv_I_E2;
         const T u = -v1;
-        ok &= (u < T(0)); // the contact points approach: u < 0
+        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= ((k > T(0)) & (detail::finite(k))); // effective inverse mass k > 0, finite
+        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T v_x2_p1 = l * N;
         const T v_x2_p2 = l * v_x2_p1;
         const T check_p1 = I_E2_p2 * (T(1) / T(12));
-        ok &= ((check_p1 > T(0)) & (detail::finite(check_p1))); // moment of inertia of 2 > 0, finite
+        ok &= check_p1 > T(0); // moment of inertia of 2 > 0, finite
         const T o_v_x1 = v1 - w_1 * N;
         const T o_v_y1 = T(0);
         const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -215,23 +276,23 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_R_y2 = T(0);
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((((o_v_x1 + o_v_x2) + o_w_z2) + o_normal_impulse) + o_R_x2) + o_approach_velocity) + o_energy_lost));
-        out_v_x1[i] = ok ? o_v_x1 : T(0);
-        out_v_y1[i] = ok ? o_v_y1 : T(0);
-        out_v_x2[i] = ok ? o_v_x2 : T(0);
-        out_v_y2[i] = ok ? o_v_y2 : T(0);
-        out_w_z2[i] = ok ? o_w_z2 : T(0);
-        out_normal_impulse[i] = ok ? o_normal_impulse : T(0);
-        out_R_x2[i] = ok ? o_R_x2 : T(0);
-        out_R_y2[i] = ok ? o_R_y2 : T(0);
-        out_approach_velocity[i] = ok ? o_approach_velocity : T(0);
-        out_energy_lost[i] = ok ? o_energy_lost : T(0);
+        ok &= detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + ((m2 + k) + check_p1));
+        out_v_x1[i] = o_v_x1;
+        out_v_y1[i] = o_v_y1;
+        out_v_x2[i] = o_v_x2;
+        out_v_y2[i] = o_v_y2;
+        out_w_z2[i] = o_w_z2;
+        out_normal_impulse[i] = o_normal_impulse;
+        out_R_x2[i] = o_R_x2;
+        out_R_y2[i] = o_R_y2;
+        out_approach_velocity[i] = o_approach_velocity;
+        out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
     }
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             pinned_planar_result<T> r;
-            status[i] = pinned_planar(in_e[i], in_m1[i], in_l[i], in_v1[i], in_m2[i], r);
+            status[i] = detail::pinned_planar_checked(in_e[i], in_m1[i], in_l[i], in_v1[i], in_m2[i], r);
             out_v_x1[i] = r.v_x1;
             out_v_y1[i] = r.v_y1;
             out_v_x2[i] = r.v_x2;

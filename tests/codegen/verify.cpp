@@ -18,6 +18,7 @@
 #include "massive_3d.hpp"
 #include "noncentral_3d.hpp"
 #include "noncentral_3d_engine.hpp"
+#include "planar_engine.hpp"
 #include "pinned_3d.hpp"
 #include "pinned_planar.hpp"
 #include "pinned_planar_set.hpp"
@@ -327,6 +328,13 @@ private:
             for (std::size_t i = 0; i < roles_.size(); ++i)
                 if (roles_[i].kind == inv_inertia && roles_[i].body == b)
                     idx.push_back(i);
+            if (idx.size() == 1) { // planar: the inverse of a scalar moment of inertia
+                if constexpr (std::is_same_v<V, numeric>)
+                    values[roles_[idx[0]].sym] = numeric(1) / exact(in[idx[0]]);
+                else
+                    values[roles_[idx[0]].sym] = V(1) / in[idx[0]];
+                continue;
+            }
             if constexpr (std::is_same_v<V, numeric>) {
                 matrix Km(3, 3);
                 for (std::size_t i : idx) {
@@ -553,6 +561,7 @@ TEST(CodegenVerify, Noncentral3d) { verify({"noncentral-3d", opts(), GEN_FUNCS(n
 TEST(CodegenVerify, Noncentral3dEngineConvention) { verify({"noncentral-3d", opts("", "", true), GEN_FUNCS(noncentral_3d_engine)}); }
 TEST(CodegenVerify, Massive3d) { verify({"massive-3d", opts(), GEN_FUNCS(massive_3d)}); }
 TEST(CodegenVerify, Planar) { verify({"planar", opts(), GEN_FUNCS(planar)}); }
+TEST(CodegenVerify, PlanarEngineConvention) { verify({"planar", opts("", "", true), GEN_FUNCS(planar_engine)}); }
 TEST(CodegenVerify, PinnedPlanar) { verify({"pinned-planar", opts(), GEN_FUNCS(pinned_planar)}); }
 TEST(CodegenVerify, PinnedPlanarSpecialised) { verify({"pinned-planar", opts("m1,m2,v1", "e=0.9,l=1/2"), GEN_FUNCS(pinned_planar_set)}); }
 TEST(CodegenVerify, WallOblique3d) { verify({"wall-oblique-3d.json", opts(), GEN_FUNCS(wall_oblique_3d)}); }
