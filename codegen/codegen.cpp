@@ -564,7 +564,11 @@ header generate(const problem& p, const options& o)
       << " add (finiteness of the result), and comparisons.\n";
     h << "#pragma once\n\n";
     if (em.uses_sqrt)
-        h << "#include <cmath>\n\n";
+        h << "#include <cmath>\n";
+    if (!batch.normal_terms.empty())
+        h << "#include <limits>\n";
+    if (em.uses_sqrt || !batch.normal_terms.empty())
+        h << "\n";
     std::string guard = "IMPACTGEN_GENERATED_COMMON_";
     for (char c : o.ns)
         guard += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
@@ -607,6 +611,12 @@ template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0)
 template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
+}
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
 #if defined(__GNUC__)
@@ -669,6 +679,32 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
         if (std::find(fast_terms.begin(), fast_terms.end(), x) == fast_terms.end())
             fast_terms.push_back(x);
 
+    // Every check of the branchless form in one flag: signs through a min (which may drop a
+    // NaN: every value in a min is also in the sum), finiteness through one sum.
+    auto ok_flag = [&](const std::string& ind) {
+        std::vector<std::string> parts;
+        auto min_of = [](const std::vector<std::string>& v) {
+            return v.size() == 1 ? v[0] : "detail::min_of(" + join(v, ", ") + ")";
+        };
+        if (!batch.positive_terms.empty())
+            parts.push_back("(" + min_of(batch.positive_terms) + " > T(0))");
+        if (!batch.nonneg_terms.empty())
+            parts.push_back("(" + min_of(batch.nonneg_terms) + " >= T(0))");
+        if (!batch.normal_terms.empty())
+            parts.push_back("(" + min_of(batch.normal_terms) + " >= std::numeric_limits<T>::min())");
+        if (!fast_terms.empty())
+            parts.push_back("detail::finite(" + balanced_sum(fast_terms) + ")");
+        std::string text;
+        if (!batch.check_comments.empty() || !batch.normal_terms.empty()) {
+            std::string what = join(batch.check_comments, "; ");
+            if (!batch.normal_terms.empty())
+                what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
+            text += ind + "// checks: " + what + "; every value finite\n";
+        }
+        text += ind + "const bool ok = " + (parts.empty() ? std::string("true") : join(parts, " &\n" + ind + "                ")) + ";\n";
+        return text;
+    };
+
     // The checked version: each check right after the value it tests, with its own status.
     std::string params;
     for (const std::string& nm : input_names)
@@ -705,10 +741,8 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
-    h << "    bool ok = true;\n";
     h << batch.code;
-    if (!fast_terms.empty())
-        h << "    ok &= detail::finite(" << balanced_sum(fast_terms) << ");\n";
+    h << ok_flag("    ");
     h << "    if (!ok) // some check failed (or a value is not finite): find which\n";
     h << "        return detail::" << checked << "(";
     for (const std::string& nm : input_names)
@@ -744,15 +778,12 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
     h << "    for (long i = 0; i < n; ++i) {\n";
     for (const std::string& nm : input_names)
         h << "        const T " << nm << " = in_" << nm << "[i];\n";
-    h << "        bool ok = true;\n";
     {
-        std::istringstream lines(batch.code);
+        std::istringstream lines(batch.code + ok_flag("    "));
         std::string line;
         while (std::getline(lines, line))
             h << "    " << line << "\n";
     }
-    if (!fast_terms.empty())
-        h << "        ok &= detail::finite(" << balanced_sum(fast_terms) << ");\n";
     // Stored unconditionally: the second pass overwrites the outputs of failed impacts.
     for (const output_value& ov : pl.outputs)
         h << "        out_" << ov.field << "[i] = o_" << ov.field << ";\n";

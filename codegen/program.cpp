@@ -386,6 +386,48 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
         }
     }
 
+    // Values whose finiteness follows from the finiteness of the outputs: an operand of
+    // +, -, *, negation, sqrt, or the numerator of /, is finite when the result is
+    // (inf and NaN propagate); a denominator is not (1/inf = 0).
+    std::vector<bool> covered(n, false);
+    for (auto& o : outputs)
+        stack.push_back(o.second);
+    while (!stack.empty()) {
+        int id = stack.back();
+        stack.pop_back();
+        if (covered[static_cast<std::size_t>(id)])
+            continue;
+        covered[static_cast<std::size_t>(id)] = true;
+        const op& o = prog.at(id);
+        if (o.a >= 0)
+            stack.push_back(o.a);
+        if (o.b >= 0 && o.kind != op::div)
+            stack.push_back(o.b);
+    }
+
+    // Branchless: reciprocals of inputs share divisions, up to four per division
+    // (1/a = b / (a b)); the products must be normal numbers (else the flag fails
+    // and the checked version computes the impact with a division each).
+    std::map<int, std::vector<int>> group_at; // first member -> members
+    std::set<int> grouped;
+    if (branchless) {
+        std::vector<int> recips;
+        for (std::size_t i = 0; i < n; ++i) {
+            const op& o = prog.at(static_cast<int>(i));
+            if (materialised[i] && o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1 &&
+                prog.at(o.b).kind == op::input &&
+                std::any_of(checks.begin(), checks.end(), [&](const check& c) { return c.op_id == o.b && c.kind == check::positive; }))
+                recips.push_back(static_cast<int>(i)); // of an input that must be > 0 (mass, inertia)
+        }
+        for (std::size_t g = 0; g + 1 < recips.size(); g += 4) {
+            std::vector<int> members(recips.begin() + static_cast<long>(g),
+                                     recips.begin() + static_cast<long>(std::min(g + 4, recips.size())));
+            group_at[members[0]] = members;
+            grouped.insert(members.begin(), members.end());
+            for (int id : members) // the product of the denominators is in the sum
+                covered[static_cast<std::size_t>(prog.at(id).b)] = true;
+        }
+    }
     emitted out;
     printer pr{prog, materialised, refs, var, &out.formula};
     std::string& code = out.code;
@@ -405,13 +447,24 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             case check::negative: cond = x + " < T(0)"; break;
             }
             if (branchless) {
-                // The finiteness half of a positive check joins the one finiteness test of the results.
-                if (c.kind == check::positive) {
-                    cond = x + " > T(0)";
-                    if (std::find(out.finite_terms.begin(), out.finite_terms.end(), x) == out.finite_terms.end())
-                        out.finite_terms.push_back(x);
+                // Folded into the one flag (codegen writes it from these lists): the
+                // signs through a min, the finiteness through one sum.
+                auto add = [](std::vector<std::string>& v, const std::string& t) {
+                    if (std::find(v.begin(), v.end(), t) == v.end())
+                        v.push_back(t);
+                };
+                switch (c.kind) {
+                case check::positive: add(out.positive_terms, x); break;
+                case check::negative: add(out.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x)); break;
+                case check::unit_interval:
+                    add(out.nonneg_terms, x);
+                    add(out.nonneg_terms, "T(1) - " + (p < 2 ? "(" + x + ")" : x));
+                    break;
                 }
-                code += "    ok &= " + (c.kind == check::unit_interval ? "(" + cond + ")" : cond) + "; // " + c.comment + "\n";
+                // (unless the finiteness of the outputs implies it)
+                if (!covered[static_cast<std::size_t>(id)])
+                    add(out.finite_terms, x);
+                out.check_comments.push_back(c.comment);
                 continue;
             }
             code += "    if (!(" + cond + ")) // " + c.comment + "\n";
@@ -422,10 +475,77 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
     for (const check& c : checks)
         if (prog.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
             emit_checks(c.op_id);
+    auto fresh = [&](const std::string& base) {
+        std::string nm = base;
+        while (used_names.count(nm))
+            nm += "_";
+        used_names.insert(nm);
+        return nm;
+    };
+    auto emit_group = [&](const std::vector<int>& members) {
+        auto den = [&](int id) { return prog.at(prog.at(id).b).name; };
+        std::string list;
+        for (int id : members)
+            list += (list.empty() ? "" : ", ") + ("1/" + den(id));
+        code += "    // one division for " + list + "\n";
+        // pairs (a, b) -> q = a b; then r = 1 / (q_1 q_2), s_1 = q_2 r = 1/q_1, s_2 = q_1 r = 1/q_2
+        std::vector<std::vector<int>> pairs;
+        for (std::size_t j = 0; j < members.size(); j += 2)
+            pairs.push_back(std::vector<int>(members.begin() + static_cast<long>(j),
+                                             members.begin() + static_cast<long>(std::min(j + 2, members.size()))));
+        std::vector<std::string> q;
+        for (const auto& pr_ : pairs) {
+            if (pr_.size() == 1) {
+                q.push_back(den(pr_[0]));
+                continue;
+            }
+            std::string nm = fresh("rcp_q" + std::to_string(q.size() + 1));
+            code += "    const T " + nm + " = " + den(pr_[0]) + " * " + den(pr_[1]) + ";\n";
+            ++out.formula.mul;
+            out.normal_terms.push_back(nm);
+            q.push_back(nm);
+        }
+        std::vector<std::string> s_;
+        if (q.size() == 1) {
+            std::string r = fresh("rcp_r");
+            code += "    const T " + r + " = T(1) / " + q[0] + ";\n";
+            ++out.formula.div;
+            out.finite_terms.push_back(q[0]);
+            s_.push_back(r);
+        } else {
+            std::string pq = fresh("rcp_p"), r = fresh("rcp_r"), s1 = fresh("rcp_s1"), s2 = fresh("rcp_s2");
+            code += "    const T " + pq + " = " + q[0] + " * " + q[1] + ";\n";
+            code += "    const T " + r + " = T(1) / " + pq + ";\n";
+            code += "    const T " + s1 + " = " + q[1] + " * " + r + "; // 1/" + q[0] + "\n";
+            code += "    const T " + s2 + " = " + q[0] + " * " + r + "; // 1/" + q[1] + "\n";
+            out.formula.mul += 3;
+            ++out.formula.div;
+            out.normal_terms.push_back(pq);
+            out.finite_terms.push_back(pq);
+            s_ = {s1, s2};
+        }
+        for (std::size_t j = 0; j < pairs.size(); ++j) {
+            if (pairs[j].size() == 1) {
+                code += "    const T " + var[pairs[j][0]] + " = " + s_[j] + ";\n";
+                continue;
+            }
+            code += "    const T " + var[pairs[j][0]] + " = " + den(pairs[j][1]) + " * " + s_[j] + ";\n";
+            code += "    const T " + var[pairs[j][1]] + " = " + den(pairs[j][0]) + " * " + s_[j] + ";\n";
+            out.formula.mul += 2;
+        }
+        for (int id : members)
+            emit_checks(id);
+    };
     for (std::size_t i = 0; i < n; ++i) {
         if (!materialised[i])
             continue;
         int p;
+        if (group_at.count(static_cast<int>(i))) {
+            emit_group(group_at[static_cast<int>(i)]);
+            continue;
+        }
+        if (grouped.count(static_cast<int>(i)))
+            continue;
         code += "    const T " + var[static_cast<int>(i)] + " = " + pr.text(static_cast<int>(i), p, true) + ";\n";
         emit_checks(static_cast<int>(i));
         if (prog.at(static_cast<int>(i)).kind == op::sqrt_)

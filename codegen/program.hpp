@@ -72,7 +72,12 @@ struct emitted {
     op_counts formula;    ///< arithmetic of the closed form
     op_counts checks;     ///< arithmetic spent on validity checks
     bool uses_sqrt = false;
-    std::vector<std::string> finite_terms; ///< branchless: values whose finiteness the caller tests (in one sum)
+    // Branchless: the checks, for the caller to fold into one flag.
+    std::vector<std::string> finite_terms;   ///< values that must be finite (tested in one sum)
+    std::vector<std::string> positive_terms; ///< values that must be > 0 (their min)
+    std::vector<std::string> nonneg_terms;   ///< values that must be >= 0 (their min)
+    std::vector<std::string> normal_terms;   ///< products that must be normal numbers (shared reciprocals)
+    std::vector<std::string> check_comments; ///< what the checks mean, in order
 };
 
 /// Emits straight-line C++ for the outputs (field name, op) with the checks

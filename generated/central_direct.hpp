@@ -5,6 +5,8 @@
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons.
 #pragma once
 
+#include <limits>
+
 namespace impactgen::generated {
 
 #ifndef IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
@@ -46,6 +48,12 @@ template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0)
 template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
+}
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
 #if defined(__GNUC__)
@@ -144,16 +152,13 @@ IMPACTGEN_COLD inline impact_status central_direct_checked(T e, T m1, T R1, T v_
 template <typename T>
 inline impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2, central_direct_result<T>& out) noexcept
 {
-    bool ok = true;
-    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-    ok &= m1 > T(0); // mass of 1 > 0, finite
-    ok &= m2 > T(0); // mass of 2 > 0, finite
-    const T w_1 = T(1) / m1;
-    const T w_2 = T(1) / m2;
+    // one division for 1/m1, 1/m2
+    const T rcp_q1 = m1 * m2;
+    const T rcp_r = T(1) / rcp_q1;
+    const T w_1 = m2 * rcp_r;
+    const T w_2 = m1 * rcp_r;
     const T u = v_n2 - v_n1;
-    ok &= u < T(0); // the contact points approach: u < 0
     const T k = w_1 + w_2;
-    ok &= k > T(0); // effective inverse mass k > 0, finite
     const T N = -(u * (T(1) + e) / k);
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T o_v_t1 = T(0);
@@ -163,7 +168,11 @@ inline impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2,
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
-    ok &= detail::finite((((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + (R2 + m1))) + (m2 + k));
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
+    const bool ok = (detail::min_of(m1, m2, -u, k) > T(0)) &
+                    (detail::min_of(e, T(1) - e) >= T(0)) &
+                    (rcp_q1 >= std::numeric_limits<T>::min()) &
+                    detail::finite(((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + (R2 + rcp_q1)));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::central_direct_checked(e, m1, R1, v_n1, m2, R2, v_n2, out);
     out.v_t1 = o_v_t1;
@@ -216,16 +225,13 @@ inline void central_direct_batch(long n, const T* const* in, T* const* out, impa
         const T m2 = in_m2[i];
         const T R2 = in_R2[i];
         const T v_n2 = in_v_n2[i];
-        bool ok = true;
-        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= m1 > T(0); // mass of 1 > 0, finite
-        ok &= m2 > T(0); // mass of 2 > 0, finite
-        const T w_1 = T(1) / m1;
-        const T w_2 = T(1) / m2;
+        // one division for 1/m1, 1/m2
+        const T rcp_q1 = m1 * m2;
+        const T rcp_r = T(1) / rcp_q1;
+        const T w_1 = m2 * rcp_r;
+        const T w_2 = m1 * rcp_r;
         const T u = v_n2 - v_n1;
-        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T o_v_t1 = T(0);
@@ -235,7 +241,11 @@ inline void central_direct_batch(long n, const T* const* in, T* const* out, impa
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite((((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + (R2 + m1))) + (m2 + k));
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
+        const bool ok = (detail::min_of(m1, m2, -u, k) > T(0)) &
+                        (detail::min_of(e, T(1) - e) >= T(0)) &
+                        (rcp_q1 >= std::numeric_limits<T>::min()) &
+                        detail::finite(((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + (R2 + rcp_q1)));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_t2[i] = o_v_t2;

@@ -47,6 +47,12 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
 {
     return (finite(x) && ... && finite(y));
 }
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
+}
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
@@ -181,25 +187,19 @@ IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_
 template <typename T>
 inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
-    bool ok = true;
-    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-    ok &= m1 > T(0); // mass of 1 > 0, finite
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
     const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
     const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
     const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-    ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
     const T inv_D_1 = T(1) / D_1;
     const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
     const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
     const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
     const T inv_m1 = T(1) / m1;
     const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-    ok &= w_1 > T(0); // effective inverse mass k > 0, finite
     const T u_p1 = r_t1 * w_b1;
     const T u_p2 = r_b1 * w_t1;
     const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
-    ok &= u < T(0); // the contact points approach: u < 0
     const T N = -(u * (T(1) + e) / w_1);
     const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
     const T o_v_t1 = v_t1;
@@ -211,7 +211,10 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
-    ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1)))) + w_1);
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
+    const bool ok = (detail::min_of(m1, D_1, w_1, -u) > T(0)) &
+                    (detail::min_of(e, T(1) - e) >= T(0)) &
+                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1))));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::massive_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -306,25 +309,19 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T w_t2 = in_w_t2[i];
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
-        bool ok = true;
-        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= m1 > T(0); // mass of 1 > 0, finite
         const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
         const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
         const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
         const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-        ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
         const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
         const T inv_m1 = T(1) / m1;
         const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-        ok &= w_1 > T(0); // effective inverse mass k > 0, finite
         const T u_p1 = r_t1 * w_b1;
         const T u_p2 = r_b1 * w_t1;
         const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
-        ok &= u < T(0); // the contact points approach: u < 0
         const T N = -(u * (T(1) + e) / w_1);
         const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
         const T o_v_t1 = v_t1;
@@ -336,7 +333,10 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1)))) + w_1);
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
+        const bool ok = (detail::min_of(m1, D_1, w_1, -u) > T(0)) &
+                        (detail::min_of(e, T(1) - e) >= T(0)) &
+                        detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1))));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

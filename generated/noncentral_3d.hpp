@@ -5,6 +5,8 @@
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons.
 #pragma once
 
+#include <limits>
+
 namespace impactgen::generated {
 
 #ifndef IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
@@ -46,6 +48,12 @@ template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0)
 template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
+}
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
 #if defined(__GNUC__)
@@ -226,36 +234,31 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_checked(T e, T m1, T I1_tt, T 
 template <typename T>
 inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
 {
-    bool ok = true;
-    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-    ok &= m1 > T(0); // mass of 1 > 0, finite
-    ok &= m2 > T(0); // mass of 2 > 0, finite
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
     const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
     const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
     const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-    ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
     const T inv_D_1 = T(1) / D_1;
     const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
     const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
     const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
-    const T inv_m1 = T(1) / m1;
+    // one division for 1/m1, 1/m2
+    const T rcp_q1 = m1 * m2;
+    const T rcp_r = T(1) / rcp_q1;
+    const T inv_m1 = m2 * rcp_r;
+    const T inv_m2 = m1 * rcp_r;
     const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
     const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
     const T D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb;
     const T D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb;
     const T D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3;
-    ok &= D_2 > T(0); // determinant of the inertia tensor > 0, finite
     const T inv_D_2 = T(1) / D_2;
     const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
     const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
     const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn));
-    const T inv_m2 = T(1) / m2;
     const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
     const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-    ok &= u < T(0); // the contact points approach: u < 0
     const T k = w_1 + w_2;
-    ok &= k > T(0); // effective inverse mass k > 0, finite
     const T N = -(u * (T(1) + e) / k);
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T o_v_t1 = v_t1;
@@ -273,7 +276,11 @@ inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
-    ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (((r_n2 + m1) + (m2 + D_1)) + (D_2 + k)));
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
+    const bool ok = (detail::min_of(m1, m2, D_1, D_2, -u, k) > T(0)) &
+                    (detail::min_of(e, T(1) - e) >= T(0)) &
+                    (rcp_q1 >= std::numeric_limits<T>::min()) &
+                    detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + ((r_n2 + D_1) + (rcp_q1 + D_2)));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -394,36 +401,31 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T w_t2 = in_w_t2[i];
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
-        bool ok = true;
-        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= m1 > T(0); // mass of 1 > 0, finite
-        ok &= m2 > T(0); // mass of 2 > 0, finite
         const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
         const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
         const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
         const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-        ok &= D_1 > T(0); // determinant of the inertia tensor > 0, finite
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
         const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
-        const T inv_m1 = T(1) / m1;
+        // one division for 1/m1, 1/m2
+        const T rcp_q1 = m1 * m2;
+        const T rcp_r = T(1) / rcp_q1;
+        const T inv_m1 = m2 * rcp_r;
+        const T inv_m2 = m1 * rcp_r;
         const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
         const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
         const T D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb;
         const T D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb;
         const T D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3;
-        ok &= D_2 > T(0); // determinant of the inertia tensor > 0, finite
         const T inv_D_2 = T(1) / D_2;
         const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
         const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
         const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn));
-        const T inv_m2 = T(1) / m2;
         const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
         const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T o_v_t1 = v_t1;
@@ -441,7 +443,11 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (((r_n2 + m1) + (m2 + D_1)) + (D_2 + k)));
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
+        const bool ok = (detail::min_of(m1, m2, D_1, D_2, -u, k) > T(0)) &
+                        (detail::min_of(e, T(1) - e) >= T(0)) &
+                        (rcp_q1 >= std::numeric_limits<T>::min()) &
+                        detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + ((r_n2 + D_1) + (rcp_q1 + D_2)));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

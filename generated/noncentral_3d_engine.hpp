@@ -47,6 +47,12 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
 {
     return (finite(x) && ... && finite(y));
 }
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
+}
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
@@ -208,10 +214,6 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
 template <typename T>
 inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
-    bool ok = true;
-    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-    ok &= inv_m1 > T(0); // inverse mass of 1 > 0, finite
-    ok &= inv_m2 > T(0); // inverse mass of 2 > 0, finite
     const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
     const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
     const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
@@ -221,9 +223,7 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
     const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
     const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
     const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-    ok &= u < T(0); // the contact points approach: u < 0
     const T k = w_1 + w_2;
-    ok &= k > T(0); // effective inverse mass k > 0, finite
     const T N = -(u * (e + T(1)) / k);
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T o_v_t1 = v_t1;
@@ -241,7 +241,10 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
-    ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + (((r_n1 + inv_I2_nn) + (r_n2 + inv_m1)) + (inv_m2 + k)));
+    // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
+                    (detail::min_of(e, T(1) - e) >= T(0)) &
+                    detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_engine_checked(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -362,10 +365,6 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T w_t2 = in_w_t2[i];
         const T w_n2 = in_w_n2[i];
         const T w_b2 = in_w_b2[i];
-        bool ok = true;
-        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= inv_m1 > T(0); // inverse mass of 1 > 0, finite
-        ok &= inv_m2 > T(0); // inverse mass of 2 > 0, finite
         const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
         const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
         const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
@@ -375,9 +374,7 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
         const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
         const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (e + T(1)) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T o_v_t1 = v_t1;
@@ -395,7 +392,10 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + (((r_n1 + inv_I2_nn) + (r_n2 + inv_m1)) + (inv_m2 + k)));
+        // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+        const bool ok = (detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
+                        (detail::min_of(e, T(1) - e) >= T(0)) &
+                        detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

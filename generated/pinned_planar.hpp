@@ -47,6 +47,12 @@ template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noex
 {
     return (finite(x) && ... && finite(y));
 }
+template <typename T> constexpr T min_of(T x) noexcept { return x; }
+/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
+template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+{
+    return min_of(y < x ? y : x, z...);
+}
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
@@ -161,10 +167,6 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
 template <typename T>
 inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
-    bool ok = true;
-    ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-    ok &= m1 > T(0); // mass of 1 > 0, finite
-    ok &= m2 > T(0); // mass of 2 > 0, finite
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
     const T I_E2_p2 = I_E2_p1 * m2;
@@ -172,15 +174,12 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
     const T inv_I_E2 = T(1) / I_E2;
     const T w_2 = I_E2_p1 * inv_I_E2;
     const T u = -v1;
-    ok &= u < T(0); // the contact points approach: u < 0
     const T k = w_1 + w_2;
-    ok &= k > T(0); // effective inverse mass k > 0, finite
     const T N = -(u * (T(1) + e) / k);
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T v_x2_p1 = l * N;
     const T v_x2_p2 = l * v_x2_p1;
     const T check_p1 = I_E2_p2 * (T(1) / T(12));
-    ok &= check_p1 > T(0); // moment of inertia of 2 > 0, finite
     const T o_v_x1 = v1 - w_1 * N;
     const T o_v_y1 = T(0);
     const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -191,7 +190,10 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
     const T o_R_y2 = T(0);
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
-    ok &= detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + ((m2 + k) + check_p1));
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
+    const bool ok = (detail::min_of(m1, m2, -u, k, check_p1) > T(0)) &
+                    (detail::min_of(e, T(1) - e) >= T(0)) &
+                    detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + check_p1);
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -246,10 +248,6 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T l = in_l[i];
         const T v1 = in_v1[i];
         const T m2 = in_m2[i];
-        bool ok = true;
-        ok &= ((e >= T(0)) & (e <= T(1))); // 0 <= e <= 1
-        ok &= m1 > T(0); // mass of 1 > 0, finite
-        ok &= m2 > T(0); // mass of 2 > 0, finite
         const T w_1 = T(1) / m1;
         const T I_E2_p1 = l * l;
         const T I_E2_p2 = I_E2_p1 * m2;
@@ -257,15 +255,12 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T inv_I_E2 = T(1) / I_E2;
         const T w_2 = I_E2_p1 * inv_I_E2;
         const T u = -v1;
-        ok &= u < T(0); // the contact points approach: u < 0
         const T k = w_1 + w_2;
-        ok &= k > T(0); // effective inverse mass k > 0, finite
         const T N = -(u * (T(1) + e) / k);
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T v_x2_p1 = l * N;
         const T v_x2_p2 = l * v_x2_p1;
         const T check_p1 = I_E2_p2 * (T(1) / T(12));
-        ok &= check_p1 > T(0); // moment of inertia of 2 > 0, finite
         const T o_v_x1 = v1 - w_1 * N;
         const T o_v_y1 = T(0);
         const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -276,7 +271,10 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_R_y2 = T(0);
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
-        ok &= detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + ((m2 + k) + check_p1));
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
+        const bool ok = (detail::min_of(m1, m2, -u, k, check_p1) > T(0)) &
+                        (detail::min_of(e, T(1) - e) >= T(0)) &
+                        detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + check_p1);
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;
