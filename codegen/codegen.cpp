@@ -35,7 +35,7 @@ std::string sfx(const std::string& label) { return label.size() == 1 ? label : "
 const std::set<std::string>& reserved()
 {
     static const std::set<std::string> r = {
-        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
+        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "failed", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
         "case", "char", "const", "continue", "default", "delete", "do", "double", "else", "enum", "false", "float",
         "for", "if", "inline", "int", "long", "namespace", "new", "return", "short", "signed", "sizeof", "static",
         "struct", "switch", "template", "this", "true", "typename", "union", "unsigned", "void", "while"};
@@ -765,8 +765,8 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// The same over n impacts in structure-of-arrays form: in[j][i] is input j\n";
     h << "/// (order of " << o.name << "_input_names) of impact i, out[j][i] output j. The arrays\n";
     h << "/// must not overlap. A first pass computes every impact without branches (it\n";
-    h << "/// vectorises); a second pass redoes the impacts that failed a check one by one\n";
-    h << "/// for their status (their outputs are zero).\n";
+    h << "/// vectorises); if any impact failed a check, a second pass redoes those one by\n";
+    h << "/// one for their status (their outputs are zero).\n";
     h << "template <typename T>\ninline void " << o.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
     if (input_names.empty())
         h << "    (void)in;\n";
@@ -774,6 +774,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         h << "    const T* const in_" << input_names[j] << " = in[" << j << "];\n";
     for (std::size_t j = 0; j < pl.outputs.size(); ++j)
         h << "    T* const out_" << pl.outputs[j].field << " = out[" << j << "];\n";
+    h << "    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)\n";
     h << "#if defined(__GNUC__) && !defined(__clang__)\n#pragma GCC ivdep\n#endif\n";
     h << "    for (long i = 0; i < n; ++i) {\n";
     for (const std::string& nm : input_names)
@@ -788,7 +789,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     for (const output_value& ov : pl.outputs)
         h << "        out_" << ov.field << "[i] = o_" << ov.field << ";\n";
     h << "        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
+    h << "        failed |= static_cast<unsigned>(!ok);\n";
     h << "    }\n";
+    h << "    if (failed == 0)\n";
+    h << "        return;\n";
     h << "    for (long i = 0; i < n; ++i)\n";
     h << "        if (status[i] != impact_status::ok) {\n";
     h << "            " << R << "<T> r;\n";

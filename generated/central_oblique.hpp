@@ -209,8 +209,8 @@ inline impact_status central_oblique(const T* in, central_oblique_result<T>& out
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
 /// (order of central_oblique_input_names) of impact i, out[j][i] output j. The arrays
 /// must not overlap. A first pass computes every impact without branches (it
-/// vectorises); a second pass redoes the impacts that failed a check one by one
-/// for their status (their outputs are zero).
+/// vectorises); if any impact failed a check, a second pass redoes those one by
+/// one for their status (their outputs are zero).
 template <typename T>
 inline void central_oblique_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
@@ -234,6 +234,7 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
     T* const out_normal_impulse = out[6];
     T* const out_approach_velocity = out[7];
     T* const out_energy_lost = out[8];
+    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
@@ -282,7 +283,10 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         out_approach_velocity[i] = o_approach_velocity;
         out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+        failed |= static_cast<unsigned>(!ok);
     }
+    if (failed == 0)
+        return;
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             central_oblique_result<T> r;
