@@ -8,6 +8,9 @@
 // Inputs: masses log-uniform in [1e-3, 1e3] (mass ratios 1e-6 ... 1e6), inertia
 // tensors m * R diag(0.2..1) R^T, velocities in [-1, 1], one sample in eight
 // near-grazing ((v_B - v_A).n between -1e-12 and -1e-4).
+#include <tuple>
+#include <utility>
+#include <algorithm>
 #include "codegen/codegen.hpp"
 #include "numeric/momentum_solver.hpp"
 #include "symbolic/named_classes.hpp"
@@ -612,6 +615,99 @@ TEST(CodegenStatus, BadInputs)
     in[2] = -10; // inv_I1_tt
     in[10] = 1;  // r_b1, a lever arm about t
     EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::singular);
+}
+
+// The fast path (one flag), the checked path (a status per check) and the batch
+// form agree on status and outputs, for valid inputs, bad inputs, and inputs whose
+// shared reciprocal products leave the normal range (the fast path then defers).
+template <typename Result, typename Fast, typename Checked, typename Batch, typename ToArray>
+void batch_agrees(const char* what, int n_in, int n_out, Fast fast, Checked checked, Batch batch, ToArray to_array,
+                  int min_ok)
+{
+    using gen::impact_status;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> U(0, 1);
+    const long n = 512;
+    std::vector<std::vector<double>> in(static_cast<std::size_t>(n_in), std::vector<double>(n)),
+        out(static_cast<std::size_t>(n_out), std::vector<double>(n));
+    const double bad[] = {std::nan(""), HUGE_VAL, -1, 0, 1e-160, 1e200, 2};
+    for (long i = 0; i < n; ++i)
+        for (int j = 0; j < n_in; ++j) {
+            double x = j == 0 ? U(rng) : 0.2 + U(rng); // e in [0, 1]; masses, inertia, positions > 0
+            if (j > 0 && U(rng) < 0.3)
+                x = 2 * U(rng) - 1;
+            if (U(rng) < 0.03)
+                x = bad[static_cast<std::size_t>(U(rng) * 7) % 7];
+            in[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = x;
+        }
+    std::vector<const double*> ip;
+    std::vector<double*> op;
+    for (auto& a : in)
+        ip.push_back(a.data());
+    for (auto& a : out)
+        op.push_back(a.data());
+    std::vector<impact_status> st(static_cast<std::size_t>(n));
+    batch(n, ip.data(), op.data(), st.data());
+    int ok = 0;
+    for (long i = 0; i < n; ++i) {
+        std::vector<double> x(static_cast<std::size_t>(n_in)), a(static_cast<std::size_t>(n_out)), b(a);
+        for (int j = 0; j < n_in; ++j)
+            x[static_cast<std::size_t>(j)] = in[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
+        Result ra, rb;
+        impact_status sa = fast(x.data(), ra), sb = checked(x.data(), rb);
+        to_array(ra, a.data());
+        to_array(rb, b.data());
+        ASSERT_EQ(sa, sb) << what << " impact " << i;
+        ASSERT_EQ(st[static_cast<std::size_t>(i)], sa) << what << " impact " << i;
+        ok += sa == impact_status::ok;
+        for (int j = 0; j < n_out; ++j) {
+            const double c = out[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)], av = a[static_cast<std::size_t>(j)],
+                         bv = b[static_cast<std::size_t>(j)];
+            EXPECT_FALSE(std::isnan(c) || std::isnan(av));
+            const double tol = 1e-12 * std::max({1.0, std::fabs(av), std::fabs(bv)});
+            EXPECT_LE(std::fabs(av - bv), tol) << what << " impact " << i << " output " << j;
+            EXPECT_LE(std::fabs(c - av), tol) << what << " impact " << i << " output " << j;
+            if (sa != impact_status::ok)
+                EXPECT_EQ(c, 0.0);
+        }
+    }
+    EXPECT_GE(ok, min_ok) << what << ": too few impacts to compare";
+}
+
+#define BATCH_AGREES(FN, MIN_OK)                                                                                      \
+    batch_agrees<gen::FN##_result<double>>(                                                                           \
+        #FN, gen::FN##_input_count, gen::FN##_output_count,                                                           \
+        [](const double* x, gen::FN##_result<double>& r) { return gen::FN(x, r); },                                   \
+        [](const double* x, gen::FN##_result<double>& r) {                                                            \
+            return std::apply([&](auto... v) { return gen::detail::FN##_checked(v..., r); }, to_tuple<gen::FN##_input_count>(x)); \
+        },                                                                                                            \
+        [](long n, const double* const* in, double* const* out, gen::impact_status* s) { gen::FN##_batch(n, in, out, s); }, \
+        [](const gen::FN##_result<double>& r, double* a) { gen::FN##_to_array(r, a); }, MIN_OK)
+
+template <std::size_t N, std::size_t... I> auto to_tuple_impl(const double* x, std::index_sequence<I...>)
+{
+    return std::make_tuple(x[I]...);
+}
+template <std::size_t N> auto to_tuple(const double* x) { return to_tuple_impl<N>(x, std::make_index_sequence<N>{}); }
+
+TEST(CodegenBatch, FastCheckedAndBatchAgree)
+{
+    // (random 3-D tensors are seldom positive definite: few valid impacts there)
+    BATCH_AGREES(planar, 50);
+    BATCH_AGREES(planar_engine, 50);
+    BATCH_AGREES(central_direct, 50);
+    BATCH_AGREES(pinned_planar, 50);
+    BATCH_AGREES(noncentral_3d, 1);
+    BATCH_AGREES(noncentral_3d_engine, 1);
+    BATCH_AGREES(massive_3d, 1);
+
+    // m1 I1 = 1e-320 is not a normal number: the fast path defers to the checked one.
+    gen::planar_result<double> a, b;
+    EXPECT_EQ(gen::planar(0.5, 1e-160, 1e-160, 0.1, 0.2, 0.0, 1.0, 0.0, 1.0, 1.0, 0.3, -0.2, 0.0, -1.0, 0.0, a), gen::impact_status::ok);
+    EXPECT_EQ(gen::detail::planar_checked(0.5, 1e-160, 1e-160, 0.1, 0.2, 0.0, 1.0, 0.0, 1.0, 1.0, 0.3, -0.2, 0.0, -1.0, 0.0, b),
+              gen::impact_status::ok);
+    EXPECT_EQ(a.v_n2, b.v_n2);
+    EXPECT_EQ(a.normal_impulse, b.normal_impulse);
 }
 
 // The checked-in header for noncentral-3d is what the library generates now, and
