@@ -540,6 +540,17 @@ header generate(const problem& p, const options& o)
             unused_inputs.push_back(nm);
         }
 
+    // The terms of the finiteness check in the branchless form (o_<field> values).
+    std::vector<std::string> fast_terms;
+    for (const auto& [field, id] : outs)
+        if (prog.at(id).kind != op::constant)
+            fast_terms.push_back("o_" + field);
+    for (const std::string& nm : unused_inputs)
+        fast_terms.push_back(nm);
+    for (const std::string& x : batch.finite_terms)
+        if (std::find(fast_terms.begin(), fast_terms.end(), x) == fast_terms.end())
+            fast_terms.push_back(x);
+
     // ---- the header text
     const std::string R = o.name + "_result";
     std::ostringstream h;
@@ -561,7 +572,13 @@ header generate(const problem& p, const options& o)
     h << "// Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.\n";
     h << "// Arithmetic per call: " << counts_text(em.formula) << " (closed form);\n";
     h << "//   validity checks: " << counts_text(em.checks) << " + " << (sum_terms.empty() ? 0 : sum_terms.size() - 1)
-      << " add (finiteness of the result), and comparisons.\n";
+      << " add (finiteness of the result), and comparisons;\n";
+    h << "//   the fast path (every call whose inputs pass the checks; the batch loop): " << counts_text(batch.formula)
+      << " + " << (fast_terms.empty() ? 0 : fast_terms.size() - 1) << " add, "
+      << (batch.positive_terms.empty() ? 0 : batch.positive_terms.size() - 1) +
+             (batch.nonneg_terms.empty() ? 0 : batch.nonneg_terms.size() - 1) +
+             (batch.normal_terms.empty() ? 0 : batch.normal_terms.size() - 1)
+      << " min (checks), 1 branch.\n";
     h << "#pragma once\n\n";
     if (em.uses_sqrt)
         h << "#include <cmath>\n";
@@ -668,17 +685,6 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         }
         return level.empty() ? std::string() : level[0];
     };
-    // The terms of the finiteness check in the branchless form (o_<field> values).
-    std::vector<std::string> fast_terms;
-    for (const auto& [field, id] : outs)
-        if (prog.at(id).kind != op::constant)
-            fast_terms.push_back("o_" + field);
-    for (const std::string& nm : unused_inputs)
-        fast_terms.push_back(nm);
-    for (const std::string& x : batch.finite_terms)
-        if (std::find(fast_terms.begin(), fast_terms.end(), x) == fast_terms.end())
-            fast_terms.push_back(x);
-
     // Every check of the branchless form in one flag: signs through a min (which may drop a
     // NaN: every value in a min is also in the sum), finiteness through one sum.
     auto ok_flag = [&](const std::string& ind) {

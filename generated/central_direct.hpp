@@ -2,7 +2,8 @@
 //   impactgen codegen central-direct --name central_direct --namespace impactgen::generated
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 6 add/sub, 7 mul, 3 div, 0 sqrt (closed form);
-//   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons.
+//   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons;
+//   the fast path (every call whose inputs pass the checks; the batch loop): 6 add/sub, 10 mul, 2 div, 0 sqrt + 7 add, 4 min (checks), 1 branch.
 #pragma once
 
 #include <limits>

@@ -2,7 +2,8 @@
 //   impactgen codegen noncentral-3d --name noncentral_3d --namespace impactgen::generated
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 65 mul, 5 div, 0 sqrt (closed form);
-//   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons.
+//   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
+//   the fast path (every call whose inputs pass the checks; the batch loop): 40 add/sub, 68 mul, 4 div, 0 sqrt + 19 add, 6 min (checks), 1 branch.
 #pragma once
 
 #include <limits>
