@@ -522,7 +522,10 @@ header generate(const problem& p, const options& o)
     emitted em = emit_cpp(prog, outs, checks, names, input_names);
 
     op_counts unused_counts;
-    emitted batch = emit_cpp(prog, outs, checks, names, input_names, true);
+    // The branchless forms: one call (latency: a division each) and the batch loop
+    // (throughput: reciprocals share divisions).
+    emitted fast = emit_cpp(prog, outs, checks, names, input_names, true);
+    emitted batch = emit_cpp(prog, outs, checks, names, input_names, true, true);
     (void)unused_counts;
     // Inputs the outputs do not depend on still count for the finiteness check.
     std::set<std::string> reached;
@@ -541,15 +544,19 @@ header generate(const problem& p, const options& o)
         }
 
     // The terms of the finiteness check in the branchless form (o_<field> values).
-    std::vector<std::string> fast_terms;
-    for (const auto& [field, id] : outs)
-        if (prog.at(id).kind != op::constant)
-            fast_terms.push_back("o_" + field);
-    for (const std::string& nm : unused_inputs)
-        fast_terms.push_back(nm);
-    for (const std::string& x : batch.finite_terms)
-        if (std::find(fast_terms.begin(), fast_terms.end(), x) == fast_terms.end())
-            fast_terms.push_back(x);
+    auto finite_terms = [&](const emitted& em_) {
+        std::vector<std::string> t;
+        for (const auto& [field, id] : outs)
+            if (prog.at(id).kind != op::constant)
+                t.push_back("o_" + field);
+        for (const std::string& nm : unused_inputs)
+            t.push_back(nm);
+        for (const std::string& x : em_.finite_terms)
+            if (std::find(t.begin(), t.end(), x) == t.end())
+                t.push_back(x);
+        return t;
+    };
+    const std::vector<std::string> fast_terms = finite_terms(fast), batch_terms = finite_terms(batch);
 
     // ---- the header text
     const std::string R = o.name + "_result";
@@ -573,12 +580,16 @@ header generate(const problem& p, const options& o)
     h << "// Arithmetic per call: " << counts_text(em.formula) << " (closed form);\n";
     h << "//   validity checks: " << counts_text(em.checks) << " + " << (sum_terms.empty() ? 0 : sum_terms.size() - 1)
       << " add (finiteness of the result), and comparisons;\n";
-    h << "//   the fast path (every call whose inputs pass the checks; the batch loop): " << counts_text(batch.formula)
-      << " + " << (fast_terms.empty() ? 0 : fast_terms.size() - 1) << " add, "
-      << (batch.positive_terms.empty() ? 0 : batch.positive_terms.size() - 1) +
-             (batch.nonneg_terms.empty() ? 0 : batch.nonneg_terms.size() - 1) +
-             (batch.normal_terms.empty() ? 0 : batch.normal_terms.size() - 1)
-      << " min (checks), 1 branch.\n";
+    auto mins = [](const emitted& em_) {
+        std::size_t n = 0;
+        for (const auto* v : {&em_.positive_terms, &em_.nonneg_terms, &em_.normal_terms})
+            n += v->empty() ? 0 : v->size() - 1;
+        return n;
+    };
+    h << "//   fast path (inputs that pass every check): " << counts_text(fast.formula) << " + " << (fast_terms.empty() ? 0 : fast_terms.size() - 1)
+      << " add, " << mins(fast) << " min (checks), 1 branch;\n";
+    h << "//   batch loop: " << counts_text(batch.formula) << " + " << (batch_terms.empty() ? 0 : batch_terms.size() - 1) << " add, "
+      << mins(batch) << " min (checks) per impact, no branch.\n";
     h << "#pragma once\n\n";
     if (em.uses_sqrt)
         h << "#include <cmath>\n";
@@ -687,7 +698,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     };
     // Every check of the branchless form in one flag: signs through a min (which may drop a
     // NaN: every value in a min is also in the sum), finiteness through one sum.
-    auto ok_flag = [&](const std::string& ind) {
+    auto ok_flag = [&](const std::string& ind, const emitted& batch, const std::vector<std::string>& fast_terms) {
         std::vector<std::string> parts;
         auto min_of = [](const std::vector<std::string>& v) {
             return v.size() == 1 ? v[0] : "detail::min_of(" + join(v, ", ") + ")";
@@ -747,8 +758,8 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
-    h << batch.code;
-    h << ok_flag("    ");
+    h << fast.code;
+    h << ok_flag("    ", fast, fast_terms);
     h << "    if (!ok) // some check failed (or a value is not finite): find which\n";
     h << "        return detail::" << checked << "(";
     for (const std::string& nm : input_names)
@@ -786,7 +797,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     for (const std::string& nm : input_names)
         h << "        const T " << nm << " = in_" << nm << "[i];\n";
     {
-        std::istringstream lines(batch.code + ok_flag("    "));
+        std::istringstream lines(batch.code + ok_flag("    ", batch, batch_terms));
         std::string line;
         while (std::getline(lines, line))
             h << "    " << line << "\n";

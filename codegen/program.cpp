@@ -328,7 +328,7 @@ struct printer {
 
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs, bool branchless)
+                 const std::vector<std::string>& inputs, bool branchless, bool share_divisions)
 {
     const std::size_t n = prog.size();
     std::vector<bool> reach(n, false), materialised(n, false);
@@ -410,7 +410,7 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
     // and the checked version computes the impact with a division each).
     std::map<int, std::vector<int>> group_at; // first member -> members
     std::set<int> grouped;
-    if (branchless) {
+    if (branchless && share_divisions) {
         std::vector<int> recips;
         for (std::size_t i = 0; i < n; ++i) {
             const op& o = prog.at(static_cast<int>(i));

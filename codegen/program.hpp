@@ -84,9 +84,11 @@ struct emitted {
 /// placed right after the values they test. `names` gives ops their variable
 /// names (the solution's step names). `inputs` are the function parameters.
 /// branchless: checks accumulate into `ok` and outputs become `const T o_<field>`
+/// share_divisions (branchless only): reciprocals of positive inputs share one division
+/// (fewer divisions for the throughput of a vectorised loop; a longer chain of latency)
 /// (the body of a vectorisable batch loop).
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs, bool branchless = false);
+                 const std::vector<std::string>& inputs, bool branchless = false, bool share_divisions = false);
 
 } // namespace impactgen::codegen

@@ -3,7 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 26 add/sub, 33 mul, 1 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 18 add (finiteness of the result), and comparisons;
-//   the fast path (every call whose inputs pass the checks; the batch loop): 26 add/sub, 33 mul, 1 div, 0 sqrt + 18 add, 4 min (checks), 1 branch.
+//   fast path (inputs that pass every check): 26 add/sub, 33 mul, 1 div, 0 sqrt + 18 add, 4 min (checks), 1 branch;
+//   batch loop: 26 add/sub, 33 mul, 1 div, 0 sqrt + 18 add, 4 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
