@@ -453,6 +453,24 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
                     if (std::find(v.begin(), v.end(), t) == v.end())
                         v.push_back(t);
                 };
+                if (c.kind == check::positive) {
+                    // x > 0 and finite <=> 1/x > 0 and finite x: when 1/x is computed anyway,
+                    // test 1/x > 0 (1/inf = 0 fails it; 1/NaN is NaN) and let x go.
+                    int rid = -1;
+                    for (std::size_t k = 0; k < n && rid < 0; ++k) {
+                        const op& o = prog.at(static_cast<int>(k));
+                        if (materialised[k] && o.kind == op::div && o.b == id && prog.at(o.a).kind == op::constant &&
+                            prog.at(o.a).value == 1)
+                            rid = static_cast<int>(k);
+                    }
+                    if (rid >= 0) {
+                        add(out.positive_terms, var.at(rid));
+                        if (!covered[static_cast<std::size_t>(rid)])
+                            add(out.finite_terms, var.at(rid));
+                        out.check_comments.push_back(c.comment);
+                        continue;
+                    }
+                }
                 switch (c.kind) {
                 case check::positive: add(out.positive_terms, x); break;
                 case check::negative: add(out.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x)); break;

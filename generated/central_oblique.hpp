@@ -3,7 +3,7 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 6 add/sub, 7 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 10 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 6 add/sub, 7 mul, 3 div, 0 sqrt + 12 add, 4 min (checks), 1 branch;
+//   fast path (inputs that pass every check): 6 add/sub, 7 mul, 3 div, 0 sqrt + 10 add, 4 min (checks), 1 branch;
 //   batch loop: 6 add/sub, 10 mul, 2 div, 0 sqrt + 11 add, 4 min (checks) per impact, no branch.
 #pragma once
 
@@ -180,9 +180,9 @@ inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T 
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(m1, m2, -u, k) > T(0)) &
+    const bool ok = (detail::min_of(w_1, w_2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + R1) + (R2 + m1)) + m2));
+                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + R2));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::central_oblique_checked(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
     out.v_t1 = o_v_t1;
@@ -267,7 +267,7 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (detail::min_of(m1, m2, -u, k) > T(0)) &
+        const bool ok = (detail::min_of(w_1, w_2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
                         (rcp_q1 >= std::numeric_limits<T>::min()) &
                         detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + (R2 + rcp_q1)));

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 25 add/sub, 37 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 13 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 25 add/sub, 37 mul, 3 div, 0 sqrt + 15 add, 4 min (checks), 1 branch;
-//   batch loop: 25 add/sub, 37 mul, 3 div, 0 sqrt + 15 add, 4 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 25 add/sub, 37 mul, 3 div, 0 sqrt + 13 add, 4 min (checks), 1 branch;
+//   batch loop: 25 add/sub, 37 mul, 3 div, 0 sqrt + 13 add, 4 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -214,9 +214,9 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-    const bool ok = (detail::min_of(m1, D_1, w_1, -u) > T(0)) &
+    const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1))));
+                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2)));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::massive_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -337,9 +337,9 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-        const bool ok = (detail::min_of(m1, D_1, w_1, -u) > T(0)) &
+        const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
-                        detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + ((v_b2 + w_n2) + (m1 + D_1))));
+                        detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2)));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

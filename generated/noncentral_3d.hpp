@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 65 mul, 5 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 20 add, 6 min (checks), 1 branch;
-//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 19 add, 6 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 16 add, 6 min (checks), 1 branch;
+//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 17 add, 6 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
@@ -276,9 +276,9 @@ inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(m1, m2, D_1, D_2, -u, k) > T(0)) &
+    const bool ok = (detail::min_of(inv_m1, inv_m2, inv_D_1, inv_D_2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (((r_n2 + m1) + (m2 + D_1)) + D_2));
+                    detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + r_n2);
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -443,10 +443,10 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (detail::min_of(m1, m2, D_1, D_2, -u, k) > T(0)) &
+        const bool ok = (detail::min_of(inv_m1, inv_m2, inv_D_1, inv_D_2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
                         (rcp_q1 >= std::numeric_limits<T>::min()) &
-                        detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + ((r_n2 + D_1) + (rcp_q1 + D_2)));
+                        detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (r_n2 + rcp_q1));
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

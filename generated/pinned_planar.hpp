@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 5 add/sub, 19 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 5 add/sub, 19 mul, 3 div, 0 sqrt + 8 add, 5 min (checks), 1 branch;
-//   batch loop: 5 add/sub, 19 mul, 3 div, 0 sqrt + 8 add, 5 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 5 add/sub, 19 mul, 3 div, 0 sqrt + 7 add, 5 min (checks), 1 branch;
+//   batch loop: 5 add/sub, 19 mul, 3 div, 0 sqrt + 7 add, 5 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -193,9 +193,9 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-    const bool ok = (detail::min_of(m1, m2, -u, k, check_p1) > T(0)) &
+    const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + check_p1);
+                    detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -275,9 +275,9 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-        const bool ok = (detail::min_of(m1, m2, -u, k, check_p1) > T(0)) &
+        const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
-                        detail::finite((((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + m1))) + check_p1);
+                        detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)));
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

@@ -3,7 +3,7 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 12 add/sub, 17 mul, 5 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 10 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 5 div, 0 sqrt + 14 add, 6 min (checks), 1 branch;
+//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 5 div, 0 sqrt + 10 add, 6 min (checks), 1 branch;
 //   batch loop: 12 add/sub, 26 mul, 2 div, 0 sqrt + 11 add, 8 min (checks) per impact, no branch.
 #pragma once
 
@@ -196,9 +196,9 @@ inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w
     const T o_approach_velocity = u;
     const T o_energy_lost = T_lost;
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; moment of inertia of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(m1, I1, m2, I2, -u, k) > T(0)) &
+    const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + m1)) + ((I1 + m2) + I2)));
+                    detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::planar_checked(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -299,7 +299,7 @@ inline void planar_batch(long n, const T* const* in, T* const* out, impact_statu
         const T o_approach_velocity = u;
         const T o_energy_lost = T_lost;
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; moment of inertia of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (detail::min_of(m1, I1, m2, I2, -u, k) > T(0)) &
+        const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
                         (detail::min_of(rcp_q1, rcp_q2, rcp_p) >= std::numeric_limits<T>::min()) &
                         detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + (r_n2 + rcp_p)));
