@@ -1,15 +1,18 @@
 #!/bin/sh
-# Runs the benchmark once and prints, from that one run, ns per impact and the
-# ratios the issue asks for. Usage: run_ratios.sh path/to/impactgen_bench [benchmark args]
+# Runs the benchmark once and prints, from that one run, ns per impact (median of
+# three repetitions) and the ratios the issue asks for. Usage: run_ratios.sh path/to/impactgen_bench [benchmark args]
 set -e
 BENCH=${1:?usage: run_ratios.sh path/to/impactgen_bench}
 shift
 OUT=$(mktemp)
-"$BENCH" --benchmark_format=csv --benchmark_min_time=0.5 "$@" > "$OUT"
+# Three repetitions of each benchmark, interleaved, and their median: one noisy
+# stretch on a shared machine then moves one figure less.
+"$BENCH" --benchmark_format=csv --benchmark_min_time=0.3 --benchmark_repetitions=3 \
+  --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true "$@" > "$OUT"
 grep -E "generated:" "$OUT" || true
 awk -F, '
-  /^"(generated|generated-engine|eigen|handwritten|batch)\// {
-    name = $1; gsub(/"/, "", name)
+  /^"(generated|generated-engine|eigen|handwritten|batch)\/.*_median"/ {
+    name = $1; gsub(/"/, "", name); sub(/_median$/, "", name)
     for (i = 1; i <= NF; ++i) if (h[i] == "ns_per_impact") ns[name] = $i * 1e9  # the counter is in seconds
   }
   /^name,/ { for (i = 1; i <= NF; ++i) { h[i] = $i; gsub(/"/, "", h[i]) } }
