@@ -17,7 +17,7 @@ if [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" != "1" ]]; then
   start=$(date +%s)
   # Test discovery runs the test programs at build time: the sanitizer options
   # hold for the build as well as for ctest.
-  export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp"
+  export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTGEN_SANITIZE=ON \
         -DIMPACTGEN_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="-Werror" >/dev/null

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <unistd.h>
 
 using namespace impactgen;
 using json = nlohmann::json;
@@ -139,7 +140,9 @@ struct run_result {
 
 run_result run_cli(const std::string& args)
 {
-    std::string base = ::testing::TempDir() + "impactgen_cli";
+    // Unique per process and test: ctest runs the tests in parallel.
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string base = ::testing::TempDir() + "impactgen_" + info->name() + "_" + std::to_string(getpid());
     std::string cmd = std::string(IMPACTGEN_CLI) + " " + args + " >" + base + ".out 2>" + base + ".err";
     int status = std::system(cmd.c_str());
     auto slurp = [](const std::string& f) {
@@ -153,7 +156,7 @@ run_result run_cli(const std::string& args)
 
 TEST(Cli, EveryBadInputExitsOneWithOneLine)
 {
-    std::string file = ::testing::TempDir() + "impactgen_bad.json";
+    std::string file = ::testing::TempDir() + "impactgen_bad_" + std::to_string(getpid()) + ".json";
     for (const bad_case& c : cases()) {
         {
             std::ofstream out(file);
