@@ -1,6 +1,9 @@
 // Per named class, on the same 4096 random impacts (seeded):
 //   generated/<class>    the generated function (inputs as the class names them:
-//                        masses and inertia tensors)
+//                        masses and inertia tensors), with_energy_lost = false: the
+//                        outputs Eigen and the hand-written formulas compute (post-impact
+//                        velocities, impulse; approach velocity too), status and checks
+//   generated+energy/<class>  the same with the default with_energy_lost = true (all outputs)
 //   eigen/<class>        numeric::solve_momentum_system, PartialPivLU, assembly included
 //   handwritten/<class>  an engine-style impulse formula: effective mass from the
 //                        inverse inertia, P = -(1+e) v_n / k, then the velocity jumps;
@@ -402,6 +405,15 @@ void per_impact(benchmark::State& state, long impacts)
         std::printf("%-22s generated: %3d add/sub, %3d mul, %2d div, %d sqrt per impact\n", CLS, gen::FN##_ops.add,   \
                     gen::FN##_ops.mul, gen::FN##_ops.div, gen::FN##_ops.sqrt);                                        \
         benchmark::RegisterBenchmark("generated/" CLS, [](benchmark::State& st) {                                     \
+            gen::FN##_result<double> r;                                                                               \
+            for (auto _ : st)                                                                                         \
+                for (int i = 0; i < kImpacts; ++i) {                                                                  \
+                    benchmark::DoNotOptimize(gen::FN<double, false>(d.in.rows[static_cast<std::size_t>(i)].data(), r)); \
+                    benchmark::DoNotOptimize(r);                                                                      \
+                }                                                                                                     \
+            per_impact(st, kImpacts);                                                                                 \
+        });                                                                                                           \
+        benchmark::RegisterBenchmark("generated+energy/" CLS, [](benchmark::State& st) {                              \
             gen::FN##_result<double> r;                                                                               \
             for (auto _ : st)                                                                                         \
                 for (int i = 0; i < kImpacts; ++i) {                                                                  \

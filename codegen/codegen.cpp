@@ -35,7 +35,7 @@ std::string sfx(const std::string& label) { return label.size() == 1 ? label : "
 const std::set<std::string>& reserved()
 {
     static const std::set<std::string> r = {
-        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "failed", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
+        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "failed", "with_energy_lost", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
         "case", "char", "const", "continue", "default", "delete", "do", "double", "else", "enum", "false", "float",
         "for", "if", "inline", "int", "long", "namespace", "new", "return", "short", "signed", "sizeof", "static",
         "struct", "switch", "template", "this", "true", "typename", "union", "unsigned", "void", "while"};
@@ -722,6 +722,23 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         return text;
     };
 
+    // energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
+    auto energy_optional = [](const std::string& code, const std::string& lhs) {
+        std::istringstream lines(code);
+        std::string line, r;
+        while (std::getline(lines, line)) {
+            if (line.rfind(lhs, 0) == 0 && line.size() > lhs.size() && line.back() == ';') {
+                std::string rhs = line.substr(lhs.size(), line.size() - lhs.size() - 1);
+                if (rhs.find(' ') != std::string::npos)
+                    rhs = "(" + rhs + ")";
+                line = lhs + "with_energy_lost ? " + rhs + " : T(0);";
+            }
+            r += line + "\n";
+        }
+        return r;
+    };
+    const std::string tparams = "template <typename T, bool with_energy_lost = true>\n";
+
     // The checked version: each check right after the value it tests, with its own status.
     std::string params;
     for (const std::string& nm : input_names)
@@ -730,7 +747,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "\nnamespace detail {\n";
     h << "/// " << o.name << " with each check right after the value it tests: the status of the\n";
     h << "/// inputs that fail the fast path of " << o.name << " (every member of out is then zero).\n";
-    h << "template <typename T>\nIMPACTGEN_COLD inline impact_status " << checked << "(" << params << R << "<T>& out) noexcept\n{\n";
+    h << tparams << "IMPACTGEN_COLD inline impact_status " << checked << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
     if (!input_names.empty()) {
@@ -739,7 +756,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         h << "        return detail::all_finite(" << join(input_names, ", ") << ") ? why : impact_status::non_finite_input;\n";
         h << "    };\n";
     }
-    h << em.code;
+    h << energy_optional(em.code, "    out.energy_lost = ");
     if (!sum_terms.empty()) {
         h << "    const T check_sum = " << balanced_sum(sum_terms) << ";\n";
         h << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(sum_terms, ", ") << "))\n";
@@ -752,16 +769,17 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// (then every member of out is zero). T: float, double, long double or alike.\n";
     h << "/// The checks do not branch one by one: they are folded into one flag, and only\n";
     h << "/// inputs that fail one of them take the slow path (detail::" << checked << ") that\n";
-    h << "/// says which check failed.\n";
+    h << "/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,\n";
+    h << "/// neither computed nor checked (the rest is the same).\n";
     for (std::size_t i = 0; i < input_names.size(); ++i)
         h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
-    h << "template <typename T>\ninline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
+    h << tparams << "inline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
-    h << fast.code;
+    h << energy_optional(fast.code, "    const T o_energy_lost = ");
     h << ok_flag("    ", fast, fast_terms);
     h << "    if (!ok) // some check failed (or a value is not finite): find which\n";
-    h << "        return detail::" << checked << "(";
+    h << "        return detail::" << checked << "<T, with_energy_lost>(";
     for (const std::string& nm : input_names)
         h << nm << ", ";
     h << "out);\n";
@@ -771,10 +789,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 
     // Array form, names, counts.
     h << "/// The same with the inputs in an array, in the order of " << o.name << "_input_names.\n";
-    h << "template <typename T>\ninline impact_status " << o.name << "(const T* in, " << R << "<T>& out) noexcept\n{\n";
+    h << tparams << "inline impact_status " << o.name << "(const T* in, " << R << "<T>& out) noexcept\n{\n";
     if (input_names.empty())
         h << "    (void)in;\n";
-    h << "    return " << o.name << "(";
+    h << "    return " << o.name << "<T, with_energy_lost>(";
     for (std::size_t i = 0; i < input_names.size(); ++i)
         h << "in[" << i << "], ";
     h << "out);\n}\n\n";

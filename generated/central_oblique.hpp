@@ -106,7 +106,7 @@ template <typename T> struct central_oblique_result {
 namespace detail {
 /// central_oblique with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of central_oblique (every member of out is then zero).
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
@@ -137,7 +137,7 @@ IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v
     out.v_b2 = v_b2;
     out.normal_impulse = N;
     out.approach_velocity = u;
-    out.energy_lost = T_lost;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     const T check_sum = (((out.v_t1 + out.v_n1) + (out.v_b1 + out.v_t2)) + ((out.v_n2 + out.v_b2) + (out.normal_impulse + out.approach_velocity))) + ((out.energy_lost + R1) + R2);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.v_t2, out.v_n2, out.v_b2, out.normal_impulse, out.approach_velocity, out.energy_lost, R1, R2))
         return fail(impact_status::overflow);
@@ -149,7 +149,8 @@ IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v
 /// (then every member of out is zero). T: float, double, long double or alike.
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::central_oblique_checked) that
-/// says which check failed.
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   m1: mass of 1 (> 0)
 ///   R1: appears in r_n1
@@ -161,7 +162,7 @@ IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   v_b2: velocity of the centre of mass of 2 before impact, b
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
@@ -178,13 +179,13 @@ inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T 
     const T o_v_b2 = v_b2;
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
-    const T o_energy_lost = T_lost;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(w_1, w_2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
                     detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + R2));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::central_oblique_checked(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
+        return detail::central_oblique_checked<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.v_b1 = o_v_b1;
@@ -198,10 +199,10 @@ inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T 
 }
 
 /// The same with the inputs in an array, in the order of central_oblique_input_names.
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
 {
-    return central_oblique(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
+    return central_oblique<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j

@@ -107,7 +107,7 @@ template <typename T> struct massive_3d_result {
 namespace detail {
 /// massive_3d with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of massive_3d (every member of out is then zero).
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
@@ -147,7 +147,7 @@ IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_
     out.w_b1 = w_b1 - g_b1 * N;
     out.normal_impulse = N;
     out.approach_velocity = u;
-    out.energy_lost = T_lost;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     const T check_sum = (((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.normal_impulse + out.approach_velocity))) + (((out.energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2));
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.normal_impulse, out.approach_velocity, out.energy_lost, r_n1, r_n2, v_t2, v_b2, w_n2))
         return fail(impact_status::overflow);
@@ -159,7 +159,8 @@ IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_
 /// (then every member of out is zero). T: float, double, long double or alike.
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::massive_3d_checked) that
-/// says which check failed.
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   m1: mass of 1 (> 0)
 ///   I1_tt: inertia tensor of 1 about its centre of mass, tt entry
@@ -186,7 +187,7 @@ IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_
 ///   w_t2: angular velocity of 2 before impact, t
 ///   w_n2: angular velocity of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
@@ -212,13 +213,13 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
     const T o_w_b1 = w_b1 - g_b1 * N;
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
-    const T o_energy_lost = T_lost;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
     const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
                     detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2)));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::massive_3d_checked(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return detail::massive_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.v_b1 = o_v_b1;
@@ -232,10 +233,10 @@ inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T
 }
 
 /// The same with the inputs in an array, in the order of massive_3d_input_names.
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status massive_3d(const T* in, massive_3d_result<T>& out) noexcept
 {
-    return massive_3d(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out);
+    return massive_3d<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out);
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j

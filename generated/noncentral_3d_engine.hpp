@@ -124,7 +124,7 @@ template <typename T> struct noncentral_3d_engine_result {
 namespace detail {
 /// noncentral_3d_engine with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of noncentral_3d_engine (every member of out is then zero).
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
@@ -167,7 +167,7 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
     out.w_b2 = w_b2 + g_b2 * N;
     out.normal_impulse = N;
     out.approach_velocity = u;
-    out.energy_lost = T_lost;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     const T check_sum = ((((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.v_t2 + out.v_n2))) + (((out.v_b2 + out.w_t2) + (out.w_n2 + out.w_b2)) + ((out.normal_impulse + out.approach_velocity) + (out.energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.v_t2, out.v_n2, out.v_b2, out.w_t2, out.w_n2, out.w_b2, out.normal_impulse, out.approach_velocity, out.energy_lost, inv_I1_nn, r_n1, inv_I2_nn, r_n2))
         return fail(impact_status::overflow);
@@ -179,7 +179,8 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
 /// (then every member of out is zero). T: float, double, long double or alike.
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::noncentral_3d_engine_checked) that
-/// says which check failed.
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   inv_m1: inverse mass 1/m of 1 (> 0)
 ///   inv_I1_tt: inverse inertia tensor of 1 (world axes), tt entry
@@ -213,7 +214,7 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
 ///   w_t2: angular velocity of 2 before impact, t
 ///   w_n2: angular velocity of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
@@ -242,13 +243,13 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
     const T o_w_b2 = w_b2 + g_b2 * N;
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
-    const T o_energy_lost = T_lost;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
                     detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::noncentral_3d_engine_checked(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return detail::noncentral_3d_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.v_b1 = o_v_b1;
@@ -268,10 +269,10 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
 }
 
 /// The same with the inputs in an array, in the order of noncentral_3d_engine_input_names.
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
 {
-    return noncentral_3d_engine(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
+    return noncentral_3d_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j

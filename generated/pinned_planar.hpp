@@ -107,7 +107,7 @@ template <typename T> struct pinned_planar_result {
 namespace detail {
 /// pinned_planar with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of pinned_planar (every member of out is then zero).
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
@@ -148,7 +148,7 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
     out.R_x2 = (T(1) / T(2)) * inv_I_E2 * m2 * v_x2_p2 - N;
     out.R_y2 = T(0);
     out.approach_velocity = u;
-    out.energy_lost = T_lost;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     const T check_sum = ((out.v_x1 + out.v_x2) + (out.w_z2 + out.normal_impulse)) + ((out.R_x2 + out.approach_velocity) + out.energy_lost);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_x1, out.v_x2, out.w_z2, out.normal_impulse, out.R_x2, out.approach_velocity, out.energy_lost))
         return fail(impact_status::overflow);
@@ -160,13 +160,14 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
 /// (then every member of out is zero). T: float, double, long double or alike.
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
-/// says which check failed.
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   m1: mass of 1 (> 0)
 ///   l: appears in r_y1, I2, r_y2, O_y
 ///   v1: velocity of the centre of mass of 1 before impact, x
 ///   m2: mass of 2 (> 0)
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
@@ -191,13 +192,13 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
     const T o_R_x2 = (T(1) / T(2)) * inv_I_E2 * m2 * v_x2_p2 - N;
     const T o_R_y2 = T(0);
     const T o_approach_velocity = u;
-    const T o_energy_lost = T_lost;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
     const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
                     detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::pinned_planar_checked(e, m1, l, v1, m2, out);
+        return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
     out.v_y1 = o_v_y1;
     out.v_x2 = o_v_x2;
@@ -212,10 +213,10 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
 }
 
 /// The same with the inputs in an array, in the order of pinned_planar_input_names.
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
 {
-    return pinned_planar(in[0], in[1], in[2], in[3], in[4], out);
+    return pinned_planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j

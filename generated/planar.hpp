@@ -106,7 +106,7 @@ template <typename T> struct planar_result {
 namespace detail {
 /// planar with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of planar (every member of out is then zero).
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD inline impact_status planar_checked(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
@@ -145,7 +145,7 @@ IMPACTGEN_COLD inline impact_status planar_checked(T e, T m1, T I1, T r_t1, T r_
     out.w_b2 = w_b2 - inv_I2 * r_t2 * N;
     out.normal_impulse = N;
     out.approach_velocity = u;
-    out.energy_lost = T_lost;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     const T check_sum = (((out.v_t1 + out.v_n1) + (out.w_b1 + out.v_t2)) + ((out.v_n2 + out.w_b2) + (out.normal_impulse + out.approach_velocity))) + ((out.energy_lost + r_n1) + r_n2);
     if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.w_b1, out.v_t2, out.v_n2, out.w_b2, out.normal_impulse, out.approach_velocity, out.energy_lost, r_n1, r_n2))
         return fail(impact_status::overflow);
@@ -157,7 +157,8 @@ IMPACTGEN_COLD inline impact_status planar_checked(T e, T m1, T I1, T r_t1, T r_
 /// (then every member of out is zero). T: float, double, long double or alike.
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::planar_checked) that
-/// says which check failed.
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   m1: mass of 1 (> 0)
 ///   I1: moment of inertia of 1 about its centre of mass (> 0)
@@ -173,7 +174,7 @@ IMPACTGEN_COLD inline impact_status planar_checked(T e, T m1, T I1, T r_t1, T r_
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
 {
     const T inv_I1 = T(1) / I1;
@@ -194,13 +195,13 @@ inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w
     const T o_w_b2 = w_b2 - inv_I2 * r_t2 * N;
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
-    const T o_energy_lost = T_lost;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; moment of inertia of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
                     (detail::min_of(e, T(1) - e) >= T(0)) &
                     detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::planar_checked(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
+        return detail::planar_checked<T, with_energy_lost>(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.w_b1 = o_w_b1;
@@ -214,10 +215,10 @@ inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w
 }
 
 /// The same with the inputs in an array, in the order of planar_input_names.
-template <typename T>
+template <typename T, bool with_energy_lost = true>
 inline impact_status planar(const T* in, planar_result<T>& out) noexcept
 {
-    return planar(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+    return planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j

@@ -708,6 +708,20 @@ TEST(CodegenBatch, FastCheckedAndBatchAgree)
               gen::impact_status::ok);
     EXPECT_EQ(a.v_n2, b.v_n2);
     EXPECT_EQ(a.normal_impulse, b.normal_impulse);
+
+    // with_energy_lost = false: the same state, energy_lost 0 (and not checked for overflow).
+    gen::planar_result<double> c;
+    EXPECT_EQ((gen::planar<double, false>(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1.0, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1.0, 0.0, c)),
+              gen::impact_status::ok);
+    EXPECT_EQ(gen::planar(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1.0, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1.0, 0.0, a), gen::impact_status::ok);
+    EXPECT_EQ(c.v_n1, a.v_n1);
+    EXPECT_EQ(c.w_b2, a.w_b2);
+    EXPECT_EQ(c.normal_impulse, a.normal_impulse);
+    EXPECT_GT(a.energy_lost, 0.0);
+    EXPECT_EQ(c.energy_lost, 0.0);
+    EXPECT_EQ((gen::planar<double, false>(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1e300, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1e300, 0.0, c)),
+              gen::impact_status::ok); // the kinetic energy would overflow; the state does not
+    EXPECT_EQ(gen::planar(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1e300, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1e300, 0.0, c), gen::impact_status::overflow);
 }
 
 // The checked-in header for noncentral-3d is what the library generates now, and
