@@ -9,7 +9,9 @@
 //                        inverse inertia, P = -(1+e) v_n / k, then the velocity jumps;
 //                        same inputs as generated/<class> (it inverts the tensors itself)
 //   batch/<class>        the generated SoA batch form over arrays of 1024 impacts (fits L2;
-//                        every array 64-byte aligned; all outputs and the status written)
+//                        every array 64-byte aligned), with_energy_lost = false like
+//                        generated/<class>: every other output and the status written
+//   batch+energy/<class> the same with energy_lost computed and written too
 // and the engine input convention (1/m and I^{-1} given, as physics engines store them):
 //   <kind>/noncentral-3d-engine and <kind>/planar-engine, generated and hand-written on the
 //   same inputs.
@@ -432,6 +434,21 @@ void per_impact(benchmark::State& state, long impacts)
                 per_impact(st, kImpacts);                                                                             \
             });                                                                                                       \
         benchmark::RegisterBenchmark("batch/" CLS, [](benchmark::State& st) {                                         \
+            std::vector<const double*> in;                                                                            \
+            std::vector<double*> out;                                                                                 \
+            for (auto& a : d.soa_in)                                                                                  \
+                in.push_back(a.data());                                                                               \
+            for (auto& a : d.soa_out)                                                                                 \
+                out.push_back(a.data());                                                                              \
+            aligned_array status_mem(kBatch); /* 64-byte aligned; 8 bytes per impact >= sizeof(impact_status) */     \
+            auto* status = reinterpret_cast<gen::impact_status*>(status_mem.data());                                  \
+            for (auto _ : st) {                                                                                       \
+                gen::FN##_batch<double, false>(kBatch, in.data(), out.data(), status);                                \
+                benchmark::ClobberMemory();                                                                           \
+            }                                                                                                         \
+            per_impact(st, kBatch);                                                                                   \
+        });                                                                                                           \
+        benchmark::RegisterBenchmark("batch+energy/" CLS, [](benchmark::State& st) {                                         \
             std::vector<const double*> in;                                                                            \
             std::vector<double*> out;                                                                                 \
             for (auto& a : d.soa_in)                                                                                  \

@@ -11,14 +11,14 @@ OUT=$(mktemp)
   --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true "$@" > "$OUT"
 grep -E "generated:" "$OUT" || true
 awk -F, '
-  /^"(generated|generated\+energy|eigen|handwritten|batch)\/.*_median"/ {
+  /^"(generated|generated\+energy|eigen|handwritten|batch|batch\+energy)\/.*_median"/ {
     name = $1; gsub(/"/, "", name); sub(/_median$/, "", name)
     for (i = 1; i <= NF; ++i) if (h[i] == "ns_per_impact") ns[name] = $i * 1e9  # the counter is in seconds
   }
   /^name,/ { for (i = 1; i <= NF; ++i) { h[i] = $i; gsub(/"/, "", h[i]) } }
   END {
     split("central-direct central-oblique noncentral-3d massive-3d planar pinned-planar noncentral-3d-engine planar-engine", cls, " ")
-    printf "\n(generated: without energy_lost, the outputs Eigen and handwritten compute; +energy: all outputs)\n"
+    printf "\n(generated, batch: without energy_lost, the outputs Eigen and handwritten compute; +energy: all outputs)\n"
     printf "%-22s %12s %12s %12s %12s %12s %11s %10s %10s\n", "class", "generated", "+energy", "eigen", "handwritten", "batch", "eigen/gen", "hand/gen", "hand/+en"
     for (k = 1; k <= 8; ++k) {
       c = cls[k]; g = ns["generated/" c]; ga = ns["generated+energy/" c]; e = ns["eigen/" c]; hw = ns["handwritten/" c]; b = ns["batch/" c]
@@ -35,6 +35,7 @@ awk -F, '
     printf "  (with energy_lost too: noncentral-3d %.1fx, planar %.1fx)\n", e / ns["generated+energy/noncentral-3d"], ep / ns["generated+energy/planar"]
     printf "  batch planar, tensor inputs (m, I; 2 div/impact)        = %6.0f M impacts/s  (target >= 300)\n", 1000 / bp
     printf "  batch planar, engine inputs (1/m, 1/I; 1 div/impact)    = %6.0f M impacts/s  (target >= 300)\n", 1000 / bpe
+    printf "  (with energy_lost too: tensor inputs %.0f, engine inputs %.0f M impacts/s)\n", 1000 / ns["batch+energy/planar"], 1000 / ns["batch+energy/planar-engine"]
     printf "  (batch: SoA, 1024 impacts, 64-byte aligned arrays in L2, one core)\n"
   }' "$OUT"
 rm -f "$OUT"

@@ -802,7 +802,14 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// must not overlap. A first pass computes every impact without branches (it\n";
     h << "/// vectorises); if any impact failed a check, a second pass redoes those one by\n";
     h << "/// one for their status (their outputs are zero).\n";
-    h << "template <typename T>\ninline void " << o.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
+    std::size_t energy_index = pl.outputs.size();
+    for (std::size_t j = 0; j < pl.outputs.size(); ++j)
+        if (pl.outputs[j].kind == output_value::energy_lost)
+            energy_index = j;
+    if (energy_index < pl.outputs.size())
+        h << "/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[" << energy_index
+          << "] is not written (it may be null).\n";
+    h << tparams << "inline void " << o.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
     if (input_names.empty())
         h << "    (void)in;\n";
     for (std::size_t j = 0; j < input_names.size(); ++j)
@@ -815,14 +822,15 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     for (const std::string& nm : input_names)
         h << "        const T " << nm << " = in_" << nm << "[i];\n";
     {
-        std::istringstream lines(batch.code + ok_flag("    ", batch, batch_terms));
+        std::istringstream lines(energy_optional(batch.code, "    const T o_energy_lost = ") + ok_flag("    ", batch, batch_terms));
         std::string line;
         while (std::getline(lines, line))
             h << "    " << line << "\n";
     }
     // Stored unconditionally: the second pass overwrites the outputs of failed impacts.
     for (const output_value& ov : pl.outputs)
-        h << "        out_" << ov.field << "[i] = o_" << ov.field << ";\n";
+        h << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "") << "        out_" << ov.field
+          << "[i] = o_" << ov.field << ";\n";
     h << "        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
     h << "        failed |= static_cast<unsigned>(!ok);\n";
     h << "    }\n";
@@ -831,12 +839,13 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "    for (long i = 0; i < n; ++i)\n";
     h << "        if (status[i] != impact_status::ok) {\n";
     h << "            " << R << "<T> r;\n";
-    h << "            status[i] = detail::" << checked << "(";
+    h << "            status[i] = detail::" << checked << "<T, with_energy_lost>(";
     for (const std::string& nm : input_names)
         h << "in_" << nm << "[i], ";
     h << "r);\n";
     for (const output_value& ov : pl.outputs)
-        h << "            out_" << ov.field << "[i] = r." << ov.field << ";\n";
+        h << (ov.kind == output_value::energy_lost ? "            if constexpr (with_energy_lost)\n    " : "") << "            out_" << ov.field
+          << "[i] = r." << ov.field << ";\n";
     h << "        }\n";
     h << "}\n\n";
     h << "inline constexpr int " << o.name << "_input_count = " << input_names.size() << ";\n";

@@ -210,7 +210,8 @@ inline impact_status central_oblique(const T* in, central_oblique_result<T>& out
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void central_oblique_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -266,7 +267,7 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T o_v_b2 = v_b2;
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
         const bool ok = (detail::min_of(w_1, w_2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -280,7 +281,8 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         out_v_b2[i] = o_v_b2;
         out_normal_impulse[i] = o_normal_impulse;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -289,7 +291,7 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             central_oblique_result<T> r;
-            status[i] = detail::central_oblique_checked(in_e[i], in_m1[i], in_R1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_m2[i], in_R2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], r);
+            status[i] = detail::central_oblique_checked<T, with_energy_lost>(in_e[i], in_m1[i], in_R1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_m2[i], in_R2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;
@@ -298,7 +300,8 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
             out_v_b2[i] = r.v_b2;
             out_normal_impulse[i] = r.normal_impulse;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

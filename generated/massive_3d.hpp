@@ -244,7 +244,8 @@ inline impact_status massive_3d(const T* in, massive_3d_result<T>& out) noexcept
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -336,7 +337,7 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T o_w_b1 = w_b1 - g_b1 * N;
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
         const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -349,7 +350,8 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         out_w_b1[i] = o_w_b1;
         out_normal_impulse[i] = o_normal_impulse;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -358,7 +360,7 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             massive_3d_result<T> r;
-            status[i] = detail::massive_3d_checked(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            status[i] = detail::massive_3d_checked<T, with_energy_lost>(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;
@@ -367,7 +369,8 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
             out_w_b1[i] = r.w_b1;
             out_normal_impulse[i] = r.normal_impulse;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

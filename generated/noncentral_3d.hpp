@@ -312,7 +312,8 @@ inline impact_status noncentral_3d(const T* in, noncentral_3d_result<T>& out) no
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[14] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -442,7 +443,7 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         const T o_w_b2 = w_b2 + g_b2 * N;
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
         const bool ok = (detail::min_of(inv_m1, inv_m2, inv_D_1, inv_D_2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -462,7 +463,8 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
         out_w_b2[i] = o_w_b2;
         out_normal_impulse[i] = o_normal_impulse;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -471,7 +473,7 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             noncentral_3d_result<T> r;
-            status[i] = detail::noncentral_3d_checked(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_m2[i], in_I2_tt[i], in_I2_tn[i], in_I2_tb[i], in_I2_nn[i], in_I2_nb[i], in_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            status[i] = detail::noncentral_3d_checked<T, with_energy_lost>(in_e[i], in_m1[i], in_I1_tt[i], in_I1_tn[i], in_I1_tb[i], in_I1_nn[i], in_I1_nb[i], in_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_m2[i], in_I2_tt[i], in_I2_tn[i], in_I2_tb[i], in_I2_nn[i], in_I2_nb[i], in_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;
@@ -486,7 +488,8 @@ inline void noncentral_3d_batch(long n, const T* const* in, T* const* out, impac
             out_w_b2[i] = r.w_b2;
             out_normal_impulse[i] = r.normal_impulse;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

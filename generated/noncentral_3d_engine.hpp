@@ -280,7 +280,8 @@ inline impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_resu
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[14] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -395,7 +396,7 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T o_w_b2 = w_b2 + g_b2 * N;
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -414,7 +415,8 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         out_w_b2[i] = o_w_b2;
         out_normal_impulse[i] = o_normal_impulse;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -423,7 +425,7 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             noncentral_3d_engine_result<T> r;
-            status[i] = detail::noncentral_3d_engine_checked(in_e[i], in_inv_m1[i], in_inv_I1_tt[i], in_inv_I1_tn[i], in_inv_I1_tb[i], in_inv_I1_nn[i], in_inv_I1_nb[i], in_inv_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2_tt[i], in_inv_I2_tn[i], in_inv_I2_tb[i], in_inv_I2_nn[i], in_inv_I2_nb[i], in_inv_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
+            status[i] = detail::noncentral_3d_engine_checked<T, with_energy_lost>(in_e[i], in_inv_m1[i], in_inv_I1_tt[i], in_inv_I1_tn[i], in_inv_I1_tb[i], in_inv_I1_nn[i], in_inv_I1_nb[i], in_inv_I1_bb[i], in_r_t1[i], in_r_n1[i], in_r_b1[i], in_v_t1[i], in_v_n1[i], in_v_b1[i], in_w_t1[i], in_w_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2_tt[i], in_inv_I2_tn[i], in_inv_I2_tb[i], in_inv_I2_nn[i], in_inv_I2_nb[i], in_inv_I2_bb[i], in_r_t2[i], in_r_n2[i], in_r_b2[i], in_v_t2[i], in_v_n2[i], in_v_b2[i], in_w_t2[i], in_w_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_v_b1[i] = r.v_b1;
@@ -438,7 +440,8 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
             out_w_b2[i] = r.w_b2;
             out_normal_impulse[i] = r.normal_impulse;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

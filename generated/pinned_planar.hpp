@@ -224,7 +224,8 @@ inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) no
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[9] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -274,7 +275,7 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_R_x2 = (T(1) / T(2)) * inv_I_E2 * m2 * v_x2_p2 - N;
         const T o_R_y2 = T(0);
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
         const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -288,7 +289,8 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         out_R_x2[i] = o_R_x2;
         out_R_y2[i] = o_R_y2;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -297,7 +299,7 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             pinned_planar_result<T> r;
-            status[i] = detail::pinned_planar_checked(in_e[i], in_m1[i], in_l[i], in_v1[i], in_m2[i], r);
+            status[i] = detail::pinned_planar_checked<T, with_energy_lost>(in_e[i], in_m1[i], in_l[i], in_v1[i], in_m2[i], r);
             out_v_x1[i] = r.v_x1;
             out_v_y1[i] = r.v_y1;
             out_v_x2[i] = r.v_x2;
@@ -307,7 +309,8 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
             out_R_x2[i] = r.R_x2;
             out_R_y2[i] = r.R_y2;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

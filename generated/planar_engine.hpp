@@ -218,7 +218,8 @@ inline impact_status planar_engine(const T* in, planar_engine_result<T>& out) no
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are zero).
-template <typename T>
+/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
+template <typename T, bool with_energy_lost = true>
 inline void planar_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
@@ -279,7 +280,7 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
         const T o_w_b2 = w_b2 - r_t2 * inv_I2 * N;
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
-        const T o_energy_lost = T_lost;
+        const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
                         (detail::min_of(e, T(1) - e) >= T(0)) &
@@ -292,7 +293,8 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
         out_w_b2[i] = o_w_b2;
         out_normal_impulse[i] = o_normal_impulse;
         out_approach_velocity[i] = o_approach_velocity;
-        out_energy_lost[i] = o_energy_lost;
+        if constexpr (with_energy_lost)
+            out_energy_lost[i] = o_energy_lost;
         status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
@@ -301,7 +303,7 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
     for (long i = 0; i < n; ++i)
         if (status[i] != impact_status::ok) {
             planar_engine_result<T> r;
-            status[i] = detail::planar_engine_checked(in_e[i], in_inv_m1[i], in_inv_I1[i], in_r_t1[i], in_r_n1[i], in_v_t1[i], in_v_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2[i], in_r_t2[i], in_r_n2[i], in_v_t2[i], in_v_n2[i], in_w_b2[i], r);
+            status[i] = detail::planar_engine_checked<T, with_energy_lost>(in_e[i], in_inv_m1[i], in_inv_I1[i], in_r_t1[i], in_r_n1[i], in_v_t1[i], in_v_n1[i], in_w_b1[i], in_inv_m2[i], in_inv_I2[i], in_r_t2[i], in_r_n2[i], in_v_t2[i], in_v_n2[i], in_w_b2[i], r);
             out_v_t1[i] = r.v_t1;
             out_v_n1[i] = r.v_n1;
             out_w_b1[i] = r.w_b1;
@@ -310,7 +312,8 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
             out_w_b2[i] = r.w_b2;
             out_normal_impulse[i] = r.normal_impulse;
             out_approach_velocity[i] = r.approach_velocity;
-            out_energy_lost[i] = r.energy_lost;
+            if constexpr (with_energy_lost)
+                out_energy_lost[i] = r.energy_lost;
         }
 }
 

@@ -721,6 +721,33 @@ TEST(CodegenBatch, FastCheckedAndBatchAgree)
     EXPECT_EQ(c.energy_lost, 0.0);
     EXPECT_EQ((gen::planar<double, false>(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1e300, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1e300, 0.0, c)),
               gen::impact_status::ok); // the kinetic energy would overflow; the state does not
+    {
+        // The batch form without energy_lost: out[8] may be null; the rest as with it.
+        double x[15][3] = {{0.5, 0.5, 2}, {1, -1, 1}, {0.5, 0.5, 0.5}, {0.1, 0.1, 0.1}, {0.2, 0.2, 0.2}, {0, 0, 0}, {1, 1, 1},
+                           {0, 0, 0},     {2, 2, 2},  {1, 1, 1},       {0.3, 0.3, 0.3}, {-0.2, -0.2, -0.2}, {0, 0, 0}, {-1, -1, -1}, {0, 0, 0}};
+        const double* in[15];
+        for (int j = 0; j < 15; ++j)
+            in[j] = x[j];
+        double y[9][3] = {}, z[9][3] = {};
+        double* oy[9];
+        double* oz[9];
+        for (int j = 0; j < 9; ++j) {
+            oy[j] = y[j];
+            oz[j] = z[j];
+        }
+        oz[8] = nullptr;
+        gen::impact_status sy[3], sz[3];
+        gen::planar_batch(3, in, oy, sy);
+        gen::planar_batch<double, false>(3, in, oz, sz);
+        EXPECT_EQ(sy[0], gen::impact_status::ok);
+        EXPECT_EQ(sy[1], gen::impact_status::invalid_mass);
+        EXPECT_EQ(sy[2], gen::impact_status::invalid_restitution);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(sy[i], sz[i]);
+            for (int j = 0; j < 8; ++j)
+                EXPECT_EQ(y[j][i], z[j][i]);
+        }
+    }
     EXPECT_EQ(gen::planar(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1e300, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1e300, 0.0, c), gen::impact_status::overflow);
 }
 
