@@ -85,7 +85,7 @@ void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& actio
                                    "function parameters, in this order; every other value is folded in as a constant");
     cmd->add_option("--set", args->set, "values of symbols that are not parameters, e.g. m1=2,l=1/2 (exact)");
     cmd->add_flag("--inverse-inertia", args->inverse_inertia,
-                  "3-D inertia inputs of free bodies are the inverse tensors (engine convention)");
+                  "inertia inputs of free bodies are inverses: 3-D tensors I^-1, planar 1/I (engine convention)");
     cmd->add_flag("--inverse-mass", args->inverse_mass, "mass inputs are inverse masses 1/m (engine convention)");
     cmd->parse_complete_callback([args, params, &action] { action = [args, params] { return run(*args, params); }; });
 }

@@ -24,7 +24,7 @@ struct options {
     bool params_given = false;
     std::vector<std::string> params;     ///< symbols or quantity names that stay parameters, in order
     std::vector<std::pair<std::string, std::string>> set; ///< symbol = value folded in as constants
-    bool inverse_inertia = false;        ///< 3-D inertia inputs of free bodies are I^{-1} (engine convention)
+    bool inverse_inertia = false;        ///< inertia inputs of free bodies are I^{-1} (3-D) or 1/I (planar): engine convention
     bool inverse_mass = false;           ///< mass inputs are 1/m (engine convention)
 };
 
