@@ -649,8 +649,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -773,7 +775,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// neither computed nor checked (the rest is the same).\n";
     for (std::size_t i = 0; i < input_names.size(); ++i)
         h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
-    h << tparams << "inline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
+    h << tparams << "IMPACTGEN_HOT inline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
     h << energy_optional(fast.code, "    const T o_energy_lost = ");
@@ -789,7 +791,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 
     // Array form, names, counts.
     h << "/// The same with the inputs in an array, in the order of " << o.name << "_input_names.\n";
-    h << tparams << "inline impact_status " << o.name << "(const T* in, " << R << "<T>& out) noexcept\n{\n";
+    h << tparams << "IMPACTGEN_HOT inline impact_status " << o.name << "(const T* in, " << R << "<T>& out) noexcept\n{\n";
     if (input_names.empty())
         h << "    (void)in;\n";
     h << "    return " << o.name << "<T, with_energy_lost>(";

@@ -60,8 +60,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -153,7 +155,7 @@ IMPACTGEN_COLD inline impact_status central_direct_checked(T e, T m1, T R1, T v_
 ///   R2: centre of mass of 2, n
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 template <typename T, bool with_energy_lost = true>
-inline impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2, central_direct_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2, central_direct_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
     const T w_2 = T(1) / m2;
@@ -186,7 +188,7 @@ inline impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2,
 
 /// The same with the inputs in an array, in the order of central_direct_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status central_direct(const T* in, central_direct_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status central_direct(const T* in, central_direct_result<T>& out) noexcept
 {
     return central_direct<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], out);
 }

@@ -60,8 +60,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -163,7 +165,7 @@ IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   v_b2: velocity of the centre of mass of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
     const T w_2 = T(1) / m2;
@@ -200,7 +202,7 @@ inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T 
 
 /// The same with the inputs in an array, in the order of central_oblique_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
 {
     return central_oblique<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
 }

@@ -60,8 +60,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -235,7 +237,7 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_checked(T e, T m1, T I1_tt, T 
 ///   w_n2: angular velocity of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
 {
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
     const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
@@ -302,7 +304,7 @@ inline impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn
 
 /// The same with the inputs in an array, in the order of noncentral_3d_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status noncentral_3d(const T* in, noncentral_3d_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status noncentral_3d(const T* in, noncentral_3d_result<T>& out) noexcept
 {
     return noncentral_3d<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
 }

@@ -58,8 +58,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -215,7 +217,7 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
 ///   w_n2: angular velocity of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
     const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
@@ -270,7 +272,7 @@ inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_t
 
 /// The same with the inputs in an array, in the order of noncentral_3d_engine_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
 {
     return noncentral_3d_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
 }

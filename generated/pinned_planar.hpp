@@ -58,8 +58,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -168,7 +170,7 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
 ///   v1: velocity of the centre of mass of 1 before impact, x
 ///   m2: mass of 2 (> 0)
 template <typename T, bool with_energy_lost = true>
-inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
@@ -214,7 +216,7 @@ inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_res
 
 /// The same with the inputs in an array, in the order of pinned_planar_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
 {
     return pinned_planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
 }

@@ -60,8 +60,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -175,7 +177,7 @@ IMPACTGEN_COLD inline impact_status planar_checked(T e, T m1, T I1, T r_t1, T r_
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
 {
     const T inv_I1 = T(1) / I1;
     const T inv_m1 = T(1) / m1;
@@ -216,7 +218,7 @@ inline impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w
 
 /// The same with the inputs in an array, in the order of planar_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status planar(const T* in, planar_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status planar(const T* in, planar_result<T>& out) noexcept
 {
     return planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
 }

@@ -58,8 +58,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 } // namespace detail
 #if defined(__GNUC__)
 #define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
+#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
 #else
 #define IMPACTGEN_COLD
+#define IMPACTGEN_HOT
 #endif
 #endif
 
@@ -171,7 +173,7 @@ IMPACTGEN_COLD inline impact_status planar_engine_checked(T e, T inv_m1, T inv_I
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
     const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
     const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
@@ -208,7 +210,7 @@ inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_
 
 /// The same with the inputs in an array, in the order of planar_engine_input_names.
 template <typename T, bool with_energy_lost = true>
-inline impact_status planar_engine(const T* in, planar_engine_result<T>& out) noexcept
+IMPACTGEN_HOT inline impact_status planar_engine(const T* in, planar_engine_result<T>& out) noexcept
 {
     return planar_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
 }
