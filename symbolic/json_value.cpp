@@ -40,6 +40,7 @@ public:
     bool binary(binary_t&) override { throw input_error("malformed JSON: binary values are not JSON text"); }
     bool start_object(std::size_t) override
     {
+        check_depth();
         stack_.push_back({make(json_value::kind::object, ""), pending_key_});
         return true;
     }
@@ -54,6 +55,7 @@ public:
     bool end_object() override { return close(); }
     bool start_array(std::size_t) override
     {
+        check_depth();
         stack_.push_back({make(json_value::kind::array, ""), pending_key_});
         return true;
     }
@@ -71,6 +73,15 @@ public:
     }
 
 private:
+    // The problem format nests four levels deep; a bound keeps absurd input
+    // from exhausting the stack (the tree is built and freed recursively).
+    static constexpr std::size_t max_depth = 64;
+    void check_depth() const
+    {
+        if (stack_.size() >= max_depth)
+            throw input_error("malformed JSON: nested deeper than " + std::to_string(max_depth) + " levels");
+    }
+
     struct frame {
         json_value value;
         std::string key; // the key under which the container is stored in its parent
