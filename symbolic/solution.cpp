@@ -162,7 +162,8 @@ solution solve(const derivation& d)
     if (s.expand_steps(k_value).normal().is_zero())
         throw input_error("contact: no impulse can act: neither body can move along the normal at the contact point "
                           "(the line of impact passes through the pivot of a body that cannot otherwise move)");
-    ex k = sb.add("k", "k", k_value, "effective inverse mass of the contact: w_1 + w_2");
+    const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
+    ex k = sb.add("k", "k", k_value, "effective inverse mass of the contact: " + wsum);
     ex N = sb.add("N", "N", -(1 + p.restitution) * u / k, "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
     s.normal_impulse = N;
 
