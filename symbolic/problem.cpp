@@ -1,6 +1,7 @@
 #include "problem.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <cfloat>
 #include <fstream>
@@ -80,7 +81,9 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
 
 // Rewrites decimal literals inside an expression string as exact rationals
 // and registers every identifier as a shared symbol; returns the rewritten text.
-std::string prepare_expression(const std::string& s, symtab& table, const std::string& where)
+const std::string reserved_prefix = "impactgen_number_";
+
+std::string prepare_expression(const std::string& s, symtab& table, const std::string& where, lst& numbers)
 {
     static const std::set<std::string> functions = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan",
                                                     "exp", "log", "abs", "pow", "sinh", "cosh", "tanh"};
@@ -101,6 +104,8 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
             std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
             if (lower == "inf" || lower == "infinity" || lower == "nan")
                 throw input_error(where + ": \"" + s + "\" is not a finite value (only a mass may be \"inf\")");
+            if (id.rfind(reserved_prefix, 0) == 0)
+                throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
             if (call) {
                 if (!functions.count(id))
                     throw input_error(where + ": unknown function \"" + id + "\" in \"" + s + "\"");
@@ -125,9 +130,12 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
                         ++j;
                 }
             }
-            std::ostringstream os;
-            os << "(" << exact_decimal(s.substr(i, j - i), where) << ")";
-            out += os.str();
+            // A placeholder symbol: GiNaC's parser would evaluate 2^(2^40) eagerly.
+            std::string name = reserved_prefix + std::to_string(numbers.nops());
+            symbol placeholder(name);
+            table[name] = placeholder;
+            numbers.append(placeholder == exact_decimal(s.substr(i, j - i), where));
+            out += name;
             i = j;
         } else {
             out += c;
@@ -150,6 +158,46 @@ void check_finite(const ex& e, const std::string& where)
         throw input_error(where + ": the value is not real");
     if (abs(n) > numeric(DBL_MAX))
         throw input_error(where + ": the value is out of the range of double (non-finite number)");
+}
+
+// log10 of an upper bound of |e| with the placeholders' values (symbols count
+// as 1), or +infinity; refuses before any huge number is computed exactly.
+double log10_bound(const ex& e, const exmap& numbers)
+{
+    if (is_a<symbol>(e)) {
+        auto it = numbers.find(e);
+        if (it == numbers.end())
+            return 0;
+        const numeric& x = ex_to<numeric>(it->second);
+        return x.is_zero() ? -400 : std::log10(std::abs(x.to_double()) + 1e-300);
+    }
+    if (is_a<numeric>(e))
+        return std::log10(std::abs(ex_to<numeric>(e).to_double()) + 1e-300);
+    if (is_a<add>(e)) {
+        double m = -400;
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            m = std::max(m, log10_bound(e.op(k), numbers));
+        return m + std::log10(static_cast<double>(e.nops()));
+    }
+    if (is_a<GiNaC::mul>(e)) {
+        double m = 0;
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            m += std::abs(log10_bound(e.op(k), numbers));
+        return m;
+    }
+    if (is_a<power>(e)) {
+        double b = std::abs(log10_bound(e.op(0), numbers));
+        double x = log10_bound(e.op(1), numbers);
+        if (x > 6)
+            return b == 0 ? 0 : HUGE_VAL;
+        ex expo = e.op(1).subs(numbers);
+        double ev = is_a<numeric>(expo) ? std::abs(ex_to<numeric>(expo).to_double()) : std::pow(10.0, x);
+        return b * ev;
+    }
+    double m = 0; // functions: bounded by their arguments for our purposes
+    for (std::size_t k = 0; k < e.nops(); ++k)
+        m = std::max(m, std::abs(log10_bound(e.op(k), numbers)));
+    return m;
 }
 
 std::string show(const ex& e)
@@ -236,10 +284,19 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
         if (t.find_first_not_of(" \t") == std::string::npos)
             throw input_error(where + ": empty expression");
         symtab table;
-        std::string prepared = prepare_expression(t, table, where);
+        lst numbers;
+        std::string prepared = prepare_expression(t, table, where, numbers);
         parser reader(table, true);
         try {
-            value = reader(prepared);
+            ex shape = reader(prepared);
+            exmap values;
+            for (const ex& rel : numbers)
+                values[rel.lhs()] = rel.rhs();
+            if (log10_bound(shape, values) > 400)
+                throw input_error(where + ": \"" + text + "\" is out of the range of double (non-finite number)");
+            value = shape.subs(values);
+        } catch (const input_error&) {
+            throw;
         } catch (const std::exception& e) {
             std::string why = e.what();
             why = why.substr(0, why.find('\n'));

@@ -83,6 +83,8 @@ std::vector<bad_case> cases()
         {"overflowing_number", [] { return std::string(R"({"dimension": 2, "restitution": 1e999})"); }, {"restitution", "non-finite"}},
         {"infinite_velocity", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"][0] = "inf"; }); }, {"bodies[0]", "velocity", "not a finite value"}},
         {"nan_position", [] { return with(valid(), [](json& j) { j["bodies"][0]["position"][1] = "NaN"; }); }, {"position", "not a finite value"}},
+        {"tower_of_powers", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "2^(2^40)"; }); }, {"bodies[0]", "mass", "non-finite"}},
+        {"reserved_name", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "impactgen_number_0"; }); }, {"mass", "reserved"}},
         {"imaginary_unit", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "I"; }); }, {"mass", "imaginary"}},
         {"unreadable_expression", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "2*/3"; }); }, {"mass", "cannot read the expression"}},
         {"unknown_function", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "foo(2)"; }); }, {"mass", "unknown function"}},
