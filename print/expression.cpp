@@ -15,13 +15,6 @@ std::string parser_syntax(const ex& e)
     return os.str();
 }
 
-std::string latex(const ex& e)
-{
-    std::ostringstream os;
-    os << GiNaC::latex << e;
-    return os.str();
-}
-
 double to_double(const ex& e)
 {
     ex v = e.evalf();

@@ -10,7 +10,6 @@ namespace impactgen::print {
 
 /// GiNaC's own syntax: what GiNaC's parser reads back (also the text format).
 std::string parser_syntax(const GiNaC::ex& e);
-std::string latex(const GiNaC::ex& e);
 /// A number as a decimal with 15 significant digits; throws when e is not a number.
 std::string decimal(const GiNaC::ex& e);
 double to_double(const GiNaC::ex& e);
