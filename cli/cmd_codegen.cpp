@@ -2,6 +2,7 @@
 // closed form of a named class or problem file (see codegen/codegen.hpp).
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
+#include "names/identifier.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -34,11 +35,8 @@ int run(const codegen_args& a, CLI::Option* params_opt)
     o.version = IMPACTGEN_VERSION;
     o.ns = a.ns;
     if (a.name.empty()) {
-        std::string stem = std::filesystem::path(a.what).stem().string();
-        for (char& c : stem)
-            if (c == '-' || c == '.' || c == ' ')
-                c = '_';
-        o.name = stem;
+        // The class or file stem made a safe identifier ("9-ball.json" -> x_9_ball).
+        o.name = names::mangle(std::filesystem::path(a.what).stem().string());
     } else {
         o.name = a.name;
     }
@@ -58,6 +56,9 @@ int run(const codegen_args& a, CLI::Option* params_opt)
         path = (std::filesystem::path(a.out_dir) / (o.name + ".hpp")).string();
     if (path.empty()) {
         std::cout << h.text;
+        std::cout.flush();
+        if (!std::cout)
+            throw input_error("cannot write the header to standard output");
         return 0;
     }
     auto parent = std::filesystem::path(path).parent_path();
@@ -78,7 +79,7 @@ void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& actio
     cmd->add_option("problem", args->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     cmd->add_option("--out", args->out_dir, "write DIR/NAME.hpp (only when its content changes)");
     cmd->add_option("-o,--output", args->output, "write exactly this file (only when its content changes); overrides --out");
-    cmd->add_option("--name", args->name, "function name (default: class or file stem, '-' -> '_')");
+    cmd->add_option("--name", args->name, "function name, a C++ identifier (default: the class or file stem made one: '-' -> '_', x_ before a digit)");
     cmd->add_option("--namespace", args->ns, "namespace of the generated code (default impactgen::generated)");
     auto* params = cmd->add_option("--params", args->params,
                                    "comma-separated symbols (or quantity names such as m1, v_x_ball, I1_tt) that stay "

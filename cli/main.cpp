@@ -5,6 +5,7 @@
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
 #include "cli/commands.hpp"
+#include "names/escape.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <thread>
 #include <iostream>
 
 using namespace impactgen;
@@ -53,7 +55,7 @@ int cmd_solve(const std::string& what, bool json)
         std::string names;
         for (const auto& s : params)
             names += (names.empty() ? "" : ", ") + s.get_name();
-        throw input_error(what + ": solve needs numbers, but the problem has symbols (" + names +
+        throw input_error(what + ": solve needs numbers, but the problem has symbols (" + impactgen::names::display_text(names, 120) +
                           "); use 'impactgen formulas' for closed forms");
     }
     derivation d = derive(p);
@@ -104,6 +106,11 @@ int cmd_bench(int repeats)
 
 } // namespace
 
+namespace {
+int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
+             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats);
+} // namespace
+
 int main(int argc, char** argv)
 {
     CLI::App app{"impactgen: derive, solve, teach and generate code for smooth rigid-body impact"};
@@ -127,6 +134,12 @@ int main(int argc, char** argv)
     auto* bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
     bench->add_option("--repeats", repeats, "repetitions per class (best is reported)")->check(CLI::Range(1, 1000));
 
+    double time_limit = 10;
+    app.add_option("--time-limit", time_limit,
+                   "seconds a command may run before it stops with an error (default 10; 0: no limit; bench: no "
+                   "limit unless given)")
+        ->check(CLI::Range(0.0, 86400.0));
+
     std::function<int()> extra_action;
     impactgen::cli::register_explain(app, extra_action);
     impactgen::cli::register_codegen(app, extra_action);
@@ -137,7 +150,37 @@ int main(int argc, char** argv)
         int code = app.exit(e);
         return code == 0 ? 0 : 2;
     }
+    auto run_command = [&] { return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats); };
+    // The time budget: every input the reader accepts is done in well under a
+    // second; a run past the budget is stopped with a message, never left to hang.
+    const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
+    if (limited)
+        std::thread([time_limit] {
+            std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));
+            std::fprintf(stderr, "impactgen: error: stopped after the time budget of %g s (--time-limit)\n", time_limit);
+            std::fflush(stderr);
+            std::_Exit(1);
+        }).detach();
     try {
+        int rc = run_command();
+        std::cout.flush();
+        if (!std::cout)
+            throw input_error("cannot write to standard output");
+        return rc;
+    } catch (const input_error& e) {
+        std::cerr << "impactgen: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "impactgen: error: " << impactgen::names::display_text(e.what()) << "\n";
+        return 1;
+    }
+}
+
+namespace {
+int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
+             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats)
+{
+    {
         if (*list)
             return cmd_list();
         if (*solve_cmd)
@@ -148,12 +191,7 @@ int main(int argc, char** argv)
             return cmd_bench(repeats);
         if (extra_action)
             return extra_action();
-    } catch (const input_error& e) {
-        std::cerr << "impactgen: error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "impactgen: error: " << e.what() << "\n";
-        return 1;
     }
     return 0;
 }
+} // namespace

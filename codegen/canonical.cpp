@@ -76,7 +76,10 @@ scaled canonical_pool::convert(const ex& e)
             return {1, it->second};
         cnode n;
         n.kind = cnode::input;
-        n.name = ex_to<symbol>(e).get_name();
+        auto known = input_names_.find(ex_to<symbol>(e).get_name());
+        if (known == input_names_.end())
+            throw std::logic_error("code generation: symbol " + ex_to<symbol>(e).get_name() + " is not an input");
+        n.name = known->second;
         n.key = n.name;
         return {1, intern(std::move(n))};
     }

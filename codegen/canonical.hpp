@@ -38,6 +38,8 @@ struct scaled {
 
 class canonical_pool {
 public:
+    /// The C++ name of each input symbol (by GiNaC name); a symbol not listed is an error.
+    void set_input_names(std::map<std::string, std::string> names) { input_names_ = std::move(names); }
     /// Occurrences of `sym` in later expressions refer to step `index`.
     void bind_step(const GiNaC::symbol& sym, int index, const std::string& name);
     /// Throws std::runtime_error for what C++ cannot express (functions, complex numbers, odd powers).
@@ -58,6 +60,7 @@ private:
     std::map<std::string, int> by_key_;
     std::map<std::string, std::pair<int, std::string>> steps_; ///< step symbol name -> index, name
     std::map<GiNaC::ex, int, GiNaC::ex_is_less> step_syms_;
+    std::map<std::string, std::string> input_names_;
 };
 
 /// Text of an exact number, e.g. "4/5", "-3".

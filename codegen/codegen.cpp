@@ -1,7 +1,11 @@
 #include "codegen.hpp"
 
+#include "names/escape.hpp"
+#include "names/identifier.hpp"
+
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -12,33 +16,18 @@ using namespace GiNaC;
 
 namespace {
 
-bool is_identifier(const std::string& s)
-{
-    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
-        return false;
-    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-}
-
-std::string identifier(const std::string& s)
-{
-    std::string r;
-    for (char c : s)
-        r += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-    if (r.empty() || std::isdigit(static_cast<unsigned char>(r[0])))
-        r = "_" + r;
-    return r;
-}
+std::string identifier(const std::string& s) { return names::mangle(s); }
 
 // Quantity suffix of a body: "1" -> "1", "ball" -> "_ball".
 std::string sfx(const std::string& label) { return label.size() == 1 ? label : "_" + identifier(label); }
 
+// Names the emitted code itself uses inside the functions (keywords and
+// reserved C++ names are refused by names::mangle already).
 const std::set<std::string>& reserved()
 {
-    static const std::set<std::string> r = {
-        "out", "fail", "T", "in", "detail", "check_sum", "ok", "status", "failed", "with_energy_lost", "impact_status", "op_count", "sqrt", "auto", "bool", "break",
-        "case", "char", "const", "continue", "default", "delete", "do", "double", "else", "enum", "false", "float",
-        "for", "if", "inline", "int", "long", "namespace", "new", "return", "short", "signed", "sizeof", "static",
-        "struct", "switch", "template", "this", "true", "typename", "union", "unsigned", "void", "while"};
+    static const std::set<std::string> r = {"out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed",
+                                            "with_energy_lost", "impact_status", "op_count", "to_string", "finite", "all_finite",
+                                            "min_of", "sqrt", "std", "i", "n", "r", "a"};
     return r;
 }
 
@@ -202,12 +191,6 @@ plan make_plan(const problem& p, const options& o)
     std::set<std::string> taken;
     for (const symbol& x : q.parameters())
         taken.insert(x.get_name());
-    auto find_step = [&](const std::string& name) -> step* {
-        for (step& st : s.steps)
-            if (st.sym.get_name() == name)
-                return &st;
-        return nullptr;
-    };
 
     // Engine conventions: replacements of input symbols (old name -> new symbols in order).
     std::map<std::string, std::vector<symbol>> replaced;
@@ -260,11 +243,10 @@ plan make_plan(const problem& p, const options& o)
                     symbolic = symbolic || !is_a<numeric>(c);
             if (!symbolic)
                 continue; // a known tensor is inverted exactly at generation time
-            const std::string L = b.label, sub = L.size() == 1 ? L : "," + L;
             vec3 tau = cross(q.contact.point - b.position, d.n_hat);
             vec3 t;
             for (int c = 0; c < 3; ++c) {
-                step* ts = find_step("tau_" + ax[c] + sub);
+                const step* ts = s.find(step_role::lever_arm, i, c);
                 t[c] = ts ? ex(ts->sym) : tau[c].normal();
             }
             mat3 K;
@@ -283,13 +265,14 @@ plan make_plan(const problem& p, const options& o)
                 }
             vec3 g = mul(K, t);
             for (int c = 0; c < 3; ++c) {
-                step* gs = find_step("g_" + ax[c] + sub);
+                step* gs = s.find(step_role::angular_response, i, c);
                 if (!gs)
-                    throw std::logic_error("--inverse-inertia: no step g_" + ax[c] + sub);
+                    throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
                 gs->value = g[c];
             }
             // The determinant of the tensor is no longer needed.
-            s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(), [&](const step& st) { return st.sym.get_name() == "D_" + sub; }),
+            s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
+                                         [&](const step& st) { return st.role == step_role::inertia_determinant && st.body == i; }),
                           s.steps.end());
             any = true;
         }
@@ -335,8 +318,6 @@ plan make_plan(const problem& p, const options& o)
         for (const symbol& x : syms) {
             if (!done.insert(x.get_name()).second)
                 continue;
-            if (!is_identifier(x.get_name()) || reserved().count(x.get_name()))
-                throw input_error("symbol " + x.get_name() + " cannot be a C++ parameter name: rename it in the problem");
             pl.inputs.push_back(x);
             auto m = meaning.find(x.get_name());
             if (m != meaning.end()) {
@@ -378,10 +359,8 @@ plan make_plan(const problem& p, const options& o)
             pl.outputs.push_back({output_value::pivot_impulse, k, c, "R_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), s.pivot_impulses[k][c],
                                   "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
     }
-    ex u = 0;
-    for (const step& st : s.steps)
-        if (st.sym.get_name() == "u")
-            u = st.sym;
+    const step* u_step = s.find(step_role::approach_velocity);
+    const ex u = u_step ? ex(u_step->sym) : ex(0);
     pl.outputs.push_back({output_value::approach_velocity, 0, 0, "approach_velocity", u, "(v_B - v_A).n before impact along the unit normal (< 0)"});
     pl.outputs.push_back({output_value::energy_lost, 0, 0, "energy_lost", s.energy_lost, "kinetic energy lost, T - T' (bodies of finite mass)"});
     return pl;
@@ -422,38 +401,43 @@ std::string wrap_comment(const std::string& lhs, const std::string& rhs)
 
 header generate(const problem& p, const options& o)
 {
-    if (!is_identifier(o.name) || reserved().count(o.name))
-        throw input_error("--name " + o.name + ": not a usable C++ identifier");
-    {
-        std::string rest = o.ns;
-        std::size_t pos;
-        while (!rest.empty()) {
-            pos = rest.find("::");
-            std::string part = rest.substr(0, pos);
-            if (!is_identifier(part))
-                throw input_error("--namespace " + o.ns + ": not a C++ namespace name");
-            rest = pos == std::string::npos ? "" : rest.substr(pos + 2);
-        }
-    }
+    if (!names::is_safe_identifier(o.name) || reserved().count(o.name))
+        throw input_error("function name \"" + names::display_text(o.name) +
+                          "\": not a usable C++ identifier (letters, digits and single underscores, not a keyword or a "
+                          "reserved name)");
+    if (std::string why = names::namespace_problem(o.ns); !why.empty())
+        throw input_error("namespace \"" + names::display_text(o.ns) + "\": " + why);
     plan pl = make_plan(p, o);
     const solution& s = pl.sol;
     const problem& q = pl.prob;
 
-    // Canonical trees of the steps and outputs, then the straight-line program.
+    // Every name the header declares comes from one scope (names/identifier.hpp):
+    // the emitter's own names first, then inputs, steps and the locals derived
+    // from outputs and inputs, so no user name can shadow or collide with another.
+    names::identifier_scope scope, members;
+    for (const std::string& r : reserved())
+        if (names::is_safe_identifier(r))
+            scope.reserve(r);
+    for (const char* suffix : {"", "_result", "_checked", "_batch", "_input_count", "_output_count", "_input_names",
+                               "_output_names", "_ops", "_to_array"})
+        scope.reserve(o.name + suffix);
+    std::map<std::string, std::string> input_ident; // GiNaC symbol name -> C++ parameter
+    std::vector<std::string> input_names;
+    for (const symbol& x : pl.inputs) {
+        input_names.push_back(scope.claim(x.get_name()));
+        input_ident[x.get_name()] = input_names.back();
+    }
+    for (output_value& ov : pl.outputs)
+        ov.field = members.claim(ov.field);
     canonical_pool pool;
+    pool.set_input_names(input_ident);
     program prog;
-    std::set<std::string> taken;
-    for (const symbol& x : pl.inputs)
-        taken.insert(x.get_name());
     std::vector<std::string> step_names;
     std::vector<scaled> step_values;
     std::map<int, std::string> names;
     for (std::size_t i = 0; i < s.steps.size(); ++i) {
         const step& st = s.steps[i];
-        std::string nm = identifier(st.sym.get_name());
-        while (taken.count(nm) || reserved().count(nm))
-            nm += "_";
-        taken.insert(nm);
+        const std::string nm = scope.claim(st.sym.get_name());
         scaled v = pool.convert(st.value);
         pool.bind_step(st.sym, static_cast<int>(i), nm);
         step_names.push_back(nm);
@@ -464,14 +448,21 @@ header generate(const problem& p, const options& o)
         if (!prog.is_leaf(id) && !names.count(id))
             names[id] = nm;
     }
-    std::vector<std::pair<std::string, int>> outs;
+    std::vector<std::pair<std::string, int>> outs, outs_local;
     std::vector<scaled> out_values;
+    std::map<std::string, std::string> local_of, out_ptr, in_ptr; // member -> local value / output pointer; input -> input pointer
     for (const output_value& ov : pl.outputs) {
         scaled v = pool.convert(ov.value);
         out_values.push_back(v);
         prog.set_owner(ov.field);
         outs.push_back({ov.field, prog.lower(pool, v)});
+        local_of[ov.field] = scope.claim("o_" + ov.field);
+        out_ptr[ov.field] = scope.claim("out_" + ov.field);
+        outs_local.push_back({local_of[ov.field], outs.back().second});
     }
+    for (const std::string& nm : input_names)
+        in_ptr[nm] = scope.claim("in_" + nm);
+    std::vector<std::string> all_taken = scope.names();
     // Validity checks, each right after the value it tests.
     std::vector<check> checks;
     auto add_check = [&](const ex& value, check::kind_t kind, const std::string& status, const std::string& comment) {
@@ -502,30 +493,32 @@ header generate(const problem& p, const options& o)
                       (inv ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
         }
     }
-    bool has_k = false;
-    for (const step& st : s.steps)
-        has_k = has_k || st.sym.get_name() == "k";
-    for (std::size_t i = 0; i < s.steps.size(); ++i) {
-        const std::string nm = s.steps[i].sym.get_name();
-        if (nm == "N" && !has_k) // k = w_1 + w_2 too simple to be a step: N's denominator
-            add_check(s.steps[i].value.denom(), check::positive, "singular", "effective inverse mass k > 0, finite");
-        if (nm.rfind("D_", 0) == 0)
-            add_check(s.steps[i].sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
-        else if (nm == "u")
-            add_check(s.steps[i].sym, check::negative, "not_approaching", "the contact points approach: u < 0");
-        else if (nm == "k")
-            add_check(s.steps[i].sym, check::positive, "singular", "effective inverse mass k > 0, finite");
+    const bool has_k = s.find(step_role::contact_inverse_mass) != nullptr;
+    for (const step& st : s.steps) {
+        switch (st.role) {
+        case step_role::normal_impulse:
+            if (!has_k) // k = w_1 + w_2 too simple to be a step: N's denominator
+                add_check(st.value.denom(), check::positive, "singular", "effective inverse mass k > 0, finite");
+            break;
+        case step_role::inertia_determinant:
+            add_check(st.sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
+            break;
+        case step_role::approach_velocity:
+            add_check(st.sym, check::negative, "not_approaching", "the contact points approach: u < 0");
+            break;
+        case step_role::contact_inverse_mass:
+            add_check(st.sym, check::positive, "singular", "effective inverse mass k > 0, finite");
+            break;
+        default: break;
+        }
     }
-    std::vector<std::string> input_names;
-    for (const symbol& x : pl.inputs)
-        input_names.push_back(x.get_name());
-    emitted em = emit_cpp(prog, outs, checks, names, input_names);
+    emitted em = emit_cpp(prog, outs, checks, names, all_taken);
 
     op_counts unused_counts;
     // The branchless forms: one call (latency: a division each) and the batch loop
     // (throughput: reciprocals share divisions).
-    emitted fast = emit_cpp(prog, outs, checks, names, input_names, true);
-    emitted batch = emit_cpp(prog, outs, checks, names, input_names, true, true);
+    emitted fast = emit_cpp(prog, outs_local, checks, names, all_taken, true);
+    emitted batch = emit_cpp(prog, outs_local, checks, names, all_taken, true, true);
     (void)unused_counts;
     // Inputs the outputs do not depend on still count for the finiteness check.
     std::set<std::string> reached;
@@ -548,7 +541,7 @@ header generate(const problem& p, const options& o)
         std::vector<std::string> t;
         for (const auto& [field, id] : outs)
             if (prog.at(id).kind != op::constant)
-                t.push_back("o_" + field);
+                t.push_back(local_of.at(field));
         for (const std::string& nm : unused_inputs)
             t.push_back(nm);
         for (const std::string& x : em_.finite_terms)
@@ -574,8 +567,8 @@ header generate(const problem& p, const options& o)
         command += " --inverse-inertia";
     if (o.inverse_mass)
         command += " --inverse-mass";
-    h << "// Generated by impactgen " << o.version << " from " << o.source << ". Do not edit: regenerate.\n";
-    h << "//   " << command << "\n";
+    h << "// Generated by impactgen " << o.version << " from " << names::comment_text(o.source) << ". Do not edit: regenerate.\n";
+    h << "//   " << names::comment_text(command) << "\n";
     h << "// Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.\n";
     h << "// Arithmetic per call: " << counts_text(em.formula) << " (closed form);\n";
     h << "//   validity checks: " << counts_text(em.checks) << " + " << (sum_terms.empty() ? 0 : sum_terms.size() - 1)
@@ -597,9 +590,7 @@ header generate(const problem& p, const options& o)
         h << "#include <limits>\n";
     if (em.uses_sqrt || !batch.normal_terms.empty())
         h << "\n";
-    std::string guard = "IMPACTGEN_GENERATED_COMMON_";
-    for (char c : o.ns)
-        guard += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
+    const std::string guard = names::guard_macro("PREAMBLE", o.ns);
     h << "namespace " << o.ns << " {\n\n";
     h << "#ifndef " << guard << "\n#define " << guard << "\n";
     h << R"(/// Why a call computed no post-impact state (the result is then all zeros).
@@ -661,7 +652,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// Post-impact state of " << o.name << " (units as the inputs).\n";
     h << "template <typename T> struct " << R << " {\n";
     for (const output_value& ov : pl.outputs)
-        h << "    T " << ov.field << "; ///< " << ov.meaning << "\n";
+        h << "    T " << ov.field << "; ///< " << names::comment_text(ov.meaning) << "\n";
     h << "};\n\n";
 
     // Formula block.
@@ -715,12 +706,19 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
             parts.push_back("detail::finite(" + balanced_sum(fast_terms) + ")");
         std::string text;
         if (!batch.check_comments.empty() || !batch.normal_terms.empty()) {
-            std::string what = join(batch.check_comments, "; ");
+            std::string what = names::comment_text(join(batch.check_comments, "; "));
             if (!batch.normal_terms.empty())
                 what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
             text += ind + "// checks: " + what + "; every value finite\n";
         }
-        text += ind + "const bool ok = " + (parts.empty() ? std::string("true") : join(parts, " &\n" + ind + "                ")) + ";\n";
+        // Folded as unsigned so that no branch is implied and clang's
+        // -Wbitwise-instead-of-logical has nothing to say.
+        for (std::string& part : parts)
+            part = "static_cast<unsigned>" + (part.front() == '(' ? part : "(" + part + ")");
+        text += ind + "const bool ok = " +
+                (parts.empty() ? std::string("true")
+                               : "(" + join(parts, " &\n" + ind + "                 ") + ") != 0u") +
+                ";\n";
         return text;
     };
 
@@ -752,12 +750,14 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << tparams << "IMPACTGEN_COLD inline impact_status " << checked << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
-    if (!input_names.empty()) {
-        h << "    auto fail = [&](impact_status why) noexcept {\n";
-        h << "        out = " << R << "<T>{};\n";
+    h << "    auto fail = [&](impact_status why) noexcept {\n";
+    h << "        out = " << R << "<T>{};\n";
+    if (input_names.empty())
+        h << "        return why;\n";
+    else
         h << "        return detail::all_finite(" << join(input_names, ", ") << ") ? why : impact_status::non_finite_input;\n";
-        h << "    };\n";
-    }
+    h << "    };\n";
+    h << "    (void)fail; // a fully numeric problem may have no check left\n";
     h << energy_optional(em.code, "    out.energy_lost = ");
     if (!sum_terms.empty()) {
         h << "    const T check_sum = " << balanced_sum(sum_terms) << ";\n";
@@ -774,11 +774,11 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,\n";
     h << "/// neither computed nor checked (the rest is the same).\n";
     for (std::size_t i = 0; i < input_names.size(); ++i)
-        h << "///   " << input_names[i] << ": " << pl.input_meaning[i] << "\n";
+        h << "///   " << input_names[i] << ": " << names::comment_text(pl.input_meaning[i]) << "\n";
     h << tparams << "IMPACTGEN_HOT inline impact_status " << o.name << "(" << params << R << "<T>& out) noexcept\n{\n";
     if (em.uses_sqrt)
         h << "    using std::sqrt;\n";
-    h << energy_optional(fast.code, "    const T o_energy_lost = ");
+    h << energy_optional(fast.code, "    const T " + local_of.at("energy_lost") + " = ");
     h << ok_flag("    ", fast, fast_terms);
     h << "    if (!ok) // some check failed (or a value is not finite): find which\n";
     h << "        return detail::" << checked << "<T, with_energy_lost>(";
@@ -786,7 +786,7 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         h << nm << ", ";
     h << "out);\n";
     for (const output_value& ov : pl.outputs)
-        h << "    out." << ov.field << " = o_" << ov.field << ";\n";
+        h << "    out." << ov.field << " = " << local_of.at(ov.field) << ";\n";
     h << "    return impact_status::ok;\n}\n\n";
 
     // Array form, names, counts.
@@ -815,24 +815,24 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     if (input_names.empty())
         h << "    (void)in;\n";
     for (std::size_t j = 0; j < input_names.size(); ++j)
-        h << "    const T* const in_" << input_names[j] << " = in[" << j << "];\n";
+        h << "    const T* const " << in_ptr.at(input_names[j]) << " = in[" << j << "];\n";
     for (std::size_t j = 0; j < pl.outputs.size(); ++j)
-        h << "    T* const out_" << pl.outputs[j].field << " = out[" << j << "];\n";
+        h << "    T* const " << out_ptr.at(pl.outputs[j].field) << " = out[" << j << "];\n";
     h << "    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)\n";
     h << "#if defined(__GNUC__) && !defined(__clang__)\n#pragma GCC ivdep\n#endif\n";
     h << "    for (long i = 0; i < n; ++i) {\n";
     for (const std::string& nm : input_names)
-        h << "        const T " << nm << " = in_" << nm << "[i];\n";
+        h << "        const T " << nm << " = " << in_ptr.at(nm) << "[i];\n";
     {
-        std::istringstream lines(energy_optional(batch.code, "    const T o_energy_lost = ") + ok_flag("    ", batch, batch_terms));
+        std::istringstream lines(energy_optional(batch.code, "    const T " + local_of.at("energy_lost") + " = ") + ok_flag("    ", batch, batch_terms));
         std::string line;
         while (std::getline(lines, line))
             h << "    " << line << "\n";
     }
     // Stored unconditionally: the second pass overwrites the outputs of failed impacts.
     for (const output_value& ov : pl.outputs)
-        h << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "") << "        out_" << ov.field
-          << "[i] = o_" << ov.field << ";\n";
+        h << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "") << "        " << out_ptr.at(ov.field)
+          << "[i] = " << local_of.at(ov.field) << ";\n";
     h << "        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
     h << "        failed |= static_cast<unsigned>(!ok);\n";
     h << "    }\n";
@@ -843,10 +843,10 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "            " << R << "<T> r;\n";
     h << "            status[i] = detail::" << checked << "<T, with_energy_lost>(";
     for (const std::string& nm : input_names)
-        h << "in_" << nm << "[i], ";
+        h << in_ptr.at(nm) << "[i], ";
     h << "r);\n";
     for (const output_value& ov : pl.outputs)
-        h << (ov.kind == output_value::energy_lost ? "            if constexpr (with_energy_lost)\n    " : "") << "            out_" << ov.field
+        h << (ov.kind == output_value::energy_lost ? "            if constexpr (with_energy_lost)\n    " : "") << "            " << out_ptr.at(ov.field)
           << "[i] = r." << ov.field << ";\n";
     h << "        }\n";
     h << "}\n\n";
@@ -854,11 +854,11 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
     h << "inline constexpr int " << o.name << "_output_count = " << pl.outputs.size() << ";\n";
     h << "inline constexpr const char* " << o.name << "_input_names[] = {";
     for (const std::string& nm : input_names)
-        h << "\"" << nm << "\", ";
+        h << names::cpp_string_literal(nm) << ", ";
     h << "nullptr};\n";
     h << "inline constexpr const char* " << o.name << "_output_names[] = {";
     for (const output_value& ov : pl.outputs)
-        h << "\"" << ov.field << "\", ";
+        h << names::cpp_string_literal(ov.field) << ", ";
     h << "nullptr};\n";
     h << "/// Arithmetic of the closed form per call (validity checks not included).\n";
     h << "inline constexpr op_count " << o.name << "_ops{" << em.formula.add << ", " << em.formula.mul << ", "
@@ -882,7 +882,12 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
 
 bool write_if_changed(const std::string& path, const std::string& text)
 {
-    {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw input_error(names::display_text(path) + ": not a regular file (the header is written only to a regular file or "
+                          "standard output)");
+    if (std::filesystem::exists(status)) {
         std::ifstream in(path, std::ios::binary);
         if (in) {
             std::stringstream ss;
@@ -893,10 +898,11 @@ bool write_if_changed(const std::string& path, const std::string& text)
     }
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     if (!out)
-        throw input_error("cannot write " + path);
+        throw input_error("cannot write " + names::display_text(path));
     out << text;
+    out.close();
     if (!out)
-        throw input_error("cannot write " + path);
+        throw input_error("cannot write " + names::display_text(path));
     return true;
 }
 

@@ -1,5 +1,7 @@
 #include "program.hpp"
 
+#include "names/escape.hpp"
+
 #include <algorithm>
 #include <set>
 #include <stdexcept>
@@ -324,6 +326,15 @@ struct printer {
     }
 };
 
+// base, or base_2, base_3, ... when taken (never "__", which C++ reserves).
+std::string unique_name(const std::set<std::string>& taken, const std::string& base)
+{
+    std::string nm = base;
+    for (int k = 2; taken.count(nm); ++k)
+        nm = base + (base.back() == '_' ? "" : "_") + std::to_string(k);
+    return nm;
+}
+
 } // namespace
 
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
@@ -379,8 +390,8 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
                 else
                     nm = o.owner + "_p" + std::to_string(++part_counter[o.owner]);
             }
-            while (used_names.count(nm))
-                nm += "_";
+            if (!named) // step names come unique from the caller's scope
+                nm = unique_name(used_names, nm);
             used_names.insert(nm);
             var[id] = nm;
         }
@@ -485,7 +496,7 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
                 out.check_comments.push_back(c.comment);
                 continue;
             }
-            code += "    if (!(" + cond + ")) // " + c.comment + "\n";
+            code += "    if (!(" + cond + ")) // " + names::comment_text(c.comment) + "\n";
             code += "        return fail(impact_status::" + c.status + ");\n";
         }
     };
@@ -494,9 +505,7 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
         if (prog.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
             emit_checks(c.op_id);
     auto fresh = [&](const std::string& base) {
-        std::string nm = base;
-        while (used_names.count(nm))
-            nm += "_";
+        std::string nm = unique_name(used_names, base);
         used_names.insert(nm);
         return nm;
     };
@@ -575,7 +584,7 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
     for (auto& [field, id] : outputs) {
         int p;
         if (branchless)
-            code += "    const T o_" + field + " = " + pr.text(id, p) + ";\n";
+            code += "    const T " + field + " = " + pr.text(id, p) + ";\n";
         else
             code += "    out." + field + " = " + pr.text(id, p) + ";\n";
     }

@@ -9,8 +9,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
-#define IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
+#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -116,6 +116,7 @@ IMPACTGEN_COLD inline impact_status massive_3d_checked(T e, T m1, T I1_tt, T I1_
         out = massive_3d_result<T>{};
         return detail::all_finite(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2) ? why : impact_status::non_finite_input;
     };
+    (void)fail; // a fully numeric problem may have no check left
     if (!(e >= T(0) && e <= T(1))) // 0 <= e <= 1
         return fail(impact_status::invalid_restitution);
     if (!(m1 > T(0) && detail::finite(m1))) // mass of 1 > 0, finite
@@ -217,9 +218,9 @@ IMPACTGEN_HOT inline impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-    const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
-                    (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2)));
+    const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                     static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::massive_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -341,9 +342,9 @@ inline void massive_3d_batch(long n, const T* const* in, T* const* out, impact_s
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; determinant of the inertia tensor > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-        const bool ok = (detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
-                        (detail::min_of(e, T(1) - e) >= T(0)) &
-                        detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2)));
+        const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_D_1, w_1, -u) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                         static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_normal_impulse + o_approach_velocity))) + (((o_energy_lost + r_n1) + (r_n2 + v_t2)) + (v_b2 + w_n2))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -9,8 +9,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
-#define IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
+#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -116,6 +116,7 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
         out = pinned_planar_result<T>{};
         return detail::all_finite(e, m1, l, v1, m2) ? why : impact_status::non_finite_input;
     };
+    (void)fail; // a fully numeric problem may have no check left
     if (!(e >= T(0) && e <= T(1))) // 0 <= e <= 1
         return fail(impact_status::invalid_restitution);
     if (!(m1 > T(0) && detail::finite(m1))) // mass of 1 > 0, finite
@@ -196,9 +197,9 @@ IMPACTGEN_HOT inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pin
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-    const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
-                    (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)));
+    const bool ok = (static_cast<unsigned>(detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                     static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -279,9 +280,9 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-        const bool ok = (detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
-                        (detail::min_of(e, T(1) - e) >= T(0)) &
-                        detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)));
+        const bool ok = (static_cast<unsigned>(detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                         static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

@@ -9,8 +9,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
-#define IMPACTGEN_GENERATED_COMMON_IMPACTGEN__GENERATED
+#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -115,6 +115,7 @@ IMPACTGEN_COLD inline impact_status planar_engine_checked(T e, T inv_m1, T inv_I
         out = planar_engine_result<T>{};
         return detail::all_finite(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2) ? why : impact_status::non_finite_input;
     };
+    (void)fail; // a fully numeric problem may have no check left
     if (!(e >= T(0) && e <= T(1))) // 0 <= e <= 1
         return fail(impact_status::invalid_restitution);
     if (!(inv_m1 > T(0) && detail::finite(inv_m1))) // inverse mass of 1 > 0, finite
@@ -191,9 +192,9 @@ IMPACTGEN_HOT inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
-                    (detail::min_of(e, T(1) - e) >= T(0)) &
-                    detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2));
+    const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                     static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2)))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -284,9 +285,9 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
-                        (detail::min_of(e, T(1) - e) >= T(0)) &
-                        detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2));
+        const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+                         static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2)))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_w_b1[i] = o_w_b1;

@@ -35,10 +35,13 @@ std::string decimal(const ex& e)
 
 ex tidy(const ex& e)
 {
-    std::size_t nodes = 0;
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end() && nodes < 800; ++it)
-        ++nodes;
-    return nodes < 800 ? e.normal() : e;
+    // Only constants are normalised: normal() of a symbolic expression calls
+    // multivariate gcd, whose time grows without a useful bound (minutes for a
+    // few hundred nodes in some term orders). Formulas stay as substituted.
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            return e;
+    return e.normal();
 }
 
 } // namespace impactgen::print

@@ -175,15 +175,15 @@ derivation derive(const problem& p)
     d.vB_after = point_velocity(B, d.velocity_after[i2], d.angular_velocity_after[i2], p.contact.point);
 
     int label = 0;
-    auto add = [&](ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies) {
-        d.equations.push_back({std::to_string(++label), lhs, rhs, why, std::move(reason), std::move(bodies)});
+    auto add = [&](ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies, int component = -1) {
+        d.equations.push_back({std::to_string(++label), lhs, rhs, why, std::move(reason), std::move(bodies), component});
     };
     auto world_components = [&](const vec3& lhs, const vec3& rhs, principle why, const std::string& reason,
                                  std::vector<std::size_t> bodies, bool angular) {
         int first = angular && dim == 2 ? 2 : 0;
         int last = angular || dim == 3 ? 3 : 2;
         for (int c = first; c < last; ++c)
-            add(lhs[c], rhs[c], why, reason + " (" + ax[c] + " component)", bodies);
+            add(lhs[c], rhs[c], why, reason, bodies, c);
     };
     const std::size_t contact_bodies[2] = {i1, i2};
 

@@ -35,8 +35,9 @@ struct equation {
     std::string label;                 ///< "1", "2", ... in the order derived
     ex lhs, rhs;
     principle why;
-    std::string reason;                ///< one sentence: why this equation holds
+    std::string reason;                ///< one sentence: why this equation holds (the same for every component)
     std::vector<std::size_t> bodies;   ///< indices into problem::bodies
+    int component = -1;                ///< world axis of a vector equation's component, -1 for a scalar equation
 };
 
 enum class unknown_kind { velocity, angular_velocity, normal_impulse, pivot_impulse };

@@ -1,9 +1,13 @@
 #include "problem.hpp"
 
+#include "decide.hpp"
+#include "names/escape.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cctype>
 #include <cfloat>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -60,20 +64,20 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
             continue;
         }
         if (!std::isdigit(static_cast<unsigned char>(c)))
-            throw input_error(where + ": \"" + lit + "\" is not a number");
+            throw input_error(where + ": \"" + names::display_text(lit) + "\" is not a number");
         digits += c;
         if (seen_point)
             --scale;
     }
     if (digits.empty())
-        throw input_error(where + ": \"" + lit + "\" is not a number");
+        throw input_error(where + ": \"" + names::display_text(lit) + "\" is not a number");
     if (!expo.empty()) {
         if (expo.size() > 6)
-            throw input_error(where + ": the exponent of " + lit + " is out of range (non-finite number)");
+            throw input_error(where + ": the exponent of " + names::display_text(lit) + " is out of range (non-finite number)");
         scale += std::stol(expo);
     }
     if (scale > 400 || scale < -400)
-        throw input_error(where + ": " + lit + " is out of the range of double (non-finite number)");
+        throw input_error(where + ": " + names::display_text(lit) + " is out of the range of double (non-finite number)");
     numeric value(digits.c_str());
     value *= pow(numeric(10), numeric(scale));
     return negative ? -value : value;
@@ -87,10 +91,31 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
 {
     static const std::set<std::string> functions = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan",
                                                     "exp", "log", "abs", "pow", "sinh", "cosh", "tanh"};
+    if (s.size() > limits::expression_length)
+        throw input_error(where + ": the expression is " + std::to_string(s.size()) + " characters long; at most " +
+                          std::to_string(limits::expression_length) + " are read");
     std::string out;
     std::size_t i = 0;
+    int depth = 0, signs = 0;
     while (i < s.size()) {
         char c = s[i];
+        if (c == '(') {
+            if (++depth > limits::expression_depth)
+                throw input_error(where + ": parentheses nested deeper than " + std::to_string(limits::expression_depth) +
+                                  " levels");
+        } else if (c == ')') {
+            --depth;
+        }
+        if (c == '+' || c == '-') {
+            if (++signs > limits::sign_run)
+                throw input_error(where + ": more than " + std::to_string(limits::sign_run) +
+                                  " signs in a row (+ or -) in the expression");
+        } else if (!std::isspace(static_cast<unsigned char>(c))) {
+            signs = 0;
+        }
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+            throw input_error(where + ": the expression contains the byte " + names::display_text(std::string(1, c)) +
+                              " (expressions are ASCII: numbers, symbols, + - * / ^ ( ) and functions)");
         if (is_ident_start(c)) {
             std::size_t j = i;
             while (j < s.size() && is_ident_char(s[j]))
@@ -103,12 +128,17 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
             std::string lower = id;
             std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
             if (lower == "inf" || lower == "infinity" || lower == "nan")
-                throw input_error(where + ": \"" + s + "\" is not a finite value (only a mass may be \"inf\")");
+                throw input_error(where + ": \"" + names::display_text(s) + "\" is not a finite value (only a mass may be \"inf\")");
             if (id.rfind(reserved_prefix, 0) == 0)
                 throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
             if (call) {
                 if (!functions.count(id))
-                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + s + "\"");
+                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + names::display_text(s) + "\"");
+                std::size_t a = k + 1;
+                while (a < s.size() && std::isspace(static_cast<unsigned char>(s[a])))
+                    ++a;
+                if (a >= s.size() || s[a] == ')')
+                    throw input_error(where + ": the function " + id + "() needs an argument");
             } else if (id == "I") {
                 throw input_error(where + ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
             } else if (id != "Pi" && id != "Euler" && id != "Catalan") {
@@ -145,19 +175,21 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
     return out;
 }
 
-bool is_real_number(const ex& e) { return is_a<numeric>(e) && ex_to<numeric>(e).is_real(); }
-
-void check_finite(const ex& e, const std::string& where)
+// Every value is decided before it is used: real, within double range, and
+// for a constant its sign known exactly (decide.hpp); otherwise refused.
+void check_value(const ex& e, const std::string& where)
 {
     if (e.has(I))
         throw input_error(where + ": the value is not real");
-    if (!is_a<numeric>(e))
+    if (is_constant(e)) {
+        decision d = decide(e);
+        if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
+            throw input_error(where + ": the value " + decision_text(d));
         return;
-    const numeric& n = ex_to<numeric>(e);
-    if (!n.is_real())
-        throw input_error(where + ": the value is not real");
-    if (abs(n) > numeric(DBL_MAX))
-        throw input_error(where + ": the value is out of the range of double (non-finite number)");
+    }
+    std::string why = constant_parts_problem(e);
+    if (!why.empty())
+        throw input_error(where + ": in the expression, a constant part: " + why);
 }
 
 // log10 of an upper bound of |e| with the placeholders' values (symbols count
@@ -204,7 +236,7 @@ std::string show(const ex& e)
 {
     std::ostringstream os;
     os << e;
-    return os.str();
+    return names::display_text(os.str(), 120);
 }
 
 // ---- reading the JSON format -------------------------------------------------
@@ -246,7 +278,7 @@ void warn_unknown_keys(const json_value& obj, std::initializer_list<const char*>
         for (const char* k : known)
             ok = ok || m.first == k;
         if (!ok)
-            warnings.push_back(where + (where.empty() ? "" : ".") + m.first + ": unknown key, ignored");
+            warnings.push_back(where + (where.empty() ? "" : ".") + names::display_text(m.first) + ": unknown key, ignored");
     }
 }
 
@@ -257,7 +289,7 @@ std::size_t body_index(const problem& p, const json_value& v, const std::string&
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         if (p.bodies[i].name == v.text())
             return i;
-    throw input_error(where + ": unknown body \"" + v.text() + "\"");
+    throw input_error(where + ": unknown body \"" + names::display_text(v.text()) + "\"");
 }
 
 } // namespace
@@ -293,17 +325,17 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
             for (const ex& rel : numbers)
                 values[rel.lhs()] = rel.rhs();
             if (log10_bound(shape, values) > 400)
-                throw input_error(where + ": \"" + text + "\" is out of the range of double (non-finite number)");
+                throw input_error(where + ": \"" + names::display_text(text) + "\" is out of the range of double (non-finite number)");
             value = shape.subs(values);
         } catch (const input_error&) {
             throw;
         } catch (const std::exception& e) {
             std::string why = e.what();
             why = why.substr(0, why.find('\n'));
-            throw input_error(where + ": cannot read the expression \"" + text + "\" (" + why + ")");
+            throw input_error(where + ": cannot read the expression \"" + names::display_text(text) + "\" (" + names::display_text(why) + ")");
         }
     }
-    check_finite(value, where);
+    check_value(value, where);
     return value;
 }
 
@@ -366,31 +398,54 @@ bool problem::immovable(std::size_t b) const
     return bodies[b].infinite_mass || (bodies[b].particle && pivot_of(b) != nullptr);
 }
 
+namespace {
+
+// The decided sign of a value or a quantity derived from values; refuses
+// what is not real, out of range or cannot be decided (decide.hpp).
+decision decided(const ex& e, const std::string& where, const std::string& what)
+{
+    decision d = decide(e);
+    if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
+        throw input_error(where + ": " + what + " " + decision_text(d));
+    return d;
+}
+
+bool negative_or_zero(decision d) { return d == decision::negative || d == decision::zero; }
+
+// Zero exactly: decided for constants, identically zero after expansion for symbols.
+bool vanishes(const ex& e, const std::string& where, const std::string& what)
+{
+    decision d = decided(e, where, what);
+    if (d == decision::symbolic)
+        return e.expand().is_zero();
+    return d == decision::zero;
+}
+
+} // namespace
+
 void validate(const problem& p)
 {
     if (p.dimension != 2 && p.dimension != 3)
         throw input_error("dimension: must be 2 or 3");
     if (p.bodies.size() < 2)
         throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
-    if (is_real_number(p.restitution)) {
-        const numeric& e = ex_to<numeric>(p.restitution);
-        if (e < 0 || e > 1)
-            throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
-    }
-    std::set<std::string> names;
+    if (decided(p.restitution, "restitution", "e") == decision::negative ||
+        decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
+        throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
+    std::set<std::string> seen;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         const body& b = p.bodies[i];
-        std::string where = "bodies[" + std::to_string(i) + "] (\"" + b.name + "\")";
-        if (!names.insert(b.name).second)
-            throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + b.name + "\"");
-        if (!b.infinite_mass && is_real_number(b.mass) && ex_to<numeric>(b.mass) <= 0)
+        std::string where = "bodies[" + std::to_string(i) + "] (\"" + names::display_text(b.name) + "\")";
+        if (!seen.insert(b.name).second)
+            throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + names::display_text(b.name) + "\"");
+        if (!b.infinite_mass && negative_or_zero(decided(b.mass, where + ".mass", "the mass")))
             throw input_error(where + ".mass: must be > 0 (or \"inf\"), got " + show(b.mass));
         if (b.particle)
             continue;
         // Symmetric positive-definite (Sylvester: leading principal minors > 0).
         for (int r = 0; r < 3; ++r)
             for (int c = r + 1; c < 3; ++c)
-                if (!(b.inertia[r][c] - b.inertia[c][r]).expand().is_zero())
+                if (!vanishes(b.inertia[r][c] - b.inertia[c][r], where + ".inertia", "the asymmetry of the tensor"))
                     throw input_error(where + ".inertia: not symmetric (entry [" + std::to_string(r) + "][" +
                                       std::to_string(c) + "] is " + show(b.inertia[r][c]) + ", [" + std::to_string(c) +
                                       "][" + std::to_string(r) + "] is " + show(b.inertia[c][r]) + ")");
@@ -401,20 +456,18 @@ void validate(const problem& p)
         } else {
             minors = {J[0][0], J[0][0] * J[1][1] - J[0][1] * J[1][0], det(J)};
         }
-        for (const ex& m : minors) {
-            ex v = m.expand();
-            if (is_real_number(v) && ex_to<numeric>(v) <= 0)
+        for (const ex& m : minors)
+            if (negative_or_zero(decided(m.expand(), where + ".inertia", "a leading principal minor")))
                 throw input_error(where + ".inertia: not positive-definite" +
                                   std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
-        }
     }
     const contact_spec& c = p.contact;
     if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
         throw input_error("contact.bodies: unknown body");
     if (c.body1 == c.body2)
-        throw input_error("contact.bodies: repeated body \"" + p.bodies[c.body1].name + "\" (a body cannot strike itself)");
-    ex nn = dot(c.normal, c.normal).expand();
-    if (nn.is_zero())
+        throw input_error("contact.bodies: repeated body \"" + names::display_text(p.bodies[c.body1].name) +
+                          "\" (a body cannot strike itself)");
+    if (vanishes(dot(c.normal, c.normal), "contact.normal", "|n|^2"))
         throw input_error("contact.normal: the normal must not be zero");
     std::set<std::size_t> pinned;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
@@ -423,23 +476,25 @@ void validate(const problem& p)
         if (pv.body >= p.bodies.size())
             throw input_error(where + ".body: unknown body");
         const body& b = p.bodies[pv.body];
+        const std::string bname = names::display_text(b.name);
         if (!pinned.insert(pv.body).second)
-            throw input_error(where + ".body: body \"" + b.name +
+            throw input_error(where + ".body: body \"" + bname +
                               "\" has a second pivot; the pivot impulses would be statically indeterminate "
                               "(at most one pivot per body)");
         if (b.infinite_mass)
-            throw input_error(where + ".body: body \"" + b.name + "\" has infinite mass; a pivot on it takes no part in the impact");
+            throw input_error(where + ".body: body \"" + bname + "\" has infinite mass; a pivot on it takes no part in the impact");
         // The pivot point E of the body must be at rest: v + w x (E - C) = 0.
         vec3 vE = point_velocity(b, pv.point);
         for (int i = 0; i < 3; ++i)
-            if (!vE[i].expand().is_zero())
-                throw input_error(where + ": the pivot point of body \"" + b.name +
+            if (!vanishes(vE[i], where, "the velocity of the pivot point"))
+                throw input_error(where + ": the pivot point of body \"" + bname +
                                   "\" moves before impact (v + w x (E - C) has component " + p.axes[i] + " = " +
                                   show(vE[i].expand()) + "); a pivot is a fixed point");
     }
     std::size_t b1 = c.body1, b2 = c.body2;
     if (p.immovable(b1) && p.immovable(b2))
-        throw input_error("contact.bodies: neither \"" + p.bodies[b1].name + "\" nor \"" + p.bodies[b2].name +
+        throw input_error("contact.bodies: neither \"" + names::display_text(p.bodies[b1].name) + "\" nor \"" +
+                          names::display_text(p.bodies[b2].name) +
                           "\" can move (infinite mass or pinned particle): no impulse can act");
     // Approach: (v_B - v_A) . n < 0 is an impact; >= 0 separates or rests.
     const body& A = p.bodies[b1];
@@ -447,14 +502,18 @@ void validate(const problem& p)
     vec3 vA = point_velocity(A, c.point);
     vec3 vB = point_velocity(B, c.point);
     ex approach = dot(vB - vA, c.normal).expand();
-    if (is_real_number(approach) && ex_to<numeric>(approach) >= 0)
+    decision d = decided(approach, "contact", "the normal velocity of approach (v_B - v_A).n");
+    if (d == decision::zero || d == decision::positive)
         throw input_error(std::string("contact: not an impact: the contact points ") +
-                          (approach.is_zero() ? "rest relative to each other" : "separate") +
+                          (d == decision::zero ? "rest relative to each other" : "separate") +
                           " along the normal ((v_B - v_A).n = " + show(approach) + " >= 0)");
 }
 
 problem read_problem(const std::string& text, const std::string& source)
 {
+    if (text.size() > limits::file_bytes)
+        throw input_error("problem: the text is " + std::to_string(text.size()) + " bytes; at most " +
+                          std::to_string(limits::file_bytes) + " are read");
     json_value root = json_value::parse(text);
     if (!root.is_object())
         throw input_error(std::string("problem: expected a JSON object, got ") + json_value::kind_name(root.type()));
@@ -473,6 +532,9 @@ problem read_problem(const std::string& text, const std::string& source)
     const json_value& bodies = require(root, "bodies", "problem");
     if (!bodies.is_array())
         throw input_error(std::string("bodies: expected a list, got ") + json_value::kind_name(bodies.type()));
+    if (bodies.items().size() > limits::bodies)
+        throw input_error("bodies: " + std::to_string(bodies.items().size()) + " bodies; at most " +
+                          std::to_string(limits::bodies) + " are read");
     for (std::size_t i = 0; i < bodies.items().size(); ++i) {
         const json_value& jb = bodies.items()[i];
         std::string where = "bodies[" + std::to_string(i) + "]";
@@ -483,8 +545,14 @@ problem read_problem(const std::string& text, const std::string& source)
         const json_value& name = require(jb, "name", where);
         if (!name.is_string() || name.text().empty())
             throw input_error(where + ".name: expected a non-empty string");
+        if (name.text().size() > limits::name_length)
+            throw input_error(where + ".name: longer than " + std::to_string(limits::name_length) + " bytes");
+        for (char ch : name.text())
+            if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+                throw input_error(where + ".name: \"" + names::display_text(name.text()) +
+                                  "\" contains a control character (names are printed in documents and code)");
         b.name = b.label = name.text();
-        where += " (\"" + b.name + "\")";
+        where += " (\"" + names::display_text(b.name) + "\")";
         const json_value& mass = require(jb, "mass", where);
         std::string lower = mass.text();
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
@@ -497,9 +565,10 @@ problem read_problem(const std::string& text, const std::string& source)
             std::string w = where + ".inertia";
             if (d == 2) {
                 ex I = scalar(*in, w);
-                if (is_real_number(I) && ex_to<numeric>(I) < 0)
+                decision d = decided(I, w, "the moment of inertia");
+                if (d == decision::negative)
                     throw input_error(w + ": not positive-definite (must be > 0, or 0 for a particle)");
-                if (!I.is_zero()) {
+                if (d != decision::zero) {
                     b.particle = false;
                     b.inertia[2][2] = I;
                 }
@@ -540,10 +609,11 @@ problem read_problem(const std::string& text, const std::string& source)
     if (p.bodies.size() < 2)
         throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
     {
-        std::set<std::string> names;
+        std::set<std::string> seen;
         for (std::size_t i = 0; i < p.bodies.size(); ++i)
-            if (!names.insert(p.bodies[i].name).second)
-                throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + p.bodies[i].name + "\"");
+            if (!seen.insert(p.bodies[i].name).second)
+                throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" +
+                                  names::display_text(p.bodies[i].name) + "\"");
     }
 
     const json_value& jc = require(root, "contact", "problem");
@@ -573,21 +643,31 @@ problem read_problem(const std::string& text, const std::string& source)
             p.pivots.push_back(pv);
         }
     }
+    const std::size_t symbols = p.parameters().size();
+    if (symbols > limits::symbols)
+        throw input_error("problem: " + std::to_string(symbols) + " distinct symbols; at most " +
+                          std::to_string(limits::symbols) + " are read");
     validate(p);
     return p;
 }
 
 problem load_problem_file(const std::string& path)
 {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw input_error(names::display_text(path) + ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw input_error(path + ": cannot open the problem file");
+        throw input_error(names::display_text(path) + ": cannot open the problem file");
+    std::string text(limits::file_bytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
     std::ostringstream ss;
-    ss << in.rdbuf();
+    ss << text;
     try {
         return read_problem(ss.str(), path);
     } catch (const input_error& e) {
-        throw input_error(path + ": " + e.what());
+        throw input_error(names::display_text(path) + ": " + e.what());
     }
 }
 

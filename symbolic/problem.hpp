@@ -11,6 +11,19 @@
 
 namespace impactgen {
 
+/// What the problem reader accepts (anything larger is refused with a message
+/// naming the key, before any work is done on it): every subcommand then
+/// finishes in well under a second.
+namespace limits {
+inline constexpr std::size_t file_bytes = 64 * 1024;     ///< a problem file or text
+inline constexpr std::size_t expression_length = 1000;   ///< characters of one expression string
+inline constexpr int expression_depth = 32;              ///< nested parentheses in one expression
+inline constexpr int sign_run = 3;                       ///< + or - signs in a row
+inline constexpr std::size_t name_length = 64;           ///< bytes of a body name
+inline constexpr std::size_t bodies = 64;                ///< bodies in one problem
+inline constexpr std::size_t symbols = 64;               ///< distinct symbols in one problem
+} // namespace limits
+
 /// The one symbol of a given name, shared by every problem in the process
 /// (GiNaC compares symbols by identity, not by name).
 GiNaC::symbol symbol_named(const std::string& name, const std::string& tex_name = "");

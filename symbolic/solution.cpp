@@ -1,5 +1,8 @@
 #include "solution.hpp"
 
+#include "decide.hpp"
+
+#include <random>
 #include <set>
 
 namespace impactgen {
@@ -34,7 +37,8 @@ public:
             taken_.insert(x.get_name());
     }
     /// A named step, or the value itself when it is too simple to name.
-    ex add(const std::string& name, const std::string& tex, const ex& value, const std::string& meaning, bool force = false)
+    ex add(step_role role, std::size_t body, int row, int column, const std::string& name, const std::string& tex,
+           const ex& value, const std::string& meaning, bool force = false)
     {
         if (!force && atomic(value))
             return value;
@@ -45,7 +49,7 @@ public:
         }
         taken_.insert(n);
         symbol sym(n, t);
-        s_.steps.push_back({sym, value, meaning});
+        s_.steps.push_back({sym, value, meaning, role, body, row, column});
         return sym;
     }
 
@@ -58,6 +62,20 @@ std::string sub(const std::string& label) { return label.size() == 1 ? label : "
 std::string tsub(const std::string& label) { return label.size() == 1 ? label : "\\mathrm{" + label + "}"; }
 
 } // namespace
+
+const step* solution::find(step_role role, std::size_t body, int row, int column) const
+{
+    for (const step& st : steps)
+        if (st.role == role && (body == no_body || st.body == body) && (row < 0 || st.row == row) &&
+            (column < 0 || st.column == column))
+            return &st;
+    return nullptr;
+}
+
+step* solution::find(step_role role, std::size_t body, int row, int column)
+{
+    return const_cast<step*>(static_cast<const solution&>(*this).find(role, body, row, column));
+}
 
 ex solution::expand_steps(const ex& e) const
 {
@@ -120,9 +138,9 @@ solution solve(const derivation& d)
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
             if (dim == 2) {
-                ex t = sb.add("tau_" + L, "\\tau_{" + tsub(L) + "}", tau[2].normal(),
+                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tau[2].normal(),
                               "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
-                ex Iz = sd.pinned ? sb.add("I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2].normal(),
+                ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2].normal(),
                                            "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                                   : J[2][2];
                 sd.g = {0, 0, t / Iz};
@@ -130,41 +148,41 @@ solution solve(const derivation& d)
             } else {
                 vec3 t;
                 for (int c = 0; c < 3; ++c)
-                    t[c] = sb.add("tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tau[c].normal(),
+                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tau[c].normal(),
                                   "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " + p.axes[c] + " component");
                 mat3 Js = J;
                 if (sd.pinned)
                     for (int a = 0; a < 3; ++a)
                         for (int c = a; c < 3; ++c) {
-                            ex v = sb.add("I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
+                            ex v = sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
                                           J[a][c].normal(), "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
                 mat3 adj = adjugate(Js);
-                ex D = sb.add("D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+                ex D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
                 vec3 at = mul(adj, t);
                 for (int c = 0; c < 3; ++c)
-                    sd.g[c] = sb.add("g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}", at[c] / D,
+                    sd.g[c] = sb.add(step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}", at[c] / D,
                                      "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] + " component: change of angular velocity per unit impulse");
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
             }
         } else {
             sd.w = 1 / b.mass;
         }
-        sd.w = sb.add("w_" + L, "w_{" + tsub(L) + "}", sd.w,
+        sd.w = sb.add(step_role::effective_inverse_mass, sd.index, -1, -1, "w_" + L, "w_{" + tsub(L) + "}", sd.w,
                       "effective inverse mass of " + display_name(b) + " at the contact point along n");
     }
 
-    ex u = sb.add("u", "u", dot(d.vB - d.vA, n).normal(),
+    ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", dot(d.vB - d.vA, n).normal(),
                   "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
     ex k_value = sides[0].w + sides[1].w;
-    if (s.expand_steps(k_value).normal().is_zero())
+    if (vanishes_identically(s, k_value, "contact: the effective inverse mass k = w_1 + w_2"))
         throw input_error("contact: no impulse can act: neither body can move along the normal at the contact point "
                           "(the line of impact passes through the pivot of a body that cannot otherwise move)");
     const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
-    ex k = sb.add("k", "k", k_value, "effective inverse mass of the contact: " + wsum);
-    ex N = sb.add("N", "N", -(1 + p.restitution) * u / k, "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
+    ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value, "effective inverse mass of the contact: " + wsum);
+    ex N = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + p.restitution) * u / k, "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
     s.normal_impulse = N;
 
     // Every body after impact.
@@ -232,10 +250,50 @@ solution solve(const derivation& d)
         }
     }
     s.energy_before = kinetic_energy(p, v0, w0);
-    s.energy_lost = sb.add("T_lost", "T_{\\mathrm{lost}}", lost, "kinetic energy lost, T - T' (bodies of finite mass)", true);
+    s.energy_lost = sb.add(step_role::energy_lost, no_body, -1, -1, "T_lost", "T_{\\mathrm{lost}}", lost, "kinetic energy lost, T - T' (bodies of finite mass)", true);
     s.energy_after = s.energy_before - s.energy_lost;
     s.energy_after_direct = kinetic_energy(p, v1, w1);
     return s;
+}
+
+bool vanishes_identically(const solution& s, const ex& value, const std::string& what)
+{
+    exset free;
+    auto collect = [&](const ex& e) {
+        for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+            if (is_a<symbol>(*it))
+                free.insert(*it);
+    };
+    collect(value);
+    for (const step& st : s.steps)
+        collect(st.value);
+    for (const step& st : s.steps)
+        free.erase(st.sym);
+    if (free.empty()) {
+        ex v = value.subs(s.step_values(lst{}));
+        decision d = decide(v);
+        if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
+            throw input_error(what + " " + decision_text(d));
+        return d == decision::zero;
+    }
+    std::mt19937_64 rng(20261123);
+    std::uniform_int_distribution<long> num(1, 1000000);
+    int zeros = 0;
+    for (int attempt = 0; attempt < 24 && zeros < 6; ++attempt) {
+        lst point;
+        for (const ex& x : free)
+            point.append(x == numeric(num(rng), 1000));
+        try {
+            decision d = decide(value.subs(point).subs(s.step_values(point)));
+            if (d == decision::positive || d == decision::negative)
+                return false;
+            if (d == decision::zero || d == decision::undecided) // undecided counts against: refuse rather than guess
+                ++zeros;
+        } catch (const std::exception&) {
+            continue; // a pole of some step at this point: try another
+        }
+    }
+    return zeros > 0;
 }
 
 std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values)

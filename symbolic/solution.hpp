@@ -18,10 +18,30 @@
 
 namespace impactgen {
 
+/// What a step of the closed form is. Code generation, the explanation and the
+/// checks find steps by role (and body, component), never by the printed name:
+/// a user's symbol named u is a symbol, not the approach velocity.
+enum class step_role {
+    lever_arm,              ///< (r x n) of a body about C (free) or E (pinned), one component
+    pivot_inertia,          ///< a body's inertia about its pivot E (planar scalar, or a tensor entry)
+    inertia_determinant,    ///< det of a body's inertia tensor (3-D)
+    angular_response,       ///< g = I^{-1} (r x n) of a body, one component
+    effective_inverse_mass, ///< w_i of a body at the contact point along n
+    approach_velocity,      ///< u = (v_B - v_A) . n before impact
+    contact_inverse_mass,   ///< k = w_1 + w_2
+    normal_impulse,         ///< N = -(1 + e) u / k
+    energy_lost             ///< T - T' of the bodies of finite mass
+};
+
+inline constexpr std::size_t no_body = static_cast<std::size_t>(-1);
+
 struct step {
     GiNaC::symbol sym;
     ex value;            ///< in inputs and earlier steps
     std::string meaning;
+    step_role role = step_role::lever_arm;
+    std::size_t body = no_body; ///< the body the step belongs to, or no_body
+    int row = -1, column = -1;  ///< world axis of a vector component (row), tensor entry (row, column)
 };
 
 struct body_state {
@@ -37,6 +57,11 @@ struct solution {
     ex energy_after_direct;              ///< sum of 1/2 m v'.v' + 1/2 w'.I w', for checks
     GiNaC::lst unknown_values;           ///< unknown == value (in steps), for every unknown of the derivation
 
+    /// The step of that role (and body, and component when given), or nullptr
+    /// when the value was too simple to name (then it appears inline).
+    const step* find(step_role role, std::size_t body = no_body, int row = -1, int column = -1) const;
+    step* find(step_role role, std::size_t body = no_body, int row = -1, int column = -1);
+
     /// e with every step symbol replaced by its definition, recursively.
     ex expand_steps(const ex& e) const;
     /// The value of every step for the given inputs (numbers stay exact).
@@ -48,6 +73,16 @@ solution solve(const derivation& d);
 /// Each equation with the solution substituted, normalised: all zero when the
 /// closed form is right. Substitutes input values first when given.
 std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values = GiNaC::lst{});
+
+/// Whether a value written in the solution's steps and any symbols is zero.
+/// Without symbols: decided exactly (decide.hpp), refused with input_error
+/// (starting with `what`) when it cannot be. With symbols: evaluated exactly
+/// at random positive rational points (fixed seed): one non-zero value proves
+/// it is not identically zero; a rational function that vanishes at six random
+/// points drawn from 10^6 values per symbol is zero but with probability below
+/// (degree/10^6)^6 (Schwartz-Zippel). Never expands or normalises the closed
+/// form, whose size grows fast in 3-D.
+bool vanishes_identically(const solution& s, const ex& value, const std::string& what);
 
 /// Kinetic energy of the bodies of finite mass (1/2 m v.v + 1/2 w.I w).
 ex kinetic_energy(const problem& p, const std::vector<vec3>& v, const std::vector<vec3>& w);

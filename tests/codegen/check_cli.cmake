@@ -27,7 +27,10 @@ endfunction()
 expect_error("symbol l is not in --params and has no value: give it one with --set l=VALUE" pinned-planar --params m1,m2,v1 --set e=1/2)
 expect_error("--set q: the problem has no symbol q" planar --set q=1)
 expect_error("--params: nope is neither a symbol" ${PROBLEMS}/hinged-rod.json --params nope)
-expect_error("--name 1x: not a usable C" planar --name 1x)
+expect_error("function name \"1x\": not a usable C" planar --name 1x)
+expect_error("namespace \"int\": part \"int\" is a C\\+\\+ keyword" planar --namespace int)
+expect_error("namespace \"a::\": " planar --namespace a::)
+expect_error("not a regular file" planar --output /dev/null)
 
 # --output writes only when the content changes.
 execute_process(COMMAND ${IMPACTGEN} codegen planar --output ${WORK}/p.hpp ERROR_VARIABLE e1)

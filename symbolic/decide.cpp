@@ -1,0 +1,237 @@
+#include "decide.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace impactgen {
+using namespace GiNaC;
+
+namespace {
+
+constexpr double unbounded = std::numeric_limits<double>::infinity();
+constexpr double log10_e = 0.43429448190325182765;
+
+// Restores GiNaC's global precision however the evaluation ends.
+class digits_guard {
+public:
+    explicit digits_guard(long d) : saved_(Digits) { Digits = d; }
+    ~digits_guard() { Digits = saved_; }
+    digits_guard(const digits_guard&) = delete;
+    digits_guard& operator=(const digits_guard&) = delete;
+
+private:
+    long saved_;
+};
+
+double log10_abs(const numeric& x)
+{
+    if (x.is_zero())
+        return -unbounded;
+    numeric a = abs(x);
+    if (a.is_rational()) // numerator and denominator digits, no overflow of double
+        return std::log10(a.numer().to_double() + 0.0) - std::log10(a.denom().to_double() + 0.0);
+    return std::log10(a.to_double());
+}
+
+double bound(const ex& e)
+{
+    if (is_a<numeric>(e)) {
+        const numeric& x = ex_to<numeric>(e);
+        if (!x.is_real())
+            return std::max(bound(x.real()), bound(x.imag())) + 0.5;
+        if (x.is_rational() && (x.numer().int_length() > 4000 || x.denom().int_length() > 4000))
+            return x.numer().int_length() > x.denom().int_length() ? unbounded : -unbounded;
+        return log10_abs(x);
+    }
+    if (is_a<symbol>(e) || is_a<constant>(e))
+        return 0.5; // symbols count as 1; Pi, Euler, Catalan < 10^0.5
+    if (is_a<add>(e)) {
+        double m = -unbounded;
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            m = std::max(m, bound(e.op(k)));
+        return m + std::log10(static_cast<double>(e.nops()));
+    }
+    if (is_a<mul>(e)) {
+        double m = 0;
+        for (std::size_t k = 0; k < e.nops(); ++k) {
+            double b = bound(e.op(k));
+            if (b == unbounded)
+                return unbounded;
+            m += std::max(b, 0.0); // a small factor only shrinks the product
+        }
+        return m;
+    }
+    if (is_a<power>(e)) {
+        double b = bound(e.op(0));
+        const ex& x = e.op(1);
+        if (is_a<numeric>(x) && ex_to<numeric>(x).is_real()) {
+            double xv = std::abs(ex_to<numeric>(x).to_double());
+            if (!std::isfinite(xv) || xv > 1e6)
+                return b == 0.5 && is_a<symbol>(e.op(0)) ? 0.5 : unbounded;
+            // a negative exponent of a small base is large: bound by the magnitude of the log
+            return std::abs(b) * xv + 1;
+        }
+        double xb = bound(x);
+        if (xb > 6)
+            return unbounded;
+        return std::abs(b) * std::pow(10.0, xb) + 1;
+    }
+    if (is_a<function>(e)) {
+        const std::string name = ex_to<function>(e).get_name();
+        double arg = e.nops() > 0 ? bound(e.op(0)) : 0;
+        if (name == "exp" || name == "sinh" || name == "cosh") {
+            if (arg > 6)
+                return unbounded;
+            return std::pow(10.0, arg) * log10_e + 1;
+        }
+        if (name == "sin" || name == "cos" || name == "atan" || name == "tanh" || name == "asin" || name == "acos")
+            return 0.5;
+        if (name == "log")
+            return std::log10(std::abs(arg) * 2.31 + 2) + 0.5;
+        double m = 0; // abs, sqrt, tan and the rest: bounded by their arguments, checked by evaluation
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            m = std::max(m, std::abs(bound(e.op(k))));
+        return m + 1;
+    }
+    return unbounded;
+}
+
+decision sign_of(const numeric& x)
+{
+    if (!x.is_real())
+        return decision::not_real;
+    if (x.is_zero())
+        return decision::zero;
+    return x.is_positive() ? decision::positive : decision::negative;
+}
+
+// One evaluation at P digits: real and imaginary parts, or false when the
+// value does not evaluate to a number (an unevaluated function, an overflow).
+bool evaluate(const ex& e, long digits, numeric& re, numeric& im)
+{
+    try {
+        digits_guard guard(digits);
+        ex v = e.evalf();
+        if (!is_a<numeric>(v))
+            return false;
+        const numeric& x = ex_to<numeric>(v);
+        re = x.real();
+        im = x.imag();
+        return true;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+// The sign of a part evaluated at two precisions, when both agree and stand clear of zero.
+decision stable_sign(const numeric& coarse, const numeric& fine, long digits)
+{
+    const numeric clear = pow(numeric(10), numeric(-digits / 2));
+    if (abs(coarse) <= clear || abs(fine) <= clear)
+        return decision::undecided;
+    if (coarse.is_positive() != fine.is_positive())
+        return decision::undecided;
+    if (abs(coarse - fine) > abs(fine) * pow(numeric(10), numeric(-digits / 4)))
+        return decision::undecided;
+    return fine.is_positive() ? decision::positive : decision::negative;
+}
+
+bool small(const numeric& x, long digits) { return abs(x) <= pow(numeric(10), numeric(-digits / 2)); }
+
+} // namespace
+
+bool is_constant(const ex& e)
+{
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            return false;
+    return true;
+}
+
+double log10_magnitude_bound(const ex& e) { return bound(e); }
+
+decision decide(const ex& e)
+{
+    if (is_a<numeric>(e))
+        return sign_of(ex_to<numeric>(e));
+    if (!is_constant(e))
+        return decision::symbolic;
+    if (bound(e) > 400)
+        return decision::out_of_range;
+    ex x;
+    try {
+        x = e.expand();
+    } catch (const std::exception&) {
+        return decision::undecided;
+    }
+    if (is_a<numeric>(x))
+        return sign_of(ex_to<numeric>(x));
+    numeric re0, im0;
+    long p0 = 40;
+    if (!evaluate(x, p0, re0, im0))
+        return decision::undecided;
+    for (long p = 80; p <= 320; p *= 2) {
+        numeric re1, im1;
+        if (!evaluate(x, p, re1, im1))
+            return decision::undecided;
+        if (!(small(im0, p0) && small(im1, p)) ) {
+            if (stable_sign(im0, im1, p0) != decision::undecided)
+                return decision::not_real;
+        } else {
+            decision s = stable_sign(re0, re1, p0);
+            if (s != decision::undecided) {
+                if (std::abs(log10_abs(re1)) > 308.25)
+                    return decision::out_of_range;
+                // the imaginary part: exactly zero in the float evaluation, or below any doubt
+                if (im1.is_zero() || small(im1, p))
+                    return s;
+            }
+        }
+        re0 = re1;
+        im0 = im1;
+        p0 = p;
+    }
+    return decision::undecided;
+}
+
+std::string constant_parts_problem(const ex& e)
+{
+    if (is_a<numeric>(e)) {
+        const numeric& x = ex_to<numeric>(e);
+        if (!x.is_real())
+            return "it is not real";
+        return bound(e) > 308.25 ? "it is out of the range of double (non-finite number)" : "";
+    }
+    if (is_a<symbol>(e) || is_a<constant>(e))
+        return "";
+    if (is_constant(e)) {
+        switch (decide(e)) {
+        case decision::not_real: return "it is not real";
+        case decision::out_of_range: return "it is out of the range of double (non-finite number)";
+        case decision::undecided: return "its value cannot be decided exactly (write it as a plain number or a simpler expression)";
+        default: return "";
+        }
+    }
+    for (std::size_t k = 0; k < e.nops(); ++k) {
+        std::string why = constant_parts_problem(e.op(k));
+        if (!why.empty())
+            return why;
+    }
+    return "";
+}
+
+const char* decision_text(decision d)
+{
+    switch (d) {
+    case decision::negative: return "is negative";
+    case decision::zero: return "is zero";
+    case decision::positive: return "is positive";
+    case decision::symbolic: return "is symbolic";
+    case decision::not_real: return "is not real";
+    case decision::out_of_range: return "is out of the range of double (non-finite number)";
+    case decision::undecided: return "cannot be decided exactly (its sign or whether it is zero is beyond what can be proven; write it as a plain number or a simpler expression)";
+    }
+    return "?";
+}
+
+} // namespace impactgen

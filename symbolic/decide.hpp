@@ -1,0 +1,61 @@
+// Deciding constant expressions exactly, or refusing to guess.
+//
+// A value of the problem format may be a plain rational (exact: its sign is
+// read off) or a constant expression such as sqrt(2)/2, Pi/4 or
+// sin(1)^2 + cos(1)^2 - 1. Before such a value is used as a mass, a normal or
+// an approach velocity, its sign -- and whether it is real at all -- must be
+// known. decide() tells, in this order:
+//
+//   1. symbols in it                  -> symbolic (the caller assumes validity)
+//   2. a GiNaC numeric                -> exact sign, or not_real
+//   3. expand() gives a numeric       -> exact sign (sqrt(2)^2 - 2 is 0)
+//   4. a magnitude bound (no evaluation) says it is beyond double range
+//                                     -> out_of_range
+//   5. evaluation with CLN floats at 40, 80, 160 and 320 digits: a sign is
+//      accepted when two successive precisions agree to many digits and the
+//      value stands clear of zero by far more than the precision's error
+//      (|x| > 10^(-P/2)), and likewise for the imaginary part; otherwise
+//                                     -> undecided
+//
+// Exact zero is only ever reported from steps 2-3: a value that evaluates to
+// 1e-300 at every precision (sin(1)^2 + cos(1)^2 - 1) is undecided, and the
+// caller refuses it with a message naming the key. Nothing undecided is used.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+
+namespace impactgen {
+
+enum class decision {
+    negative,
+    zero,
+    positive,
+    symbolic,     ///< contains symbols: nothing is decided
+    not_real,     ///< decided to have a non-zero imaginary part
+    out_of_range, ///< magnitude beyond the range of double (or too large to evaluate safely)
+    undecided     ///< constant, but neither its sign nor its realness could be decided
+};
+
+/// The decision for e (see above). Never throws for an expression GiNaC holds.
+decision decide(const GiNaC::ex& e);
+
+/// True when e contains no symbol.
+bool is_constant(const GiNaC::ex& e);
+
+/// log10 of an upper bound of |e| computed without evaluating e (symbols count
+/// as 1); +infinity when no finite bound is known. Guards evaluation against
+/// numbers that would take minutes or silently lose every digit (exp(exp(1000))).
+double log10_magnitude_bound(const GiNaC::ex& e);
+
+/// Checks every constant part of e that is not a plain number (for a symbolic
+/// e, each maximal symbol-free subexpression such as (-1)^(1/3) in x*(-1)^(1/3)):
+/// it must be real and within double range. Returns "" when it is, else why not
+/// ("not real", "cannot be decided", ...).
+std::string constant_parts_problem(const GiNaC::ex& e);
+
+/// Text for a refusal: "is negative", "is not real", "cannot be decided exactly", ...
+const char* decision_text(decision d);
+
+} // namespace impactgen
