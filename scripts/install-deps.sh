@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(cmake make g++ pkg-config libginac-dev libcln-dev libeigen3-dev nlohmann-json3-dev libcli11-dev)
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base)
+  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base clang)
 fi
 missing=()
 for p in "${packages[@]}"; do

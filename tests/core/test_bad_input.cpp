@@ -94,6 +94,42 @@ std::vector<bad_case> cases()
         {"both_infinite", [] { return with(valid(), [](json& j) { j.erase("pivots"); j["bodies"][0]["mass"] = "inf"; j["bodies"][1]["mass"] = "inf"; }); }, {"no impulse can act"}},
         {"pinned_particle_and_wall", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = "inf"; j["pivots"][0]["body"] = "ball"; j["pivots"][0]["point"] = {0, -1}; j["bodies"][1]["velocity"] = {-1, 0}; j["bodies"][0]["velocity"] = {0, 0}; }); }, {"contact.bodies", "no impulse can act"}},
         {"pivot_on_infinite_mass", [] { return with(valid(), [](json& j) { j["bodies"][1]["mass"] = "inf"; }); }, {"pivots[0].body", "infinite mass"}},
+        // Values that are not plain rationals are decided exactly, or refused (issue "Trust at the edges").
+        {"separating_sqrt_normal", [] { return with(valid(), [](json& j) { j["contact"]["normal"] = {"-sqrt(2)/2", "sqrt(2)/2"}; }); }, {"not an impact", "separate"}},
+        {"restitution_pi", [] { return with(valid(), [](json& j) { j["restitution"] = "Pi"; }); }, {"restitution", "[0, 1]"}},
+        {"mass_sqrt_negative", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "sqrt(2)-2"; }); }, {"bodies[0] (\"ball\").mass", "> 0"}},
+        {"mass_undecidable_zero", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "sin(1)^2+cos(1)^2-1"; }); }, {"bodies[0] (\"ball\").mass", "cannot be decided"}},
+        {"normal_complex", [] { return with(valid(), [](json& j) { j["contact"]["normal"] = {"(-1)^(1/3)", 0}; }); }, {"contact.normal[0]", "not real"}},
+        {"normal_complex_in_symbolic", [] { return with(valid(), [](json& j) { j["contact"]["normal"] = {"x*(-1)^(1/3)", 0}; }); }, {"contact.normal[0]", "not real"}},
+        {"inertia_3d_indefinite", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["inertia"] = {"-sqrt(2)", "-1", "1"}; }); }, {"bodies[0] (\"a\").inertia", "not positive-definite"}},
+        {"huge_exp", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "exp(exp(1000))"; }); }, {"bodies[0] (\"ball\").mass", "range of double"}},
+        {"function_without_argument", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "sin()"; }); }, {"bodies[0] (\"ball\").mass", "sin() needs an argument"}},
+        {"sqrt_without_argument", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "sqrt( )"; }); }, {"sqrt() needs an argument"}},
+        {"expression_too_long", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = "(" + std::string(8000, '(') + "1" + std::string(8001, ')'); }); }, {"bodies[0] (\"ball\").mass", "at most 1000"}},
+        {"parentheses_too_deep", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = std::string(40, '(') + "1" + std::string(40, ')'); }); }, {"nested deeper than 32"}},
+        {"too_many_signs", [] { return with(valid(), [](json& j) { j["bodies"][0]["mass"] = std::string(20, '-') + "1"; }); }, {"signs in a row"}},
+        {"sum_of_symbols_too_long", [] {
+             std::string sum;
+             for (int k = 0; k < 2000; ++k)
+                 sum += (k ? "+s" : "s") + std::to_string(k);
+             return with(valid(), [&](json& j) { j["bodies"][0]["mass"] = sum; });
+         }, {"at most 1000"}},
+        {"too_many_symbols", [] {
+             return with(valid3d(), [](json& j) {
+                 for (int b = 0; b < 2; ++b)
+                     for (int c = 0; c < 3; ++c)
+                         for (const char* key : {"position", "velocity"})
+                         {
+                             std::string sum = "0";
+                             for (int k = 0; k < 6; ++k) // 2 x 3 x 2 x 6 = 72 symbols
+                                 sum += "+s" + std::string(1, key[0]) + std::to_string(b) + std::to_string(c) + std::to_string(k);
+                             j["bodies"][b][key][c] = sum;
+                         }
+             });
+         }, {"distinct symbols", "at most 64"}},
+        {"name_with_newline", [] { return with(valid(), [](json& j) { j["bodies"][0]["name"] = "ball\n#define private public\n//"; j["contact"]["bodies"][0] = "ball\n#define private public\n//"; }); }, {"bodies[0].name", "control character"}},
+        {"name_with_nul", [] { return with(valid(), [](json& j) { j["bodies"][0]["name"] = std::string("ba\0ll", 5); }); }, {"bodies[0].name", "control character", "\\x00"}},
+        {"file_too_large", [] { return with(valid(), [](json& j) { j["description"] = std::string(70000, 'x'); }); }, {"at most 65536"}},
         {"separating", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {-5, 0}; }); }, {"not an impact", "separate"}},
         {"resting", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {0, 3}; }); }, {"not an impact", "rest"}},
     };
@@ -214,6 +250,76 @@ TEST(Cli, FormulasJsonReadsBackWithGinacsParser)
     // The notes' result for the uniform rod: w' = 3 m1 v1 (1 + e) / (l (3 m1 + m2)).
     EXPECT_TRUE((w - 3 * m1 * v1 * (1 + e) / (l * (3 * m1 + m2))).normal().is_zero()) << w;
     EXPECT_TRUE(a["pivot_impulses"].is_array());
+}
+
+} // namespace
+
+namespace {
+
+// Inputs that hung or crashed a command (issue "Trust at the edges"): each must
+// now finish with exit 0 or a one-line refusal. --time-limit turns a hang into a
+// failing exit instead of a stuck test; nothing here is a timing assertion.
+const char* const edge_files[] = {"symbolic-3d.json", "symbolic-3d-axis-normal.json", "symbolic-3d-ball-joint.json",
+                                  "abs-normal-2d.json"};
+const char* const commands[] = {"formulas", "formulas --format json", "formulas --format latex", "explain",
+                                "explain --format latex", "explain --format markdown", "codegen"};
+
+TEST(Cli, InputsThatHungOrCrashedFinish)
+{
+    for (const char* f : edge_files)
+        for (const char* c : commands) {
+            const std::string file = std::string(IMPACTGEN_SOURCE_DIR "/tests/core/edges/") + f;
+            run_result r = run_cli(std::string("--time-limit 60 ") + c + " " + file);
+            const bool refused_cleanly = r.code == 1 && std::count(r.err.begin(), r.err.end(), '\n') == 1 &&
+                                         r.err.rfind("impactgen: error: ", 0) == 0 && r.err.find("time budget") == std::string::npos;
+            EXPECT_TRUE(r.code == 0 || refused_cleanly) << c << " " << f << ": exit " << r.code << ": " << r.err;
+            // codegen refuses abs(x) (no C++ arithmetic for it); every other command answers.
+            if (std::string(c) != "codegen" || std::string(f) != "abs-normal-2d.json") {
+                EXPECT_EQ(r.code, 0) << c << " " << f << ": " << r.err;
+            }
+        }
+}
+
+TEST(Cli, FormulasJsonOfNamedClassesIsParseableAndStepFree)
+{
+    // The README's own command: noncentral-3d --format json (it hung in normal()).
+    for (const char* cls : {"noncentral-3d", "massive-3d", "planar", "pinned-planar", "central-direct", "central-oblique"}) {
+        run_result r = run_cli(std::string("--time-limit 60 formulas ") + cls + " --format json");
+        ASSERT_EQ(r.code, 0) << cls << ": " << r.err;
+        json a = json::parse(r.out);
+        GiNaC::parser reader; // no symbol table given: unknown names become new symbols
+        GiNaC::ex N = reader(a["normal_impulse"].get<std::string>());
+        // written in the problem's symbols only: no step name (w_1, k, u, N ...) is left
+        for (const char* step : {"w_1", "w_2", "k", "u", "N", "T_lost", "D_1", "g_t1"})
+            EXPECT_EQ(a["normal_impulse"].get<std::string>().find(std::string(step) + "*"), std::string::npos) << cls;
+        EXPECT_FALSE(N.is_zero()) << cls;
+    }
+}
+
+TEST(Cli, UnwritableOutputsAreErrors)
+{
+    run_result r = run_cli("codegen planar --output /dev/null");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+    if (std::ifstream("/dev/full")) {
+        int status = std::system((std::string(IMPACTGEN_CLI) + " codegen planar > /dev/full 2>/dev/null").c_str());
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << "a failed write to stdout must not exit 0";
+        status = std::system((std::string(IMPACTGEN_CLI) + " solve " IMPACTGEN_SOURCE_DIR "/examples/problems/hinged-rod.json > /dev/full 2>/dev/null").c_str());
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
+    }
+    r = run_cli("solve /dev/zero");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+}
+
+TEST(Cli, TimeBudgetStopsWithAMessage)
+{
+    run_result r = run_cli("--time-limit 0.000001 formulas " IMPACTGEN_SOURCE_DIR "/tests/core/edges/symbolic-3d-ball-joint.json --format json");
+    // Either done within a microsecond (impossible in practice) or stopped with one line.
+    if (r.code != 0) {
+        EXPECT_EQ(r.code, 1);
+        EXPECT_NE(r.err.find("time budget"), std::string::npos) << r.err;
+    }
 }
 
 } // namespace
