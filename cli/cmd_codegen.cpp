@@ -50,7 +50,16 @@ int run(const codegen_args& a, CLI::Option* params_opt)
     }
     o.inverse_inertia = a.inverse_inertia;
     o.inverse_mass = a.inverse_mass;
-    codegen::header h = codegen::generate(p, o);
+    codegen::header h;
+    try {
+        h = codegen::generate(p, o);
+    } catch (const codegen::option_error& e) {
+        // The library names the option by kind; here it becomes its flag.
+        std::string message = std::string("--") + codegen::option_error::option_name(e.which) + ": " + e.what();
+        if (e.which == codegen::option_error::params && !e.symbol.empty())
+            message += " (add it to --params, or give it a value with --set " + e.symbol + "=VALUE)";
+        throw input_error(message);
+    }
     std::string path = a.output;
     if (path.empty() && !a.out_dir.empty())
         path = (std::filesystem::path(a.out_dir) / (o.name + ".hpp")).string();

@@ -76,7 +76,7 @@ scaled canonical_pool::convert(const ex& e)
             return {1, it->second};
         cnode n;
         n.kind = cnode::input;
-        auto known = input_names_.find(ex_to<symbol>(e).get_name());
+        auto known = input_names_.find(e);
         if (known == input_names_.end())
             throw std::logic_error("code generation: symbol " + ex_to<symbol>(e).get_name() + " is not an input");
         n.name = known->second;
@@ -190,79 +190,6 @@ scaled canonical_pool::convert(const ex& e)
     std::ostringstream os;
     os << e;
     throw std::runtime_error("code generation: cannot express " + os.str() + " in C++ arithmetic");
-}
-
-std::string canonical_pool::print_factor(int id) const
-{
-    const cnode& n = at(id);
-    if (n.kind == cnode::add || (n.kind == cnode::constant && (n.value < 0 || !n.value.is_integer())) ||
-        (n.kind == cnode::mul))
-        return "(" + print(id) + ")";
-    return print(id);
-}
-
-std::string canonical_pool::print(const scaled& s) const
-{
-    if (s.node < 0)
-        return number_text(s.scale);
-    if (s.scale == 1)
-        return print(s.node);
-    if (s.scale == -1)
-        return "-" + print_factor(s.node);
-    return number_text(s.scale) + "*" + print_factor(s.node);
-}
-
-std::string canonical_pool::print(int id) const
-{
-    const cnode& n = at(id);
-    switch (n.kind) {
-    case cnode::constant: return number_text(n.value);
-    case cnode::input:
-    case cnode::step: return n.name;
-    case cnode::sqrt_: return "sqrt(" + print(n.arg) + ")";
-    case cnode::add: {
-        std::string s;
-        bool first = true;
-        for (auto& [c, t] : n.terms) {
-            numeric a = abs(c);
-            std::string term = a == 1 ? print_factor(t) : number_text(a) + "*" + print_factor(t);
-            if (at(t).kind == cnode::mul && at(t).value == 1)
-                term = a == 1 ? print(t) : number_text(a) + "*" + print(t);
-            s += first ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ");
-            s += term;
-            first = false;
-        }
-        if (!n.value.is_zero())
-            s += (n.value < 0 ? " - " : " + ") + number_text(abs(n.value));
-        return s;
-    }
-    case cnode::mul: {
-        std::string num, den;
-        int nden = 0;
-        for (auto& [f, x] : n.factors) {
-            std::string base = print_factor(f);
-            int k = x < 0 ? -x : x;
-            std::string p = k == 1 ? base : base + "^" + std::to_string(k);
-            std::string& dst = x > 0 ? num : den;
-            dst += (dst.empty() ? "" : "*") + p;
-            if (x < 0)
-                ++nden;
-        }
-        numeric a = n.value;
-        std::string sign = a < 0 ? "-" : "";
-        a = abs(a);
-        if (a.numer() != 1 || num.empty())
-            num = number_text(a.numer()) + (num.empty() ? "" : "*" + num);
-        if (a.denom() != 1) {
-            den = number_text(a.denom()) + (den.empty() ? "" : "*" + den);
-            ++nden;
-        }
-        if (den.empty())
-            return sign + num;
-        return sign + num + "/" + (nden > 1 ? "(" + den + ")" : den);
-    }
-    }
-    return "?";
 }
 
 } // namespace impactgen::codegen

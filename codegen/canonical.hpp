@@ -39,7 +39,7 @@ struct scaled {
 class canonical_pool {
 public:
     /// The C++ name of each input symbol (by GiNaC name); a symbol not listed is an error.
-    void set_input_names(std::map<std::string, std::string> names) { input_names_ = std::move(names); }
+    void set_input_names(std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> names) { input_names_ = std::move(names); }
     /// Occurrences of `sym` in later expressions refer to step `index`.
     void bind_step(const GiNaC::symbol& sym, int index, const std::string& name);
     /// Throws std::runtime_error for what C++ cannot express (functions, complex numbers, odd powers).
@@ -49,18 +49,14 @@ public:
 
     const cnode& at(int id) const { return nodes_[static_cast<std::size_t>(id)]; }
     std::size_t size() const { return nodes_.size(); }
-    /// Plain math text in canonical order (for the formula comments).
-    std::string print(int id) const;
-    std::string print(const scaled& s) const;
 
 private:
     int intern(cnode n);
-    std::string print_factor(int id) const;
     std::vector<cnode> nodes_;
     std::map<std::string, int> by_key_;
     std::map<std::string, std::pair<int, std::string>> steps_; ///< step symbol name -> index, name
     std::map<GiNaC::ex, int, GiNaC::ex_is_less> step_syms_;
-    std::map<std::string, std::string> input_names_;
+    std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> input_names_;
 };
 
 /// Text of an exact number, e.g. "4/5", "-3".

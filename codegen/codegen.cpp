@@ -16,82 +16,14 @@ using namespace GiNaC;
 
 namespace {
 
-std::string identifier(const std::string& s) { return names::mangle(s); }
-
-// Quantity suffix of a body: "1" -> "1", "ball" -> "_ball".
-std::string sfx(const std::string& label) { return label.size() == 1 ? label : "_" + identifier(label); }
-
 // Names the emitted code itself uses inside the functions (keywords and
-// reserved C++ names are refused by names::mangle already).
+// reserved C++ names never come out of names::mangle).
 const std::set<std::string>& reserved()
 {
     static const std::set<std::string> r = {"out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed",
                                             "with_energy_lost", "impact_status", "op_count", "to_string", "finite", "all_finite",
                                             "min_of", "sqrt", "std", "i", "n", "r", "a"};
     return r;
-}
-
-struct quantity {
-    std::string name;
-    ex* value;
-    std::string meaning;
-};
-
-// Every liftable quantity of the problem, in problem order; inertia entries
-// (r <= c) stand for both symmetric entries.
-std::vector<quantity> quantities(problem& p)
-{
-    std::vector<quantity> q;
-    const int dim = p.dimension;
-    const auto& ax = p.axes;
-    q.push_back({"e", &p.restitution, "coefficient of restitution, 0 <= e <= 1"});
-    for (body& b : p.bodies) {
-        const std::string s = sfx(b.label), sub = b.label.size() == 1 ? b.label : "_" + identifier(b.label);
-        if (!b.infinite_mass)
-            q.push_back({"m" + s, &b.mass, "mass of " + b.name + " (> 0)"});
-        if (!b.particle && !b.infinite_mass) {
-            if (dim == 2)
-                q.push_back({"I" + s, &b.inertia[2][2], "moment of inertia of " + b.name + " about its centre of mass (> 0)"});
-            else
-                for (int r = 0; r < 3; ++r)
-                    for (int c = r; c < 3; ++c)
-                        q.push_back({"I" + s + "_" + ax[r] + ax[c], &b.inertia[r][c],
-                                     "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
-        }
-        for (int c = 0; c < dim; ++c)
-            q.push_back({"r_" + ax[c] + sub, &b.position[c], "centre of mass of " + b.name + ", " + ax[c]});
-        for (int c = 0; c < dim; ++c)
-            q.push_back({"v_" + ax[c] + sub, &b.velocity[c], "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
-        for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
-            q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c], "angular velocity of " + b.name + " before impact, " + ax[c]});
-    }
-    for (int c = 0; c < dim; ++c)
-        q.push_back({"O_" + ax[c], &p.contact.point[c], "contact point, " + ax[c]});
-    for (int c = 0; c < dim; ++c)
-        q.push_back({"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
-    for (pivot& pv : p.pivots)
-        for (int c = 0; c < dim; ++c) {
-            const std::string& l = p.bodies[pv.body].label;
-            q.push_back({"E_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), &pv.point[c], "pivot of " + p.bodies[pv.body].name + ", " + ax[c]});
-        }
-    return q;
-}
-
-void symmetrise(problem& p)
-{
-    for (body& b : p.bodies)
-        for (int r = 0; r < 3; ++r)
-            for (int c = r + 1; c < 3; ++c)
-                b.inertia[c][r] = b.inertia[r][c];
-}
-
-std::vector<std::string> symbols_in(const ex& e)
-{
-    std::set<std::string> s;
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            s.insert(ex_to<symbol>(*it).get_name());
-    return {s.begin(), s.end()};
 }
 
 std::string join(const std::vector<std::string>& v, const std::string& sep)
@@ -101,272 +33,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep)
         r += (r.empty() ? "" : sep) + s;
     return r;
 }
-
-} // namespace
-
-std::vector<std::pair<std::string, ex>> quantity_names(const problem& p)
-{
-    problem q = p;
-    std::vector<std::pair<std::string, ex>> r;
-    for (const quantity& x : quantities(q))
-        r.push_back({x.name, *x.value});
-    return r;
-}
-
-problem specialise(const problem& p, const options& o)
-{
-    problem q = p;
-    std::set<std::string> symbols;
-    for (const symbol& s : q.parameters())
-        symbols.insert(s.get_name());
-    lst values;
-    std::set<std::string> given;
-    for (const auto& [name, text] : o.set) {
-        if (!symbols.count(name))
-            throw input_error("--set " + name + ": the problem has no symbol " + name +
-                              (symbols.empty() ? " (it has none)" : " (its symbols: " + join({symbols.begin(), symbols.end()}, ", ") + ")"));
-        bool is_number = !text.empty() && (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '.') &&
-                         text.find_first_not_of("0123456789.eE+-") == std::string::npos;
-        values.append(symbol_named(name) == parse_value(text, !is_number, "--set " + name));
-        given.insert(name);
-    }
-    if (values.nops() > 0)
-        q = substitute(q, values);
-    if (!o.params_given)
-        return q;
-    std::set<std::string> now;
-    for (const symbol& s : q.parameters())
-        now.insert(s.get_name());
-    std::set<std::string> wanted;
-    for (const std::string& name : o.params) {
-        if (!wanted.insert(name).second)
-            throw input_error("--params: " + name + " is named twice");
-        if (given.count(name))
-            throw input_error("--params: " + name + " is also given a value with --set");
-        if (now.count(name))
-            continue;
-        bool lifted = false;
-        for (quantity& x : quantities(q))
-            if (x.name == name) {
-                if (!is_a<numeric>(*x.value))
-                    throw input_error("--params: the quantity " + name + " is the expression " + [&] {
-                        std::ostringstream os;
-                        os << *x.value;
-                        return os.str();
-                    }() + "; name its symbols instead");
-                *x.value = symbol_named(name);
-                lifted = true;
-            }
-        if (!lifted) {
-            std::vector<std::string> names;
-            for (const auto& [n, v] : quantity_names(q))
-                if (is_a<numeric>(v))
-                    names.push_back(n);
-            throw input_error("--params: " + name + " is neither a symbol of the problem" +
-                              (now.empty() ? "" : " (" + join({now.begin(), now.end()}, ", ") + ")") +
-                              " nor a numeric quantity of it (" + join(names, ", ") + ")");
-        }
-        symmetrise(q);
-    }
-    for (const symbol& s : q.parameters())
-        if (!wanted.count(s.get_name()))
-            throw input_error("symbol " + s.get_name() + " is not in --params and has no value: give it one with --set " +
-                              s.get_name() + "=VALUE, or add it to --params");
-    return q;
-}
-
-plan make_plan(const problem& p, const options& o)
-{
-    plan pl;
-    pl.prob = specialise(p, o);
-    const problem& q = pl.prob;
-    pl.deriv = derive(q);
-    pl.sol = solve(pl.deriv);
-    solution& s = pl.sol;
-    const derivation& d = pl.deriv;
-    const int dim = q.dimension;
-    const auto& ax = q.axes;
-
-    // Step names as C++ identifiers.
-    std::set<std::string> taken;
-    for (const symbol& x : q.parameters())
-        taken.insert(x.get_name());
-
-    // Engine conventions: replacements of input symbols (old name -> new symbols in order).
-    std::map<std::string, std::vector<symbol>> replaced;
-    std::map<std::string, std::string> meaning;
-    {
-        problem tmp = q;
-        for (const quantity& x : quantities(tmp))
-            if (is_a<symbol>(*x.value))
-                meaning.emplace(ex_to<symbol>(*x.value).get_name(), x.meaning);
-    }
-    lst mass_subs, inertia_subs;
-    auto rewrite_all = [&](const ex& rel) {
-        for (step& st : s.steps)
-            st.value = st.value.subs(rel);
-        for (body_state& b : s.after)
-            for (int c = 0; c < 3; ++c) {
-                b.velocity[c] = b.velocity[c].subs(rel);
-                b.angular_velocity[c] = b.angular_velocity[c].subs(rel);
-            }
-        for (vec3& r : s.pivot_impulses)
-            for (ex& c : r)
-                c = c.subs(rel);
-        s.normal_impulse = s.normal_impulse.subs(rel);
-        s.energy_lost = s.energy_lost.subs(rel);
-    };
-    if (o.inverse_inertia) {
-        bool any = false;
-        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
-            if (b.particle || b.infinite_mass || q.pivot_of(i))
-                continue;
-            if (dim == 2) {
-                // Planar: the scalar moment of inertia I becomes its inverse inv_I (I = 1/inv_I).
-                const ex& old = b.inertia[2][2];
-                if (is_a<numeric>(old))
-                    continue;
-                if (!is_a<symbol>(old))
-                    throw input_error("--inverse-inertia: the moment of inertia of " + b.name + " is neither a number nor a single symbol");
-                std::string nm = "inv_" + ex_to<symbol>(old).get_name();
-                symbol k = symbol_named(nm);
-                meaning[nm] = "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)";
-                replaced[ex_to<symbol>(old).get_name()].push_back(k);
-                inertia_subs.append(old == 1 / k);
-                any = true;
-                continue;
-            }
-            bool symbolic = false;
-            for (auto& row : b.inertia)
-                for (auto& c : row)
-                    symbolic = symbolic || !is_a<numeric>(c);
-            if (!symbolic)
-                continue; // a known tensor is inverted exactly at generation time
-            vec3 tau = cross(q.contact.point - b.position, d.n_hat);
-            vec3 t;
-            for (int c = 0; c < 3; ++c) {
-                const step* ts = s.find(step_role::lever_arm, i, c);
-                t[c] = ts ? ex(ts->sym) : tau[c].normal();
-            }
-            mat3 K;
-            for (int r = 0; r < 3; ++r)
-                for (int c = r; c < 3; ++c) {
-                    const ex& old = b.inertia[r][c];
-                    if (is_a<symbol>(old)) {
-                        std::string nm = "inv_" + ex_to<symbol>(old).get_name();
-                        symbol k = symbol_named(nm);
-                        K[r][c] = K[c][r] = k;
-                        meaning[nm] = "inverse inertia tensor of " + b.name + " (world axes), " + ax[r] + ax[c] + " entry";
-                        replaced[ex_to<symbol>(old).get_name()].push_back(k);
-                    } else
-                        throw input_error("--inverse-inertia: the inertia entry " + ax[r] + ax[c] + " of " + b.name +
-                                          " is neither a number nor a single symbol");
-                }
-            vec3 g = mul(K, t);
-            for (int c = 0; c < 3; ++c) {
-                step* gs = s.find(step_role::angular_response, i, c);
-                if (!gs)
-                    throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
-                gs->value = g[c];
-            }
-            // The determinant of the tensor is no longer needed.
-            s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
-                                         [&](const step& st) { return st.role == step_role::inertia_determinant && st.body == i; }),
-                          s.steps.end());
-            any = true;
-        }
-        if (!any)
-            throw input_error("--inverse-inertia: no free rigid body with a symbolic inertia takes part in the contact");
-        if (inertia_subs.nops() > 0)
-            rewrite_all(inertia_subs);
-    }
-    if (o.inverse_mass) {
-        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
-            if (b.infinite_mass || is_a<numeric>(b.mass))
-                continue;
-            if (!is_a<symbol>(b.mass))
-                throw input_error("--inverse-mass: the mass of " + b.name + " is neither a number nor a single symbol");
-            std::string nm = "inv_" + ex_to<symbol>(b.mass).get_name();
-            symbol im = symbol_named(nm);
-            meaning[nm] = "inverse mass 1/m of " + b.name + " (> 0)";
-            replaced[ex_to<symbol>(b.mass).get_name()].push_back(im);
-            mass_subs.append(b.mass == 1 / im);
-        }
-        if (mass_subs.nops() == 0)
-            throw input_error("--inverse-mass: no body in the contact has a symbolic mass");
-        rewrite_all(mass_subs);
-    }
-
-    // Inputs in order: --params as given, else first appearance in the problem.
-    std::vector<std::string> order;
-    if (o.params_given) {
-        order = o.params;
-    } else {
-        std::set<std::string> seen;
-        problem tmp = q;
-        for (const quantity& x : quantities(tmp))
-            for (const std::string& nm : symbols_in(*x.value))
-                if (seen.insert(nm).second)
-                    order.push_back(nm);
-    }
-    std::set<std::string> done;
-    for (const std::string& nm : order) {
-        auto r = replaced.find(nm);
-        std::vector<symbol> syms = r == replaced.end() ? std::vector<symbol>{symbol_named(nm)} : r->second;
-        for (const symbol& x : syms) {
-            if (!done.insert(x.get_name()).second)
-                continue;
-            pl.inputs.push_back(x);
-            auto m = meaning.find(x.get_name());
-            if (m != meaning.end()) {
-                pl.input_meaning.push_back(m->second);
-            } else {
-                std::vector<std::string> where;
-                problem tmp = q;
-                for (const quantity& qq : quantities(tmp))
-                    if (qq.value->has(x))
-                        where.push_back(qq.name);
-                pl.input_meaning.push_back("appears in " + join(where, ", "));
-            }
-        }
-    }
-    for (const std::string& nm : done)
-        taken.insert(nm);
-
-    // Outputs: the post-impact state of the bodies in contact, then impulses and energy.
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-        const body& b = q.bodies[i];
-        if (b.infinite_mass)
-            continue;
-        const std::string sub = b.label.size() == 1 ? b.label : "_" + identifier(b.label);
-        for (int c = 0; c < dim; ++c)
-            pl.outputs.push_back({output_value::velocity, i, c, "v_" + ax[c] + sub, s.after[i].velocity[c],
-                                  "velocity of the centre of mass of " + b.name + " after impact, " + ax[c]});
-        if (!b.particle)
-            for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
-                pl.outputs.push_back({output_value::angular_velocity, i, c, "w_" + ax[c] + sub, s.after[i].angular_velocity[c],
-                                      "angular velocity of " + b.name + " after impact, " + ax[c]});
-    }
-    // N is the impulse along the unit normal (as `impactgen solve` reports it), whatever |n| was given.
-    pl.outputs.push_back({output_value::normal_impulse, 0, 0, "normal_impulse", s.normal_impulse,
-                          "normal impulse, integral of N dt >= 0 along the unit normal: on " + q.bodies[q.contact.body2].name +
-                              " along +n, on " + q.bodies[q.contact.body1].name + " along -n"});
-    for (std::size_t k = 0; k < q.pivots.size(); ++k) {
-        const std::string& l = q.bodies[q.pivots[k].body].label;
-        for (int c = 0; c < dim; ++c)
-            pl.outputs.push_back({output_value::pivot_impulse, k, c, "R_" + ax[c] + (l.size() == 1 ? l : "_" + identifier(l)), s.pivot_impulses[k][c],
-                                  "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
-    }
-    const step* u_step = s.find(step_role::approach_velocity);
-    const ex u = u_step ? ex(u_step->sym) : ex(0);
-    pl.outputs.push_back({output_value::approach_velocity, 0, 0, "approach_velocity", u, "(v_B - v_A).n before impact along the unit normal (< 0)"});
-    pl.outputs.push_back({output_value::energy_lost, 0, 0, "energy_lost", s.energy_lost, "kinetic energy lost, T - T' (bodies of finite mass)"});
-    return pl;
-}
-
-namespace {
 
 std::string counts_text(const op_counts& c)
 {
@@ -402,11 +68,12 @@ std::string wrap_comment(const std::string& lhs, const std::string& rhs)
 header generate(const problem& p, const options& o)
 {
     if (!names::is_safe_identifier(o.name) || reserved().count(o.name))
-        throw input_error("function name \"" + names::display_text(o.name) +
-                          "\": not a usable C++ identifier (letters, digits and single underscores, not a keyword or a "
-                          "reserved name)");
+        throw option_error(option_error::function_name,
+                           "\"" + names::display_text(o.name) +
+                               "\" is not a usable C++ identifier (letters, digits and single underscores, not a keyword or a "
+                               "reserved name)");
     if (std::string why = names::namespace_problem(o.ns); !why.empty())
-        throw input_error("namespace \"" + names::display_text(o.ns) + "\": " + why);
+        throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
     plan pl = make_plan(p, o);
     const solution& s = pl.sol;
     const problem& q = pl.prob;
@@ -421,27 +88,23 @@ header generate(const problem& p, const options& o)
     for (const char* suffix : {"", "_result", "_checked", "_batch", "_input_count", "_output_count", "_input_names",
                                "_output_names", "_ops", "_to_array"})
         scope.reserve(o.name + suffix);
-    std::map<std::string, std::string> input_ident; // GiNaC symbol name -> C++ parameter
+    std::map<ex, std::string, ex_is_less> input_ident; // input symbol -> C++ parameter
     std::vector<std::string> input_names;
     for (const symbol& x : pl.inputs) {
         input_names.push_back(scope.claim(x.get_name()));
-        input_ident[x.get_name()] = input_names.back();
+        input_ident[x] = input_names.back();
     }
     for (output_value& ov : pl.outputs)
         ov.field = members.claim(ov.field);
     canonical_pool pool;
     pool.set_input_names(input_ident);
     program prog;
-    std::vector<std::string> step_names;
-    std::vector<scaled> step_values;
     std::map<int, std::string> names;
     for (std::size_t i = 0; i < s.steps.size(); ++i) {
         const step& st = s.steps[i];
         const std::string nm = scope.claim(st.sym.get_name());
         scaled v = pool.convert(st.value);
         pool.bind_step(st.sym, static_cast<int>(i), nm);
-        step_names.push_back(nm);
-        step_values.push_back(v);
         prog.set_owner(nm);
         int id = prog.lower(pool, v);
         prog.set_step(static_cast<int>(i), id);
@@ -449,11 +112,9 @@ header generate(const problem& p, const options& o)
             names[id] = nm;
     }
     std::vector<std::pair<std::string, int>> outs, outs_local;
-    std::vector<scaled> out_values;
     std::map<std::string, std::string> local_of, out_ptr, in_ptr; // member -> local value / output pointer; input -> input pointer
     for (const output_value& ov : pl.outputs) {
         scaled v = pool.convert(ov.value);
-        out_values.push_back(v);
         prog.set_owner(ov.field);
         outs.push_back({ov.field, prog.lower(pool, v)});
         local_of[ov.field] = scope.claim("o_" + ov.field);
@@ -476,21 +137,17 @@ header generate(const problem& p, const options& o)
         const body& b = q.bodies[i];
         if (b.infinite_mass)
             continue;
-        ex m = b.mass;
-        if (o.inverse_mass && is_a<symbol>(m))
-            m = symbol_named("inv_" + ex_to<symbol>(m).get_name());
-        add_check(m, check::positive, "invalid_mass", (o.inverse_mass ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
+        auto inverse = [&](const ex& x) -> const symbol* {
+            auto it = pl.inverse_of.find(x);
+            return it == pl.inverse_of.end() ? nullptr : &it->second;
+        };
+        const symbol* inv_m = inverse(b.mass);
+        add_check(inv_m ? ex(*inv_m) : b.mass, check::positive, "invalid_mass",
+                  (inv_m ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
         if (!b.particle && q.dimension == 2) {
-            ex I = b.inertia[2][2];
-            bool inv = false;
-            if (o.inverse_inertia && is_a<symbol>(I))
-                for (const symbol& x : pl.inputs)
-                    if (x.get_name() == "inv_" + ex_to<symbol>(I).get_name()) {
-                        I = x;
-                        inv = true;
-                    }
-            add_check(I, check::positive, "invalid_inertia",
-                      (inv ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
+            const symbol* inv_I = inverse(b.inertia[2][2]);
+            add_check(inv_I ? ex(*inv_I) : b.inertia[2][2], check::positive, "invalid_inertia",
+                      (inv_I ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
         }
     }
     const bool has_k = s.find(step_role::contact_inverse_mass) != nullptr;
@@ -670,11 +327,9 @@ template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexce
         h << "// Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = inv_I_i (r_i x n).\n";
     if (o.inverse_mass)
         h << "// Input convention: inverse masses inv_m = 1/m.\n";
-    h << "// This problem, step by step (canonical order):\n";
-    for (std::size_t i = 0; i < s.steps.size(); ++i)
-        h << wrap_comment(step_names[i], pool.print(step_values[i]));
-    for (std::size_t i = 0; i < pl.outputs.size(); ++i)
-        h << wrap_comment("out." + pl.outputs[i].field, pool.print(out_values[i]));
+    h << "// This problem, step by step, as the code below computes it:\n";
+    for (const auto& [lhs, rhs] : em.assignments)
+        h << wrap_comment(lhs, rhs);
 
     // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
     auto balanced_sum = [](std::vector<std::string> level) {

@@ -10,6 +10,7 @@
 #include "program.hpp"
 #include "symbolic/solution.hpp"
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,7 +29,21 @@ struct options {
     bool inverse_mass = false;           ///< mass inputs are 1/m (engine convention)
 };
 
-/// The problem with --set values folded in and the quantities named in
+/// An option that cannot be honoured. The library names the option by `which`
+/// (the command line turns it into its flag); the message names the problem.
+class option_error : public input_error {
+public:
+    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space };
+    option_error(option which, const std::string& message, std::string symbol = "")
+        : input_error(message), which(which), symbol(std::move(symbol))
+    {
+    }
+    static const char* option_name(option o); ///< "set", "params", "inverse-inertia", ...
+    option which;
+    std::string symbol; ///< a symbol that needs a value or a parameter slot, when that is the problem
+};
+
+/// The problem with set values folded in and the quantities named in
 /// --params made symbols; throws input_error when a symbol is neither a
 /// parameter nor given a value.
 problem specialise(const problem& p, const options& o);
@@ -56,6 +71,11 @@ struct plan {
     std::vector<GiNaC::symbol> inputs;   ///< function parameters, in order
     std::vector<std::string> input_meaning;
     std::vector<output_value> outputs;
+    /// Engine conventions: each input symbol replaced by inverse inputs (mass -> inv_m,
+    /// inertia entry -> inverse tensor entries), by symbol identity, never by name.
+    std::map<GiNaC::ex, std::vector<GiNaC::symbol>, GiNaC::ex_is_less> replaced;
+    std::map<GiNaC::ex, GiNaC::symbol, GiNaC::ex_is_less> inverse_of; ///< mass or planar inertia -> its inverse input
+    std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> meaning;      ///< of the inverse inputs
 };
 plan make_plan(const problem& p, const options& o);
 

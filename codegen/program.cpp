@@ -239,6 +239,7 @@ struct printer {
     const std::vector<int>& refs;
     const std::map<int, std::string>& var;
     op_counts* counts;
+    bool plain = false; ///< numbers as in mathematics (1/2), for the formula comments; else T(1) / T(2)
 
     bool inline_recip(int id) const
     {
@@ -257,7 +258,7 @@ struct printer {
         }
         switch (o.kind) {
         case op::input: prec = 4; return o.name;
-        case op::constant: prec = 4; return literal(o.value);
+        case op::constant: prec = plain && !o.value.is_integer() ? 1 : 4; return plain ? number_text(o.value) : literal(o.value);
         case op::neg: {
             int p;
             std::string s = text(o.a, p);
@@ -441,6 +442,8 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
     }
     emitted out;
     printer pr{prog, materialised, refs, var, &out.formula};
+    op_counts uncounted;
+    printer math{prog, materialised, refs, var, &uncounted, true}; // the same expressions, numbers as in mathematics
     std::string& code = out.code;
     auto emit_checks = [&](int id) {
         for (const check& c : checks) {
@@ -574,6 +577,8 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
         if (grouped.count(static_cast<int>(i)))
             continue;
         code += "    const T " + var[static_cast<int>(i)] + " = " + pr.text(static_cast<int>(i), p, true) + ";\n";
+        if (!branchless)
+            out.assignments.push_back({var[static_cast<int>(i)], math.text(static_cast<int>(i), p, true)});
         emit_checks(static_cast<int>(i));
         if (prog.at(static_cast<int>(i)).kind == op::sqrt_)
             out.uses_sqrt = true;
@@ -587,6 +592,8 @@ emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, i
             code += "    const T " + field + " = " + pr.text(id, p) + ";\n";
         else
             code += "    out." + field + " = " + pr.text(id, p) + ";\n";
+        if (!branchless)
+            out.assignments.push_back({"out." + field, math.text(id, p)});
     }
     return out;
 }

@@ -78,6 +78,10 @@ struct emitted {
     std::vector<std::string> nonneg_terms;   ///< values that must be >= 0 (their min)
     std::vector<std::string> normal_terms;   ///< products that must be normal numbers (shared reciprocals)
     std::vector<std::string> check_comments; ///< what the checks mean, in order
+    /// Every value the checked form computes, in order, as `name = expression`
+    /// from the same printer as the code (numbers written as in mathematics):
+    /// the header's formula comments, which therefore cannot disagree with the code.
+    std::vector<std::pair<std::string, std::string>> assignments;
 };
 
 /// Emits straight-line C++ for the outputs (field name, op) with the checks

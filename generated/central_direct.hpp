@@ -86,17 +86,17 @@ template <typename T> struct central_direct_result {
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
 //   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
-// This problem, step by step (canonical order):
-//   w_1 = 1/m1
-//   w_2 = 1/m2
-//   u = -(v_n1 - v_n2)
+// This problem, step by step, as the code below computes it:
+//   w_1 = 1 / m1
+//   w_2 = 1 / m2
+//   u = v_n2 - v_n1
 //   k = w_1 + w_2
-//   N = -(u*(e + 1)/k)
-//   T_lost = -(N*u + 1/2*N^2*k)
+//   N = -(u * (1 + e) / k)
+//   T_lost = -(u * N + k * N * N * (1/2))
 //   out.v_t1 = 0
-//   out.v_n1 = -(N/m1 - v_n1)
+//   out.v_n1 = v_n1 - w_1 * N
 //   out.v_t2 = 0
-//   out.v_n2 = N/m2 + v_n2
+//   out.v_n2 = v_n2 + w_2 * N
 //   out.normal_impulse = N
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost

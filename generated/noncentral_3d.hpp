@@ -94,35 +94,43 @@ template <typename T> struct noncentral_3d_result {
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
 //   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
-// This problem, step by step (canonical order):
-//   D_1 = (I1_bb*I1_nn - I1_nb^2)*I1_tt - (I1_bb*I1_tn - I1_nb*I1_tb)*I1_tn + (I1_nb*I1_tn -
-//       I1_nn*I1_tb)*I1_tb
-//   g_t1 = ((I1_bb*I1_nn - I1_nb^2)*r_b1 - (I1_nb*I1_tn - I1_nn*I1_tb)*r_t1)/D_1
-//   g_n1 = -(((I1_bb*I1_tn - I1_nb*I1_tb)*r_b1 - (I1_nb*I1_tt - I1_tb*I1_tn)*r_t1)/D_1)
-//   g_b1 = ((I1_nb*I1_tn - I1_nn*I1_tb)*r_b1 - (I1_nn*I1_tt - I1_tn^2)*r_t1)/D_1
-//   w_1 = -(g_b1*r_t1 - g_t1*r_b1 - 1/m1)
-//   D_2 = (I2_bb*I2_nn - I2_nb^2)*I2_tt - (I2_bb*I2_tn - I2_nb*I2_tb)*I2_tn + (I2_nb*I2_tn -
-//       I2_nn*I2_tb)*I2_tb
-//   g_t2 = ((I2_bb*I2_nn - I2_nb^2)*r_b2 - (I2_nb*I2_tn - I2_nn*I2_tb)*r_t2)/D_2
-//   g_n2 = -(((I2_bb*I2_tn - I2_nb*I2_tb)*r_b2 - (I2_nb*I2_tt - I2_tb*I2_tn)*r_t2)/D_2)
-//   g_b2 = ((I2_nb*I2_tn - I2_nn*I2_tb)*r_b2 - (I2_nn*I2_tt - I2_tn^2)*r_t2)/D_2
-//   w_2 = -(g_b2*r_t2 - g_t2*r_b2 - 1/m2)
-//   u = -(r_b1*w_t1 - r_b2*w_t2 - r_t1*w_b1 + r_t2*w_b2 + v_n1 - v_n2)
+// This problem, step by step, as the code below computes it:
+//   D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb
+//   D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb
+//   D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb
+//   D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3
+//   inv_D_1 = 1 / D_1
+//   g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1
+//   g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)))
+//   g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn))
+//   inv_m1 = 1 / m1
+//   w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1
+//   D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb
+//   D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb
+//   D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb
+//   D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3
+//   inv_D_2 = 1 / D_2
+//   g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2
+//   g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)))
+//   g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn))
+//   inv_m2 = 1 / m2
+//   w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2
+//   u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1
 //   k = w_1 + w_2
-//   N = -(u*(e + 1)/k)
-//   T_lost = -(N*u + 1/2*N^2*k)
+//   N = -(u * (1 + e) / k)
+//   T_lost = -(u * N + k * N * N * (1/2))
 //   out.v_t1 = v_t1
-//   out.v_n1 = -(N/m1 - v_n1)
+//   out.v_n1 = v_n1 - inv_m1 * N
 //   out.v_b1 = v_b1
-//   out.w_t1 = -(N*g_t1 - w_t1)
-//   out.w_n1 = -(N*g_n1 - w_n1)
-//   out.w_b1 = -(N*g_b1 - w_b1)
+//   out.w_t1 = w_t1 - g_t1 * N
+//   out.w_n1 = w_n1 - g_n1 * N
+//   out.w_b1 = w_b1 - g_b1 * N
 //   out.v_t2 = v_t2
-//   out.v_n2 = N/m2 + v_n2
+//   out.v_n2 = v_n2 + inv_m2 * N
 //   out.v_b2 = v_b2
-//   out.w_t2 = N*g_t2 + w_t2
-//   out.w_n2 = N*g_n2 + w_n2
-//   out.w_b2 = N*g_b2 + w_b2
+//   out.w_t2 = w_t2 + g_t2 * N
+//   out.w_n2 = g_n2 * N + w_n2
+//   out.w_b2 = w_b2 + g_b2 * N
 //   out.normal_impulse = N
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost

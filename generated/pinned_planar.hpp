@@ -87,21 +87,27 @@ template <typename T> struct pinned_planar_result {
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
 //   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
-// This problem, step by step (canonical order):
-//   w_1 = 1/m1
-//   I_E2 = 1/3*(l^2*m2)
-//   w_2 = l^2/I_E2
+// This problem, step by step, as the code below computes it:
+//   w_1 = 1 / m1
+//   I_E2_p1 = l * l
+//   I_E2_p2 = I_E2_p1 * m2
+//   I_E2 = I_E2_p2 * (1/3)
+//   inv_I_E2 = 1 / I_E2
+//   w_2 = I_E2_p1 * inv_I_E2
 //   u = -v1
 //   k = w_1 + w_2
-//   N = -(u*(e + 1)/k)
-//   T_lost = -(N*u + 1/2*N^2*k)
-//   out.v_x1 = -(N/m1 - v1)
+//   N = -(u * (1 + e) / k)
+//   T_lost = -(u * N + k * N * N * (1/2))
+//   v_x2_p1 = l * N
+//   v_x2_p2 = l * v_x2_p1
+//   check_p1 = I_E2_p2 * (1/12)
+//   out.v_x1 = v1 - w_1 * N
 //   out.v_y1 = 0
-//   out.v_x2 = 1/2*(N*l^2/I_E2)
+//   out.v_x2 = (1/2) * inv_I_E2 * v_x2_p2
 //   out.v_y2 = 0
-//   out.w_z2 = N*l/I_E2
+//   out.w_z2 = inv_I_E2 * v_x2_p1
 //   out.normal_impulse = N
-//   out.R_x2 = -(N - 1/2*N*l^2*m2/I_E2)
+//   out.R_x2 = (1/2) * inv_I_E2 * m2 * v_x2_p2 - N
 //   out.R_y2 = 0
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost

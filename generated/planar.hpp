@@ -88,19 +88,23 @@ template <typename T> struct planar_result {
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
 //   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
-// This problem, step by step (canonical order):
-//   w_1 = r_t1^2/I1 + 1/m1
-//   w_2 = r_t2^2/I2 + 1/m2
-//   u = r_t1*w_b1 - r_t2*w_b2 - v_n1 + v_n2
+// This problem, step by step, as the code below computes it:
+//   inv_I1 = 1 / I1
+//   inv_m1 = 1 / m1
+//   w_1 = r_t1 * r_t1 * inv_I1 + inv_m1
+//   inv_I2 = 1 / I2
+//   inv_m2 = 1 / m2
+//   w_2 = r_t2 * r_t2 * inv_I2 + inv_m2
+//   u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1
 //   k = w_1 + w_2
-//   N = -(u*(e + 1)/k)
-//   T_lost = -(N*u + 1/2*N^2*k)
+//   N = -(u * (1 + e) / k)
+//   T_lost = -(u * N + k * N * N * (1/2))
 //   out.v_t1 = v_t1
-//   out.v_n1 = -(N/m1 - v_n1)
-//   out.w_b1 = N*r_t1/I1 + w_b1
+//   out.v_n1 = v_n1 - inv_m1 * N
+//   out.w_b1 = w_b1 + inv_I1 * r_t1 * N
 //   out.v_t2 = v_t2
-//   out.v_n2 = N/m2 + v_n2
-//   out.w_b2 = -(N*r_t2/I2 - w_b2)
+//   out.v_n2 = v_n2 + inv_m2 * N
+//   out.w_b2 = w_b2 - inv_I2 * r_t2 * N
 //   out.normal_impulse = N
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost

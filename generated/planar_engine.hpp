@@ -88,19 +88,19 @@ template <typename T> struct planar_engine_result {
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
 // Input convention: inverse moments of inertia inv_I = 1/I (as physics engines store them).
 // Input convention: inverse masses inv_m = 1/m.
-// This problem, step by step (canonical order):
-//   w_1 = inv_I1*r_t1^2 + inv_m1
-//   w_2 = inv_I2*r_t2^2 + inv_m2
-//   u = r_t1*w_b1 - r_t2*w_b2 - v_n1 + v_n2
+// This problem, step by step, as the code below computes it:
+//   w_1 = r_t1 * inv_I1 * r_t1 + inv_m1
+//   w_2 = r_t2 * inv_I2 * r_t2 + inv_m2
+//   u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1
 //   k = w_1 + w_2
-//   N = -(u*(e + 1)/k)
-//   T_lost = -(N*u + 1/2*N^2*k)
+//   N = -(u * (e + 1) / k)
+//   T_lost = -(u * N + k * N * N * (1/2))
 //   out.v_t1 = v_t1
-//   out.v_n1 = -(N*inv_m1 - v_n1)
-//   out.w_b1 = N*inv_I1*r_t1 + w_b1
+//   out.v_n1 = v_n1 - inv_m1 * N
+//   out.w_b1 = w_b1 + r_t1 * inv_I1 * N
 //   out.v_t2 = v_t2
-//   out.v_n2 = N*inv_m2 + v_n2
-//   out.w_b2 = -(N*inv_I2*r_t2 - w_b2)
+//   out.v_n2 = v_n2 + inv_m2 * N
+//   out.w_b2 = w_b2 - r_t2 * inv_I2 * N
 //   out.normal_impulse = N
 //   out.approach_velocity = u
 //   out.energy_lost = T_lost

@@ -73,7 +73,7 @@ std::string answer_text(const derivation& d, const solution& s)
         return r + ")";
     };
     os << "Impact of " << p.bodies[p.contact.body1].name << " (body 1) on " << p.bodies[p.contact.body2].name
-       << " (body 2), e = " << p.restitution << "\n\n";
+       << " (body 2), e = " << parser_syntax(p.restitution) << "\n\n";
     os << "After impact:\n";
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         os << "  " << p.bodies[i].name << ":\n";

@@ -74,6 +74,8 @@ printed print_power(const ex& base, const ex& exponent, syntax sx)
     if (exponent.is_equal(numeric(1, 2))) {
         if (sx == syntax::latex)
             return {"\\sqrt{" + b.s + "}", p_atom};
+        if (sx == syntax::parser)
+            return {"sqrt(" + b.s + ")", p_atom};
         return {"√" + wrap(b, p_atom, sx), p_power};
     }
     std::string bs = wrap(b, p_atom, sx);
@@ -84,7 +86,7 @@ printed print_power(const ex& base, const ex& exponent, syntax sx)
         long k = ex_to<numeric>(exponent).to_long();
         if (sx == syntax::latex)
             return {bs + "^{" + std::to_string(k) + "}", p_power};
-        if (const char* s = superscript(k))
+        if (const char* s = superscript(k); s && sx == syntax::text)
             return {bs + s, p_power};
         return {bs + "^" + std::to_string(k), p_power};
     }
@@ -146,7 +148,7 @@ printed print_product(const ex& e, syntax sx)
     const bool neg = coeff.is_negative();
     const numeric p = abs(coeff.numer()), q = coeff.denom();
 
-    const std::string times = sx == syntax::latex ? " " : "·";
+    const std::string times = sx == syntax::latex ? " " : sx == syntax::parser ? "*" : "·";
     prec sole_level = p_atom;
     auto join = [&](const std::vector<factor>& fs, const numeric& number, bool& single_sum, std::size_t& count) {
         std::string out;
@@ -328,7 +330,7 @@ printed print_ex_uncached(const ex& e, syntax sx)
         return print_numeric(ex_to<numeric>(e), sx);
     if (is_a<symbol>(e)) {
         const symbol& s = ex_to<symbol>(e);
-        return {sx == syntax::latex ? symbol_latex(s) : symbol_text(s.get_name()), p_atom};
+        return {sx == syntax::latex ? symbol_latex(s) : sx == syntax::parser ? s.get_name() : symbol_text(s.get_name()), p_atom};
     }
     if (is_a<add>(e))
         return print_sum(e, sx);

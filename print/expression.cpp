@@ -1,5 +1,7 @@
 #include "expression.hpp"
 
+#include "canonical.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -8,12 +10,7 @@
 namespace impactgen::print {
 using namespace GiNaC;
 
-std::string parser_syntax(const ex& e)
-{
-    std::ostringstream os;
-    os << e;
-    return os.str();
-}
+std::string parser_syntax(const ex& e) { return canonical_parser(e); }
 
 double to_double(const ex& e)
 {

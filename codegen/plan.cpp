@@ -1,0 +1,411 @@
+// The plan of a generated solver: the problem specialised by the caller's
+// options, its closed form rewritten for the engine input conventions, the
+// function's inputs in order and its outputs. No C++ text is made here.
+#include "codegen.hpp"
+
+#include "names/escape.hpp"
+#include "names/identifier.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+#include <sstream>
+
+namespace impactgen::codegen {
+using namespace GiNaC;
+
+namespace {
+
+// Quantity suffix of a body: "1" -> "1", "ball" -> "_ball".
+std::string suffix(const std::string& label) { return label.size() == 1 ? label : "_" + names::mangle(label); }
+
+struct quantity {
+    std::string name;
+    ex* value;
+    std::string meaning;
+};
+
+// Every liftable quantity of the problem, in problem order; inertia entries
+// (r <= c) stand for both symmetric entries.
+std::vector<quantity> quantities(problem& p)
+{
+    std::vector<quantity> q;
+    const int dim = p.dimension;
+    const auto& ax = p.axes;
+    q.push_back({"e", &p.restitution, "coefficient of restitution, 0 <= e <= 1"});
+    for (body& b : p.bodies) {
+        const std::string s = suffix(b.label), sub = s;
+        if (!b.infinite_mass)
+            q.push_back({"m" + s, &b.mass, "mass of " + b.name + " (> 0)"});
+        if (!b.particle && !b.infinite_mass) {
+            if (dim == 2)
+                q.push_back({"I" + s, &b.inertia[2][2], "moment of inertia of " + b.name + " about its centre of mass (> 0)"});
+            else
+                for (int r = 0; r < 3; ++r)
+                    for (int c = r; c < 3; ++c)
+                        q.push_back({"I" + s + "_" + ax[r] + ax[c], &b.inertia[r][c],
+                                     "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
+        }
+        for (int c = 0; c < dim; ++c)
+            q.push_back({"r_" + ax[c] + sub, &b.position[c], "centre of mass of " + b.name + ", " + ax[c]});
+        for (int c = 0; c < dim; ++c)
+            q.push_back({"v_" + ax[c] + sub, &b.velocity[c], "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
+        for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
+            q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c], "angular velocity of " + b.name + " before impact, " + ax[c]});
+    }
+    for (int c = 0; c < dim; ++c)
+        q.push_back({"O_" + ax[c], &p.contact.point[c], "contact point, " + ax[c]});
+    for (int c = 0; c < dim; ++c)
+        q.push_back({"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
+    for (pivot& pv : p.pivots)
+        for (int c = 0; c < dim; ++c)
+            q.push_back({"E_" + ax[c] + suffix(p.bodies[pv.body].label), &pv.point[c],
+                         "pivot of " + p.bodies[pv.body].name + ", " + ax[c]});
+    return q;
+}
+
+void symmetrise(problem& p)
+{
+    for (body& b : p.bodies)
+        for (int r = 0; r < 3; ++r)
+            for (int c = r + 1; c < 3; ++c)
+                b.inertia[c][r] = b.inertia[r][c];
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep)
+{
+    std::string r;
+    for (const std::string& s : v)
+        r += (r.empty() ? "" : sep) + s;
+    return r;
+}
+
+std::string shown(const ex& e)
+{
+    std::ostringstream os;
+    os << e;
+    return names::display_text(os.str(), 120);
+}
+
+// Every solution value the emitter reads, rewritten by one substitution.
+void rewrite_solution(solution& s, const ex& rel)
+{
+    for (step& st : s.steps)
+        st.value = st.value.subs(rel);
+    for (body_state& b : s.after)
+        for (int c = 0; c < 3; ++c) {
+            b.velocity[c] = b.velocity[c].subs(rel);
+            b.angular_velocity[c] = b.angular_velocity[c].subs(rel);
+        }
+    for (vec3& r : s.pivot_impulses)
+        for (ex& c : r)
+            c = c.subs(rel);
+    s.normal_impulse = s.normal_impulse.subs(rel);
+    s.energy_lost = s.energy_lost.subs(rel);
+}
+
+// A new input symbol standing for the inverse of `old` (never a registered
+// symbol of the same name: a user's own symbol inv_m1 stays a different input).
+symbol inverse_symbol(plan& pl, const ex& old, const std::string& meaning)
+{
+    symbol k("inv_" + ex_to<symbol>(old).get_name());
+    pl.replaced[old].push_back(k);
+    pl.inverse_of[old] = k;
+    pl.meaning[k] = meaning;
+    return k;
+}
+
+// Engine convention for one planar body: I becomes 1/inv_I.
+bool planar_inverse_inertia(plan& pl, const body& b, lst& subs)
+{
+    const ex& old = b.inertia[2][2];
+    if (is_a<numeric>(old))
+        return false;
+    if (!is_a<symbol>(old))
+        throw option_error(option_error::inverse_inertia,
+                           "the moment of inertia of " + names::display_text(b.name) + " is neither a number nor a single symbol");
+    symbol k = inverse_symbol(pl, old, "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)");
+    subs.append(old == 1 / k);
+    return true;
+}
+
+// Engine convention for one 3-D body: g = inv_I (r x n) with the inverse tensor's
+// entries as inputs; the determinant step is no longer needed.
+bool tensor_inverse_inertia(plan& pl, std::size_t i)
+{
+    const problem& q = pl.prob;
+    const body& b = q.bodies[i];
+    solution& s = pl.sol;
+    bool symbolic = false;
+    for (auto& row : b.inertia)
+        for (auto& c : row)
+            symbolic = symbolic || !is_a<numeric>(c);
+    if (!symbolic)
+        return false; // a known tensor is inverted exactly at generation time
+    vec3 tau = cross(q.contact.point - b.position, pl.deriv.n_hat);
+    vec3 t;
+    for (int c = 0; c < 3; ++c) {
+        const step* ts = s.find(step_role::lever_arm, i, c);
+        t[c] = ts ? ex(ts->sym) : tau[c].normal();
+    }
+    mat3 K;
+    for (int r = 0; r < 3; ++r)
+        for (int c = r; c < 3; ++c) {
+            const ex& old = b.inertia[r][c];
+            if (!is_a<symbol>(old))
+                throw option_error(option_error::inverse_inertia, "the inertia entry " + q.axes[r] + q.axes[c] + " of " +
+                                                                      names::display_text(b.name) +
+                                                                      " is neither a number nor a single symbol");
+            K[r][c] = K[c][r] = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " + q.axes[r] +
+                                                            q.axes[c] + " entry");
+        }
+    vec3 g = mul(K, t);
+    for (int c = 0; c < 3; ++c) {
+        step* gs = s.find(step_role::angular_response, i, c);
+        if (!gs)
+            throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
+        gs->value = g[c];
+    }
+    s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
+                                 [&](const step& st) { return st.role == step_role::inertia_determinant && st.body == i; }),
+                  s.steps.end());
+    return true;
+}
+
+void apply_inverse_inertia(plan& pl)
+{
+    const problem& q = pl.prob;
+    bool any = false;
+    lst subs;
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        if (b.particle || b.infinite_mass || q.pivot_of(i))
+            continue;
+        any = (q.dimension == 2 ? planar_inverse_inertia(pl, b, subs) : tensor_inverse_inertia(pl, i)) || any;
+    }
+    if (!any)
+        throw option_error(option_error::inverse_inertia, "no free rigid body with a symbolic inertia takes part in the contact");
+    if (subs.nops() > 0)
+        rewrite_solution(pl.sol, subs);
+}
+
+void apply_inverse_mass(plan& pl)
+{
+    const problem& q = pl.prob;
+    lst subs;
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        if (b.infinite_mass || is_a<numeric>(b.mass))
+            continue;
+        if (!is_a<symbol>(b.mass))
+            throw option_error(option_error::inverse_mass,
+                               "the mass of " + names::display_text(b.name) + " is neither a number nor a single symbol");
+        symbol im = inverse_symbol(pl, b.mass, "inverse mass 1/m of " + b.name + " (> 0)");
+        subs.append(b.mass == 1 / im);
+    }
+    if (subs.nops() == 0)
+        throw option_error(option_error::inverse_mass, "no body in the contact has a symbolic mass");
+    rewrite_solution(pl.sol, subs);
+}
+
+// Inputs in order: the parameters as given, else first appearance in the
+// problem; a symbol replaced by its inverse(s) is replaced in place.
+void order_inputs(plan& pl, const options& o)
+{
+    problem q = pl.prob;
+    std::vector<quantity> all = quantities(q);
+    std::map<ex, std::string, ex_is_less> meaning;
+    for (const quantity& x : all)
+        if (is_a<symbol>(*x.value))
+            meaning.emplace(*x.value, x.meaning);
+    std::vector<ex> order;
+    if (o.params_given) {
+        for (const std::string& nm : o.params)
+            order.push_back(symbol_named(nm));
+    } else {
+        exset seen;
+        for (const quantity& x : all) {
+            std::vector<ex> found;
+            for (const_preorder_iterator it = x.value->preorder_begin(); it != x.value->preorder_end(); ++it)
+                if (is_a<symbol>(*it) && seen.insert(*it).second)
+                    found.push_back(*it);
+            std::sort(found.begin(), found.end(),
+                      [](const ex& a, const ex& b) { return ex_to<symbol>(a).get_name() < ex_to<symbol>(b).get_name(); });
+            order.insert(order.end(), found.begin(), found.end());
+        }
+    }
+    exset done;
+    for (const ex& x0 : order) {
+        auto r = pl.replaced.find(x0);
+        std::vector<symbol> syms = r == pl.replaced.end() ? std::vector<symbol>{ex_to<symbol>(x0)} : r->second;
+        for (const symbol& x : syms) {
+            if (!done.insert(x).second)
+                continue;
+            pl.inputs.push_back(x);
+            if (auto m = pl.meaning.find(x); m != pl.meaning.end()) {
+                pl.input_meaning.push_back(m->second);
+            } else if (auto m2 = meaning.find(x); m2 != meaning.end()) {
+                pl.input_meaning.push_back(m2->second);
+            } else {
+                std::vector<std::string> where;
+                for (const quantity& qq : all)
+                    if (qq.value->has(x))
+                        where.push_back(qq.name);
+                pl.input_meaning.push_back("appears in " + join(where, ", "));
+            }
+        }
+    }
+}
+
+// The post-impact state of the bodies in contact, then impulses and energy.
+void plan_outputs(plan& pl)
+{
+    const problem& q = pl.prob;
+    const solution& s = pl.sol;
+    const auto& ax = q.axes;
+    const int dim = q.dimension;
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        const std::string sub = suffix(b.label);
+        for (int c = 0; c < dim; ++c)
+            pl.outputs.push_back({output_value::velocity, i, c, "v_" + ax[c] + sub, s.after[i].velocity[c],
+                                  "velocity of the centre of mass of " + b.name + " after impact, " + ax[c]});
+        if (!b.particle)
+            for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
+                pl.outputs.push_back({output_value::angular_velocity, i, c, "w_" + ax[c] + sub, s.after[i].angular_velocity[c],
+                                      "angular velocity of " + b.name + " after impact, " + ax[c]});
+    }
+    // N is the impulse along the unit normal (as `impactgen solve` reports it), whatever |n| was given.
+    pl.outputs.push_back({output_value::normal_impulse, 0, 0, "normal_impulse", s.normal_impulse,
+                          "normal impulse, integral of N dt >= 0 along the unit normal: on " + q.bodies[q.contact.body2].name +
+                              " along +n, on " + q.bodies[q.contact.body1].name + " along -n"});
+    for (std::size_t k = 0; k < q.pivots.size(); ++k)
+        for (int c = 0; c < dim; ++c)
+            pl.outputs.push_back({output_value::pivot_impulse, k, c, "R_" + ax[c] + suffix(q.bodies[q.pivots[k].body].label),
+                                  s.pivot_impulses[k][c], "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
+    const step* u_step = s.find(step_role::approach_velocity);
+    const ex u = u_step ? ex(u_step->sym) : ex(0);
+    pl.outputs.push_back({output_value::approach_velocity, 0, 0, "approach_velocity", u,
+                          "(v_B - v_A).n before impact along the unit normal (< 0)"});
+    pl.outputs.push_back({output_value::energy_lost, 0, 0, "energy_lost", s.energy_lost,
+                          "kinetic energy lost, T - T' (bodies of finite mass)"});
+}
+
+// The values given for symbols, folded in.
+problem set_values(const problem& p, const options& o, std::set<std::string>& given)
+{
+    std::set<std::string> symbols;
+    for (const symbol& s : p.parameters())
+        symbols.insert(s.get_name());
+    lst values;
+    for (const auto& [name, text] : o.set) {
+        if (!symbols.count(name))
+            throw option_error(option_error::set, names::display_text(name) + ": the problem has no symbol " +
+                                                      names::display_text(name) +
+                                                      (symbols.empty() ? " (it has none)"
+                                                                       : " (its symbols: " +
+                                                                             names::display_text(join({symbols.begin(), symbols.end()}, ", "), 160) + ")"));
+        bool is_number = !text.empty() && (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '.') &&
+                         text.find_first_not_of("0123456789.eE+-") == std::string::npos;
+        try {
+            values.append(symbol_named(name) == parse_value(text, !is_number, "the value of " + name));
+        } catch (const input_error& e) {
+            throw option_error(option_error::set, e.what());
+        }
+        given.insert(name);
+    }
+    return values.nops() > 0 ? substitute(p, values) : p;
+}
+
+// A numeric quantity named in the parameter list becomes a symbol of that name.
+void lift_quantity(problem& q, const std::string& name, const std::set<std::string>& now)
+{
+    bool lifted = false;
+    for (quantity& x : quantities(q))
+        if (x.name == name) {
+            if (!is_a<numeric>(*x.value))
+                throw option_error(option_error::params,
+                                   "the quantity " + name + " is the expression " + shown(*x.value) + "; name its symbols instead");
+            *x.value = symbol_named(name);
+            lifted = true;
+        }
+    if (!lifted) {
+        std::vector<std::string> numeric_names;
+        for (const auto& [n, v] : quantity_names(q))
+            if (is_a<numeric>(v))
+                numeric_names.push_back(n);
+        throw option_error(option_error::params,
+                           names::display_text(name) + " is neither a symbol of the problem" +
+                               (now.empty() ? "" : " (" + names::display_text(join({now.begin(), now.end()}, ", "), 160) + ")") +
+                               " nor a numeric quantity of it (" + names::display_text(join(numeric_names, ", "), 400) + ")");
+    }
+    symmetrise(q);
+}
+
+} // namespace
+
+const char* option_error::option_name(option o)
+{
+    switch (o) {
+    case set: return "set";
+    case params: return "params";
+    case inverse_inertia: return "inverse-inertia";
+    case inverse_mass: return "inverse-mass";
+    case function_name: return "name";
+    case name_space: return "namespace";
+    }
+    return "?";
+}
+
+std::vector<std::pair<std::string, ex>> quantity_names(const problem& p)
+{
+    problem q = p;
+    std::vector<std::pair<std::string, ex>> r;
+    for (const quantity& x : quantities(q))
+        r.push_back({x.name, *x.value});
+    return r;
+}
+
+problem specialise(const problem& p, const options& o)
+{
+    std::set<std::string> given;
+    problem q = set_values(p, o, given);
+    if (!o.params_given)
+        return q;
+    std::set<std::string> now;
+    for (const symbol& s : q.parameters())
+        now.insert(s.get_name());
+    std::set<std::string> wanted;
+    for (const std::string& name : o.params) {
+        if (!wanted.insert(name).second)
+            throw option_error(option_error::params, names::display_text(name) + " is named twice");
+        if (given.count(name))
+            throw option_error(option_error::params, names::display_text(name) + " is also given a value");
+        if (!now.count(name))
+            lift_quantity(q, name, now);
+    }
+    for (const symbol& s : q.parameters())
+        if (!wanted.count(s.get_name()))
+            throw option_error(option_error::params, "symbol " + s.get_name() + " is neither a parameter nor given a value",
+                               s.get_name());
+    return q;
+}
+
+plan make_plan(const problem& p, const options& o)
+{
+    plan pl;
+    pl.prob = specialise(p, o);
+    pl.deriv = derive(pl.prob);
+    pl.sol = solve(pl.deriv);
+    if (o.inverse_inertia)
+        apply_inverse_inertia(pl);
+    if (o.inverse_mass)
+        apply_inverse_mass(pl);
+    order_inputs(pl, o);
+    plan_outputs(pl);
+    return pl;
+}
+
+} // namespace impactgen::codegen
