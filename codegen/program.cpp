@@ -338,264 +338,331 @@ std::string unique_name(const std::set<std::string>& taken, const std::string& b
 
 } // namespace
 
-emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
-                 const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs, bool branchless, bool share_divisions)
+namespace {
+
+bool is_reciprocal(const program& prog, const op& o)
 {
-    const std::size_t n = prog.size();
-    std::vector<bool> reach(n, false), materialised(n, false);
-    std::vector<int> refs(n, 0);
-    std::vector<int> stack;
-    auto root = [&](int id) {
-        ++refs[static_cast<std::size_t>(id)];
-        stack.push_back(id);
-    };
-    for (auto& o : outputs)
-        root(o.second);
-    for (auto& c : checks)
-        root(c.op_id);
-    while (!stack.empty()) {
-        int id = stack.back();
-        stack.pop_back();
-        if (reach[static_cast<std::size_t>(id)])
-            continue;
-        reach[static_cast<std::size_t>(id)] = true;
-        const op& o = prog.at(id);
-        for (int c : {o.a, o.b})
-            if (c >= 0) {
-                ++refs[static_cast<std::size_t>(c)];
-                stack.push_back(c);
-            }
+    return o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1;
+}
+
+void add_unique(std::vector<std::string>& v, const std::string& t)
+{
+    if (std::find(v.begin(), v.end(), t) == v.end())
+        v.push_back(t);
+}
+
+// One emission of the program: which values are reached and named, which are
+// implied finite by the outputs, which reciprocals share a division, then the
+// code in program order with each check right after the value it tests.
+class emitter {
+public:
+    emitter(const program& prog, const std::vector<std::pair<std::string, int>>& outputs, const std::vector<check>& checks,
+            const std::map<int, std::string>& names, const std::vector<std::string>& taken, bool branchless, bool share_divisions)
+        : prog_(prog), outputs_(outputs), checks_(checks), names_(names), branchless_(branchless),
+          share_divisions_(share_divisions), n_(prog.size()), reach_(n_, false), materialised_(n_, false), covered_(n_, false),
+          refs_(n_, 0), used_names_(taken.begin(), taken.end())
+    {
     }
-    std::set<int> checked;
-    for (auto& c : checks)
-        checked.insert(c.op_id);
-    std::map<int, std::string> var;
-    std::set<std::string> used_names(inputs.begin(), inputs.end());
-    std::map<std::string, int> part_counter;
-    for (std::size_t i = 0; i < n; ++i) {
-        const int id = static_cast<int>(i);
-        if (!reach[i] || prog.is_leaf(id))
-            continue;
-        bool named = names.count(id) > 0;
-        if (named || refs[i] >= 2 || checked.count(id)) {
-            materialised[i] = true;
+
+    emitted run()
+    {
+        mark_reachable();
+        name_materialised();
+        mark_covered();
+        if (branchless_ && share_divisions_)
+            group_reciprocals();
+        std::set<int> input_checked;
+        for (const check& c : checks_)
+            if (prog_.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
+                emit_checks(c.op_id);
+        emit_values();
+        emit_outputs();
+        return out_;
+    }
+
+private:
+    // Every op an output or a check needs, with the number of its uses.
+    void mark_reachable()
+    {
+        std::vector<int> stack;
+        auto root = [&](int id) {
+            ++refs_[static_cast<std::size_t>(id)];
+            stack.push_back(id);
+        };
+        for (auto& o : outputs_)
+            root(o.second);
+        for (auto& c : checks_)
+            root(c.op_id);
+        while (!stack.empty()) {
+            int id = stack.back();
+            stack.pop_back();
+            if (reach_[static_cast<std::size_t>(id)])
+                continue;
+            reach_[static_cast<std::size_t>(id)] = true;
+            const op& o = prog_.at(id);
+            for (int c : {o.a, o.b})
+                if (c >= 0) {
+                    ++refs_[static_cast<std::size_t>(c)];
+                    stack.push_back(c);
+                }
+        }
+    }
+
+    // A variable for every named step, every value used twice and every checked value.
+    void name_materialised()
+    {
+        std::set<int> checked;
+        for (auto& c : checks_)
+            checked.insert(c.op_id);
+        std::map<std::string, int> part_counter;
+        for (std::size_t i = 0; i < n_; ++i) {
+            const int id = static_cast<int>(i);
+            if (!reach_[i] || prog_.is_leaf(id))
+                continue;
+            const bool named = names_.count(id) > 0;
+            if (!named && refs_[i] < 2 && !checked.count(id))
+                continue;
+            materialised_[i] = true;
             std::string nm;
             if (named) {
-                nm = names.at(id);
+                nm = names_.at(id); // step names come unique from the caller's scope
             } else {
-                const op& o = prog.at(id);
-                bool recip = o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1;
-                if (recip && (prog.at(o.b).kind == op::input || var.count(o.b)))
-                    nm = "inv_" + (prog.at(o.b).kind == op::input ? prog.at(o.b).name : var[o.b]);
+                const op& o = prog_.at(id);
+                if (is_reciprocal(prog_, o) && (prog_.at(o.b).kind == op::input || var_.count(o.b)))
+                    nm = "inv_" + (prog_.at(o.b).kind == op::input ? prog_.at(o.b).name : var_[o.b]);
                 else
                     nm = o.owner + "_p" + std::to_string(++part_counter[o.owner]);
+                nm = unique_name(used_names_, nm);
             }
-            if (!named) // step names come unique from the caller's scope
-                nm = unique_name(used_names, nm);
-            used_names.insert(nm);
-            var[id] = nm;
+            used_names_.insert(nm);
+            var_[id] = nm;
         }
     }
 
     // Values whose finiteness follows from the finiteness of the outputs: an operand of
     // +, -, *, negation, sqrt, or the numerator of /, is finite when the result is
     // (inf and NaN propagate); a denominator is not (1/inf = 0).
-    std::vector<bool> covered(n, false);
-    for (auto& o : outputs)
-        stack.push_back(o.second);
-    while (!stack.empty()) {
-        int id = stack.back();
-        stack.pop_back();
-        if (covered[static_cast<std::size_t>(id)])
-            continue;
-        covered[static_cast<std::size_t>(id)] = true;
-        const op& o = prog.at(id);
-        if (o.a >= 0)
-            stack.push_back(o.a);
-        if (o.b >= 0 && o.kind != op::div)
-            stack.push_back(o.b);
+    void mark_covered()
+    {
+        std::vector<int> stack;
+        for (auto& o : outputs_)
+            stack.push_back(o.second);
+        while (!stack.empty()) {
+            int id = stack.back();
+            stack.pop_back();
+            if (covered_[static_cast<std::size_t>(id)])
+                continue;
+            covered_[static_cast<std::size_t>(id)] = true;
+            const op& o = prog_.at(id);
+            if (o.a >= 0)
+                stack.push_back(o.a);
+            if (o.b >= 0 && o.kind != op::div)
+                stack.push_back(o.b);
+        }
     }
 
-    // Branchless: reciprocals of inputs share divisions, up to four per division
-    // (1/a = b / (a b)); the products must be normal numbers (else the flag fails
-    // and the checked version computes the impact with a division each).
-    std::map<int, std::vector<int>> group_at; // first member -> members
-    std::set<int> grouped;
-    if (branchless && share_divisions) {
+    // Branchless batch: reciprocals of inputs that must be > 0 (masses, inertia) share
+    // divisions, up to four per division (1/a = b / (a b)); the products must be normal
+    // numbers (else the flag fails and the checked version computes the impact).
+    void group_reciprocals()
+    {
         std::vector<int> recips;
-        for (std::size_t i = 0; i < n; ++i) {
-            const op& o = prog.at(static_cast<int>(i));
-            if (materialised[i] && o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1 &&
-                prog.at(o.b).kind == op::input &&
-                std::any_of(checks.begin(), checks.end(), [&](const check& c) { return c.op_id == o.b && c.kind == check::positive; }))
-                recips.push_back(static_cast<int>(i)); // of an input that must be > 0 (mass, inertia)
+        for (std::size_t i = 0; i < n_; ++i) {
+            const op& o = prog_.at(static_cast<int>(i));
+            if (materialised_[i] && is_reciprocal(prog_, o) && prog_.at(o.b).kind == op::input &&
+                std::any_of(checks_.begin(), checks_.end(), [&](const check& c) { return c.op_id == o.b && c.kind == check::positive; }))
+                recips.push_back(static_cast<int>(i));
         }
         for (std::size_t g = 0; g + 1 < recips.size(); g += 4) {
             std::vector<int> members(recips.begin() + static_cast<long>(g),
                                      recips.begin() + static_cast<long>(std::min(g + 4, recips.size())));
-            group_at[members[0]] = members;
-            grouped.insert(members.begin(), members.end());
+            group_at_[members[0]] = members;
+            grouped_.insert(members.begin(), members.end());
             for (int id : members) // the product of the denominators is in the sum
-                covered[static_cast<std::size_t>(prog.at(id).b)] = true;
+                covered_[static_cast<std::size_t>(prog_.at(id).b)] = true;
         }
     }
-    emitted out;
-    printer pr{prog, materialised, refs, var, &out.formula};
-    op_counts uncounted;
-    printer math{prog, materialised, refs, var, &uncounted, true}; // the same expressions, numbers as in mathematics
-    std::string& code = out.code;
-    auto emit_checks = [&](int id) {
-        for (const check& c : checks) {
+
+    // Branchless: the checks of value id folded into the lists the one flag is made of
+    // (signs through a min, finiteness through one sum).
+    void fold_check(const check& c, int id, const std::string& x, int p)
+    {
+        if (c.kind == check::positive) {
+            // x > 0 and finite <=> 1/x > 0 and finite x: when 1/x is computed anyway,
+            // test 1/x > 0 (1/inf = 0 fails it; 1/NaN is NaN) and let x go.
+            int rid = -1;
+            for (std::size_t k = 0; k < n_ && rid < 0; ++k) {
+                const op& o = prog_.at(static_cast<int>(k));
+                if (materialised_[k] && is_reciprocal(prog_, o) && o.b == id)
+                    rid = static_cast<int>(k);
+            }
+            if (rid >= 0) {
+                add_unique(out_.positive_terms, var_.at(rid));
+                if (!covered_[static_cast<std::size_t>(rid)])
+                    add_unique(out_.finite_terms, var_.at(rid));
+                out_.check_comments.push_back(c.comment);
+                return;
+            }
+        }
+        switch (c.kind) {
+        case check::positive: add_unique(out_.positive_terms, x); break;
+        case check::negative: add_unique(out_.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x)); break;
+        case check::unit_interval:
+            add_unique(out_.nonneg_terms, x);
+            add_unique(out_.nonneg_terms, "T(1) - " + (p < 2 ? "(" + x + ")" : x));
+            break;
+        }
+        // (unless the finiteness of the outputs implies it)
+        if (!covered_[static_cast<std::size_t>(id)])
+            add_unique(out_.finite_terms, x);
+        out_.check_comments.push_back(c.comment);
+    }
+
+    void emit_checks(int id)
+    {
+        for (const check& c : checks_) {
             if (c.op_id != id)
                 continue;
             int p;
-            std::string x = pr.text(id, p);
-            std::string cond;
-            // Branchless: & instead of && so that the batch loop has no control flow.
-            const std::string both = branchless ? ") & (" : " && ";
-            const std::string l = branchless ? "(" : "", r = branchless ? ")" : "";
-            switch (c.kind) {
-            case check::positive: cond = l + x + " > T(0)" + both + "detail::finite(" + x + ")" + r; break;
-            case check::unit_interval: cond = l + x + " >= T(0)" + both + x + " <= T(1)" + r; break;
-            case check::negative: cond = x + " < T(0)"; break;
-            }
-            if (branchless) {
-                // Folded into the one flag (codegen writes it from these lists): the
-                // signs through a min, the finiteness through one sum.
-                auto add = [](std::vector<std::string>& v, const std::string& t) {
-                    if (std::find(v.begin(), v.end(), t) == v.end())
-                        v.push_back(t);
-                };
-                if (c.kind == check::positive) {
-                    // x > 0 and finite <=> 1/x > 0 and finite x: when 1/x is computed anyway,
-                    // test 1/x > 0 (1/inf = 0 fails it; 1/NaN is NaN) and let x go.
-                    int rid = -1;
-                    for (std::size_t k = 0; k < n && rid < 0; ++k) {
-                        const op& o = prog.at(static_cast<int>(k));
-                        if (materialised[k] && o.kind == op::div && o.b == id && prog.at(o.a).kind == op::constant &&
-                            prog.at(o.a).value == 1)
-                            rid = static_cast<int>(k);
-                    }
-                    if (rid >= 0) {
-                        add(out.positive_terms, var.at(rid));
-                        if (!covered[static_cast<std::size_t>(rid)])
-                            add(out.finite_terms, var.at(rid));
-                        out.check_comments.push_back(c.comment);
-                        continue;
-                    }
-                }
-                switch (c.kind) {
-                case check::positive: add(out.positive_terms, x); break;
-                case check::negative: add(out.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x)); break;
-                case check::unit_interval:
-                    add(out.nonneg_terms, x);
-                    add(out.nonneg_terms, "T(1) - " + (p < 2 ? "(" + x + ")" : x));
-                    break;
-                }
-                // (unless the finiteness of the outputs implies it)
-                if (!covered[static_cast<std::size_t>(id)])
-                    add(out.finite_terms, x);
-                out.check_comments.push_back(c.comment);
+            std::string x = printer_().text(id, p);
+            if (branchless_) {
+                fold_check(c, id, x, p);
                 continue;
             }
-            code += "    if (!(" + cond + ")) // " + names::comment_text(c.comment) + "\n";
-            code += "        return fail(impact_status::" + c.status + ");\n";
+            std::string cond;
+            switch (c.kind) {
+            case check::positive: cond = x + " > T(0) && detail::finite(" + x + ")"; break;
+            case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
+            case check::negative: cond = x + " < T(0)"; break;
+            }
+            out_.code += "    if (!(" + cond + ")) // " + names::comment_text(c.comment) + "\n";
+            out_.code += "        return fail(impact_status::" + c.status + ");\n";
         }
-    };
-    std::set<int> input_checked;
-    for (const check& c : checks)
-        if (prog.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
-            emit_checks(c.op_id);
-    auto fresh = [&](const std::string& base) {
-        std::string nm = unique_name(used_names, base);
-        used_names.insert(nm);
+    }
+
+    std::string fresh(const std::string& base)
+    {
+        std::string nm = unique_name(used_names_, base);
+        used_names_.insert(nm);
         return nm;
-    };
-    auto emit_group = [&](const std::vector<int>& members) {
-        auto den = [&](int id) { return prog.at(prog.at(id).b).name; };
+    }
+
+    // Pairs (a, b) -> q = a b; then r = 1 / (q_1 q_2), s_1 = q_2 r = 1/q_1, s_2 = q_1 r = 1/q_2.
+    void emit_group(const std::vector<int>& members)
+    {
+        std::string& code = out_.code;
+        auto den = [&](int id) { return prog_.at(prog_.at(id).b).name; };
         std::string list;
         for (int id : members)
             list += (list.empty() ? "" : ", ") + ("1/" + den(id));
         code += "    // one division for " + list + "\n";
-        // pairs (a, b) -> q = a b; then r = 1 / (q_1 q_2), s_1 = q_2 r = 1/q_1, s_2 = q_1 r = 1/q_2
         std::vector<std::vector<int>> pairs;
         for (std::size_t j = 0; j < members.size(); j += 2)
             pairs.push_back(std::vector<int>(members.begin() + static_cast<long>(j),
                                              members.begin() + static_cast<long>(std::min(j + 2, members.size()))));
         std::vector<std::string> q;
-        for (const auto& pr_ : pairs) {
-            if (pr_.size() == 1) {
-                q.push_back(den(pr_[0]));
+        for (const auto& pair : pairs) {
+            if (pair.size() == 1) {
+                q.push_back(den(pair[0]));
                 continue;
             }
             std::string nm = fresh("rcp_q" + std::to_string(q.size() + 1));
-            code += "    const T " + nm + " = " + den(pr_[0]) + " * " + den(pr_[1]) + ";\n";
-            ++out.formula.mul;
-            out.normal_terms.push_back(nm);
+            code += "    const T " + nm + " = " + den(pair[0]) + " * " + den(pair[1]) + ";\n";
+            ++out_.formula.mul;
+            out_.normal_terms.push_back(nm);
             q.push_back(nm);
         }
-        std::vector<std::string> s_;
+        std::vector<std::string> s;
         if (q.size() == 1) {
             std::string r = fresh("rcp_r");
             code += "    const T " + r + " = T(1) / " + q[0] + ";\n";
-            ++out.formula.div;
-            out.finite_terms.push_back(q[0]);
-            s_.push_back(r);
+            ++out_.formula.div;
+            out_.finite_terms.push_back(q[0]);
+            s.push_back(r);
         } else {
             std::string pq = fresh("rcp_p"), r = fresh("rcp_r"), s1 = fresh("rcp_s1"), s2 = fresh("rcp_s2");
             code += "    const T " + pq + " = " + q[0] + " * " + q[1] + ";\n";
             code += "    const T " + r + " = T(1) / " + pq + ";\n";
             code += "    const T " + s1 + " = " + q[1] + " * " + r + "; // 1/" + q[0] + "\n";
             code += "    const T " + s2 + " = " + q[0] + " * " + r + "; // 1/" + q[1] + "\n";
-            out.formula.mul += 3;
-            ++out.formula.div;
-            out.normal_terms.push_back(pq);
-            out.finite_terms.push_back(pq);
-            s_ = {s1, s2};
+            out_.formula.mul += 3;
+            ++out_.formula.div;
+            out_.normal_terms.push_back(pq);
+            out_.finite_terms.push_back(pq);
+            s = {s1, s2};
         }
         for (std::size_t j = 0; j < pairs.size(); ++j) {
             if (pairs[j].size() == 1) {
-                code += "    const T " + var[pairs[j][0]] + " = " + s_[j] + ";\n";
+                code += "    const T " + var_[pairs[j][0]] + " = " + s[j] + ";\n";
                 continue;
             }
-            code += "    const T " + var[pairs[j][0]] + " = " + den(pairs[j][1]) + " * " + s_[j] + ";\n";
-            code += "    const T " + var[pairs[j][1]] + " = " + den(pairs[j][0]) + " * " + s_[j] + ";\n";
-            out.formula.mul += 2;
+            code += "    const T " + var_[pairs[j][0]] + " = " + den(pairs[j][1]) + " * " + s[j] + ";\n";
+            code += "    const T " + var_[pairs[j][1]] + " = " + den(pairs[j][0]) + " * " + s[j] + ";\n";
+            out_.formula.mul += 2;
         }
         for (int id : members)
             emit_checks(id);
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!materialised[i])
-            continue;
-        int p;
-        if (group_at.count(static_cast<int>(i))) {
-            emit_group(group_at[static_cast<int>(i)]);
-            continue;
+    }
+
+    // The materialised values in program order, each followed by its checks.
+    void emit_values()
+    {
+        for (std::size_t i = 0; i < n_; ++i) {
+            const int id = static_cast<int>(i);
+            if (reach_[i] && prog_.at(id).kind == op::sqrt_)
+                out_.uses_sqrt = true;
+            if (!materialised_[i] || grouped_.count(id)) {
+                if (group_at_.count(id))
+                    emit_group(group_at_[id]);
+                continue;
+            }
+            int p;
+            out_.code += "    const T " + var_[id] + " = " + printer_().text(id, p, true) + ";\n";
+            if (!branchless_)
+                out_.assignments.push_back({var_[id], math_().text(id, p, true)});
+            emit_checks(id);
         }
-        if (grouped.count(static_cast<int>(i)))
-            continue;
-        code += "    const T " + var[static_cast<int>(i)] + " = " + pr.text(static_cast<int>(i), p, true) + ";\n";
-        if (!branchless)
-            out.assignments.push_back({var[static_cast<int>(i)], math.text(static_cast<int>(i), p, true)});
-        emit_checks(static_cast<int>(i));
-        if (prog.at(static_cast<int>(i)).kind == op::sqrt_)
-            out.uses_sqrt = true;
     }
-    for (std::size_t i = 0; i < n; ++i)
-        if (reach[i] && prog.at(static_cast<int>(i)).kind == op::sqrt_)
-            out.uses_sqrt = true;
-    for (auto& [field, id] : outputs) {
-        int p;
-        if (branchless)
-            code += "    const T " + field + " = " + pr.text(id, p) + ";\n";
-        else
-            code += "    out." + field + " = " + pr.text(id, p) + ";\n";
-        if (!branchless)
-            out.assignments.push_back({"out." + field, math.text(id, p)});
+
+    void emit_outputs()
+    {
+        for (auto& [field, id] : outputs_) {
+            int p;
+            if (branchless_) {
+                out_.code += "    const T " + field + " = " + printer_().text(id, p) + ";\n";
+                continue;
+            }
+            out_.code += "    out." + field + " = " + printer_().text(id, p) + ";\n";
+            out_.assignments.push_back({"out." + field, math_().text(id, p)});
+        }
     }
-    return out;
+
+    printer printer_() { return printer{prog_, materialised_, refs_, var_, &out_.formula}; }
+    printer math_() { return printer{prog_, materialised_, refs_, var_, &uncounted_, true}; } // numbers as in mathematics
+
+    const program& prog_;
+    const std::vector<std::pair<std::string, int>>& outputs_;
+    const std::vector<check>& checks_;
+    const std::map<int, std::string>& names_;
+    const bool branchless_, share_divisions_;
+    const std::size_t n_;
+    std::vector<bool> reach_, materialised_, covered_;
+    std::vector<int> refs_;
+    std::set<std::string> used_names_;
+    std::map<int, std::string> var_;
+    std::map<int, std::vector<int>> group_at_; // first member -> members
+    std::set<int> grouped_;
+    emitted out_;
+    op_counts uncounted_;
+};
+
+} // namespace
+
+emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
+                 const std::vector<check>& checks, const std::map<int, std::string>& names,
+                 const std::vector<std::string>& taken, bool branchless, bool share_divisions)
+{
+    return emitter(prog, outputs, checks, names, taken, branchless, share_divisions).run();
 }
 
 } // namespace impactgen::codegen

@@ -86,13 +86,14 @@ struct emitted {
 
 /// Emits straight-line C++ for the outputs (field name, op) with the checks
 /// placed right after the values they test. `names` gives ops their variable
-/// names (the solution's step names). `inputs` are the function parameters.
+/// names (the solution's step names, unique). `taken` are the names already declared
+/// (parameters, steps, the caller's locals): new names avoid them.
 /// branchless: checks accumulate into `ok` and outputs become `const T o_<field>`
 /// share_divisions (branchless only): reciprocals of positive inputs share one division
 /// (fewer divisions for the throughput of a vectorised loop; a longer chain of latency)
 /// (the body of a vectorisable batch loop).
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& inputs, bool branchless = false, bool share_divisions = false);
+                 const std::vector<std::string>& taken, bool branchless = false, bool share_divisions = false);
 
 } // namespace impactgen::codegen
