@@ -4,8 +4,10 @@
 
 #include "canonical.hpp"
 #include "expression.hpp"
+#include "names/escape.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 
 namespace impactgen::print {
@@ -17,7 +19,7 @@ std::string body_ref(const problem& p, std::size_t i)
 {
     const body& b = p.bodies[i];
     std::string role = i == p.contact.body1 ? "body 1" : i == p.contact.body2 ? "body 2" : "body";
-    return b.name == b.label && (b.name == "1" || b.name == "2") ? role : role + " (" + b.name + ")";
+    return b.numbered ? role : role + " (" + b.name + ")";
 }
 
 std::string number_word(std::size_t n) { return std::to_string(n); }
@@ -252,11 +254,13 @@ section impulse_section(const derivation& d)
         const body& b = p.bodies[i];
         if (b.infinite_mass)
             continue;
-        std::string L = b.label.size() == 1 ? b.label : "," + b.label;
+        const bool short_label = b.label.size() == 1 && std::isalnum(static_cast<unsigned char>(b.label[0]));
+        std::string L = short_label ? b.label : "," + b.label;
+        std::string LT = short_label ? b.label : ",\\text{" + names::latex_text(b.label) + "}";
         std::string sign = i == i1 ? "-" : "";
         const pivot* pv = p.pivot_of(i);
         math_row r;
-        r.lhs_note = {"m" + L + " (v′_C" + L + " - v_C" + L + ")", "m_{" + L + "} (\\underline{v}'_{C" + L + "} - \\underline{v}_{C" + L + "})"};
+        r.lhs_note = {"m" + L + " (v′_C" + L + " - v_C" + L + ")", "m_{" + LT + "} (\\underline{v}'_{C" + LT + "} - \\underline{v}_{C" + LT + "})"};
         r.rel = "=";
         r.rhs = 0;
         r.lhs_note.text += " = " + sign + "∫N dt e_n" + (pv ? " + R" : "");

@@ -1,5 +1,9 @@
 #include "derivation.hpp"
 
+#include "names/escape.hpp"
+
+#include <cctype>
+
 namespace impactgen {
 using namespace GiNaC;
 
@@ -17,7 +21,8 @@ const char* principle_name(principle p)
 }
 
 namespace {
-bool single_char_label(const std::string& s) { return s.size() == 1; }
+// A one-letter or one-digit label joins its axis directly (v_t1); any other is set apart (v_x,ball).
+bool single_char_label(const std::string& s) { return s.size() == 1 && std::isalnum(static_cast<unsigned char>(s[0])); }
 }
 
 std::string quantity_name(const std::string& base, const std::string& axis, const std::string& label, bool after)
@@ -28,7 +33,7 @@ std::string quantity_name(const std::string& base, const std::string& axis, cons
 
 std::string quantity_tex(const std::string& base_tex, const std::string& axis, const std::string& label, bool after)
 {
-    std::string sub = single_char_label(label) ? axis + label : axis + ",\\mathrm{" + label + "}";
+    std::string sub = single_char_label(label) ? axis + label : axis + ",\\text{" + names::latex_text(label) + "}";
     return base_tex + (after ? "'" : "") + "_{" + sub + "}";
 }
 

@@ -12,6 +12,7 @@ body free_body(const std::string& k, int dim, bool rigid, bool full_inertia)
 {
     body b;
     b.name = b.label = k;
+    b.numbered = true;
     b.mass = S("m" + k);
     const char* ax[3] = {"t", "n", "b"};
     for (int c = 0; c < dim; ++c) {
@@ -115,11 +116,13 @@ problem pinned_planar()
     ex l = S("l"), m1 = S("m1"), m2 = S("m2");
     body ball;
     ball.name = ball.label = "1";
+    ball.numbered = true;
     ball.mass = m1;
     ball.position = {0, -l, 0};
     ball.velocity = {S("v1", "v_{1}"), 0, 0};
     body rod;
     rod.name = rod.label = "2";
+    rod.numbered = true;
     rod.mass = m2;
     rod.particle = false;
     rod.inertia[2][2] = m2 * l * l / 12;

@@ -31,6 +31,7 @@ GiNaC::symbol symbol_named(const std::string& name, const std::string& tex_name 
 struct body {
     std::string name;
     std::string label;           ///< short label used in symbol names ("1", "2", or the name)
+    bool numbered = false;       ///< a named class's body 1 or 2 (prose says "body 1", not its name)
     bool infinite_mass = false;  ///< an immovable-by-impulse body (wall, ground, bat)
     ex mass = 0;                 ///< m > 0; unused when infinite_mass
     bool particle = true;        ///< no rotational inertia: angular velocity is left unchanged

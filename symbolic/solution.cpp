@@ -1,5 +1,9 @@
 #include "solution.hpp"
 
+#include "names/escape.hpp"
+
+#include <cctype>
+
 #include "decide.hpp"
 
 #include <random>
@@ -58,8 +62,9 @@ private:
     std::set<std::string> taken_;
 };
 
-std::string sub(const std::string& label) { return label.size() == 1 ? label : "," + label; }
-std::string tsub(const std::string& label) { return label.size() == 1 ? label : "\\mathrm{" + label + "}"; }
+bool short_label(const std::string& l) { return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0])); }
+std::string sub(const std::string& label) { return short_label(label) ? label : "," + label; }
+std::string tsub(const std::string& label) { return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}"; }
 
 } // namespace
 

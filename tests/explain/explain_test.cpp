@@ -207,6 +207,27 @@ INSTANTIATE_TEST_SUITE_P(Classes, EveryClass,
                              return n;
                          });
 
+// Problem files, including body names full of LaTeX's special characters
+// (50% a_b#{x}, ~^\end{document}): every name is escaped, the document compiles.
+TEST(ProblemFiles, LatexCompiles)
+{
+    if (std::system("command -v pdflatex > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "\n*** pdflatex NOT FOUND: the LaTeX output of explain is NOT CHECKED. "
+                        "Install it with: apt-get install --no-install-recommends texlive-latex-base ***\n";
+    for (const char* file : {"/tests/explain/hostile-names.json", "/examples/problems/hinged-rod.json",
+                             "/examples/problems/puck-block-34.json", "/examples/problems/wall-oblique-3d.json",
+                             "/examples/problems/pinned-3d.json"}) {
+        explained e = explain_problem(load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + file), false);
+        fs::path dir = fs::temp_directory_path() / ("impactgen-explain-file-" + std::to_string(::getpid()));
+        fs::create_directories(dir);
+        std::ofstream(dir / "doc.tex") << explain_latex(e.doc);
+        int status = 0;
+        std::string log = run("cd '" + dir.string() + "' && pdflatex -interaction=nonstopmode -halt-on-error doc.tex 2>&1", status);
+        EXPECT_EQ(status, 0) << file << ": " << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
+        fs::remove_all(dir);
+    }
+}
+
 // Golden files: every named class in every format. IMPACTGEN_REGENERATE_GOLDEN=1
 // (or `make regenerate-golden-explain`) rewrites them.
 TEST(Golden, EveryClassEveryFormat)
