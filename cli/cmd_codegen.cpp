@@ -36,7 +36,7 @@ int run(const codegen_args& a, CLI::Option* params_opt)
     o.ns = a.ns;
     if (a.name.empty()) {
         // The class or file stem made a safe identifier ("9-ball.json" -> x_9_ball).
-        o.name = names::mangle(std::filesystem::path(a.what).stem().string());
+        o.name = codegen::default_function_name(std::filesystem::path(a.what).stem().string());
     } else {
         o.name = a.name;
     }

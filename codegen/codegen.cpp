@@ -607,6 +607,12 @@ private:
 
 } // namespace
 
+std::string default_function_name(const std::string& stem)
+{
+    std::string name = names::mangle(stem);
+    return reserved().count(name) ? name + "_impact" : name;
+}
+
 header generate(const problem& p, const options& o)
 {
     if (!names::is_safe_identifier(o.name) || reserved().count(o.name))

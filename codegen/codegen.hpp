@@ -86,6 +86,11 @@ struct header {
 };
 header generate(const problem& p, const options& o);
 
+/// A usable function name made from any text (a class or file stem): mangled to
+/// a safe identifier, and kept clear of the names the header uses itself
+/// ("n.json" gives n_impact, "9-ball.json" x_9_ball).
+std::string default_function_name(const std::string& stem);
+
 /// Writes text to path unless the file already holds exactly that text;
 /// returns true when it wrote.
 bool write_if_changed(const std::string& path, const std::string& text);

@@ -1,8 +1,10 @@
 #include "answer.hpp"
 
 #include "expression.hpp"
+#include "names/escape.hpp"
 
 #include <sstream>
+#include <stdexcept>
 
 namespace impactgen::print {
 using namespace GiNaC;
@@ -12,12 +14,16 @@ namespace {
 struct valuer {
     const solution& s;
     bool symbolic;
-    nlohmann::ordered_json operator()(const ex& e) const
+    nlohmann::ordered_json operator()(const ex& e, const std::string& key) const
     {
         ex v = tidy(s.expand_steps(e));
         if (symbolic)
             return parser_syntax(v);
-        return to_double(v);
+        try {
+            return to_double(v);
+        } catch (const std::invalid_argument&) {
+            throw input_error("answer: " + key + ": the exact value is out of the range of double (the inputs' scales overflow it)");
+        }
     }
 };
 
@@ -31,29 +37,31 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         nlohmann::ordered_json b, v = nlohmann::ordered_json::array();
         for (int c = 0; c < p.dimension; ++c)
-            v.push_back(val(s.after[i].velocity[c]));
+            v.push_back(val(s.after[i].velocity[c], "bodies." + names::display_text(p.bodies[i].name) + ".velocity"));
         b["velocity"] = v;
         if (p.dimension == 2) {
-            b["angular_velocity"] = val(s.after[i].angular_velocity[2]);
+            b["angular_velocity"] = val(s.after[i].angular_velocity[2], "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity");
         } else {
             nlohmann::ordered_json w = nlohmann::ordered_json::array();
             for (int c = 0; c < 3; ++c)
-                w.push_back(val(s.after[i].angular_velocity[c]));
+                w.push_back(val(s.after[i].angular_velocity[c], "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity"));
             b["angular_velocity"] = w;
         }
         bodies[p.bodies[i].name] = b;
     }
     out["bodies"] = bodies;
-    out["normal_impulse"] = val(s.normal_impulse);
+    out["normal_impulse"] = val(s.normal_impulse, "normal_impulse");
     nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
     for (const vec3& R : s.pivot_impulses) {
         nlohmann::ordered_json r = nlohmann::ordered_json::array();
         for (int c = 0; c < p.dimension; ++c)
-            r.push_back(val(R[c]));
+            r.push_back(val(R[c], "pivot_impulses"));
         pivots.push_back(r);
     }
     out["pivot_impulses"] = pivots;
-    out["kinetic_energy"] = {{"before", val(s.energy_before)}, {"after", val(s.energy_after)}, {"lost", val(s.energy_lost)}};
+    out["kinetic_energy"] = {{"before", val(s.energy_before, "kinetic_energy.before")},
+                             {"after", val(s.energy_after, "kinetic_energy.after")},
+                             {"lost", val(s.energy_lost, "kinetic_energy.lost")}};
     return out;
 }
 
@@ -63,8 +71,13 @@ std::string answer_text(const derivation& d, const solution& s)
     std::ostringstream os;
     auto show = [&](const ex& e) {
         ex v = tidy(s.expand_steps(e));
-        std::string exact = parser_syntax(v), dec = decimal(v);
-        return exact == dec ? exact : exact + " = " + dec;
+        std::string exact = parser_syntax(v);
+        try {
+            std::string dec = decimal(v);
+            return exact == dec ? exact : exact + " = " + dec;
+        } catch (const std::invalid_argument&) {
+            return exact + " (beyond the range of double)";
+        }
     };
     auto show_vec = [&](const vec3& v, int n) {
         std::string r = "(";

@@ -1,6 +1,7 @@
 #include "expression.hpp"
 
 #include "canonical.hpp"
+#include "symbolic/decide.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -30,15 +31,6 @@ std::string decimal(const ex& e)
     return buf;
 }
 
-ex tidy(const ex& e)
-{
-    // Only constants are normalised: normal() of a symbolic expression calls
-    // multivariate gcd, whose time grows without a useful bound (minutes for a
-    // few hundred nodes in some term orders). Formulas stay as substituted.
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            return e;
-    return e.normal();
-}
+ex tidy(const ex& e) { return impactgen::tidy(e); }
 
 } // namespace impactgen::print

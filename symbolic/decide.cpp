@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace impactgen {
 using namespace GiNaC;
@@ -218,6 +219,66 @@ std::string constant_parts_problem(const ex& e)
             return why;
     }
     return "";
+}
+
+namespace {
+
+// Node count up to a limit, and whether some power of a sum has |exponent| > 2.
+bool small_and_tame(const ex& e, int& budget)
+{
+    if (--budget < 0)
+        return false;
+    if (is_a<power>(e) && is_a<add>(e.op(0)) && is_a<numeric>(e.op(1)) && abs(ex_to<numeric>(e.op(1))) > 2)
+        return false;
+    for (std::size_t k = 0; k < e.nops(); ++k)
+        if (!small_and_tame(e.op(k), budget))
+            return false;
+    return true;
+}
+
+} // namespace
+
+ex tidy(const ex& e)
+{
+    int budget = is_constant(e) ? 300 : 80; // nodes: a constant's normal() stays cheap up to a few hundred
+    if (small_and_tame(e, budget) && (!is_constant(e) || bound(e) <= 400)) {
+        try {
+            return e.normal();
+        } catch (const std::exception&) {
+            return e;
+        }
+    }
+    return e;
+}
+
+bool identically_zero(const ex& e)
+{
+    if (is_constant(e)) {
+        decision d = decide(e);
+        return d == decision::zero;
+    }
+    exset free;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            free.insert(*it);
+    std::mt19937_64 rng(20261123);
+    std::uniform_int_distribution<long> num(1, 1000000);
+    int zeros = 0;
+    for (int attempt = 0; attempt < 24 && zeros < 6; ++attempt) {
+        exmap point;
+        for (const ex& x : free)
+            point[x] = numeric(num(rng), 1000);
+        try {
+            decision d = decide(e.subs(point));
+            if (d == decision::positive || d == decision::negative || d == decision::not_real)
+                return false;
+            if (d == decision::zero || d == decision::undecided) // undecided counts against
+                ++zeros;
+        } catch (const std::exception&) {
+            continue; // a pole at this point: try another
+        }
+    }
+    return zeros > 0;
 }
 
 const char* decision_text(decision d)

@@ -55,6 +55,19 @@ double log10_magnitude_bound(const GiNaC::ex& e);
 /// ("not real", "cannot be decided", ...).
 std::string constant_parts_problem(const GiNaC::ex& e);
 
+/// e put over a common denominator (normal()) when that is cheap: a constant,
+/// or a small expression without powers of sums beyond the square. Otherwise e
+/// as it is: normal() of a symbolic expression can expand (a + b + ...)^12 into
+/// 10^5 terms or spend minutes in multivariate gcd.
+GiNaC::ex tidy(const GiNaC::ex& e);
+
+/// Whether e (with symbols) is identically zero: exact evaluation at random
+/// positive rational points (fixed seed); a non-zero value proves it is not,
+/// and a rational function that vanishes at six random points drawn from 10^6
+/// values per symbol is zero but with probability below (degree/10^6)^6
+/// (Schwartz-Zippel). A constant e is decided by decide(). Never expands e.
+bool identically_zero(const GiNaC::ex& e);
+
 /// Text for a refusal: "is negative", "is not real", "cannot be decided exactly", ...
 const char* decision_text(decision d);
 

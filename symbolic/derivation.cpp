@@ -1,4 +1,5 @@
 #include "derivation.hpp"
+#include "decide.hpp"
 
 #include "names/escape.hpp"
 
@@ -100,11 +101,11 @@ void contact_frame(derivation& d)
     a[pick] = 1;
     vec3 t = a - dot(a, n) * n;
     for (ex& c : t)
-        c = c.normal();
+        c = tidy(c);
     d.t_dir = t;
     d.b_dir = cross(t, n);
     for (ex& c : d.b_dir)
-        c = c.normal();
+        c = tidy(c);
 }
 
 symbol fresh(const std::string& name, const std::string& tex) { return symbol(name, tex); }
@@ -121,9 +122,9 @@ derivation derive(const problem& p)
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     d.impulse_form = !p.pivots.empty();
 
-    d.normal_length = sqrt(dot(p.contact.normal, p.contact.normal).expand());
+    d.normal_length = sqrt(tidy(dot(p.contact.normal, p.contact.normal)));
     for (int i = 0; i < 3; ++i)
-        d.n_hat[i] = (p.contact.normal[i] / d.normal_length).normal();
+        d.n_hat[i] = tidy(p.contact.normal[i] / d.normal_length);
     contact_frame(d);
 
     // Unknowns and post-impact velocities.

@@ -177,8 +177,23 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
 
 // Every value is decided before it is used: real, within double range, and
 // for a constant its sign known exactly (decide.hpp); otherwise refused.
+// The largest |integer exponent| on a non-numeric base in e (x^(2^20) would make
+// exact evaluation at a point, and any expansion, run without end).
+numeric largest_exponent(const ex& e)
+{
+    numeric m = 0;
+    if (is_a<power>(e) && !is_a<numeric>(e.op(0)) && is_a<numeric>(e.op(1)))
+        m = abs(ex_to<numeric>(e.op(1)));
+    for (std::size_t k = 0; k < e.nops(); ++k)
+        m = std::max(m, largest_exponent(e.op(k)), [](const numeric& a, const numeric& b) { return a < b; });
+    return m;
+}
+
 void check_value(const ex& e, const std::string& where)
 {
+    if (largest_exponent(e) > limits::exponent)
+        throw input_error(where + ": an exponent larger than " + std::to_string(limits::exponent) +
+                          " on a symbol or an expression (at most " + std::to_string(limits::exponent) + ")");
     if (e.has(I))
         throw input_error(where + ": the value is not real");
     if (is_constant(e)) {
@@ -213,12 +228,19 @@ double log10_bound(const ex& e, const exmap& numbers)
     }
     if (is_a<GiNaC::mul>(e)) {
         double m = 0;
-        for (std::size_t k = 0; k < e.nops(); ++k)
-            m += std::abs(log10_bound(e.op(k), numbers));
+        for (std::size_t k = 0; k < e.nops(); ++k) {
+            const double f = log10_bound(e.op(k), numbers);
+            if (f <= -400)
+                return -400; // a zero factor: the product is zero (0/3 is not huge)
+            m += std::abs(f);
+        }
         return m;
     }
     if (is_a<power>(e)) {
-        double b = std::abs(log10_bound(e.op(0), numbers));
+        const double base = log10_bound(e.op(0), numbers);
+        if (base <= -400)
+            return -400; // 0^x: zero (or a division by zero, which the parser reports)
+        double b = std::abs(base);
         double x = log10_bound(e.op(1), numbers);
         if (x > 6)
             return b == 0 ? 0 : HUGE_VAL;
@@ -417,7 +439,7 @@ bool vanishes(const ex& e, const std::string& where, const std::string& what)
 {
     decision d = decided(e, where, what);
     if (d == decision::symbolic)
-        return e.expand().is_zero();
+        return identically_zero(e);
     return d == decision::zero;
 }
 
@@ -457,7 +479,7 @@ void validate(const problem& p)
             minors = {J[0][0], J[0][0] * J[1][1] - J[0][1] * J[1][0], det(J)};
         }
         for (const ex& m : minors)
-            if (negative_or_zero(decided(m.expand(), where + ".inertia", "a leading principal minor")))
+            if (negative_or_zero(decided(m, where + ".inertia", "a leading principal minor")))
                 throw input_error(where + ".inertia: not positive-definite" +
                                   std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
     }
@@ -489,7 +511,7 @@ void validate(const problem& p)
             if (!vanishes(vE[i], where, "the velocity of the pivot point"))
                 throw input_error(where + ": the pivot point of body \"" + bname +
                                   "\" moves before impact (v + w x (E - C) has component " + p.axes[i] + " = " +
-                                  show(vE[i].expand()) + "); a pivot is a fixed point");
+                                  show(tidy(vE[i])) + "); a pivot is a fixed point");
     }
     std::size_t b1 = c.body1, b2 = c.body2;
     if (p.immovable(b1) && p.immovable(b2))
@@ -501,7 +523,7 @@ void validate(const problem& p)
     const body& B = p.bodies[b2];
     vec3 vA = point_velocity(A, c.point);
     vec3 vB = point_velocity(B, c.point);
-    ex approach = dot(vB - vA, c.normal).expand();
+    ex approach = tidy(dot(vB - vA, c.normal));
     decision d = decided(approach, "contact", "the normal velocity of approach (v_B - v_A).n");
     if (d == decision::zero || d == decision::positive)
         throw input_error(std::string("contact: not an impact: the contact points ") +

@@ -22,6 +22,7 @@ inline constexpr int sign_run = 3;                       ///< + or - signs in a 
 inline constexpr std::size_t name_length = 64;           ///< bytes of a body name
 inline constexpr std::size_t bodies = 64;                ///< bodies in one problem
 inline constexpr std::size_t symbols = 64;               ///< distinct symbols in one problem
+inline constexpr int exponent = 64;                      ///< |exponent| on a symbol or an expression (x^64)
 } // namespace limits
 
 /// The one symbol of a given name, shared by every problem in the process

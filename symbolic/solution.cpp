@@ -143,9 +143,9 @@ solution solve(const derivation& d)
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
             if (dim == 2) {
-                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tau[2].normal(),
+                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tidy(tau[2]),
                               "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
-                ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2].normal(),
+                ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", tidy(J[2][2]),
                                            "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                                   : J[2][2];
                 sd.g = {0, 0, t / Iz};
@@ -153,14 +153,14 @@ solution solve(const derivation& d)
             } else {
                 vec3 t;
                 for (int c = 0; c < 3; ++c)
-                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tau[c].normal(),
+                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tidy(tau[c]),
                                   "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " + p.axes[c] + " component");
                 mat3 Js = J;
                 if (sd.pinned)
                     for (int a = 0; a < 3; ++a)
                         for (int c = a; c < 3; ++c) {
                             ex v = sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
-                                          J[a][c].normal(), "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                                          tidy(J[a][c]), "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
@@ -179,7 +179,7 @@ solution solve(const derivation& d)
                       "effective inverse mass of " + display_name(b) + " at the contact point along n");
     }
 
-    ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", dot(d.vB - d.vA, n).normal(),
+    ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", tidy(dot(d.vB - d.vA, n)),
                   "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
     ex k_value = sides[0].w + sides[1].w;
     if (vanishes_identically(s, k_value, "contact: the effective inverse mass k = w_1 + w_2"))

@@ -129,6 +129,9 @@ std::vector<bad_case> cases()
          }, {"distinct symbols", "at most 64"}},
         {"name_with_newline", [] { return with(valid(), [](json& j) { j["bodies"][0]["name"] = "ball\n#define private public\n//"; j["contact"]["bodies"][0] = "ball\n#define private public\n//"; }); }, {"bodies[0].name", "control character"}},
         {"name_with_nul", [] { return with(valid(), [](json& j) { j["bodies"][0]["name"] = std::string("ba\0ll", 5); }); }, {"bodies[0].name", "control character", "\\x00"}},
+        // Found by the fuzzer (tests/fuzz): huge symbolic exponents crashed codegen and hung explain.
+        {"symbolic_exponent_too_large", [] { return with(valid(), [](json& j) { j["restitution"] = "e^30000"; }); }, {"restitution", "exponent larger than 64"}},
+        {"symbolic_exponent_nested", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["inertia"][0] = "x^(2^20)"; }); }, {"inertia[0]", "exponent larger than 64"}},
         {"file_too_large", [] { return with(valid(), [](json& j) { j["description"] = std::string(70000, 'x'); }); }, {"at most 65536"}},
         {"separating", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {-5, 0}; }); }, {"not an impact", "separate"}},
         {"resting", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {0, 3}; }); }, {"not an impact", "rest"}},
@@ -355,6 +358,48 @@ TEST(Cli, ParserSyntaxReadsBackExactly)
     for (const auto& [name, sym] : reader.get_syms())
         at[sym] = GiNaC::numeric(k++, 7);
     EXPECT_TRUE((before - lost - after).subs(at).normal().is_zero());
+}
+
+} // namespace
+
+namespace {
+
+TEST(Reader, ZeroFactorsAreNumbers)
+{
+    // Found by the fuzzer: an exact zero factor (0/3, 0*2, 0^2) was taken for a huge number.
+    for (const char* zero : {"0/3", "0*2", "2*0", "0^2", "0.0*5"}) {
+        std::string text = with(valid(), [&](json& j) { j["bodies"][0]["position"][0] = zero; });
+        problem p = read_problem(text, "case.json");
+        EXPECT_TRUE(p.bodies[0].position[0].is_zero()) << zero;
+    }
+}
+
+TEST(Cli, OverflowingAnswerNamesTheKey)
+{
+    std::string file = ::testing::TempDir() + "impactgen_overflow_" + std::to_string(getpid()) + ".json";
+    std::ofstream(file) << with(valid(), [](json& j) {
+        j["pivots"] = json::array();
+        j["bodies"][0]["mass"] = 1e300;
+        j["bodies"][0]["velocity"] = {1e300, 0};
+    });
+    run_result r = run_cli("solve --json " + file);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("answer: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("out of the range of double"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(Cli, DefaultFunctionNameFromAnyFileName)
+{
+    // A stem that is one of the header's own names (n, out, ok) or starts with a digit.
+    for (const char* stem : {"n", "out", "9-ball"}) {
+        std::string file = ::testing::TempDir() + stem + ".json";
+        std::ifstream in(IMPACTGEN_SOURCE_DIR "/examples/problems/hinged-rod.json");
+        std::ofstream(file) << in.rdbuf();
+        run_result r = run_cli("codegen " + file);
+        EXPECT_EQ(r.code, 0) << stem << ": " << r.err;
+        std::remove(file.c_str());
+    }
 }
 
 } // namespace
