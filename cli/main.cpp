@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -113,6 +115,9 @@ int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App*
 
 int main(int argc, char** argv)
 {
+    // A closed pipe (impactgen explain ... | head) is a failed write, reported
+    // like any other, not a death by SIGPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     CLI::App app{"impactgen: derive, solve, teach and generate code for smooth rigid-body impact"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("impactgen ") + IMPACTGEN_VERSION);
@@ -146,9 +151,25 @@ int main(int argc, char** argv)
 
     try {
         app.parse(argc, argv);
+        if (!std::isfinite(time_limit))
+            throw CLI::ValidationError("--time-limit", "must be a finite number of seconds");
     } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : 2;
+        if (e.get_exit_code() == 0) { // --help, --version
+            app.exit(e);
+            std::cout.flush();
+            return std::cout ? 0 : 1;
+        }
+        // A usage error: one line, like every other refusal.
+        std::string what = e.what();
+        if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+            std::string known;
+            for (const CLI::App* sub : app.get_subcommands({}))
+                known += (known.empty() ? "" : ", ") + sub->get_name();
+            what = "unknown subcommand \"" + std::string(argv[1]) + "\" (one of " + known + ")";
+        }
+        std::cerr << "impactgen: error: " << impactgen::names::display_text(what)
+                  << " (usage: impactgen --help, or impactgen SUBCOMMAND --help)\n";
+        return 2;
     }
     auto run_command = [&] { return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats); };
     // The time budget: every input the reader accepts is done in well under a

@@ -1,6 +1,9 @@
 #include "canonical.hpp"
 
+#include "symbolic/decide.hpp"
+
 #include <algorithm>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -64,6 +67,22 @@ int canonical_pool::node_of(const scaled& s)
 
 scaled canonical_pool::convert(const ex& e)
 {
+    // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
+    // to 40 digits: a literal good for long double, exact to every digit of double.
+    if (!is_a<numeric>(e) && is_constant(e)) {
+        const long saved = Digits;
+        Digits = 40;
+        ex v;
+        try {
+            v = e.evalf();
+        } catch (...) {
+            Digits = saved;
+            throw;
+        }
+        Digits = saved;
+        if (is_a<numeric>(v) && ex_to<numeric>(v).is_real())
+            return {ex_to<numeric>(v), -1};
+    }
     if (is_a<numeric>(e)) {
         const numeric& x = ex_to<numeric>(e);
         if (!x.is_real())
@@ -187,9 +206,17 @@ scaled canonical_pool::convert(const ex& e)
         n.key += "]";
         return {coeff, intern(std::move(n))};
     }
-    std::ostringstream os;
-    os << e;
-    throw std::runtime_error("code generation: cannot express " + os.str() + " in C++ arithmetic");
+    // A function of symbols: name the functions, in a stable order (GiNaC's own
+    // printing of e changes with its term order from run to run).
+    std::set<std::string> functions;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<function>(*it))
+            functions.insert(ex_to<function>(*it).get_name());
+    std::string list;
+    for (const std::string& f : functions)
+        list += (list.empty() ? "" : ", ") + f;
+    throw std::runtime_error("code generation: cannot express " + (list.empty() ? std::string("this expression") : list) +
+                             " of symbols in C++ arithmetic (only +, -, *, /, integer powers and sqrt)");
 }
 
 } // namespace impactgen::codegen

@@ -275,8 +275,17 @@ private:
         }
     }
 
-    void add_check(const ex& value, check::kind_t kind, const std::string& status, const std::string& comment)
+    void add_check(const ex& value0, check::kind_t kind, const std::string& status, const std::string& comment)
     {
+        // In the engine convention the masses (and planar inertia) are inputs only as
+        // inverses: a checked value that uses them (an inertia m L^2/12) uses 1/inv_m.
+        ex value = value0;
+        if (!is_a<symbol>(value0) || !pl_.meaning.count(value0)) {
+            lst inverses;
+            for (const auto& [old, inv] : pl_.inverse_of)
+                inverses.append(old == 1 / inv);
+            value = value0.subs(inverses);
+        }
         if (is_a<numeric>(value))
             return; // constants were validated when the problem was read
         prog_.set_owner("check");
@@ -340,8 +349,15 @@ private:
         for (std::size_t i = 0; i < prog_.size(); ++i)
             if (prog_.at(static_cast<int>(i)).kind == op::input)
                 reached.insert(prog_.at(static_cast<int>(i)).name);
+        // Every output but small exact constants (0, 1/2): a folded constant can be
+        // beyond the range of float, or of double.
+        auto needs_check = [&](int id) {
+            const op& o = prog_.at(id);
+            const numeric small(16777216); // 2^24: exact in float
+            return o.kind != op::constant || !o.value.is_rational() || abs(o.value.numer()) > small || o.value.denom() > small;
+        };
         for (const auto& [field, id] : outs_)
-            if (prog_.at(id).kind != op::constant)
+            if (needs_check(id))
                 sum_terms_.push_back("out." + field);
         std::vector<std::string> unused_inputs;
         for (const std::string& nm : input_names_)
@@ -353,7 +369,7 @@ private:
         auto finite_terms = [&](const emitted& form) {
             std::vector<std::string> t;
             for (const auto& [field, id] : outs_)
-                if (prog_.at(id).kind != op::constant)
+                if (needs_check(id))
                     t.push_back(local_of_.at(field));
             for (const std::string& nm : unused_inputs)
                 t.push_back(nm);
@@ -610,16 +626,18 @@ private:
 std::string default_function_name(const std::string& stem)
 {
     std::string name = names::mangle(stem);
-    return reserved().count(name) ? name + "_impact" : name;
+    while (name.size() > 1 && name.back() == '_') // "int" mangles to int_; int__result would be reserved
+        name.pop_back();
+    return names::is_safe_identifier(name) && !reserved().count(name) ? name : name + "_impact";
 }
 
 header generate(const problem& p, const options& o)
 {
-    if (!names::is_safe_identifier(o.name) || reserved().count(o.name))
+    if (!names::is_safe_identifier(o.name) || reserved().count(o.name) || o.name.back() == '_')
         throw option_error(option_error::function_name,
                            "\"" + names::display_text(o.name) +
-                               "\" is not a usable C++ identifier (letters, digits and single underscores, not a keyword or a "
-                               "reserved name)");
+                               "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
+                               "not a keyword or a reserved name)");
     if (std::string why = names::namespace_problem(o.ns); !why.empty())
         throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
     return writer(p, o).run();

@@ -106,11 +106,12 @@ void rewrite_solution(solution& s, const ex& rel)
 
 // A new input symbol standing for the inverse of `old` (never a registered
 // symbol of the same name: a user's own symbol inv_m1 stays a different input).
-symbol inverse_symbol(plan& pl, const ex& old, const std::string& meaning)
+symbol inverse_symbol(plan& pl, const ex& old, const std::string& meaning, bool reciprocal = true)
 {
     symbol k("inv_" + ex_to<symbol>(old).get_name());
     pl.replaced[old].push_back(k);
-    pl.inverse_of[old] = k;
+    if (reciprocal) // old = 1/k (a mass, a planar inertia); not an entry of an inverse tensor
+        pl.inverse_of[old] = k;
     pl.meaning[k] = meaning;
     return k;
 }
@@ -148,23 +149,42 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i)
         const step* ts = s.find(step_role::lever_arm, i, c);
         t[c] = ts ? ex(ts->sym) : tau[c].normal();
     }
-    mat3 K;
+    mat3 K = zero_mat();
+    bool diagonal = true;
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            diagonal = diagonal && b.inertia[r][c].is_zero();
     for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c) {
             const ex& old = b.inertia[r][c];
+            if (diagonal && r != c)
+                continue; // the inverse of a diagonal tensor is diagonal
+            if (diagonal && is_a<numeric>(old)) {
+                K[r][r] = 1 / old;
+                continue;
+            }
             if (!is_a<symbol>(old))
-                throw option_error(option_error::inverse_inertia, "the inertia entry " + q.axes[r] + q.axes[c] + " of " +
-                                                                      names::display_text(b.name) +
-                                                                      " is neither a number nor a single symbol");
-            K[r][c] = K[c][r] = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " + q.axes[r] +
-                                                            q.axes[c] + " entry");
+                throw option_error(option_error::inverse_inertia,
+                                   "the inertia entry " + q.axes[r] + q.axes[c] + " of " + names::display_text(b.name) +
+                                       (diagonal ? " is neither a number nor a single symbol"
+                                                 : " is not a single symbol (a full tensor takes its inverse's six entries as "
+                                                   "inputs; a diagonal one may mix numbers and symbols)"));
+            K[r][c] = K[c][r] = inverse_symbol(pl, old,
+                                               "inverse inertia tensor of " + b.name + " (world axes), " + q.axes[r] + q.axes[c] +
+                                                   " entry" + (diagonal ? " (= 1/" + ex_to<symbol>(old).get_name() + ")" : ""),
+                                               diagonal);
         }
     vec3 g = mul(K, t);
     for (int c = 0; c < 3; ++c) {
         step* gs = s.find(step_role::angular_response, i, c);
-        if (!gs)
+        if (gs) {
+            gs->value = g[c];
+            continue;
+        }
+        // No step: the component was too simple to name (zero, as r x n has no
+        // component there); the inverse gives zero too, or the rewrite cannot hold.
+        if (!g[c].expand().is_zero())
             throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
-        gs->value = g[c];
     }
     s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
                                  [&](const step& st) { return st.role == step_role::inertia_determinant && st.body == i; }),
@@ -300,7 +320,10 @@ problem set_values(const problem& p, const options& o, std::set<std::string>& gi
     for (const symbol& s : p.parameters())
         symbols.insert(s.get_name());
     lst values;
+    std::set<std::string> seen;
     for (const auto& [name, text] : o.set) {
+        if (!seen.insert(name).second)
+            throw option_error(option_error::set, names::display_text(name) + " is given two values");
         if (!symbols.count(name))
             throw option_error(option_error::set, names::display_text(name) + ": the problem has no symbol " +
                                                       names::display_text(name) +

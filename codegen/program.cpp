@@ -319,13 +319,35 @@ struct printer {
                 return "T(" + number_text(k) + ")";
             return "T(" + number_text(k) + ".0L)";
         };
-        if (!x.is_rational())
-            return "T(" + number_text(x) + "L)";
-        if (x.is_integer())
+        const numeric limit(9007199254740992LL); // 2^53
+        if (x.is_integer() && abs(x) <= limit)
             return integer(x);
-        return "(" + integer(x.numer()) + " / " + integer(x.denom()) + ")";
+        if (x.is_rational() && abs(x.numer()) <= limit && x.denom() <= limit)
+            return "(" + integer(x.numer()) + " / " + integer(x.denom()) + ")";
+        // Any other number as one long double literal of 40 significant digits: never
+        // T(huge) / T(huge), which overflows to inf/inf in double or float.
+        return "T(" + decimal_literal(x) + ")";
     }
 };
+
+} // namespace
+
+std::string decimal_literal(const numeric& x)
+{
+    const long saved = GiNaC::Digits;
+    GiNaC::Digits = 40;
+    numeric v = x.is_rational() ? GiNaC::ex_to<numeric>(GiNaC::ex(x).evalf()) : x;
+    GiNaC::Digits = saved;
+    std::string t = number_text(v);
+    for (char& c : t)
+        if (c == 'E')
+            c = 'e';
+    if (t.find_first_of(".e") == std::string::npos)
+        t += ".0";
+    return t + "L";
+}
+
+namespace {
 
 // base, or base_2, base_3, ... when taken (never "__", which C++ reserves).
 std::string unique_name(const std::set<std::string>& taken, const std::string& base)

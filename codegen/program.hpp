@@ -24,6 +24,9 @@ struct op {
     std::string owner;     ///< the step or output being lowered when this op was created
 };
 
+/// A number as a C++ long double literal of 40 significant digits ("1.5e-300L").
+std::string decimal_literal(const GiNaC::numeric& x);
+
 struct op_counts {
     int add = 0, mul = 0, div = 0, sqrt = 0;
 };

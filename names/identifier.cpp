@@ -39,7 +39,13 @@ const std::set<std::string_view>& reserved_names()
         "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX", "BUFSIZ", "FILENAME_MAX", "FOPEN_MAX", "TMP_MAX", "L_tmpnam",
         "SEEK_SET", "SEEK_CUR", "SEEK_END", "CLOCKS_PER_SEC", "MB_CUR_MAX", "math_errhandling", "FP_NAN",
         "FP_INFINITE", "FP_ZERO", "FP_NORMAL", "FP_SUBNORMAL", "isnan", "isinf", "isfinite", "signbit",
-        "fpclassify", "isnormal", "unix", "linux", "i386", "major", "minor", "std", "posix", "main"};
+        "fpclassify", "isnormal", "unix", "linux", "i386", "major", "minor", "std", "posix", "main",
+        // <cmath> / <math.h> macros (POSIX and GNU): a generated header may include <cmath>
+        "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI", "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI",
+        "M_2_SQRTPI", "M_SQRT2", "M_SQRT1_2", "MATH_ERRNO", "MATH_ERREXCEPT", "FP_ILOGB0", "FP_ILOGBNAN",
+        "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL", "HUGE", "MAXFLOAT", "FLT_EVAL_METHOD", "DECIMAL_DIG",
+        "FLT_EPSILON", "DBL_EPSILON", "LDBL_EPSILON", "LDBL_MIN", "FLT_DIG", "DBL_DIG", "LDBL_DIG",
+        "FLT_MANT_DIG", "DBL_MANT_DIG", "LDBL_MANT_DIG", "FLT_RADIX", "NDEBUG", "assert_perror", "min", "max"};
     return set;
 }
 
@@ -93,6 +99,8 @@ bool is_reserved(std::string_view s)
         return true;
     if (s.find("__") != std::string_view::npos)
         return true;
+    if (s.substr(0, 10) == "IMPACTGEN_") // the generated headers' own macros
+        return true;
     return in_set(reserved_names(), s);
 }
 
@@ -122,6 +130,8 @@ std::string mangle(std::string_view any)
     if (out.empty())
         out = "x";
     else if (is_digit(static_cast<unsigned char>(out.front())))
+        out.insert(0, "x_");
+    if (out.rfind("IMPACTGEN_", 0) == 0) // the headers' own macro prefix: a suffix would not help
         out.insert(0, "x_");
     if (is_keyword(out) || is_reserved(out))
         out += '_';

@@ -29,7 +29,9 @@ bool is_keyword(std::string_view s);
 /// "__" or starting with '_' (refused in every scope, for simplicity), and a
 /// fixed list of standard macros and names that break code when used as
 /// identifiers (NULL, EOF, errno, assert, INFINITY, isnan, unix, major, std,
-/// posix, main, ...; the list is in identifier.cpp and is not exhaustive).
+/// posix, main, the <cmath> constants M_PI, M_E, ..., min, max, ...; the list is
+/// in identifier.cpp and is not exhaustive), and every name starting with
+/// "IMPACTGEN_" (the generated headers' own macros).
 bool is_reserved(std::string_view s);
 
 /// True when s is non-empty, consists of ASCII letters, digits and '_', does

@@ -4,6 +4,8 @@
 #include "canonical.hpp"
 #include "explain.hpp"
 
+#include "names/escape.hpp"
+
 #include <sstream>
 #include <stdexcept>
 
@@ -103,8 +105,14 @@ std::string tex_words(const std::string& s)
         if (done)
             continue;
         unsigned char c = static_cast<unsigned char>(s[i]);
-        if (c >= 0x80)
-            throw std::invalid_argument("LaTeX printer: no rendering for the character in \"" + s + "\"");
+        if (c >= 0x80) {
+            std::size_t n = 1;
+            while (i + n < s.size() && (static_cast<unsigned char>(s[i + n]) & 0xC0) == 0x80)
+                ++n;
+            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" +
+                                        names::display_text(s.substr(i, n)) + "\" (in \"" + names::display_text(s, 60) +
+                                        "\"); use ASCII names for --format latex");
+        }
         switch (c) {
         case '_': out += "\\_"; break;
         case '&': out += "\\&"; break;

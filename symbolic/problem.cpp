@@ -27,9 +27,16 @@ std::map<std::string, symbol>& symbol_registry()
 // "v_t1" -> "v_{t1}", "m1" -> "m_{1}", "omega" stays (GiNaC prints Greek names itself).
 std::string default_tex(const std::string& name)
 {
+    if (name == "omicron" || name == "Omicron") // GiNaC would write \omicron, which LaTeX lacks
+        return name == "omicron" ? "o" : "O";
     auto us = name.find('_');
-    if (us != std::string::npos && us + 1 < name.size())
-        return name.substr(0, us) + "_{" + name.substr(us + 1) + "}";
+    if (us != std::string::npos && us + 1 < name.size()) {
+        // one subscript: later underscores are printed, not a second subscript (v_ball_x_0)
+        std::string sub;
+        for (char c : name.substr(us + 1))
+            sub += c == '_' ? std::string("\\_") : std::string(1, c);
+        return name.substr(0, us) + "_{" + sub + "}";
+    }
     std::size_t d = name.size();
     while (d > 0 && std::isdigit(static_cast<unsigned char>(name[d - 1])))
         --d;
@@ -76,7 +83,13 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
             throw input_error(where + ": the exponent of " + names::display_text(lit) + " is out of range (non-finite number)");
         scale += std::stol(expo);
     }
-    if (scale > 400 || scale < -400)
+    if (digits.size() > limits::expression_length)
+        throw input_error(where + ": a number of " + std::to_string(digits.size()) + " digits; at most " +
+                          std::to_string(limits::expression_length) + " are read");
+    // The magnitude is about 10^(scale + significant digits): 0.47 with 420 digits is fine.
+    const std::size_t first = digits.find_first_not_of('0');
+    const long magnitude = first == std::string::npos ? 0 : scale + static_cast<long>(digits.size() - first);
+    if (magnitude > 400 || magnitude < -400)
         throw input_error(where + ": " + names::display_text(lit) + " is out of the range of double (non-finite number)");
     numeric value(digits.c_str());
     value *= pow(numeric(10), numeric(scale));
@@ -128,7 +141,8 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
             std::string lower = id;
             std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
             if (lower == "inf" || lower == "infinity" || lower == "nan")
-                throw input_error(where + ": \"" + names::display_text(s) + "\" is not a finite value (only a mass may be \"inf\")");
+                throw input_error(where + ": \"" + names::display_text(s) +
+                                  "\" is not a finite value (an infinite mass is written as the whole value: \"mass\": \"inf\")");
             if (id.rfind(reserved_prefix, 0) == 0)
                 throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
             if (call) {

@@ -182,8 +182,9 @@ solution solve(const derivation& d)
     ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", tidy(dot(d.vB - d.vA, n)),
                   "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
     ex k_value = sides[0].w + sides[1].w;
-    if (vanishes_identically(s, k_value, "contact: the effective inverse mass k = w_1 + w_2"))
-        throw input_error("contact: no impulse can act: neither body can move along the normal at the contact point "
+    const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
+    if (vanishes_identically(s, k_value, where + ": the effective inverse mass k = w_1 + w_2"))
+        throw input_error(where + ": no impulse can act: neither body can move along the normal at the contact point "
                           "(the line of impact passes through the pivot of a body that cannot otherwise move)");
     const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
     ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value, "effective inverse mass of the contact: " + wsum);

@@ -31,6 +31,13 @@ expect_error("--name: \"1x\" is not a usable C" planar --name 1x)
 expect_error("--namespace: \"int\": part \"int\" is a C\\+\\+ keyword" planar --namespace int)
 expect_error("--namespace: \"a::\": " planar --namespace a::)
 expect_error("not a regular file" planar --output /dev/null)
+expect_error("--set: e is given two values" planar --set e=1/2,e=1/3)
+expect_error("--name: \"class_\" is not a usable C" planar --name class_)
+# The engine convention with an inertia that uses the mass (the rod's m2 l^2/12).
+execute_process(COMMAND ${IMPACTGEN} codegen pinned-planar --inverse-mass RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "codegen pinned-planar --inverse-mass: rc=${rc}: ${err}")
+endif()
 
 # --output writes only when the content changes.
 execute_process(COMMAND ${IMPACTGEN} codegen planar --output ${WORK}/p.hpp ERROR_VARIABLE e1)

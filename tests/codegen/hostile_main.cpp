@@ -50,6 +50,33 @@ template <typename T> void numeric_case()
 }
 #endif
 
+#ifdef HOSTILE_EXTREME
+// Masses 1e-300 and 1e300, fully numeric: folded constants beyond float's range
+// must never give ok with NaN (they gave inf/inf before).
+template <typename T> void extreme_case()
+{
+    extreme_scales_result<T> r{};
+    impact_status s = extreme_scales<T>(r);
+    T values[extreme_scales_output_count];
+    extreme_scales_to_array(r, values);
+    bool finite = true;
+    for (T v : values)
+        finite = finite && v - v == T(0);
+    expect(s != impact_status::ok || finite, "ok means every output is finite");
+}
+#endif
+
+#ifdef HOSTILE_CMATH
+// Symbols named like <cmath> macros, and Pi, cos(1) as constants; M_PI = 3 (mass), M_E = 1 (speed).
+template <typename T> void cmath_case()
+{
+    cmath_names_result<T> r{};
+    impact_status s = cmath_names<T>(T(3), T(1), T(0.5), r);
+    expect(s == impact_status::ok, "cmath names: ok");
+    expect(r.normal_impulse > T(0), "cmath names: positive normal impulse");
+}
+#endif
+
 } // namespace
 
 int main()
@@ -63,6 +90,20 @@ int main()
     numeric_case<float>();
     numeric_case<double>();
     numeric_case<long double>();
+#endif
+#ifdef HOSTILE_EXTREME
+    extreme_case<float>();
+    extreme_case<double>();
+    extreme_case<long double>();
+    {
+        extreme_scales_result<double> r{};
+        expect(extreme_scales<double>(r) == impact_status::ok, "extreme scales in double: ok");
+    }
+#endif
+#ifdef HOSTILE_CMATH
+    cmath_case<float>();
+    cmath_case<double>();
+    cmath_case<long double>();
 #endif
     std::printf("%s: %d failure(s)\n", GEN_HEADER, failures);
     return failures == 0 ? 0 : 1;

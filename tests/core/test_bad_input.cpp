@@ -392,7 +392,7 @@ TEST(Cli, OverflowingAnswerNamesTheKey)
 TEST(Cli, DefaultFunctionNameFromAnyFileName)
 {
     // A stem that is one of the header's own names (n, out, ok) or starts with a digit.
-    for (const char* stem : {"n", "out", "9-ball"}) {
+    for (const char* stem : {"n", "out", "9-ball", "int", "class_", "IMPACTGEN_HOT", "M_PI"}) {
         std::string file = ::testing::TempDir() + stem + ".json";
         std::ifstream in(IMPACTGEN_SOURCE_DIR "/examples/problems/hinged-rod.json");
         std::ofstream(file) << in.rdbuf();
@@ -400,6 +400,43 @@ TEST(Cli, DefaultFunctionNameFromAnyFileName)
         EXPECT_EQ(r.code, 0) << stem << ": " << r.err;
         std::remove(file.c_str());
     }
+}
+
+} // namespace
+
+namespace {
+
+TEST(Cli, ClosedPipeIsAnErrorNotASignal)
+{
+    // impactgen explain ... | true: the write fails (EPIPE); the exit is 1 with a message, never SIGPIPE.
+    std::string cmd = std::string("bash -c 'set -o pipefail; ") + IMPACTGEN_CLI + " explain noncentral-3d 2>/dev/null | true; echo $?'";
+    FILE* f = popen(cmd.c_str(), "r");
+    ASSERT_NE(f, nullptr);
+    char buf[32] = {};
+    ASSERT_NE(std::fgets(buf, sizeof buf, f), nullptr);
+    pclose(f);
+    const int code = std::atoi(buf);
+    EXPECT_TRUE(code == 0 || code == 1) << "exit " << code << " (141 is death by SIGPIPE)";
+}
+
+TEST(Cli, UsageErrorsAreOneLine)
+{
+    for (const char* args : {"", "foo", "solve", "--time-limit nan list", "formulas planar --format html"}) {
+        run_result r = run_cli(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("impactgen: error: ", 0), 0u) << args << ": " << r.err;
+    }
+    EXPECT_NE(run_cli("foo").err.find("unknown subcommand \"foo\""), std::string::npos);
+}
+
+TEST(Reader, LongDecimalsAreExact)
+{
+    // 0.47 followed by 400 digits is a number near 0.47, not "out of the range of double".
+    std::string e = "0.47" + std::string(400, '3');
+    std::string text = with(valid(), [&](json& j) { j["restitution"] = json::parse(e); });
+    problem p = read_problem(text, "case.json");
+    EXPECT_TRUE(GiNaC::is_a<GiNaC::numeric>(p.restitution));
 }
 
 } // namespace

@@ -364,7 +364,7 @@ TEST(GuardMacro, FormatAndUniqueness)
             EXPECT_EQ(m.find("__"), std::string::npos);
             EXPECT_NE(m.front(), '_');
             EXPECT_NE(m.back(), '_');
-            EXPECT_TRUE(is_safe_identifier(m));
+            EXPECT_EQ(m.rfind("IMPACTGEN_", 0), 0u); // our own macro prefix, reserved for user names
             for (char c : m)
                 EXPECT_TRUE((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_');
             EXPECT_TRUE(seen.insert(m).second) << "duplicate guard";
@@ -576,3 +576,22 @@ TEST(Property, RandomByteStrings)
         ASSERT_EQ(guard_macro("P", s).find("__"), std::string::npos);
     }
 }
+
+namespace {
+
+TEST(Reserved, CmathMacrosAndOwnMacros)
+{
+    using namespace impactgen::names;
+    // Found by a hostile review: a symbol M_PI reached a header that includes <cmath>;
+    // --name IMPACTGEN_COLD redefined the header's own macro.
+    for (const char* s : {"M_PI", "M_E", "M_SQRT2", "MATH_ERRNO", "FP_ILOGB0", "IMPACTGEN_COLD", "IMPACTGEN_HOT", "min", "max"}) {
+        EXPECT_TRUE(is_reserved(s)) << s;
+        EXPECT_FALSE(is_safe_identifier(s)) << s;
+        EXPECT_TRUE(is_safe_identifier(mangle(s))) << s;
+        EXPECT_NE(mangle(s), s) << s;
+    }
+    EXPECT_FALSE(is_reserved("M_ball"));
+    EXPECT_FALSE(is_reserved("A"));
+}
+
+} // namespace
