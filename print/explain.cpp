@@ -5,6 +5,7 @@
 #include "canonical.hpp"
 #include "expression.hpp"
 #include "names/escape.hpp"
+#include "symbolic/decide.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -309,13 +310,13 @@ section equations_section(const derivation& d)
             const vec3& n = d.n_hat;
             std::vector<math_row> pv;
             pv.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n", "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                  dot(d.vA, n).expand()));
+                                  tidy_expand(dot(d.vA, n))));
             pv.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n", "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                  dot(d.vA_after, n).expand()));
+                                  tidy_expand(dot(d.vA_after, n))));
             pv.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n", "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                  dot(d.vB, n).expand()));
+                                  tidy_expand(dot(d.vB, n))));
             pv.push_back(note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n", "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                  dot(d.vB_after, n).expand(),
+                                  tidy_expand(dot(d.vB_after, n)),
                                   p.bodies[i2].infinite_mass || p.immovable(i2) ? "B is on a body the impulse cannot move: v′_Bn = v_Bn" : ""));
             (void)i1;
             sec.rows(pv);
@@ -373,14 +374,14 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     lst steps = s.step_values(values);
     std::vector<math_row> eqs;
     for (const equation& eq : d.equations)
-        eqs.push_back(row(eq.lhs.subs(values).expand(), eq.rhs.subs(values).expand(), eq.label));
+        eqs.push_back(row(tidy_expand(eq.lhs.subs(values)), tidy_expand(eq.rhs.subs(values)), eq.label));
     sec.para(paragraph().w("The equations with these numbers:"));
     sec.rows(eqs);
     std::vector<math_row> rows;
     for (std::size_t i = 0; i < s.steps.size(); ++i) {
         // The step's formula with the inputs substituted, then its number.
         ex formula = s.steps[i].value.subs(values);
-        ex v = steps.op(i).rhs().normal();
+        ex v = impactgen::tidy(steps.op(i).rhs());
         math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
         if (!is_a<numeric>(formula) && printable(formula)) {
             out.rhs = formula;
@@ -394,7 +395,7 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     lst unknown_numbers;
     std::vector<math_row> answers;
     for (std::size_t i = 0; i < d.unknowns.size(); ++i) {
-        ex v = s.unknown_values.op(i).rhs().subs(values).subs(steps).normal();
+        ex v = impactgen::tidy(s.unknown_values.op(i).rhs().subs(values).subs(steps));
         unknown_numbers.append(d.unknowns[i].sym == v);
         answers.push_back(row(d.unknowns[i].sym, v, "", decimal_note(v)));
     }
@@ -431,7 +432,7 @@ section checks_section(const derivation& d, const solution& s, const worked_exam
     ex N_val = N_step ? N_step->value : ex(se.normal_impulse);
     ex u = u_step ? ex(u_step->sym) : ex(0);
     // k as N's formula has it: w_1 + w_2, or w_1 alone against an infinite mass.
-    ex kk = k_step ? ex(k_step->sym) : (u_step ? (-(1 + e_sym) * u / N_val).normal() : ex(0));
+    ex kk = k_step ? ex(k_step->sym) : (u_step ? impactgen::tidy(-(1 + e_sym) * u / N_val) : ex(0));
 
     // Energy.
     sec.para(paragraph().w("Kinetic energy lost (bodies of finite mass), the work of the contact impulse:"));
@@ -444,7 +445,7 @@ section checks_section(const derivation& d, const solution& s, const worked_exam
                        vanishes_identically(se, lost - expand_some(se, textbook, core), "the energy check");
     if (textbook_ok && lost_step)
         energy.push_back(row(lost_step->sym, textbook, "", "with N = -(1 + e)·u/k substituted and normal(): 1 - e² ≥ 0 and k > 0, so T_lost ≥ 0"));
-    ex at_one = lost.subs(e_sym == 1).normal();
+    ex at_one = impactgen::tidy(lost.subs(e_sym == 1));
     if (lost_step)
         energy.push_back(row(lost_step->sym, at_one, "", "at e = 1 (substitute e = 1, normal())"));
     sec.rows(energy);

@@ -251,6 +251,19 @@ ex tidy(const ex& e)
     return e;
 }
 
+ex tidy_expand(const ex& e)
+{
+    int budget = is_constant(e) ? 300 : 200;
+    if (small_and_tame(e, budget) && (!is_constant(e) || bound(e) <= 400)) {
+        try {
+            return e.expand();
+        } catch (const std::exception&) {
+            return e;
+        }
+    }
+    return e;
+}
+
 bool identically_zero(const ex& e)
 {
     if (is_constant(e)) {

@@ -60,6 +60,8 @@ std::string constant_parts_problem(const GiNaC::ex& e);
 /// as it is: normal() of a symbolic expression can expand (a + b + ...)^12 into
 /// 10^5 terms or spend minutes in multivariate gcd.
 GiNaC::ex tidy(const GiNaC::ex& e);
+/// e.expand() under the same rule as tidy(): only when it is cheap.
+GiNaC::ex tidy_expand(const GiNaC::ex& e);
 
 /// Whether e (with symbols) is identically zero: exact evaluation at random
 /// positive rational points (fixed seed); a non-zero value proves it is not,

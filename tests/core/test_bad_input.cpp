@@ -263,6 +263,7 @@ namespace {
 // now finish with exit 0 or a one-line refusal. --time-limit turns a hang into a
 // failing exit instead of a stuck test; nothing here is a timing assertion.
 const char* const edge_files[] = {"symbolic-3d.json", "symbolic-3d-axis-normal.json", "symbolic-3d-ball-joint.json",
+                                  "power-of-sum-in-point.json", "power-of-sum-mass-pinned.json",
                                   "abs-normal-2d.json"};
 const char* const commands[] = {"formulas", "formulas --format json", "formulas --format latex", "explain",
                                 "explain --format latex", "explain --format markdown", "codegen"};
