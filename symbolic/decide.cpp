@@ -159,12 +159,7 @@ decision decide(const ex& e)
         return decision::symbolic;
     if (bound(e) > 400)
         return decision::out_of_range;
-    ex x;
-    try {
-        x = e.expand();
-    } catch (const std::exception&) {
-        return decision::undecided;
-    }
+    ex x = tidy_expand(e); // exact only where expansion is cheap; evaluation decides the rest
     if (is_a<numeric>(x))
         return sign_of(ex_to<numeric>(x));
     numeric re0, im0;
@@ -236,12 +231,27 @@ bool small_and_tame(const ex& e, int& budget)
     return true;
 }
 
+// The distinct irrational atoms of a constant (Pi, exp(1), 2^(1/2)): normal() treats
+// each as a variable, and its gcds grow fast with their number.
+std::size_t irrational_atoms(const ex& e)
+{
+    exset atoms;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<constant>(*it) || is_a<function>(*it) ||
+            (is_a<power>(*it) && is_a<numeric>(it->op(1)) && !ex_to<numeric>(it->op(1)).is_integer()))
+            atoms.insert(*it);
+    return atoms.size();
+}
+
 } // namespace
 
 ex tidy(const ex& e)
 {
-    int budget = is_constant(e) ? 300 : 80; // nodes: a constant's normal() stays cheap up to a few hundred
-    if (small_and_tame(e, budget) && (!is_constant(e) || bound(e) <= 400)) {
+    const bool constant_value = is_constant(e);
+    int budget = constant_value ? 300 : 80; // nodes: a constant's normal() stays cheap up to a few hundred
+    if (constant_value && irrational_atoms(e) > 2)
+        return e;
+    if (small_and_tame(e, budget) && (!constant_value || bound(e) <= 400)) {
         try {
             return e.normal();
         } catch (const std::exception&) {

@@ -312,7 +312,39 @@ std::vector<ex> residuals(const derivation& d, const solution& s, const ex& inpu
         for (const ex& rel : s.unknown_values)
             unknowns.append(rel.lhs() == rel.rhs().subs(input_values).subs(steps));
         for (const equation& eq : d.equations)
-            r.push_back((eq.lhs - eq.rhs).subs(input_values).subs(unknowns).normal());
+            r.push_back(tidy((eq.lhs - eq.rhs).subs(input_values).subs(unknowns)));
+        return r;
+    }
+    // A problem without symbols whose numbers are irrational (sqrt(2), Pi, exp(1)):
+    // the steps' exact values, each residual simplified only where cheap; what is
+    // not a plain zero then is for decide() (normal() of such constants can take
+    // seconds: it treats every irrational as a variable).
+    if (d.prob.is_numeric()) {
+        lst steps = s.step_values(lst{});
+        bool exact = true;
+        for (const ex& rel : steps)
+            exact = exact && is_a<numeric>(rel.rhs()) && ex_to<numeric>(rel.rhs()).is_rational();
+        if (exact) { // rational inputs: every residual is an exact number
+            for (const equation& eq : d.equations)
+                r.push_back(tidy((eq.lhs - eq.rhs).subs(s.unknown_values).subs(steps)));
+            return r;
+        }
+        // Irrational inputs: the steps in 60-digit floats, one after the other (the
+        // exact values nest every earlier step; evaluating them as trees is exponential).
+        const long saved = Digits;
+        Digits = 60;
+        lst floats;
+        for (const step& st : s.steps)
+            floats.append(st.sym == st.value.subs(floats).evalf());
+        lst unknowns;
+        for (const ex& rel : s.unknown_values)
+            unknowns.append(rel.lhs() == rel.rhs().subs(floats).evalf());
+        for (const equation& eq : d.equations) {
+            // exact where simplification is cheap (one or two irrationals: sqrt(2)), else the float
+            ex exact_residual = tidy((eq.lhs - eq.rhs).subs(s.unknown_values).subs(steps));
+            r.push_back(exact_residual.is_zero() ? ex(0) : (eq.lhs - eq.rhs).subs(unknowns).evalf());
+        }
+        Digits = saved;
         return r;
     }
     // Symbolic: back-substitute the steps from the last to the first,
