@@ -1,4 +1,5 @@
 #include "codegen.hpp"
+#include "text.hpp"
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
@@ -23,14 +24,6 @@ const std::set<std::string>& reserved()
     static const std::set<std::string> r = {"out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed",
                                             "with_energy_lost", "impact_status", "op_count", "to_string", "finite", "all_finite",
                                             "min_of", "sqrt", "std", "i", "n", "r", "a"};
-    return r;
-}
-
-std::string join(const std::vector<std::string>& v, const std::string& sep)
-{
-    std::string r;
-    for (const std::string& s : v)
-        r += (r.empty() ? "" : sep) + s;
     return r;
 }
 

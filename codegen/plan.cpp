@@ -2,6 +2,7 @@
 // options, its closed form rewritten for the engine input conventions, the
 // function's inputs in order and its outputs. No C++ text is made here.
 #include "codegen.hpp"
+#include "text.hpp"
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
@@ -70,14 +71,6 @@ void symmetrise(problem& p)
         for (int r = 0; r < 3; ++r)
             for (int c = r + 1; c < 3; ++c)
                 b.inertia[c][r] = b.inertia[r][c];
-}
-
-std::string join(const std::vector<std::string>& v, const std::string& sep)
-{
-    std::string r;
-    for (const std::string& s : v)
-        r += (r.empty() ? "" : sep) + s;
-    return r;
 }
 
 std::string shown(const ex& e)

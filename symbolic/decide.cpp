@@ -1,6 +1,7 @@
 #include "decide.hpp"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -245,63 +246,65 @@ std::size_t irrational_atoms(const ex& e)
 
 } // namespace
 
-ex tidy(const ex& e)
+namespace {
+
+// op(e) when it is cheap: a small expression without powers of sums beyond the
+// square, a constant within range (and, for normal(), with few irrationals).
+ex bounded(const ex& e, int symbolic_budget, bool normalise)
 {
     const bool constant_value = is_constant(e);
-    int budget = constant_value ? 300 : 80; // nodes: a constant's normal() stays cheap up to a few hundred
-    if (constant_value && irrational_atoms(e) > 2)
+    int budget = constant_value ? 300 : symbolic_budget; // nodes
+    if (normalise && constant_value && irrational_atoms(e) > 2)
         return e;
-    if (small_and_tame(e, budget) && (!constant_value || bound(e) <= 400)) {
-        try {
-            return e.normal();
-        } catch (const std::exception&) {
-            return e;
-        }
+    if (!small_and_tame(e, budget) || (constant_value && bound(e) > 400))
+        return e;
+    try {
+        return normalise ? e.normal() : e.expand();
+    } catch (const std::exception&) {
+        return e;
     }
-    return e;
 }
 
-ex tidy_expand(const ex& e)
-{
-    int budget = is_constant(e) ? 300 : 200;
-    if (small_and_tame(e, budget) && (!is_constant(e) || bound(e) <= 400)) {
-        try {
-            return e.expand();
-        } catch (const std::exception&) {
-            return e;
-        }
-    }
-    return e;
-}
+} // namespace
 
-bool identically_zero(const ex& e)
+ex tidy(const ex& e) { return bounded(e, 80, true); }
+
+ex tidy_expand(const ex& e) { return bounded(e, 200, false); }
+
+bool vanishes_at_random_points(const std::vector<symbol>& symbols, const std::function<ex(const lst&)>& value_at)
 {
-    if (is_constant(e)) {
-        decision d = decide(e);
-        return d == decision::zero;
-    }
-    exset free;
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            free.insert(*it);
     std::mt19937_64 rng(20261123);
     std::uniform_int_distribution<long> num(1, 1000000);
     int zeros = 0;
     for (int attempt = 0; attempt < 24 && zeros < 6; ++attempt) {
-        exmap point;
-        for (const ex& x : free)
-            point[x] = numeric(num(rng), 1000);
+        lst point;
+        for (const symbol& x : symbols)
+            point.append(x == numeric(num(rng), 1000));
         try {
-            decision d = decide(e.subs(point));
+            decision d = decide(value_at(point));
             if (d == decision::positive || d == decision::negative || d == decision::not_real)
                 return false;
-            if (d == decision::zero || d == decision::undecided) // undecided counts against
+            if (d == decision::zero || d == decision::undecided) // undecided counts against: refuse rather than guess
                 ++zeros;
         } catch (const std::exception&) {
             continue; // a pole at this point: try another
         }
     }
     return zeros > 0;
+}
+
+bool identically_zero(const ex& e)
+{
+    if (is_constant(e))
+        return decide(e) == decision::zero;
+    exset free;
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            free.insert(*it);
+    std::vector<symbol> symbols;
+    for (const ex& x : free)
+        symbols.push_back(ex_to<symbol>(x));
+    return vanishes_at_random_points(symbols, [&](const lst& point) { return e.subs(point); });
 }
 
 const char* decision_text(decision d)

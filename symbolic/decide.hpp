@@ -24,7 +24,9 @@
 
 #include <ginac/ginac.h>
 
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace impactgen {
 
@@ -69,6 +71,12 @@ GiNaC::ex tidy_expand(const GiNaC::ex& e);
 /// values per symbol is zero but with probability below (degree/10^6)^6
 /// (Schwartz-Zippel). A constant e is decided by decide(). Never expands e.
 bool identically_zero(const GiNaC::ex& e);
+
+/// The random-point test itself: value_at(point) for random positive rational
+/// values of the symbols (point: symbol == value); true when every evaluation
+/// that could be decided was zero (at least one).
+bool vanishes_at_random_points(const std::vector<GiNaC::symbol>& symbols,
+                               const std::function<GiNaC::ex(const GiNaC::lst&)>& value_at);
 
 /// Text for a refusal: "is negative", "is not real", "cannot be decided exactly", ...
 const char* decision_text(decision d);

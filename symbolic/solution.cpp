@@ -282,24 +282,10 @@ bool vanishes_identically(const solution& s, const ex& value, const std::string&
             throw input_error(what + " " + decision_text(d));
         return d == decision::zero;
     }
-    std::mt19937_64 rng(20261123);
-    std::uniform_int_distribution<long> num(1, 1000000);
-    int zeros = 0;
-    for (int attempt = 0; attempt < 24 && zeros < 6; ++attempt) {
-        lst point;
-        for (const ex& x : free)
-            point.append(x == numeric(num(rng), 1000));
-        try {
-            decision d = decide(value.subs(point).subs(s.step_values(point)));
-            if (d == decision::positive || d == decision::negative)
-                return false;
-            if (d == decision::zero || d == decision::undecided) // undecided counts against: refuse rather than guess
-                ++zeros;
-        } catch (const std::exception&) {
-            continue; // a pole of some step at this point: try another
-        }
-    }
-    return zeros > 0;
+    std::vector<symbol> symbols;
+    for (const ex& x : free)
+        symbols.push_back(ex_to<symbol>(x));
+    return vanishes_at_random_points(symbols, [&](const lst& point) { return value.subs(point).subs(s.step_values(point)); });
 }
 
 std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values)

@@ -11,7 +11,9 @@
 //   - an answer of `solve --json` satisfies the physics (physics_check.hpp);
 //     `formulas --format json` prints JSON;
 //   - a header from `codegen` has no #define/#include/#undef besides its own
-//     IMPACTGEN_ macros, and every Nth one compiles with strict warnings.
+//     IMPACTGEN_ macros, and every Nth one compiles with strict warnings; when the
+//     problem has numbers only, that header is also built into a program whose
+//     normal impulse and energy lost must equal solve's.
 // Every violation is printed with its command and the case's file; the program
 // exits 1 if there is any. Environment:
 //   IMPACTGEN_SEED                master seed (default fixed)
@@ -27,6 +29,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -190,7 +193,7 @@ private:
     violation_kind counts_[kinds] = {{"crashes"}, {"hangs"}, {"bad exit codes"}, {"bad messages"},
                                      {"bad output"}, {"physics failures"}, {"valid problems refused"},
                                      {"compile failures"}};
-    long runs_ = 0, exit0_ = 0, refusals_ = 0, usage_ = 0, compiled_ = 0, codegen_ok_ = 0, cases_run_ = 0;
+    long runs_ = 0, exit0_ = 0, refusals_ = 0, usage_ = 0, compiled_ = 0, codegen_ok_ = 0, cases_run_ = 0, generated_checked_ = 0;
     long answers_checked_ = 0;
     long reports_ = 0;
     slowest slowest_;
@@ -201,6 +204,8 @@ private:
     // State of the case being run.
     long case_ = 0;
     std::string text_, file_, origin_, mutation_;
+    std::string answer_; ///< this case's solve --json answer, when it had one
+    void check_generated_numbers(const std::string& label, const std::string& header_path, const std::string& header);
 
     void load_examples();
     void one_case(long k);
@@ -316,6 +321,8 @@ void fuzzer::check_header(const std::string& label, const std::string& header)
     run_result r = run_child({IMPACTGEN_CXX, "-std=c++17", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Werror",
                               "-x", "c++", "-"},
                              main_file, lim);
+    if (r.exit_code == 0 && !r.timed_out)
+        check_generated_numbers(label, path, header);
     ::unlink(path.c_str());
     ++compiled_;
     if (r.timed_out || r.signal != 0 || r.exit_code != 0) {
@@ -327,6 +334,60 @@ void fuzzer::check_header(const std::string& label, const std::string& header)
         violation(compile_failure, label, "the header does not compile:\n" + shown, nullptr,
                   signature_of(first.substr(first.find(' ') == std::string::npos ? 0 : first.find(' ')), ""));
     }
+}
+
+// A header of a problem with numbers only (no inputs): compiled, run in double,
+// its normal impulse and energy lost must be solve's (1e-9 relative: both are
+// the exact value rounded to double, through at most a few hundred operations).
+void fuzzer::check_generated_numbers(const std::string& label, const std::string& header_path, const std::string& header)
+{
+    const std::string marker = "_input_count = 0;";
+    std::size_t at = header.find(marker);
+    if (answer_.empty() || at == std::string::npos)
+        return;
+    std::size_t start = header.rfind("inline constexpr int ", at);
+    if (start == std::string::npos)
+        return;
+    start += std::string("inline constexpr int ").size();
+    const std::string name = header.substr(start, at - start);
+    json answer;
+    try {
+        answer = json::parse(answer_);
+    } catch (const std::exception&) {
+        return;
+    }
+    if (!answer.contains("normal_impulse") || !answer["normal_impulse"].is_number())
+        return;
+    const std::string main_text = "#include \"" + header_path + "\"\n#include <cstdio>\nint main()\n{\n    using namespace impactgen::generated;\n    " +
+                                  name + "_result<double> r{};\n    impact_status s = " + name +
+                                  "<double>(r);\n    std::printf(\"%d %.17g %.17g\\n\", static_cast<int>(s), r.normal_impulse, r.energy_lost);\n}\n";
+    const std::string main_path = temp_file(main_text, ".cpp");
+    const std::string exe = main_path + ".exe";
+    run_limits lim;
+    lim.timeout_seconds = std::max(120.0, cfg_.timeout);
+    run_result built = run_child({IMPACTGEN_CXX, "-std=c++17", "-O1", main_path, "-o", exe}, "", lim);
+    ::unlink(main_path.c_str());
+    if (built.exit_code != 0) {
+        violation(compile_failure, label, "the header does not compile into a program:\n" + built.err, nullptr, "header program does not build");
+        return;
+    }
+    run_result ran = run_child({exe}, "", lim);
+    ::unlink(exe.c_str());
+    int status = -1;
+    double N = 0, lost = 0;
+    if (ran.exit_code != 0 || std::sscanf(ran.out.c_str(), "%d %lf %lf", &status, &N, &lost) != 3) {
+        violation(physics, label, "the generated program failed: " + ran.out + ran.err, nullptr, "generated program failed");
+        return;
+    }
+    const double N_ref = answer["normal_impulse"].get<double>();
+    const double lost_ref = answer["kinetic_energy"]["lost"].get<double>();
+    const double scale_N = std::max(1e-300, std::fabs(N_ref)), scale_T = std::max(1e-300, std::fabs(answer["kinetic_energy"]["before"].get<double>()) + std::fabs(lost_ref));
+    ++generated_checked_;
+    if (status != 0 || std::fabs(N - N_ref) > 1e-9 * scale_N || std::fabs(lost - lost_ref) > 1e-9 * scale_T)
+        violation(physics, label,
+                  "generated code disagrees with solve: status " + std::to_string(status) + ", N " + std::to_string(N) + " vs " +
+                      std::to_string(N_ref) + ", energy lost " + std::to_string(lost) + " vs " + std::to_string(lost_ref),
+                  nullptr, "generated code disagrees with solve");
 }
 
 void fuzzer::run_command(const command& c, bool pristine_seed)
@@ -412,6 +473,7 @@ void fuzzer::run_command(const command& c, bool pristine_seed)
     if (r.out.empty())
         violation(bad_output, c.label, "exit 0 with nothing on stdout", &r, "exit 0, empty stdout");
     if (c.label == "solve --json") {
+        answer_ = r.out;
         ++answers_checked_;
         std::vector<std::string> failures = check_answer(text_, r.out);
         if (!failures.empty()) {
@@ -481,6 +543,7 @@ void fuzzer::one_case(long k)
 {
     case_ = k;
     ++cases_run_;
+    answer_.clear();
     // Every case has its own engine: one case is reproduced without the others.
     std::seed_seq seq{static_cast<unsigned>(cfg_.seed), static_cast<unsigned>(cfg_.seed >> 32), static_cast<unsigned>(k),
                       static_cast<unsigned>(static_cast<unsigned long long>(k) >> 32)};
@@ -564,7 +627,8 @@ int fuzzer::run()
                 cfg_.seed, cases_run_, runs_, exit0_, refusals_, usage_);
     for (int k = 0; k < kinds; ++k)
         std::printf("%ld %s, ", counts_[k].count, counts_[k].name);
-    std::printf("%ld answers checked, %ld headers compiled; slowest run %.3f s (%s); %.1f s in all\n", answers_checked_, compiled_, slowest_.seconds,
+    std::printf("%ld answers checked, %ld headers compiled (%ld run against solve); slowest run %.3f s (%s); %.1f s in all\n",
+                answers_checked_, compiled_, generated_checked_, slowest_.seconds,
                 slowest_.what.c_str(), total);
     return violations == 0 ? 0 : 1;
 }
