@@ -102,7 +102,16 @@ std::size_t mins(const emitted& em)
 std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<std::string>& finite_terms)
 {
     std::vector<std::string> parts;
-    auto min_of = [](const std::vector<std::string>& v) { return v.size() == 1 ? v[0] : "detail::min_of(" + join(v, ", ") + ")"; };
+    // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
+    // that would not deduce.
+    auto min_of = [](const std::vector<std::string>& v) {
+        if (v.size() == 1)
+            return v[0];
+        std::vector<std::string> args;
+        for (const std::string& x : v)
+            args.push_back("T(" + x + ")");
+        return "detail::min_of(" + join(args, ", ") + ")";
+    };
     if (!form.positive_terms.empty())
         parts.push_back("(" + min_of(form.positive_terms) + " > T(0))");
     if (!form.nonneg_terms.empty())
@@ -127,7 +136,35 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
     return text;
 }
 
-const char* const preamble_body = R"(/// Why a call computed no post-impact state (the result is then all zeros).
+const char* const preamble_body = R"(// Hooks the user may define before including a generated header:
+//   IMPACTGEN_FUNC  what every function is declared with (default inline;
+//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
+//                   path that classifies failures
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
+//                   infinity checks may then pass a NaN input as ok)
+#ifndef IMPACTGEN_FUNC
+#define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_COLD
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold))
+#else
+#define IMPACTGEN_COLD
+#endif
+#endif
+#ifndef IMPACTGEN_HOT
+#if defined(__GNUC__)
+#define IMPACTGEN_HOT __attribute__((always_inline))
+#else
+#define IMPACTGEN_HOT
+#endif
+#endif
+#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
+/// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
@@ -139,7 +176,7 @@ enum class impact_status : int {
     overflow             ///< finite inputs whose result overflows
 };
 
-inline constexpr const char* to_string(impact_status s) noexcept
+IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 {
     switch (s) {
     case impact_status::ok: return "ok";
@@ -160,25 +197,18 @@ struct op_count {
 };
 
 namespace detail {
-template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
 }
-template <typename T> constexpr T min_of(T x) noexcept { return x; }
+template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
 {
     return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
-#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
-#else
-#define IMPACTGEN_COLD
-#define IMPACTGEN_HOT
-#endif
 #endif
 
 )";
@@ -454,7 +484,7 @@ private:
         h_ << "\nnamespace detail {\n";
         h_ << "/// " << o_.name << " with each check right after the value it tests: the status of the\n";
         h_ << "/// inputs that fail the fast path of " << o_.name << " (every member of out is then zero).\n";
-        h_ << tparams << "IMPACTGEN_COLD inline impact_status " << checked() << "(" << params() << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked() << "(" << params() << result() << "<T>& out) noexcept\n{\n";
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << "    auto fail = [&](impact_status why) noexcept {\n";
@@ -485,7 +515,7 @@ private:
         h_ << "/// neither computed nor checked (the rest is the same).\n";
         for (std::size_t i = 0; i < input_names_.size(); ++i)
             h_ << "///   " << input_names_[i] << ": " << names::comment_text(pl_.input_meaning[i]) << "\n";
-        h_ << tparams << "IMPACTGEN_HOT inline impact_status " << o_.name << "(" << params() << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result() << "<T>& out) noexcept\n{\n";
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << energy_optional(fast_.code, "    const T " + local_of_.at("energy_lost") + " = ");
@@ -503,7 +533,7 @@ private:
     void array_form()
     {
         h_ << "/// The same with the inputs in an array, in the order of " << o_.name << "_input_names.\n";
-        h_ << tparams << "IMPACTGEN_HOT inline impact_status " << o_.name << "(const T* in, " << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const T* in, " << result() << "<T>& out) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    return " << o_.name << "<T, with_energy_lost>(";
@@ -527,7 +557,7 @@ private:
         if (energy_index < pl_.outputs.size())
             h_ << "/// with_energy_lost = false: energy_lost is neither computed nor checked, and out[" << energy_index
                << "] is not written (it may be null).\n";
-        h_ << tparams << "inline void " << o_.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_FUNC void " << o_.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         for (std::size_t j = 0; j < input_names_.size(); ++j)
@@ -583,7 +613,7 @@ private:
         h_ << "inline constexpr op_count " << o_.name << "_ops{" << em_.formula.add << ", " << em_.formula.mul << ", "
            << em_.formula.div << ", " << em_.formula.sqrt << "};\n\n";
         h_ << "/// The members of r in the order of " << o_.name << "_output_names.\n";
-        h_ << "template <typename T> inline void " << o_.name << "_to_array(const " << result() << "<T>& r, T* a) noexcept\n{\n";
+        h_ << "template <typename T> IMPACTGEN_FUNC void " << o_.name << "_to_array(const " << result() << "<T>& r, T* a) noexcept\n{\n";
         for (std::size_t i = 0; i < pl_.outputs.size(); ++i)
             h_ << "    a[" << i << "] = r." << pl_.outputs[i].field << ";\n";
         h_ << "}\n\n} // namespace " << o_.ns << "\n";

@@ -13,6 +13,34 @@ namespace impactgen::generated {
 
 #ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 #define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+// Hooks the user may define before including a generated header:
+//   IMPACTGEN_FUNC  what every function is declared with (default inline;
+//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
+//                   path that classifies failures
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
+//                   infinity checks may then pass a NaN input as ok)
+#ifndef IMPACTGEN_FUNC
+#define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_COLD
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold))
+#else
+#define IMPACTGEN_COLD
+#endif
+#endif
+#ifndef IMPACTGEN_HOT
+#if defined(__GNUC__)
+#define IMPACTGEN_HOT __attribute__((always_inline))
+#else
+#define IMPACTGEN_HOT
+#endif
+#endif
+#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -25,7 +53,7 @@ enum class impact_status : int {
     overflow             ///< finite inputs whose result overflows
 };
 
-inline constexpr const char* to_string(impact_status s) noexcept
+IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 {
     switch (s) {
     case impact_status::ok: return "ok";
@@ -46,25 +74,18 @@ struct op_count {
 };
 
 namespace detail {
-template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
 }
-template <typename T> constexpr T min_of(T x) noexcept { return x; }
+template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
 {
     return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
-#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
-#else
-#define IMPACTGEN_COLD
-#define IMPACTGEN_HOT
-#endif
 #endif
 
 /// Post-impact state of central_oblique (units as the inputs).
@@ -109,7 +130,7 @@ namespace detail {
 /// central_oblique with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of central_oblique (every member of out is then zero).
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status central_oblique_checked(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = central_oblique_result<T>{};
@@ -166,7 +187,7 @@ IMPACTGEN_COLD inline impact_status central_oblique_checked(T e, T m1, T R1, T v
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   v_b2: velocity of the centre of mass of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
     const T w_2 = T(1) / m2;
@@ -184,8 +205,8 @@ IMPACTGEN_HOT inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(w_1, w_2, -u, k) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + R2)))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::central_oblique_checked<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
@@ -203,7 +224,7 @@ IMPACTGEN_HOT inline impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_
 
 /// The same with the inputs in an array, in the order of central_oblique_input_names.
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
 {
     return central_oblique<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
 }
@@ -215,7 +236,7 @@ IMPACTGEN_HOT inline impact_status central_oblique(const T* in, central_oblique_
 /// one for their status (their outputs are zero).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
-inline void central_oblique_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+IMPACTGEN_FUNC void central_oblique_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
     const T* const in_m1 = in[1];
@@ -272,8 +293,8 @@ inline void central_oblique_batch(long n, const T* const* in, T* const* out, imp
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(w_1, w_2, -u, k) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
                          static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + (R2 + rcp_q1))))) != 0u;
         out_v_t1[i] = o_v_t1;
@@ -316,7 +337,7 @@ inline constexpr const char* central_oblique_output_names[] = {"v_t1", "v_n1", "
 inline constexpr op_count central_oblique_ops{6, 7, 3, 0};
 
 /// The members of r in the order of central_oblique_output_names.
-template <typename T> inline void central_oblique_to_array(const central_oblique_result<T>& r, T* a) noexcept
+template <typename T> IMPACTGEN_FUNC void central_oblique_to_array(const central_oblique_result<T>& r, T* a) noexcept
 {
     a[0] = r.v_t1;
     a[1] = r.v_n1;

@@ -11,6 +11,34 @@ namespace impactgen::generated {
 
 #ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 #define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+// Hooks the user may define before including a generated header:
+//   IMPACTGEN_FUNC  what every function is declared with (default inline;
+//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
+//                   path that classifies failures
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
+//                   infinity checks may then pass a NaN input as ok)
+#ifndef IMPACTGEN_FUNC
+#define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_COLD
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold))
+#else
+#define IMPACTGEN_COLD
+#endif
+#endif
+#ifndef IMPACTGEN_HOT
+#if defined(__GNUC__)
+#define IMPACTGEN_HOT __attribute__((always_inline))
+#else
+#define IMPACTGEN_HOT
+#endif
+#endif
+#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -23,7 +51,7 @@ enum class impact_status : int {
     overflow             ///< finite inputs whose result overflows
 };
 
-inline constexpr const char* to_string(impact_status s) noexcept
+IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 {
     switch (s) {
     case impact_status::ok: return "ok";
@@ -44,25 +72,18 @@ struct op_count {
 };
 
 namespace detail {
-template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
 }
-template <typename T> constexpr T min_of(T x) noexcept { return x; }
+template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
 {
     return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
-#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
-#else
-#define IMPACTGEN_COLD
-#define IMPACTGEN_HOT
-#endif
 #endif
 
 /// Post-impact state of noncentral_3d_engine (units as the inputs).
@@ -127,7 +148,7 @@ namespace detail {
 /// noncentral_3d_engine with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of noncentral_3d_engine (every member of out is then zero).
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = noncentral_3d_engine_result<T>{};
@@ -218,7 +239,7 @@ IMPACTGEN_COLD inline impact_status noncentral_3d_engine_checked(T e, T inv_m1, 
 ///   w_n2: angular velocity of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
     const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
     const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
@@ -248,8 +269,8 @@ IMPACTGEN_HOT inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(-u), T(k)) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2)))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
@@ -273,7 +294,7 @@ IMPACTGEN_HOT inline impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_
 
 /// The same with the inputs in an array, in the order of noncentral_3d_engine_input_names.
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
 {
     return noncentral_3d_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
 }
@@ -285,7 +306,7 @@ IMPACTGEN_HOT inline impact_status noncentral_3d_engine(const T* in, noncentral_
 /// one for their status (their outputs are zero).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[14] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
-inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+IMPACTGEN_FUNC void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
     const T* const in_inv_m1 = in[1];
@@ -401,8 +422,8 @@ inline void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_m2, -u, k) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(-u), T(k)) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + inv_I1_nn)))) + ((r_n1 + inv_I2_nn) + r_n2)))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
@@ -456,7 +477,7 @@ inline constexpr const char* noncentral_3d_engine_output_names[] = {"v_t1", "v_n
 inline constexpr op_count noncentral_3d_engine_ops{26, 33, 1, 0};
 
 /// The members of r in the order of noncentral_3d_engine_output_names.
-template <typename T> inline void noncentral_3d_engine_to_array(const noncentral_3d_engine_result<T>& r, T* a) noexcept
+template <typename T> IMPACTGEN_FUNC void noncentral_3d_engine_to_array(const noncentral_3d_engine_result<T>& r, T* a) noexcept
 {
     a[0] = r.v_t1;
     a[1] = r.v_n1;

@@ -11,6 +11,34 @@ namespace impactgen::generated {
 
 #ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 #define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+// Hooks the user may define before including a generated header:
+//   IMPACTGEN_FUNC  what every function is declared with (default inline;
+//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
+//                   path that classifies failures
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
+//                   infinity checks may then pass a NaN input as ok)
+#ifndef IMPACTGEN_FUNC
+#define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_COLD
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold))
+#else
+#define IMPACTGEN_COLD
+#endif
+#endif
+#ifndef IMPACTGEN_HOT
+#if defined(__GNUC__)
+#define IMPACTGEN_HOT __attribute__((always_inline))
+#else
+#define IMPACTGEN_HOT
+#endif
+#endif
+#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -23,7 +51,7 @@ enum class impact_status : int {
     overflow             ///< finite inputs whose result overflows
 };
 
-inline constexpr const char* to_string(impact_status s) noexcept
+IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 {
     switch (s) {
     case impact_status::ok: return "ok";
@@ -44,25 +72,18 @@ struct op_count {
 };
 
 namespace detail {
-template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
 }
-template <typename T> constexpr T min_of(T x) noexcept { return x; }
+template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
 {
     return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
-#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
-#else
-#define IMPACTGEN_COLD
-#define IMPACTGEN_HOT
-#endif
 #endif
 
 /// Post-impact state of pinned_planar (units as the inputs).
@@ -116,7 +137,7 @@ namespace detail {
 /// pinned_planar with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of pinned_planar (every member of out is then zero).
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = pinned_planar_result<T>{};
@@ -177,7 +198,7 @@ IMPACTGEN_COLD inline impact_status pinned_planar_checked(T e, T m1, T l, T v1, 
 ///   v1: velocity of the centre of mass of 1 before impact, x
 ///   m2: mass of 2 (> 0)
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
@@ -203,8 +224,8 @@ IMPACTGEN_HOT inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pin
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(-u), T(k), T(check_p1)) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
@@ -223,7 +244,7 @@ IMPACTGEN_HOT inline impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pin
 
 /// The same with the inputs in an array, in the order of pinned_planar_input_names.
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
 {
     return pinned_planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
 }
@@ -235,7 +256,7 @@ IMPACTGEN_HOT inline impact_status pinned_planar(const T* in, pinned_planar_resu
 /// one for their status (their outputs are zero).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[9] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
-inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
     const T* const in_m1 = in[1];
@@ -286,8 +307,8 @@ inline void pinned_planar_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(w_1, m2, -u, k, check_p1) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(-u), T(k), T(check_p1)) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
@@ -331,7 +352,7 @@ inline constexpr const char* pinned_planar_output_names[] = {"v_x1", "v_y1", "v_
 inline constexpr op_count pinned_planar_ops{5, 19, 3, 0};
 
 /// The members of r in the order of pinned_planar_output_names.
-template <typename T> inline void pinned_planar_to_array(const pinned_planar_result<T>& r, T* a) noexcept
+template <typename T> IMPACTGEN_FUNC void pinned_planar_to_array(const pinned_planar_result<T>& r, T* a) noexcept
 {
     a[0] = r.v_x1;
     a[1] = r.v_y1;

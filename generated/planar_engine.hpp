@@ -11,6 +11,34 @@ namespace impactgen::generated {
 
 #ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 #define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+// Hooks the user may define before including a generated header:
+//   IMPACTGEN_FUNC  what every function is declared with (default inline;
+//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
+//                   path that classifies failures
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
+//                   infinity checks may then pass a NaN input as ok)
+#ifndef IMPACTGEN_FUNC
+#define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_COLD
+#if defined(__GNUC__)
+#define IMPACTGEN_COLD __attribute__((noinline, cold))
+#else
+#define IMPACTGEN_COLD
+#endif
+#endif
+#ifndef IMPACTGEN_HOT
+#if defined(__GNUC__)
+#define IMPACTGEN_HOT __attribute__((always_inline))
+#else
+#define IMPACTGEN_HOT
+#endif
+#endif
+#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
 /// Why a call computed no post-impact state (the result is then all zeros).
 enum class impact_status : int {
     ok = 0,
@@ -23,7 +51,7 @@ enum class impact_status : int {
     overflow             ///< finite inputs whose result overflows
 };
 
-inline constexpr const char* to_string(impact_status s) noexcept
+IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 {
     switch (s) {
     case impact_status::ok: return "ok";
@@ -44,25 +72,18 @@ struct op_count {
 };
 
 namespace detail {
-template <typename T> constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> constexpr bool all_finite(T x, U... y) noexcept
+template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
 {
     return (finite(x) && ... && finite(y));
 }
-template <typename T> constexpr T min_of(T x) noexcept { return x; }
+template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> constexpr T min_of(T x, T y, U... z) noexcept
+template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
 {
     return min_of(y < x ? y : x, z...);
 }
 } // namespace detail
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold)) // the slow path that classifies failures
-#define IMPACTGEN_HOT __attribute__((always_inline))   // the fast path, inlined at each call
-#else
-#define IMPACTGEN_COLD
-#define IMPACTGEN_HOT
-#endif
 #endif
 
 /// Post-impact state of planar_engine (units as the inputs).
@@ -109,7 +130,7 @@ namespace detail {
 /// planar_engine with each check right after the value it tests: the status of the
 /// inputs that fail the fast path of planar_engine (every member of out is then zero).
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_COLD inline impact_status planar_engine_checked(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
         out = planar_engine_result<T>{};
@@ -174,7 +195,7 @@ IMPACTGEN_COLD inline impact_status planar_engine_checked(T e, T inv_m1, T inv_I
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
     const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
     const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
@@ -192,8 +213,8 @@ IMPACTGEN_HOT inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u), T(k)) > T(0)) &
+                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2)))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
@@ -211,7 +232,7 @@ IMPACTGEN_HOT inline impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1
 
 /// The same with the inputs in an array, in the order of planar_engine_input_names.
 template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT inline impact_status planar_engine(const T* in, planar_engine_result<T>& out) noexcept
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(const T* in, planar_engine_result<T>& out) noexcept
 {
     return planar_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
 }
@@ -223,7 +244,7 @@ IMPACTGEN_HOT inline impact_status planar_engine(const T* in, planar_engine_resu
 /// one for their status (their outputs are zero).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
-inline void planar_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+IMPACTGEN_FUNC void planar_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
     const T* const in_e = in[0];
     const T* const in_inv_m1 = in[1];
@@ -285,8 +306,8 @@ inline void planar_engine_batch(long n, const T* const* in, T* const* out, impac
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(inv_m1, inv_I1, inv_m2, inv_I2, -u, k) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(e, T(1) - e) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u), T(k)) > T(0)) &
+                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2)))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
@@ -328,7 +349,7 @@ inline constexpr const char* planar_engine_output_names[] = {"v_t1", "v_n1", "w_
 inline constexpr op_count planar_engine_ops{12, 17, 1, 0};
 
 /// The members of r in the order of planar_engine_output_names.
-template <typename T> inline void planar_engine_to_array(const planar_engine_result<T>& r, T* a) noexcept
+template <typename T> IMPACTGEN_FUNC void planar_engine_to_array(const planar_engine_result<T>& r, T* a) noexcept
 {
     a[0] = r.v_t1;
     a[1] = r.v_n1;
