@@ -214,6 +214,9 @@ void check_value(const ex& e, const std::string& where)
         decision d = decide(e);
         if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
             throw input_error(where + ": the value " + decision_text(d));
+        // a plain number beyond double (1e308*10): exact, but no answer could be printed
+        if (is_a<numeric>(e) && abs(ex_to<numeric>(e)) > numeric(DBL_MAX))
+            throw input_error(where + ": the value " + decision_text(decision::out_of_range));
         return;
     }
     std::string why = constant_parts_problem(e);

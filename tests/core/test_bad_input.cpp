@@ -132,6 +132,12 @@ std::vector<bad_case> cases()
         // Found by the fuzzer (tests/fuzz): huge symbolic exponents crashed codegen and hung explain.
         {"symbolic_exponent_too_large", [] { return with(valid(), [](json& j) { j["restitution"] = "e^30000"; }); }, {"restitution", "exponent larger than 64"}},
         {"symbolic_exponent_nested", [] { return with(valid3d(), [](json& j) { j["bodies"][0]["inertia"][0] = "x^(2^20)"; }); }, {"inertia[0]", "exponent larger than 64"}},
+        // Found by the fuzzer with seed 7: a bystander's position 1e308*10 was accepted.
+        {"number_beyond_double", [] { return with(valid(), [](json& j) { j["bodies"][1]["position"][1] = "1e308*10"; }); }, {"bodies[1] (\"rod\").position[1]", "range of double"}},
+        {"decimal_beyond_double", [] {
+             std::string t = with(valid(), [](json& j) { j["bodies"][1]["position"][1] = 777777; });
+             return t.replace(t.find("777777"), 6, "1e309"); // a JSON number token beyond double
+         }, {"position", "range of double"}},
         {"file_too_large", [] { return with(valid(), [](json& j) { j["description"] = std::string(70000, 'x'); }); }, {"at most 65536"}},
         {"separating", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {-5, 0}; }); }, {"not an impact", "separate"}},
         {"resting", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {0, 3}; }); }, {"not an impact", "rest"}},
