@@ -35,7 +35,7 @@ double log10_abs(const numeric& x)
     return std::log10(a.to_double());
 }
 
-double bound(const ex& e)
+double bound(const ex& e, const exmap* values = nullptr)
 {
     if (is_a<numeric>(e)) {
         const numeric& x = ex_to<numeric>(e);
@@ -45,18 +45,24 @@ double bound(const ex& e)
             return x.numer().int_length() > x.denom().int_length() ? unbounded : -unbounded;
         return log10_abs(x);
     }
+    if (is_a<symbol>(e) && values) {
+        auto it = values->find(e);
+        if (it != values->end() && is_a<numeric>(it->second))
+            return bound(it->second);
+        return 0; // the reader's own symbols: magnitude 1, their exponents are limited apart
+    }
     if (is_a<symbol>(e) || is_a<constant>(e))
         return 0.5; // symbols count as 1; Pi, Euler, Catalan < 10^0.5
     if (is_a<add>(e)) {
         double m = -unbounded;
         for (std::size_t k = 0; k < e.nops(); ++k)
-            m = std::max(m, bound(e.op(k)));
+            m = std::max(m, bound(e.op(k), values));
         return m + std::log10(static_cast<double>(e.nops()));
     }
     if (is_a<mul>(e)) {
         double m = 0;
         for (std::size_t k = 0; k < e.nops(); ++k) {
-            double b = bound(e.op(k));
+            double b = bound(e.op(k), values);
             if (b == unbounded)
                 return unbounded;
             m += std::max(b, 0.0); // a small factor only shrinks the product
@@ -64,23 +70,25 @@ double bound(const ex& e)
         return m;
     }
     if (is_a<power>(e)) {
-        double b = bound(e.op(0));
+        double b = bound(e.op(0), values);
+        if (b == -unbounded)
+            return -unbounded; // 0^x: zero (or a division by zero, which GiNaC reports)
         const ex& x = e.op(1);
         if (is_a<numeric>(x) && ex_to<numeric>(x).is_real()) {
             double xv = std::abs(ex_to<numeric>(x).to_double());
             if (!std::isfinite(xv) || xv > 1e6)
-                return b == 0.5 && is_a<symbol>(e.op(0)) ? 0.5 : unbounded;
+                return (b == 0.5 || b == 0) && is_a<symbol>(e.op(0)) ? b : unbounded;
             // a negative exponent of a small base is large: bound by the magnitude of the log
             return std::abs(b) * xv + 1;
         }
-        double xb = bound(x);
-        if (xb > 6)
-            return unbounded;
+        double xb = bound(x, values);
+        if (xb > 6) // a huge exponent: only a base of magnitude 1 (1, or a reader's symbol) stays bounded
+            return b == 0 ? 0 : unbounded;
         return std::abs(b) * std::pow(10.0, xb) + 1;
     }
     if (is_a<function>(e)) {
         const std::string name = ex_to<function>(e).get_name();
-        double arg = e.nops() > 0 ? bound(e.op(0)) : 0;
+        double arg = e.nops() > 0 ? bound(e.op(0), values) : 0;
         if (name == "exp" || name == "sinh" || name == "cosh") {
             if (arg > 6)
                 return unbounded;
@@ -92,7 +100,7 @@ double bound(const ex& e)
             return std::log10(std::abs(arg) * 2.31 + 2) + 0.5;
         double m = 0; // abs, sqrt, tan and the rest: bounded by their arguments, checked by evaluation
         for (std::size_t k = 0; k < e.nops(); ++k)
-            m = std::max(m, std::abs(bound(e.op(k))));
+            m = std::max(m, std::abs(bound(e.op(k), values)));
         return m + 1;
     }
     return unbounded;
@@ -150,7 +158,7 @@ bool is_constant(const ex& e)
     return true;
 }
 
-double log10_magnitude_bound(const ex& e) { return bound(e); }
+double log10_magnitude_bound(const ex& e, const exmap& values) { return bound(e, &values); }
 
 decision decide(const ex& e)
 {

@@ -47,9 +47,10 @@ decision decide(const GiNaC::ex& e);
 bool is_constant(const GiNaC::ex& e);
 
 /// log10 of an upper bound of |e| computed without evaluating e (symbols count
-/// as 1); +infinity when no finite bound is known. Guards evaluation against
+/// as 1, or as the numbers `values` gives them: the reader's placeholders);
+/// +infinity when no finite bound is known, -infinity for zero. Guards evaluation against
 /// numbers that would take minutes or silently lose every digit (exp(exp(1000))).
-double log10_magnitude_bound(const GiNaC::ex& e);
+double log10_magnitude_bound(const GiNaC::ex& e, const GiNaC::exmap& values = {});
 
 /// Checks every constant part of e that is not a plain number (for a symbolic
 /// e, each maximal symbol-free subexpression such as (-1)^(1/3) in x*(-1)^(1/3)):

@@ -224,53 +224,6 @@ void check_value(const ex& e, const std::string& where)
         throw input_error(where + ": in the expression, a constant part: " + why);
 }
 
-// log10 of an upper bound of |e| with the placeholders' values (symbols count
-// as 1), or +infinity; refuses before any huge number is computed exactly.
-double log10_bound(const ex& e, const exmap& numbers)
-{
-    if (is_a<symbol>(e)) {
-        auto it = numbers.find(e);
-        if (it == numbers.end())
-            return 0;
-        const numeric& x = ex_to<numeric>(it->second);
-        return x.is_zero() ? -400 : std::log10(std::abs(x.to_double()) + 1e-300);
-    }
-    if (is_a<numeric>(e))
-        return std::log10(std::abs(ex_to<numeric>(e).to_double()) + 1e-300);
-    if (is_a<add>(e)) {
-        double m = -400;
-        for (std::size_t k = 0; k < e.nops(); ++k)
-            m = std::max(m, log10_bound(e.op(k), numbers));
-        return m + std::log10(static_cast<double>(e.nops()));
-    }
-    if (is_a<GiNaC::mul>(e)) {
-        double m = 0;
-        for (std::size_t k = 0; k < e.nops(); ++k) {
-            const double f = log10_bound(e.op(k), numbers);
-            if (f <= -400)
-                return -400; // a zero factor: the product is zero (0/3 is not huge)
-            m += std::abs(f);
-        }
-        return m;
-    }
-    if (is_a<power>(e)) {
-        const double base = log10_bound(e.op(0), numbers);
-        if (base <= -400)
-            return -400; // 0^x: zero (or a division by zero, which the parser reports)
-        double b = std::abs(base);
-        double x = log10_bound(e.op(1), numbers);
-        if (x > 6)
-            return b == 0 ? 0 : HUGE_VAL;
-        ex expo = e.op(1).subs(numbers);
-        double ev = is_a<numeric>(expo) ? std::abs(ex_to<numeric>(expo).to_double()) : std::pow(10.0, x);
-        return b * ev;
-    }
-    double m = 0; // functions: bounded by their arguments for our purposes
-    for (std::size_t k = 0; k < e.nops(); ++k)
-        m = std::max(m, std::abs(log10_bound(e.op(k), numbers)));
-    return m;
-}
-
 std::string show(const ex& e)
 {
     std::ostringstream os;
@@ -363,7 +316,7 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
             exmap values;
             for (const ex& rel : numbers)
                 values[rel.lhs()] = rel.rhs();
-            if (log10_bound(shape, values) > 400)
+            if (log10_magnitude_bound(shape, values) > 400)
                 throw input_error(where + ": \"" + names::display_text(text) + "\" is out of the range of double (non-finite number)");
             value = shape.subs(values);
         } catch (const input_error&) {

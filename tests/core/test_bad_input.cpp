@@ -381,6 +381,15 @@ TEST(Reader, ZeroFactorsAreNumbers)
     }
 }
 
+TEST(Reader, TinyTimesHugeIsOne)
+{
+    // The reader's magnitude bound counts a small factor as shrinking a product: 1e-300*1e300
+    // was refused as beyond double range before the two bounds were made one.
+    std::string text = with(valid(), [](json& j) { j["bodies"][0]["mass"] = "1e-300*1e300"; });
+    problem p = read_problem(text, "case.json");
+    EXPECT_TRUE((p.bodies[0].mass - 1).is_zero()) << p.bodies[0].mass;
+}
+
 TEST(Cli, OverflowingAnswerNamesTheKey)
 {
     std::string file = ::testing::TempDir() + "impactgen_overflow_" + std::to_string(getpid()) + ".json";
