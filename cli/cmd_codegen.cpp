@@ -22,8 +22,8 @@ std::vector<std::string> split(const std::string& s, char sep)
 }
 
 struct codegen_args {
-    std::string what, out_dir, output, name, ns = "impactgen::generated", params, set;
-    bool inverse_inertia = false, inverse_mass = false;
+    std::string what, out_dir, output, name, ns = "impactgen::generated", params, set, wrt;
+    bool inverse_inertia = false, inverse_mass = false, unit_normal = false, jacobian = false;
 };
 
 int run(const codegen_args& a, CLI::Option* params_opt)
@@ -50,6 +50,9 @@ int run(const codegen_args& a, CLI::Option* params_opt)
     }
     o.inverse_inertia = a.inverse_inertia;
     o.inverse_mass = a.inverse_mass;
+    o.unit_normal = a.unit_normal;
+    o.jacobian = a.jacobian || !a.wrt.empty();
+    o.wrt = split(a.wrt, ',');
     codegen::header h;
     try {
         h = codegen::generate(p, o);
@@ -97,5 +100,11 @@ void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& actio
     cmd->add_flag("--inverse-inertia", args->inverse_inertia,
                   "inertia inputs of free bodies are inverses: 3-D tensors I^-1, planar 1/I (engine convention)");
     cmd->add_flag("--inverse-mass", args->inverse_mass, "mass inputs are inverse masses 1/m (engine convention)");
+    cmd->add_flag("--unit-normal", args->unit_normal,
+                  "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
+    cmd->add_flag("--jacobian", args->jacobian,
+                  "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly");
+    cmd->add_option("--wrt", args->wrt,
+                    "comma-separated inputs the Jacobian differentiates by, in this order (default: every input); implies --jacobian");
     cmd->parse_complete_callback([args, params, &action] { action = [args, params] { return run(*args, params); }; });
 }

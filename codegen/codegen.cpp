@@ -172,6 +172,7 @@ enum class impact_status : int {
     invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
+    invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
     singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
     overflow             ///< finite inputs whose result overflows
 };
@@ -185,6 +186,7 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
     case impact_status::invalid_inertia: return "invalid inertia";
     case impact_status::invalid_restitution: return "invalid restitution";
     case impact_status::not_approaching: return "not approaching";
+    case impact_status::invalid_normal: return "invalid normal";
     case impact_status::singular: return "singular effective mass";
     case impact_status::overflow: return "overflow";
     }

@@ -27,13 +27,16 @@ struct options {
     std::vector<std::pair<std::string, std::string>> set; ///< symbol = value folded in as constants
     bool inverse_inertia = false;        ///< inertia inputs of free bodies are I^{-1} (3-D) or 1/I (planar): engine convention
     bool inverse_mass = false;           ///< mass inputs are 1/m (engine convention)
+    bool unit_normal = false;            ///< the normal inputs are a unit vector: no normalisation (engine convention)
+    bool jacobian = false;               ///< also emit <name>_jacobian: values and d(outputs)/d(wrt)
+    std::vector<std::string> wrt;        ///< inputs the Jacobian differentiates by (empty: every input), in order
 };
 
 /// An option that cannot be honoured. The library names the option by `which`
 /// (the command line turns it into its flag); the message names the problem.
 class option_error : public input_error {
 public:
-    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space };
+    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space, unit_normal, jacobian };
     option_error(option which, const std::string& message, std::string symbol = "")
         : input_error(message), which(which), symbol(std::move(symbol))
     {

@@ -371,6 +371,8 @@ const char* option_error::option_name(option o)
     case inverse_mass: return "inverse-mass";
     case function_name: return "name";
     case name_space: return "namespace";
+    case unit_normal: return "unit-normal";
+    case jacobian: return "jacobian";
     }
     return "?";
 }
