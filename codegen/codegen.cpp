@@ -3,9 +3,12 @@
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
+#include "symbolic/decide.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -23,7 +26,7 @@ const std::set<std::string>& reserved()
 {
     static const std::set<std::string> r = {"out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed",
                                             "with_energy_lost", "impact_status", "op_count", "to_string", "finite", "all_finite",
-                                            "min_of", "sqrt", "std", "i", "n", "r", "a"};
+                                            "min_of", "sqrt", "std", "i", "n", "r", "a", "view"};
     return r;
 }
 
@@ -54,6 +57,16 @@ std::string wrap_comment(const std::string& lhs, const std::string& rhs)
         first = false;
     }
     return out + "\n";
+}
+
+// True when the code names the identifier (not as part of a longer one).
+bool uses(const std::string& code, const std::string& name)
+{
+    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
+        if ((at == 0 || !ident(code[at - 1])) && (at + name.size() == code.size() || !ident(code[at + name.size()])))
+            return true;
+    return false;
 }
 
 // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
@@ -121,9 +134,9 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
     if (!finite_terms.empty())
         parts.push_back("detail::finite(" + balanced_sum(finite_terms) + ")");
     std::string text;
-    if (!form.check_comments.empty() || !form.normal_terms.empty()) {
+    if (!form.check_comments.empty() || form.shares_reciprocals) {
         std::string what = names::comment_text(join(form.check_comments, "; "));
-        if (!form.normal_terms.empty())
+        if (form.shares_reciprocals)
             what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
         text += ind + "// checks: " + what + "; every value finite\n";
     }
@@ -139,12 +152,26 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
 const char* const preamble_body = R"(// Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_MEMBER  what the structs' member functions are declared with
+//                   (default nothing; e.g. __host__ __device__)
+//   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
+//                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
 //                   infinity checks may then pass a NaN input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER
+#endif
+#ifndef IMPACTGEN_RESTRICT
+#if defined(__GNUC__) || defined(_MSC_VER)
+#define IMPACTGEN_RESTRICT __restrict
+#else
+#define IMPACTGEN_RESTRICT
+#endif
 #endif
 #ifndef IMPACTGEN_COLD
 #if defined(__GNUC__)
@@ -164,7 +191,10 @@ const char* const preamble_body = R"(// Hooks the user may define before includi
 #error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
-/// Why a call computed no post-impact state (the result is then all zeros).
+/// Why a call computed no post-impact state. On any status but ok the result
+/// holds the state unchanged: the velocities as before the impact, every
+/// impulse, the approach velocity and the energy lost zero (so an engine that
+/// writes the result back unconditionally keeps its bodies' velocities).
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
@@ -193,6 +223,16 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
     return "?";
 }
 
+/// Members of an input or result struct that form a vector (Cols = 1) or a
+/// matrix, row-major, for adapters such as impactgen/eigen.hpp: entry[k] points
+/// to the member, or is null where the header fixed the value (then fixed[k]).
+/// A symmetric tensor's entries (r, c) and (c, r) point to the same member.
+template <typename S, int Rows, int Cols> struct view {
+    static constexpr int rows = Rows, cols = Cols;
+    S* entry[Rows * Cols];
+    long double fixed[Rows * Cols];
+};
+
 /// Floating-point operations of one call of a generated function.
 struct op_count {
     int add, mul, div, sqrt;
@@ -217,6 +257,66 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 
 const char* const tparams = "template <typename T, bool with_energy_lost = true>\n";
 
+// A body's 3-D inertia tensor as the closed form inverts it: about its centre of mass
+// (free) or about its pivot E (pinned: I_C + m (|d|^2 1 - d d^T), d = C - E), each
+// entry the solution's step where it has one (the very value the code computes).
+mat3 tensor_in_use(const problem& q, const solution& s, std::size_t i)
+{
+    const body& b = q.bodies[i];
+    const pivot* pv = q.pivot_of(i);
+    if (!pv)
+        return b.inertia;
+    mat3 J = zero_mat();
+    const vec3 d = b.position - pv->point;
+    const ex dd = dot(d, d);
+    for (int r = 0; r < 3; ++r)
+        for (int c = r; c < 3; ++c) {
+            const step* st = s.find(step_role::pivot_inertia, i, r, c);
+            J[r][c] = J[c][r] = st ? ex(st->sym) : tidy(b.inertia[r][c] + b.mass * ((r == c ? dd : ex(0)) - d[r] * d[c]));
+        }
+    return J;
+}
+
+// The leading principal minors that make a symmetric tensor positive definite, block by
+// block: axes coupled by non-zero off-diagonal entries form a block (a diagonal tensor is
+// three blocks of one entry), and the tensor is positive definite when each block is. Per
+// block its leading minors of order 1 and 2, and of order 3 for a block of all three axes
+// when with_determinant (else the caller checks its determinant step). Minors of blocks,
+// not of the whole tensor: no product of entries of different blocks, whose range float
+// may not hold (a diagonal I = 1e13 would give 1e39).
+std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, const std::array<std::string, 3>& axes,
+                                                                 bool with_determinant)
+{
+    int block_of[3] = {0, 1, 2};
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            if (!tidy(J[r][c]).is_zero()) {
+                const int from = block_of[c], to = block_of[r];
+                for (int& x : block_of)
+                    if (x == from)
+                        x = to;
+            }
+    std::vector<std::pair<ex, std::string>> minors;
+    for (int first = 0; first < 3; ++first) {
+        std::vector<std::size_t> a;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (block_of[k] == first)
+                a.push_back(k);
+        if (a.empty())
+            continue;
+        const std::string xx = axes[a[0]] + axes[a[0]];
+        minors.push_back({J[a[0]][a[0]], xx + " entry > 0, finite"});
+        if (a.size() >= 2) {
+            const std::string yy = axes[a[1]] + axes[a[1]], xy = axes[a[0]] + axes[a[1]];
+            minors.push_back({J[a[0]][a[0]] * J[a[1]][a[1]] - J[a[0]][a[1]] * J[a[1]][a[0]],
+                              "minor " + xx + " " + yy + " - " + xy + "^2 > 0, finite"});
+        }
+        if (a.size() == 3 && with_determinant)
+            minors.push_back({det(J), "determinant > 0, finite"});
+    }
+    return minors;
+}
+
 // One header: the plan lowered to a program, three emitted forms of it
 // (checked, fast, batch), and the text, section by section.
 class writer {
@@ -236,6 +336,7 @@ public:
         checked_function();
         fast_function();
         array_form();
+        struct_form();
         batch_form();
         tables();
         header out;
@@ -257,7 +358,8 @@ private:
         for (const std::string& r : reserved())
             if (names::is_safe_identifier(r))
                 scope_.reserve(r);
-        for (const char* suffix : {"", "_result", "_checked", "_batch", "_input_count", "_output_count", "_input_names",
+        for (const char* suffix : {"", "_result", "_input", "_unchanged", "_jacobian", "_jacobian_result", "_wrt_count",
+                                   "_wrt_names", "_checked", "_batch", "_input_count", "_output_count", "_input_names",
                                    "_output_names", "_ops", "_to_array"})
             scope_.reserve(o_.name + suffix);
         std::map<ex, std::string, ex_is_less> input_ident; // input symbol -> C++ parameter
@@ -276,6 +378,16 @@ private:
         }
         for (const std::string& nm : input_names_)
             in_ptr_[nm] = scope_.claim("in_" + nm);
+        input_ident_ = input_ident;
+        status_ptr_ = scope_.claim("status_out");
+        // The input struct's members are the parameters' names; the views of both
+        // structs are member functions, named clear of the members.
+        for (const std::string& nm : input_names_)
+            in_members_.claim(nm);
+        for (const group& g : pl_.input_groups)
+            in_views_.push_back(in_members_.claim(g.name));
+        for (const group& g : pl_.output_groups)
+            out_views_.push_back(members_.claim(g.name));
     }
 
     // Canonical trees of the steps and outputs, then the straight-line program.
@@ -297,6 +409,13 @@ private:
             prog_.set_owner(ov.field);
             outs_.push_back({ov.field, prog_.lower(pool_, v)});
             outs_local_.push_back({local_of_.at(ov.field), outs_.back().second});
+        }
+        lst inverses; // the engine convention: a mass m is 1/inv_m
+        for (const auto& [old, inv] : pl_.inverse_of)
+            inverses.append(old == 1 / inv);
+        for (std::size_t k = 0; k < pl_.outputs.size(); ++k) {
+            prog_.set_owner("unchanged");
+            unchanged_outs_.push_back({pl_.outputs[k].field, prog_.lower(pool_, pool_.convert(pl_.unchanged[k].subs(inverses)))});
         }
     }
 
@@ -340,6 +459,32 @@ private:
                           (inv_I ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
             }
         }
+        // Positive definiteness of each 3-D inertia tensor the closed form inverts (about C,
+        // or about the pivot E), or in the engine convention of the inverse tensor given:
+        // leading principal minors, block by block. Entries or minors that are numbers
+        // were validated when the problem was read; the determinant is its own step below.
+        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+            const body& b = q.bodies[i];
+            if (q.dimension != 3 || b.particle || b.infinite_mass)
+                continue;
+            auto inv = pl_.inverse_tensor.find(i);
+            const bool inverse_given = inv != pl_.inverse_tensor.end();
+            const std::string what = (inverse_given ? "inverse inertia tensor of " : "inertia tensor of ") + b.name +
+                                     (q.pivot_of(i) && !inverse_given ? " about its pivot" : "") + " positive definite: ";
+            for (const auto& [minor, text] :
+                 positive_definite_minors(inverse_given ? inv->second : tensor_in_use(q, s, i), q.axes, inverse_given))
+                add_check(minor, check::positive, "invalid_inertia", what + text);
+        }
+        // A normal with symbols: its squared length a normal number before anything divides
+        // by the length; declared unit (--unit-normal), of length 1 within 2^-17.
+        const ex nn = tidy(dot(q.contact.normal, q.contact.normal));
+        if (!is_constant(nn)) {
+            if (pl_.deriv.normal_assumed_unit)
+                add_check(nn, check::near_one, "invalid_normal", "the normal is a unit vector: |n.n - 1| <= 2^-17");
+            else
+                add_check(nn, check::normal_number, "invalid_normal",
+                          "n.n a normal number: the normal neither zero, denormal nor too long");
+        }
         const bool has_k = s.find(step_role::contact_inverse_mass) != nullptr;
         for (const step& st : s.steps) {
             switch (st.role) {
@@ -369,6 +514,7 @@ private:
         em_ = emit_cpp(prog_, outs_, checks_, var_names_, taken);
         fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true);
         batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, true);
+        unchanged_ = emit_cpp(prog_, unchanged_outs_, {}, {}, taken);
         // Inputs the outputs do not depend on still count for the finiteness check.
         std::set<std::string> reached;
         for (std::size_t i = 0; i < prog_.size(); ++i)
@@ -444,10 +590,44 @@ private:
     // The status enum and helpers, once per namespace (a guard unique to it).
     void preamble()
     {
-        const std::string guard = names::guard_macro("PREAMBLE", o_.ns);
+        // The guard names the preamble's own text too: headers from an impactgen whose
+        // preamble differs do not skip this one (they clash loudly instead).
+        std::uint32_t hash = 2166136261u;
+        for (unsigned char c : std::string(preamble_body))
+            hash = (hash ^ c) * 16777619u;
+        char tag[32];
+        std::snprintf(tag, sizeof tag, "PREAMBLE_%08X", static_cast<unsigned>(hash));
+        const std::string guard = names::guard_macro(tag, o_.ns);
         h_ << "namespace " << o_.ns << " {\n\n";
         h_ << "#ifndef " << guard << "\n#define " << guard << "\n";
         h_ << preamble_body;
+    }
+
+    // A view's two member functions (mutable and const) for one group.
+    void view_functions(const std::string& name, const group& g)
+    {
+        std::vector<std::string> entries, fixed;
+        if (!g.outputs.empty()) {
+            for (std::size_t k : g.outputs) {
+                entries.push_back("&" + pl_.outputs[k].field);
+                fixed.push_back("0.0L");
+            }
+        } else {
+            for (const ex& x : g.inputs) {
+                if (is_a<numeric>(x)) {
+                    entries.push_back("nullptr");
+                    fixed.push_back(decimal_literal(ex_to<numeric>(x)));
+                } else {
+                    entries.push_back("&" + input_ident_.at(x));
+                    fixed.push_back("0.0L");
+                }
+            }
+        }
+        const std::string dims = std::to_string(g.rows) + ", " + std::to_string(g.cols);
+        const std::string body = "{{" + join(entries, ", ") + "}, {" + join(fixed, ", ") + "}}";
+        h_ << "    /// " << names::comment_text(g.meaning) << (g.cols == 1 ? " (vector)" : " (matrix, row-major)") << "\n";
+        h_ << "    IMPACTGEN_MEMBER view<T, " << dims << "> " << name << "() noexcept { return " << body << "; }\n";
+        h_ << "    IMPACTGEN_MEMBER view<const T, " << dims << "> " << name << "() const noexcept { return " << body << "; }\n";
     }
 
     void result_struct()
@@ -456,6 +636,15 @@ private:
         h_ << "template <typename T> struct " << result() << " {\n";
         for (const output_value& ov : pl_.outputs)
             h_ << "    T " << ov.field << "; ///< " << names::comment_text(ov.meaning) << "\n";
+        for (std::size_t g = 0; g < pl_.output_groups.size(); ++g)
+            view_functions(out_views_[g], pl_.output_groups[g]);
+        h_ << "};\n\n";
+        h_ << "/// The inputs of " << o_.name << " by name (the same as its parameters).\n";
+        h_ << "template <typename T> struct " << input_struct() << " {\n";
+        for (std::size_t i = 0; i < input_names_.size(); ++i)
+            h_ << "    T " << input_names_[i] << "; ///< " << names::comment_text(pl_.input_meaning[i]) << "\n";
+        for (std::size_t g = 0; g < pl_.input_groups.size(); ++g)
+            view_functions(in_views_[g], pl_.input_groups[g]);
         h_ << "};\n\n";
     }
 
@@ -484,13 +673,22 @@ private:
     void checked_function()
     {
         h_ << "\nnamespace detail {\n";
+        h_ << "/// What a failed call of " << o_.name << " returns: the state unchanged (velocities as\n";
+        h_ << "/// before, impulses, approach velocity and energy lost zero).\n";
+        h_ << "template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void " << unchanged() << "(";
+        for (const std::string& nm : input_names_)
+            h_ << "T " << (uses(unchanged_.code, nm) ? nm : "/*" + nm + "*/") << ", ";
+        h_ << result() << "<T>& out) noexcept\n{\n";
+        if (unchanged_.uses_sqrt)
+            h_ << "    using std::sqrt;\n";
+        h_ << unchanged_.code << "}\n\n";
         h_ << "/// " << o_.name << " with each check right after the value it tests: the status of the\n";
-        h_ << "/// inputs that fail the fast path of " << o_.name << " (every member of out is then zero).\n";
+        h_ << "/// inputs that fail the fast path of " << o_.name << " (out then holds the state unchanged).\n";
         h_ << tparams << "IMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked() << "(" << params() << result() << "<T>& out) noexcept\n{\n";
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << "    auto fail = [&](impact_status why) noexcept {\n";
-        h_ << "        out = " << result() << "<T>{};\n";
+        h_ << "        detail::" << unchanged() << "(" << params_call() << "out);\n";
         if (input_names_.empty())
             h_ << "        return why;\n";
         else
@@ -510,7 +708,8 @@ private:
     void fast_function()
     {
         h_ << "/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
-        h_ << "/// (then every member of out is zero). T: float, double, long double or alike.\n";
+        h_ << "/// (then out holds the state unchanged: velocities as before, impulses zero).\n";
+        h_ << "/// T: float, double, long double or alike (an autodiff scalar).\n";
         h_ << "/// The checks do not branch one by one: they are folded into one flag, and only\n";
         h_ << "/// inputs that fail one of them take the slow path (detail::" << checked() << ") that\n";
         h_ << "/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,\n";
@@ -544,6 +743,19 @@ private:
         h_ << "out);\n}\n\n";
     }
 
+    void struct_form()
+    {
+        h_ << "/// The same with the inputs by name: " << input_struct() << "<T> in{}; in.e = ...;\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const " << input_struct() << "<T>& in, "
+           << result() << "<T>& out) noexcept\n{\n";
+        if (input_names_.empty())
+            h_ << "    (void)in;\n";
+        h_ << "    return " << o_.name << "<T, with_energy_lost>(";
+        for (const std::string& nm : input_names_)
+            h_ << "in." << nm << ", ";
+        h_ << "out);\n}\n\n";
+    }
+
     // Batch form over arrays (structure of arrays), branchless so that it vectorises.
     void batch_form()
     {
@@ -551,7 +763,7 @@ private:
         h_ << "/// (order of " << o_.name << "_input_names) of impact i, out[j][i] output j. The arrays\n";
         h_ << "/// must not overlap. A first pass computes every impact without branches (it\n";
         h_ << "/// vectorises); if any impact failed a check, a second pass redoes those one by\n";
-        h_ << "/// one for their status (their outputs are zero).\n";
+        h_ << "/// one for their status (their outputs are then the state unchanged).\n";
         std::size_t energy_index = pl_.outputs.size();
         for (std::size_t j = 0; j < pl_.outputs.size(); ++j)
             if (pl_.outputs[j].kind == output_value::energy_lost)
@@ -563,11 +775,13 @@ private:
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         for (std::size_t j = 0; j < input_names_.size(); ++j)
-            h_ << "    const T* const " << in_ptr_.at(input_names_[j]) << " = in[" << j << "];\n";
+            h_ << "    const T* IMPACTGEN_RESTRICT const " << in_ptr_.at(input_names_[j]) << " = in[" << j << "];\n";
         for (std::size_t j = 0; j < pl_.outputs.size(); ++j)
-            h_ << "    T* const " << out_ptr_.at(pl_.outputs[j].field) << " = out[" << j << "];\n";
+            h_ << "    T* IMPACTGEN_RESTRICT const " << out_ptr_.at(pl_.outputs[j].field) << " = out[" << j << "];\n";
+        h_ << "    impact_status* IMPACTGEN_RESTRICT const " << status_ptr() << " = status;\n";
         h_ << "    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)\n";
-        h_ << "#if defined(__GNUC__) && !defined(__clang__)\n#pragma GCC ivdep\n#endif\n";
+        h_ << "#if defined(__clang__)\n#pragma clang loop vectorize(assume_safety)\n"
+              "#elif defined(__GNUC__)\n#pragma GCC ivdep\n#endif\n";
         h_ << "    for (long i = 0; i < n; ++i) {\n";
         for (const std::string& nm : input_names_)
             h_ << "        const T " << nm << " = " << in_ptr_.at(nm) << "[i];\n";
@@ -579,7 +793,7 @@ private:
         for (const output_value& ov : pl_.outputs)
             h_ << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "") << "        "
                << out_ptr_.at(ov.field) << "[i] = " << local_of_.at(ov.field) << ";\n";
-        h_ << "        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
+        h_ << "        " << status_ptr() << "[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
         h_ << "        failed |= static_cast<unsigned>(!ok);\n";
         h_ << "    }\n";
         h_ << "    if (failed == 0)\n";
@@ -622,6 +836,16 @@ private:
     }
 
     std::string result() const { return o_.name + "_result"; }
+    std::string status_ptr() const { return status_ptr_; }
+    std::string input_struct() const { return o_.name + "_input"; }
+    std::string unchanged() const { return o_.name + "_unchanged"; }
+    std::string params_call() const
+    {
+        std::string r;
+        for (const std::string& nm : input_names_)
+            r += nm + ", ";
+        return r;
+    }
     std::string checked() const { return o_.name + "_checked"; }
     std::string params() const
     {
@@ -633,7 +857,12 @@ private:
 
     const options& o_;
     plan pl_;
-    names::identifier_scope scope_, members_;
+    names::identifier_scope scope_, members_, in_members_;
+    std::vector<std::string> in_views_, out_views_; // member functions of the input and result structs, per group
+    std::map<ex, std::string, ex_is_less> input_ident_;
+    std::vector<std::pair<std::string, int>> unchanged_outs_;
+    std::string status_ptr_;
+    emitted unchanged_;
     std::vector<std::string> input_names_, step_names_;
     std::map<std::string, std::string> local_of_, out_ptr_, in_ptr_; // member -> local value / output pointer; input -> input pointer
     canonical_pool pool_;

@@ -65,6 +65,17 @@ struct output_value {
     std::string meaning;
 };
 
+/// Inputs or outputs that form a vector or a matrix (row-major): the views the
+/// structs offer to adapters (impactgen/eigen.hpp). An input entry is an input
+/// symbol or a number the header fixed; an output entry is an index into plan::outputs.
+struct group {
+    std::string name;  ///< v1, w_ball, r1, I1, inv_I1, O, n, E1, R1 (before the identifier layer)
+    int rows = 3, cols = 1;
+    std::vector<GiNaC::ex> inputs;
+    std::vector<std::size_t> outputs;
+    std::string meaning;
+};
+
 /// The closed form prepared for code generation: solution steps (rewritten
 /// for the engine input conventions), outputs, and the function's inputs in order.
 struct plan {
@@ -79,6 +90,11 @@ struct plan {
     std::map<GiNaC::ex, std::vector<GiNaC::symbol>, GiNaC::ex_is_less> replaced;
     std::map<GiNaC::ex, GiNaC::symbol, GiNaC::ex_is_less> inverse_of; ///< mass or planar inertia -> its inverse input
     std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> meaning;      ///< of the inverse inputs
+    std::map<std::size_t, mat3> inverse_tensor; ///< body -> its inverse inertia tensor in inputs (engine convention, 3-D)
+    std::vector<group> input_groups, output_groups;
+    /// Each output with the impulses set to zero, in inputs only: what a failed call
+    /// returns (the state unchanged; impulses, approach velocity and energy lost 0).
+    std::vector<GiNaC::ex> unchanged;
 };
 plan make_plan(const problem& p, const options& o);
 

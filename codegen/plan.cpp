@@ -6,11 +6,13 @@
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
+#include "symbolic/decide.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 namespace impactgen::codegen {
 using namespace GiNaC;
@@ -125,48 +127,143 @@ bool planar_inverse_inertia(plan& pl, const body& b, lst& subs)
 
 // Engine convention for one 3-D body: g = inv_I (r x n) with the inverse tensor's
 // entries as inputs; the determinant step is no longer needed.
-bool tensor_inverse_inertia(plan& pl, std::size_t i)
+//
+// The tensor falls into blocks of axes coupled by non-zero off-diagonal entries (a
+// diagonal tensor: three blocks of one axis each), and its inverse has the same
+// blocks. A block of numbers is inverted exactly here; a block of one symbol I gets
+// the input inv_I = 1/I (and I becomes 1/inv_I wherever else it appears; an
+// isotropic ["I", "I", "I"] has one input); a larger block of symbols takes its
+// inverse's entries as inputs, one per entry. Refused, with the reason: an entry that
+// is an expression; a larger block that mixes numbers and symbols (the inverse's
+// entries there are neither numbers nor inputs: they depend on the numbers and the
+// symbols together); a symbol of a larger block that stands for two entries or
+// appears anywhere else in the problem (its inverse entry cannot stand for it there).
+bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
 {
     const problem& q = pl.prob;
     const body& b = q.bodies[i];
     solution& s = pl.sol;
+    const mat3& I = b.inertia;
     bool symbolic = false;
-    for (auto& row : b.inertia)
+    for (auto& row : I)
         for (auto& c : row)
-            symbolic = symbolic || !is_a<numeric>(c);
+            symbolic = symbolic || !is_constant(c);
     if (!symbolic)
         return false; // a known tensor is inverted exactly at generation time
+    const std::string who = names::display_text(b.name);
+    auto entry = [&](int r, int c) { return q.axes[std::min(r, c)] + q.axes[std::max(r, c)]; };
+    auto quantity_name = [&](int r, int c) { return "I" + suffix(b.label) + "_" + entry(r, c); };
+
+    // Blocks: axes joined by a non-zero off-diagonal entry.
+    int block_of[3] = {0, 1, 2};
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            if (!tidy(I[r][c]).is_zero()) {
+                const int from = block_of[c], to = block_of[r];
+                for (int& x : block_of)
+                    if (x == from)
+                        x = to;
+            }
+    mat3 K = zero_mat();
+    for (int first = 0; first < 3; ++first) {
+        std::vector<int> axes;
+        for (int a = 0; a < 3; ++a)
+            if (block_of[a] == first)
+                axes.push_back(a);
+        if (axes.empty())
+            continue;
+        const unsigned n = static_cast<unsigned>(axes.size());
+        bool constant = true, all_symbols = true;
+        for (int r : axes)
+            for (int c : axes) {
+                constant = constant && is_constant(I[r][c]);
+                all_symbols = all_symbols && is_a<symbol>(I[r][c]);
+            }
+        if (constant) { // numbers: the inverse block exactly
+            matrix M(n, n);
+            for (unsigned r = 0; r < n; ++r)
+                for (unsigned c = 0; c < n; ++c)
+                    M(r, c) = I[axes[r]][axes[c]];
+            matrix Minv = M.inverse();
+            for (unsigned r = 0; r < n; ++r)
+                for (unsigned c = 0; c < n; ++c)
+                    K[axes[r]][axes[c]] = tidy(Minv(r, c));
+            continue;
+        }
+        if (n == 1) { // one symbol: inv_I = 1/I, shared by every entry (and body) it stands for
+            const int a = axes[0];
+            const ex& old = I[a][a];
+            if (!is_a<symbol>(old))
+                throw option_error(option_error::inverse_inertia, "the inertia entry " + entry(a, a) + " of " + who +
+                                                                       " is neither a number nor a single symbol");
+            auto known = pl.inverse_of.find(old);
+            if (known != pl.inverse_of.end()) {
+                K[a][a] = known->second;
+                continue;
+            }
+            std::vector<std::string> where; // an isotropic tensor: one symbol on every diagonal entry
+            for (int d = 0; d < 3; ++d)
+                if (I[d][d].is_equal(old))
+                    where.push_back(entry(d, d));
+            symbol k = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " + join(where, ", ") +
+                                                   (where.size() > 1 ? " entries" : " entry") + " (= 1/" + ex_to<symbol>(old).get_name() + ")");
+            subs.append(old == 1 / k);
+            K[a][a] = k;
+            continue;
+        }
+        std::string block_axes;
+        for (int a : axes)
+            block_axes += q.axes[static_cast<std::size_t>(a)];
+        if (!all_symbols) {
+            std::vector<std::string> numbers, names, exprs;
+            for (std::size_t r = 0; r < n; ++r)
+                for (std::size_t c = r; c < n; ++c) {
+                    const ex& x = I[axes[r]][axes[c]];
+                    if (is_constant(x)) {
+                        numbers.push_back(entry(axes[r], axes[c]) + " = " + shown(x));
+                        names.push_back(quantity_name(axes[r], axes[c]));
+                    } else if (!is_a<symbol>(x)) {
+                        exprs.push_back(entry(axes[r], axes[c]));
+                    }
+                }
+            if (!exprs.empty())
+                throw option_error(option_error::inverse_inertia,
+                                   "the inertia entry " + exprs[0] + " of " + who +
+                                       " is not a single symbol (the entries of a tensor whose axes " + block_axes +
+                                       " are coupled are replaced by its inverse's entries, one input each)");
+            throw option_error(option_error::inverse_inertia,
+                               "the inertia tensor of " + who + " couples the axes " + block_axes +
+                                   " (non-zero off-diagonal entries), and in that block numbers (" + join(numbers, ", ") +
+                                   ") stand beside symbols: the entries of the inverse there depend on both, so they are "
+                                   "neither inputs nor numbers. Make every entry of the block a symbol (name " +
+                                   join(names, ", ") + " in --params) or a number");
+        }
+        // A block of distinct symbols, each standing for its entry only.
+        problem copy = q;
+        const std::vector<quantity> all = quantities(copy);
+        for (std::size_t r = 0; r < n; ++r)
+            for (std::size_t c = r; c < n; ++c) {
+                const int ar = axes[r], ac = axes[c];
+                const ex& old = I[ar][ac];
+                const std::string own = quantity_name(ar, ac);
+                for (const quantity& other : all)
+                    if (other.name != own && other.value->has(old))
+                        throw option_error(option_error::inverse_inertia,
+                                           "the symbol " + names::display_text(ex_to<symbol>(old).get_name()) +
+                                               " is the inertia entry " + entry(ar, ac) + " of " + who + " and also appears in " +
+                                               names::display_text(other.name) + ": the inverse tensor's entry that replaces it "
+                                               "cannot stand for it there (give that quantity its own symbol)");
+                K[ar][ac] = K[ac][ar] = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " +
+                                                                    entry(ar, ac) + " entry", false);
+            }
+    }
+    pl.inverse_tensor[i] = K;
     vec3 tau = cross(q.contact.point - b.position, pl.deriv.n_hat);
     vec3 t;
     for (int c = 0; c < 3; ++c) {
         const step* ts = s.find(step_role::lever_arm, i, c);
         t[c] = ts ? ex(ts->sym) : tau[c].normal();
     }
-    mat3 K = zero_mat();
-    bool diagonal = true;
-    for (int r = 0; r < 3; ++r)
-        for (int c = r + 1; c < 3; ++c)
-            diagonal = diagonal && b.inertia[r][c].is_zero();
-    for (int r = 0; r < 3; ++r)
-        for (int c = r; c < 3; ++c) {
-            const ex& old = b.inertia[r][c];
-            if (diagonal && r != c)
-                continue; // the inverse of a diagonal tensor is diagonal
-            if (diagonal && is_a<numeric>(old)) {
-                K[r][r] = 1 / old;
-                continue;
-            }
-            if (!is_a<symbol>(old))
-                throw option_error(option_error::inverse_inertia,
-                                   "the inertia entry " + q.axes[r] + q.axes[c] + " of " + names::display_text(b.name) +
-                                       (diagonal ? " is neither a number nor a single symbol"
-                                                 : " is not a single symbol (a full tensor takes its inverse's six entries as "
-                                                   "inputs; a diagonal one may mix numbers and symbols)"));
-            K[r][c] = K[c][r] = inverse_symbol(pl, old,
-                                               "inverse inertia tensor of " + b.name + " (world axes), " + q.axes[r] + q.axes[c] +
-                                                   " entry" + (diagonal ? " (= 1/" + ex_to<symbol>(old).get_name() + ")" : ""),
-                                               diagonal);
-        }
     vec3 g = mul(K, t);
     for (int c = 0; c < 3; ++c) {
         step* gs = s.find(step_role::angular_response, i, c);
@@ -174,9 +271,13 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i)
             gs->value = g[c];
             continue;
         }
-        // No step: the component was too simple to name (zero, as r x n has no
-        // component there); the inverse gives zero too, or the rewrite cannot hold.
-        if (!g[c].expand().is_zero())
+        // No step: the component was too simple to name: zero (r x n has no component
+        // there, and the tensor does not couple it), or t_c / I_cc with I_cc a number
+        // (a block of one number: K_cc t_c is the same value). Otherwise the rewrite cannot hold.
+        bool fixed_row = true;
+        for (int a = 0; a < 3; ++a)
+            fixed_row = fixed_row && is_constant(K[c][a]);
+        if (!fixed_row && !g[c].expand().is_zero())
             throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
     }
     s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
@@ -194,7 +295,7 @@ void apply_inverse_inertia(plan& pl)
         const body& b = q.bodies[i];
         if (b.particle || b.infinite_mass || q.pivot_of(i))
             continue;
-        any = (q.dimension == 2 ? planar_inverse_inertia(pl, b, subs) : tensor_inverse_inertia(pl, i)) || any;
+        any = (q.dimension == 2 ? planar_inverse_inertia(pl, b, subs) : tensor_inverse_inertia(pl, i, subs)) || any;
     }
     if (!any)
         throw option_error(option_error::inverse_inertia, "no free rigid body with a symbolic inertia takes part in the contact");
@@ -360,6 +461,123 @@ void lift_quantity(problem& q, const std::string& name, const std::set<std::stri
     symmetrise(q);
 }
 
+// The vectors and tensors among the inputs and outputs (views for adapters): a
+// group whose entries are all input symbols or numbers, with at least one input.
+void plan_groups(plan& pl)
+{
+    const problem& q = pl.prob;
+    const int dim = q.dimension;
+    exset inputs(pl.inputs.begin(), pl.inputs.end());
+    auto add_input = [&](const std::string& name, int rows, int cols, std::vector<ex> entries, const std::string& meaning) {
+        bool any = false;
+        for (const ex& x : entries) {
+            if (!is_a<numeric>(x) && !inputs.count(x))
+                return;
+            any = any || inputs.count(x);
+        }
+        if (any && entries.size() > 1)
+            pl.input_groups.push_back({name, rows, cols, std::move(entries), {}, meaning});
+    };
+    auto vec = [&](const vec3& v, int from = 0) {
+        std::vector<ex> r;
+        for (int c = from; c < (from == 0 ? dim : 3); ++c)
+            r.push_back(v[c]);
+        return r;
+    };
+    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        const body& b = q.bodies[i];
+        const std::string s = suffix(b.label);
+        if (!b.infinite_mass && !b.particle && dim == 3) {
+            auto inv = pl.inverse_tensor.find(i);
+            const mat3& J = inv == pl.inverse_tensor.end() ? b.inertia : inv->second;
+            std::vector<ex> entries;
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c)
+                    entries.push_back(J[r][c]);
+            add_input((inv == pl.inverse_tensor.end() ? "I" : "inv_I") + s, 3, 3, entries,
+                      (inv == pl.inverse_tensor.end() ? "inertia tensor of " : "inverse inertia tensor of ") + b.name);
+        }
+        add_input("r" + s, dim, 1, vec(b.position), "centre of mass of " + b.name);
+        add_input("v" + s, dim, 1, vec(b.velocity), "velocity of the centre of mass of " + b.name + " before impact");
+        if (dim == 3)
+            add_input("w" + s, 3, 1, vec(b.angular_velocity), "angular velocity of " + b.name + " before impact");
+    }
+    add_input("O", dim, 1, vec(q.contact.point), "contact point");
+    add_input("n", dim, 1, vec(q.contact.normal), "contact normal");
+    for (const pivot& pv : q.pivots)
+        add_input("E" + suffix(q.bodies[pv.body].label), dim, 1, vec(pv.point), "pivot of " + q.bodies[pv.body].name);
+
+    // Outputs: every component of a vector is an output, or there is no group.
+    std::map<std::tuple<int, std::size_t>, std::vector<std::size_t>> found;
+    for (std::size_t k = 0; k < pl.outputs.size(); ++k) {
+        const output_value& ov = pl.outputs[k];
+        if (ov.kind == output_value::velocity || ov.kind == output_value::angular_velocity || ov.kind == output_value::pivot_impulse)
+            found[{static_cast<int>(ov.kind), ov.index}].push_back(k);
+    }
+    for (const auto& [key, ks] : found) {
+        const auto kind = static_cast<output_value::kind_t>(std::get<0>(key));
+        const std::size_t i = std::get<1>(key);
+        if (ks.size() < 2)
+            continue;
+        const std::string who = kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].name : q.bodies[i].name;
+        const std::string s = suffix(kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].label : q.bodies[i].label);
+        const std::string name = (kind == output_value::velocity ? "v" : kind == output_value::angular_velocity ? "w" : "R") + s;
+        const std::string meaning = kind == output_value::velocity ? "velocity of the centre of mass of " + who + " after impact"
+                                    : kind == output_value::angular_velocity ? "angular velocity of " + who + " after impact"
+                                                                              : "impulse of the pivot on " + who;
+        pl.output_groups.push_back({name, static_cast<int>(ks.size()), 1, {}, ks, meaning});
+    }
+    std::stable_sort(pl.output_groups.begin(), pl.output_groups.end(),
+                     [](const group& a, const group& b) { return a.outputs.front() < b.outputs.front(); });
+}
+
+// What a failed call returns: each output with the impulses zero, in inputs only.
+void plan_unchanged(plan& pl)
+{
+    const solution& s = pl.sol;
+    lst zero;
+    for (const step& st : s.steps)
+        if (st.role == step_role::normal_impulse)
+            zero.append(st.sym == 0);
+    for (const output_value& ov : pl.outputs) {
+        ex v = 0;
+        if (ov.kind == output_value::velocity || ov.kind == output_value::angular_velocity) {
+            v = ov.value.subs(zero);
+            // Steps left (none in practice: every change is a multiple of N) in inputs.
+            for (auto st = s.steps.rbegin(); st != s.steps.rend(); ++st)
+                if (v.has(st->sym))
+                    v = v.subs(st->sym == st->value);
+            for (const step& st : s.steps)
+                if (v.has(st.sym))
+                    throw std::logic_error("codegen: the unchanged state of " + ov.field + " still uses the step " +
+                                           st.sym.get_name());
+        }
+        pl.unchanged.push_back(v);
+    }
+}
+
+// --unit-normal: the normal's inputs are promised to be a unit vector (the header
+// checks them: invalid_normal). A constant normal must have length 1 (then the
+// option changes nothing); one of another length is refused.
+void check_unit_normal(const problem& q)
+{
+    const vec3& n = q.contact.normal;
+    const ex nn = tidy(dot(n, n));
+    if (!is_constant(nn))
+        return;
+    const decision d = decide(nn - 1);
+    if (d == decision::zero)
+        return;
+    std::string text = "(" + shown(n[0]) + ", " + shown(n[1]) + (q.dimension == 3 ? ", " + shown(n[2]) : "") + ")";
+    if (d == decision::positive || d == decision::negative)
+        throw option_error(option_error::unit_normal,
+                           "the contact normal " + text + " is a constant of length " + shown(sqrt(nn)) +
+                               ", not 1 (--unit-normal declares the normal a unit vector; without it the header normalises "
+                               "this normal itself)");
+    throw option_error(option_error::unit_normal,
+                       "whether the contact normal " + text + " has length 1 " + decision_text(d));
+}
+
 } // namespace
 
 const char* option_error::option_name(option o)
@@ -415,7 +633,11 @@ plan make_plan(const problem& p, const options& o)
 {
     plan pl;
     pl.prob = specialise(p, o);
-    pl.deriv = derive(pl.prob);
+    if (o.unit_normal)
+        check_unit_normal(pl.prob);
+    derive_options how;
+    how.unit_normal = o.unit_normal;
+    pl.deriv = derive(pl.prob, how);
     pl.sol = solve(pl.deriv);
     if (o.inverse_inertia)
         apply_inverse_inertia(pl);
@@ -423,6 +645,8 @@ plan make_plan(const problem& p, const options& o)
         apply_inverse_mass(pl);
     order_inputs(pl, o);
     plan_outputs(pl);
+    plan_groups(pl);
+    plan_unchanged(pl);
     return pl;
 }
 

@@ -3,25 +3,39 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 65 mul, 5 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 16 add, 6 min (checks), 1 branch;
-//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 17 add, 6 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 16 add, 10 min (checks), 1 branch;
+//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 17 add, 10 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_MEMBER  what the structs' member functions are declared with
+//                   (default nothing; e.g. __host__ __device__)
+//   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
+//                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
 //                   infinity checks may then pass a NaN input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER
+#endif
+#ifndef IMPACTGEN_RESTRICT
+#if defined(__GNUC__) || defined(_MSC_VER)
+#define IMPACTGEN_RESTRICT __restrict
+#else
+#define IMPACTGEN_RESTRICT
+#endif
 #endif
 #ifndef IMPACTGEN_COLD
 #if defined(__GNUC__)
@@ -41,7 +55,10 @@ namespace impactgen::generated {
 #error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
-/// Why a call computed no post-impact state (the result is then all zeros).
+/// Why a call computed no post-impact state. On any status but ok the result
+/// holds the state unchanged: the velocities as before the impact, every
+/// impulse, the approach velocity and the energy lost zero (so an engine that
+/// writes the result back unconditionally keeps its bodies' velocities).
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
@@ -49,6 +66,7 @@ enum class impact_status : int {
     invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
+    invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
     singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
     overflow             ///< finite inputs whose result overflows
 };
@@ -62,11 +80,22 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
     case impact_status::invalid_inertia: return "invalid inertia";
     case impact_status::invalid_restitution: return "invalid restitution";
     case impact_status::not_approaching: return "not approaching";
+    case impact_status::invalid_normal: return "invalid normal";
     case impact_status::singular: return "singular effective mass";
     case impact_status::overflow: return "overflow";
     }
     return "?";
 }
+
+/// Members of an input or result struct that form a vector (Cols = 1) or a
+/// matrix, row-major, for adapters such as impactgen/eigen.hpp: entry[k] points
+/// to the member, or is null where the header fixed the value (then fixed[k]).
+/// A symmetric tensor's entries (r, c) and (c, r) point to the same member.
+template <typename S, int Rows, int Cols> struct view {
+    static constexpr int rows = Rows, cols = Cols;
+    S* entry[Rows * Cols];
+    long double fixed[Rows * Cols];
+};
 
 /// Floating-point operations of one call of a generated function.
 struct op_count {
@@ -105,6 +134,79 @@ template <typename T> struct noncentral_3d_result {
     T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the unit normal: on 2 along +n, on 1 along -n
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
+    /// velocity of the centre of mass of 1 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> v1() noexcept { return {{&v_t1, &v_n1, &v_b1}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> v1() const noexcept { return {{&v_t1, &v_n1, &v_b1}, {0.0L, 0.0L, 0.0L}}; }
+    /// angular velocity of 1 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> w1() noexcept { return {{&w_t1, &w_n1, &w_b1}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> w1() const noexcept { return {{&w_t1, &w_n1, &w_b1}, {0.0L, 0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 2 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> v2() noexcept { return {{&v_t2, &v_n2, &v_b2}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> v2() const noexcept { return {{&v_t2, &v_n2, &v_b2}, {0.0L, 0.0L, 0.0L}}; }
+    /// angular velocity of 2 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> w2() noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> w2() const noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0L, 0.0L, 0.0L}}; }
+};
+
+/// The inputs of noncentral_3d by name (the same as its parameters).
+template <typename T> struct noncentral_3d_input {
+    T e; ///< coefficient of restitution, 0 <= e <= 1
+    T m1; ///< mass of 1 (> 0)
+    T I1_tt; ///< inertia tensor of 1 about its centre of mass, tt entry
+    T I1_tn; ///< inertia tensor of 1 about its centre of mass, tn entry
+    T I1_tb; ///< inertia tensor of 1 about its centre of mass, tb entry
+    T I1_nn; ///< inertia tensor of 1 about its centre of mass, nn entry
+    T I1_nb; ///< inertia tensor of 1 about its centre of mass, nb entry
+    T I1_bb; ///< inertia tensor of 1 about its centre of mass, bb entry
+    T r_t1; ///< centre of mass of 1, t
+    T r_n1; ///< centre of mass of 1, n
+    T r_b1; ///< centre of mass of 1, b
+    T v_t1; ///< velocity of the centre of mass of 1 before impact, t
+    T v_n1; ///< velocity of the centre of mass of 1 before impact, n
+    T v_b1; ///< velocity of the centre of mass of 1 before impact, b
+    T w_t1; ///< angular velocity of 1 before impact, t
+    T w_n1; ///< angular velocity of 1 before impact, n
+    T w_b1; ///< angular velocity of 1 before impact, b
+    T m2; ///< mass of 2 (> 0)
+    T I2_tt; ///< inertia tensor of 2 about its centre of mass, tt entry
+    T I2_tn; ///< inertia tensor of 2 about its centre of mass, tn entry
+    T I2_tb; ///< inertia tensor of 2 about its centre of mass, tb entry
+    T I2_nn; ///< inertia tensor of 2 about its centre of mass, nn entry
+    T I2_nb; ///< inertia tensor of 2 about its centre of mass, nb entry
+    T I2_bb; ///< inertia tensor of 2 about its centre of mass, bb entry
+    T r_t2; ///< centre of mass of 2, t
+    T r_n2; ///< centre of mass of 2, n
+    T r_b2; ///< centre of mass of 2, b
+    T v_t2; ///< velocity of the centre of mass of 2 before impact, t
+    T v_n2; ///< velocity of the centre of mass of 2 before impact, n
+    T v_b2; ///< velocity of the centre of mass of 2 before impact, b
+    T w_t2; ///< angular velocity of 2 before impact, t
+    T w_n2; ///< angular velocity of 2 before impact, n
+    T w_b2; ///< angular velocity of 2 before impact, b
+    /// inertia tensor of 1 (matrix, row-major)
+    IMPACTGEN_MEMBER view<T, 3, 3> I1() noexcept { return {{&I1_tt, &I1_tn, &I1_tb, &I1_tn, &I1_nn, &I1_nb, &I1_tb, &I1_nb, &I1_bb}, {0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 3> I1() const noexcept { return {{&I1_tt, &I1_tn, &I1_tb, &I1_tn, &I1_nn, &I1_nb, &I1_tb, &I1_nb, &I1_bb}, {0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L}}; }
+    /// centre of mass of 1 (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> r1() noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> r1() const noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0L, 0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 1 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> v1() noexcept { return {{&v_t1, &v_n1, &v_b1}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> v1() const noexcept { return {{&v_t1, &v_n1, &v_b1}, {0.0L, 0.0L, 0.0L}}; }
+    /// angular velocity of 1 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> w1() noexcept { return {{&w_t1, &w_n1, &w_b1}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> w1() const noexcept { return {{&w_t1, &w_n1, &w_b1}, {0.0L, 0.0L, 0.0L}}; }
+    /// inertia tensor of 2 (matrix, row-major)
+    IMPACTGEN_MEMBER view<T, 3, 3> I2() noexcept { return {{&I2_tt, &I2_tn, &I2_tb, &I2_tn, &I2_nn, &I2_nb, &I2_tb, &I2_nb, &I2_bb}, {0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 3> I2() const noexcept { return {{&I2_tt, &I2_tn, &I2_tb, &I2_tn, &I2_nn, &I2_nb, &I2_tb, &I2_nb, &I2_bb}, {0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L, 0.0L}}; }
+    /// centre of mass of 2 (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> r2() noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> r2() const noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0L, 0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 2 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> v2() noexcept { return {{&v_t2, &v_n2, &v_b2}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> v2() const noexcept { return {{&v_t2, &v_n2, &v_b2}, {0.0L, 0.0L, 0.0L}}; }
+    /// angular velocity of 2 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 3, 1> w2() noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0L, 0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 3, 1> w2() const noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0L, 0.0L, 0.0L}}; }
 };
 
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
@@ -123,7 +225,8 @@ template <typename T> struct noncentral_3d_result {
 //   inv_D_1 = 1 / D_1
 //   g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1
 //   g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)))
-//   g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn))
+//   g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn
+//   g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1)
 //   inv_m1 = 1 / m1
 //   w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1
 //   D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb
@@ -133,7 +236,8 @@ template <typename T> struct noncentral_3d_result {
 //   inv_D_2 = 1 / D_2
 //   g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2
 //   g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)))
-//   g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn))
+//   g_b2_p1 = I2_nn * I2_tt - I2_tn * I2_tn
+//   g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * g_b2_p1)
 //   inv_m2 = 1 / m2
 //   w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2
 //   u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1
@@ -157,13 +261,34 @@ template <typename T> struct noncentral_3d_result {
 //   out.energy_lost = T_lost
 
 namespace detail {
+/// What a failed call of noncentral_3d returns: the state unchanged (velocities as
+/// before, impulses, approach velocity and energy lost zero).
+template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void noncentral_3d_unchanged(T /*e*/, T /*m1*/, T /*I1_tt*/, T /*I1_tn*/, T /*I1_tb*/, T /*I1_nn*/, T /*I1_nb*/, T /*I1_bb*/, T /*r_t1*/, T /*r_n1*/, T /*r_b1*/, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T /*m2*/, T /*I2_tt*/, T /*I2_tn*/, T /*I2_tb*/, T /*I2_nn*/, T /*I2_nb*/, T /*I2_bb*/, T /*r_t2*/, T /*r_n2*/, T /*r_b2*/, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
+{
+    out.v_t1 = v_t1;
+    out.v_n1 = v_n1;
+    out.v_b1 = v_b1;
+    out.w_t1 = w_t1;
+    out.w_n1 = w_n1;
+    out.w_b1 = w_b1;
+    out.v_t2 = v_t2;
+    out.v_n2 = v_n2;
+    out.v_b2 = v_b2;
+    out.w_t2 = w_t2;
+    out.w_n2 = w_n2;
+    out.w_b2 = w_b2;
+    out.normal_impulse = T(0);
+    out.approach_velocity = T(0);
+    out.energy_lost = T(0);
+}
+
 /// noncentral_3d with each check right after the value it tests: the status of the
-/// inputs that fail the fast path of noncentral_3d (every member of out is then zero).
+/// inputs that fail the fast path of noncentral_3d (out then holds the state unchanged).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
-        out = noncentral_3d_result<T>{};
+        detail::noncentral_3d_unchanged(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
         return detail::all_finite(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2) ? why : impact_status::non_finite_input;
     };
     (void)fail; // a fully numeric problem may have no check left
@@ -173,6 +298,10 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
         return fail(impact_status::invalid_mass);
     if (!(m2 > T(0) && detail::finite(m2))) // mass of 2 > 0, finite
         return fail(impact_status::invalid_mass);
+    if (!(I1_tt > T(0) && detail::finite(I1_tt))) // inertia tensor of 1 positive definite: tt entry > 0, finite
+        return fail(impact_status::invalid_inertia);
+    if (!(I2_tt > T(0) && detail::finite(I2_tt))) // inertia tensor of 2 positive definite: tt entry > 0, finite
+        return fail(impact_status::invalid_inertia);
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
     const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
     const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
@@ -182,7 +311,10 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
     const T inv_D_1 = T(1) / D_1;
     const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
     const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
-    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+    const T g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn;
+    if (!(g_b1_p1 > T(0) && detail::finite(g_b1_p1))) // inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite
+        return fail(impact_status::invalid_inertia);
+    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1);
     const T inv_m1 = T(1) / m1;
     const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
     const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
@@ -194,7 +326,10 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
     const T inv_D_2 = T(1) / D_2;
     const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
     const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
-    const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn));
+    const T g_b2_p1 = I2_nn * I2_tt - I2_tn * I2_tn;
+    if (!(g_b2_p1 > T(0) && detail::finite(g_b2_p1))) // inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite
+        return fail(impact_status::invalid_inertia);
+    const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * g_b2_p1);
     const T inv_m2 = T(1) / m2;
     const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
     const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
@@ -228,7 +363,8 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
 } // namespace detail
 
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::noncentral_3d_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
@@ -276,7 +412,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     const T inv_D_1 = T(1) / D_1;
     const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
     const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
-    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+    const T g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn;
+    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1);
     const T inv_m1 = T(1) / m1;
     const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
     const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
@@ -286,7 +423,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     const T inv_D_2 = T(1) / D_2;
     const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
     const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
-    const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn));
+    const T g_b2_p1 = I2_nn * I2_tt - I2_tn * I2_tn;
+    const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * g_b2_p1);
     const T inv_m2 = T(1) / m2;
     const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
     const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
@@ -308,8 +446,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(inv_D_1), T(inv_D_2), T(-u), T(k)) > T(0)) &
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + r_n2))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
@@ -339,65 +477,75 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(const T* in, noncentral
     return noncentral_3d<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
 }
 
+/// The same with the inputs by name: noncentral_3d_input<T> in{}; in.e = ...;
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(const noncentral_3d_input<T>& in, noncentral_3d_result<T>& out) noexcept
+{
+    return noncentral_3d<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.m2, in.I2_tt, in.I2_tn, in.I2_tb, in.I2_nn, in.I2_nb, in.I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+}
+
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
 /// (order of noncentral_3d_input_names) of impact i, out[j][i] output j. The arrays
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
-/// one for their status (their outputs are zero).
+/// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[14] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_FUNC void noncentral_3d_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
-    const T* const in_e = in[0];
-    const T* const in_m1 = in[1];
-    const T* const in_I1_tt = in[2];
-    const T* const in_I1_tn = in[3];
-    const T* const in_I1_tb = in[4];
-    const T* const in_I1_nn = in[5];
-    const T* const in_I1_nb = in[6];
-    const T* const in_I1_bb = in[7];
-    const T* const in_r_t1 = in[8];
-    const T* const in_r_n1 = in[9];
-    const T* const in_r_b1 = in[10];
-    const T* const in_v_t1 = in[11];
-    const T* const in_v_n1 = in[12];
-    const T* const in_v_b1 = in[13];
-    const T* const in_w_t1 = in[14];
-    const T* const in_w_n1 = in[15];
-    const T* const in_w_b1 = in[16];
-    const T* const in_m2 = in[17];
-    const T* const in_I2_tt = in[18];
-    const T* const in_I2_tn = in[19];
-    const T* const in_I2_tb = in[20];
-    const T* const in_I2_nn = in[21];
-    const T* const in_I2_nb = in[22];
-    const T* const in_I2_bb = in[23];
-    const T* const in_r_t2 = in[24];
-    const T* const in_r_n2 = in[25];
-    const T* const in_r_b2 = in[26];
-    const T* const in_v_t2 = in[27];
-    const T* const in_v_n2 = in[28];
-    const T* const in_v_b2 = in[29];
-    const T* const in_w_t2 = in[30];
-    const T* const in_w_n2 = in[31];
-    const T* const in_w_b2 = in[32];
-    T* const out_v_t1 = out[0];
-    T* const out_v_n1 = out[1];
-    T* const out_v_b1 = out[2];
-    T* const out_w_t1 = out[3];
-    T* const out_w_n1 = out[4];
-    T* const out_w_b1 = out[5];
-    T* const out_v_t2 = out[6];
-    T* const out_v_n2 = out[7];
-    T* const out_v_b2 = out[8];
-    T* const out_w_t2 = out[9];
-    T* const out_w_n2 = out[10];
-    T* const out_w_b2 = out[11];
-    T* const out_normal_impulse = out[12];
-    T* const out_approach_velocity = out[13];
-    T* const out_energy_lost = out[14];
+    const T* IMPACTGEN_RESTRICT const in_e = in[0];
+    const T* IMPACTGEN_RESTRICT const in_m1 = in[1];
+    const T* IMPACTGEN_RESTRICT const in_I1_tt = in[2];
+    const T* IMPACTGEN_RESTRICT const in_I1_tn = in[3];
+    const T* IMPACTGEN_RESTRICT const in_I1_tb = in[4];
+    const T* IMPACTGEN_RESTRICT const in_I1_nn = in[5];
+    const T* IMPACTGEN_RESTRICT const in_I1_nb = in[6];
+    const T* IMPACTGEN_RESTRICT const in_I1_bb = in[7];
+    const T* IMPACTGEN_RESTRICT const in_r_t1 = in[8];
+    const T* IMPACTGEN_RESTRICT const in_r_n1 = in[9];
+    const T* IMPACTGEN_RESTRICT const in_r_b1 = in[10];
+    const T* IMPACTGEN_RESTRICT const in_v_t1 = in[11];
+    const T* IMPACTGEN_RESTRICT const in_v_n1 = in[12];
+    const T* IMPACTGEN_RESTRICT const in_v_b1 = in[13];
+    const T* IMPACTGEN_RESTRICT const in_w_t1 = in[14];
+    const T* IMPACTGEN_RESTRICT const in_w_n1 = in[15];
+    const T* IMPACTGEN_RESTRICT const in_w_b1 = in[16];
+    const T* IMPACTGEN_RESTRICT const in_m2 = in[17];
+    const T* IMPACTGEN_RESTRICT const in_I2_tt = in[18];
+    const T* IMPACTGEN_RESTRICT const in_I2_tn = in[19];
+    const T* IMPACTGEN_RESTRICT const in_I2_tb = in[20];
+    const T* IMPACTGEN_RESTRICT const in_I2_nn = in[21];
+    const T* IMPACTGEN_RESTRICT const in_I2_nb = in[22];
+    const T* IMPACTGEN_RESTRICT const in_I2_bb = in[23];
+    const T* IMPACTGEN_RESTRICT const in_r_t2 = in[24];
+    const T* IMPACTGEN_RESTRICT const in_r_n2 = in[25];
+    const T* IMPACTGEN_RESTRICT const in_r_b2 = in[26];
+    const T* IMPACTGEN_RESTRICT const in_v_t2 = in[27];
+    const T* IMPACTGEN_RESTRICT const in_v_n2 = in[28];
+    const T* IMPACTGEN_RESTRICT const in_v_b2 = in[29];
+    const T* IMPACTGEN_RESTRICT const in_w_t2 = in[30];
+    const T* IMPACTGEN_RESTRICT const in_w_n2 = in[31];
+    const T* IMPACTGEN_RESTRICT const in_w_b2 = in[32];
+    T* IMPACTGEN_RESTRICT const out_v_t1 = out[0];
+    T* IMPACTGEN_RESTRICT const out_v_n1 = out[1];
+    T* IMPACTGEN_RESTRICT const out_v_b1 = out[2];
+    T* IMPACTGEN_RESTRICT const out_w_t1 = out[3];
+    T* IMPACTGEN_RESTRICT const out_w_n1 = out[4];
+    T* IMPACTGEN_RESTRICT const out_w_b1 = out[5];
+    T* IMPACTGEN_RESTRICT const out_v_t2 = out[6];
+    T* IMPACTGEN_RESTRICT const out_v_n2 = out[7];
+    T* IMPACTGEN_RESTRICT const out_v_b2 = out[8];
+    T* IMPACTGEN_RESTRICT const out_w_t2 = out[9];
+    T* IMPACTGEN_RESTRICT const out_w_n2 = out[10];
+    T* IMPACTGEN_RESTRICT const out_w_b2 = out[11];
+    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[12];
+    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[13];
+    T* IMPACTGEN_RESTRICT const out_energy_lost = out[14];
+    impact_status* IMPACTGEN_RESTRICT const status_out = status;
     unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#elif defined(__GNUC__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -441,7 +589,8 @@ IMPACTGEN_FUNC void noncentral_3d_batch(long n, const T* const* in, T* const* ou
         const T inv_D_1 = T(1) / D_1;
         const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
         const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
-        const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+        const T g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn;
+        const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1);
         // one division for 1/m1, 1/m2
         const T rcp_q1 = m1 * m2;
         const T rcp_r = T(1) / rcp_q1;
@@ -455,7 +604,8 @@ IMPACTGEN_FUNC void noncentral_3d_batch(long n, const T* const* in, T* const* ou
         const T inv_D_2 = T(1) / D_2;
         const T g_t2 = (D_2_p1 * r_b2 - D_2_p2 * r_t2) * inv_D_2;
         const T g_n2 = -(inv_D_2 * (D_2_p3 * r_b2 - r_t2 * (I2_nb * I2_tt - I2_tn * I2_tb)));
-        const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * (I2_nn * I2_tt - I2_tn * I2_tn));
+        const T g_b2_p1 = I2_nn * I2_tt - I2_tn * I2_tn;
+        const T g_b2 = inv_D_2 * (D_2_p2 * r_b2 - r_t2 * g_b2_p1);
         const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
         const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
         const T k = w_1 + w_2;
@@ -476,8 +626,8 @@ IMPACTGEN_FUNC void noncentral_3d_batch(long n, const T* const* in, T* const* ou
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; determinant of the inertia tensor > 0, finite; determinant of the inertia tensor > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(inv_D_1), T(inv_D_2), T(-u), T(k)) > T(0)) &
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
                          static_cast<unsigned>(detail::finite(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (r_n2 + rcp_q1)))) != 0u;
@@ -497,7 +647,7 @@ IMPACTGEN_FUNC void noncentral_3d_batch(long n, const T* const* in, T* const* ou
         out_approach_velocity[i] = o_approach_velocity;
         if constexpr (with_energy_lost)
             out_energy_lost[i] = o_energy_lost;
-        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+        status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
     if (failed == 0)

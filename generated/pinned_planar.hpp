@@ -9,17 +9,31 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_MEMBER  what the structs' member functions are declared with
+//                   (default nothing; e.g. __host__ __device__)
+//   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
+//                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
 //                   infinity checks may then pass a NaN input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER
+#endif
+#ifndef IMPACTGEN_RESTRICT
+#if defined(__GNUC__) || defined(_MSC_VER)
+#define IMPACTGEN_RESTRICT __restrict
+#else
+#define IMPACTGEN_RESTRICT
+#endif
 #endif
 #ifndef IMPACTGEN_COLD
 #if defined(__GNUC__)
@@ -39,7 +53,10 @@ namespace impactgen::generated {
 #error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
-/// Why a call computed no post-impact state (the result is then all zeros).
+/// Why a call computed no post-impact state. On any status but ok the result
+/// holds the state unchanged: the velocities as before the impact, every
+/// impulse, the approach velocity and the energy lost zero (so an engine that
+/// writes the result back unconditionally keeps its bodies' velocities).
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
@@ -47,6 +64,7 @@ enum class impact_status : int {
     invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
+    invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
     singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
     overflow             ///< finite inputs whose result overflows
 };
@@ -60,11 +78,22 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
     case impact_status::invalid_inertia: return "invalid inertia";
     case impact_status::invalid_restitution: return "invalid restitution";
     case impact_status::not_approaching: return "not approaching";
+    case impact_status::invalid_normal: return "invalid normal";
     case impact_status::singular: return "singular effective mass";
     case impact_status::overflow: return "overflow";
     }
     return "?";
 }
+
+/// Members of an input or result struct that form a vector (Cols = 1) or a
+/// matrix, row-major, for adapters such as impactgen/eigen.hpp: entry[k] points
+/// to the member, or is null where the header fixed the value (then fixed[k]).
+/// A symmetric tensor's entries (r, c) and (c, r) point to the same member.
+template <typename S, int Rows, int Cols> struct view {
+    static constexpr int rows = Rows, cols = Cols;
+    S* entry[Rows * Cols];
+    long double fixed[Rows * Cols];
+};
 
 /// Floating-point operations of one call of a generated function.
 struct op_count {
@@ -98,6 +127,27 @@ template <typename T> struct pinned_planar_result {
     T R_y2; ///< impulse of the pivot on 2, y
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
+    /// velocity of the centre of mass of 1 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_x1, &v_y1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_x1, &v_y1}, {0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 2 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_x2, &v_y2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_x2, &v_y2}, {0.0L, 0.0L}}; }
+    /// impulse of the pivot on 2 (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> R2() noexcept { return {{&R_x2, &R_y2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> R2() const noexcept { return {{&R_x2, &R_y2}, {0.0L, 0.0L}}; }
+};
+
+/// The inputs of pinned_planar by name (the same as its parameters).
+template <typename T> struct pinned_planar_input {
+    T e; ///< coefficient of restitution, 0 <= e <= 1
+    T m1; ///< mass of 1 (> 0)
+    T l; ///< appears in r_y1, I2, r_y2, O_y
+    T v1; ///< velocity of the centre of mass of 1 before impact, x
+    T m2; ///< mass of 2 (> 0)
+    /// velocity of the centre of mass of 1 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v1_2() noexcept { return {{&v1, nullptr}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1_2() const noexcept { return {{&v1, nullptr}, {0.0L, 0.0L}}; }
 };
 
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
@@ -112,6 +162,7 @@ template <typename T> struct pinned_planar_result {
 //   w_1 = 1 / m1
 //   I_E2_p1 = l * l
 //   I_E2_p2 = I_E2_p1 * m2
+//   check_p1 = I_E2_p2 * (1/12)
 //   I_E2 = I_E2_p2 * (1/3)
 //   inv_I_E2 = 1 / I_E2
 //   w_2 = I_E2_p1 * inv_I_E2
@@ -121,7 +172,6 @@ template <typename T> struct pinned_planar_result {
 //   T_lost = -(u * N + k * N * N * (1/2))
 //   v_x2_p1 = l * N
 //   v_x2_p2 = l * v_x2_p1
-//   check_p1 = I_E2_p2 * (1/12)
 //   out.v_x1 = v1 - w_1 * N
 //   out.v_y1 = 0
 //   out.v_x2 = (1/2) * inv_I_E2 * v_x2_p2
@@ -134,13 +184,29 @@ template <typename T> struct pinned_planar_result {
 //   out.energy_lost = T_lost
 
 namespace detail {
+/// What a failed call of pinned_planar returns: the state unchanged (velocities as
+/// before, impulses, approach velocity and energy lost zero).
+template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void pinned_planar_unchanged(T /*e*/, T /*m1*/, T /*l*/, T v1, T /*m2*/, pinned_planar_result<T>& out) noexcept
+{
+    out.v_x1 = v1;
+    out.v_y1 = T(0);
+    out.v_x2 = T(0);
+    out.v_y2 = T(0);
+    out.w_z2 = T(0);
+    out.normal_impulse = T(0);
+    out.R_x2 = T(0);
+    out.R_y2 = T(0);
+    out.approach_velocity = T(0);
+    out.energy_lost = T(0);
+}
+
 /// pinned_planar with each check right after the value it tests: the status of the
-/// inputs that fail the fast path of pinned_planar (every member of out is then zero).
+/// inputs that fail the fast path of pinned_planar (out then holds the state unchanged).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
-        out = pinned_planar_result<T>{};
+        detail::pinned_planar_unchanged(e, m1, l, v1, m2, out);
         return detail::all_finite(e, m1, l, v1, m2) ? why : impact_status::non_finite_input;
     };
     (void)fail; // a fully numeric problem may have no check left
@@ -153,6 +219,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
     const T I_E2_p2 = I_E2_p1 * m2;
+    const T check_p1 = I_E2_p2 * (T(1) / T(12));
+    if (!(check_p1 > T(0) && detail::finite(check_p1))) // moment of inertia of 2 > 0, finite
+        return fail(impact_status::invalid_inertia);
     const T I_E2 = I_E2_p2 * (T(1) / T(3));
     const T inv_I_E2 = T(1) / I_E2;
     const T w_2 = I_E2_p1 * inv_I_E2;
@@ -166,9 +235,6 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T v_x2_p1 = l * N;
     const T v_x2_p2 = l * v_x2_p1;
-    const T check_p1 = I_E2_p2 * (T(1) / T(12));
-    if (!(check_p1 > T(0) && detail::finite(check_p1))) // moment of inertia of 2 > 0, finite
-        return fail(impact_status::invalid_inertia);
     out.v_x1 = v1 - w_1 * N;
     out.v_y1 = T(0);
     out.v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -187,7 +253,8 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l
 } // namespace detail
 
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
@@ -203,6 +270,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
     const T I_E2_p2 = I_E2_p1 * m2;
+    const T check_p1 = I_E2_p2 * (T(1) / T(12));
     const T I_E2 = I_E2_p2 * (T(1) / T(3));
     const T inv_I_E2 = T(1) / I_E2;
     const T w_2 = I_E2_p1 * inv_I_E2;
@@ -212,7 +280,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
     const T v_x2_p1 = l * N;
     const T v_x2_p2 = l * v_x2_p1;
-    const T check_p1 = I_E2_p2 * (T(1) / T(12));
     const T o_v_x1 = v1 - w_1 * N;
     const T o_v_y1 = T(0);
     const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -223,8 +290,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T o_R_y2 = T(0);
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(-u), T(k), T(check_p1)) > T(0)) &
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                      static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
@@ -249,32 +316,42 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(const T* in, pinned_pla
     return pinned_planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
 }
 
+/// The same with the inputs by name: pinned_planar_input<T> in{}; in.e = ...;
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(const pinned_planar_input<T>& in, pinned_planar_result<T>& out) noexcept
+{
+    return pinned_planar<T, with_energy_lost>(in.e, in.m1, in.l, in.v1, in.m2, out);
+}
+
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
 /// (order of pinned_planar_input_names) of impact i, out[j][i] output j. The arrays
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
-/// one for their status (their outputs are zero).
+/// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[9] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
-    const T* const in_e = in[0];
-    const T* const in_m1 = in[1];
-    const T* const in_l = in[2];
-    const T* const in_v1 = in[3];
-    const T* const in_m2 = in[4];
-    T* const out_v_x1 = out[0];
-    T* const out_v_y1 = out[1];
-    T* const out_v_x2 = out[2];
-    T* const out_v_y2 = out[3];
-    T* const out_w_z2 = out[4];
-    T* const out_normal_impulse = out[5];
-    T* const out_R_x2 = out[6];
-    T* const out_R_y2 = out[7];
-    T* const out_approach_velocity = out[8];
-    T* const out_energy_lost = out[9];
+    const T* IMPACTGEN_RESTRICT const in_e = in[0];
+    const T* IMPACTGEN_RESTRICT const in_m1 = in[1];
+    const T* IMPACTGEN_RESTRICT const in_l = in[2];
+    const T* IMPACTGEN_RESTRICT const in_v1 = in[3];
+    const T* IMPACTGEN_RESTRICT const in_m2 = in[4];
+    T* IMPACTGEN_RESTRICT const out_v_x1 = out[0];
+    T* IMPACTGEN_RESTRICT const out_v_y1 = out[1];
+    T* IMPACTGEN_RESTRICT const out_v_x2 = out[2];
+    T* IMPACTGEN_RESTRICT const out_v_y2 = out[3];
+    T* IMPACTGEN_RESTRICT const out_w_z2 = out[4];
+    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[5];
+    T* IMPACTGEN_RESTRICT const out_R_x2 = out[6];
+    T* IMPACTGEN_RESTRICT const out_R_y2 = out[7];
+    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[8];
+    T* IMPACTGEN_RESTRICT const out_energy_lost = out[9];
+    impact_status* IMPACTGEN_RESTRICT const status_out = status;
     unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#elif defined(__GNUC__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -286,6 +363,7 @@ IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* ou
         const T w_1 = T(1) / m1;
         const T I_E2_p1 = l * l;
         const T I_E2_p2 = I_E2_p1 * m2;
+        const T check_p1 = I_E2_p2 * (T(1) / T(12));
         const T I_E2 = I_E2_p2 * (T(1) / T(3));
         const T inv_I_E2 = T(1) / I_E2;
         const T w_2 = I_E2_p1 * inv_I_E2;
@@ -295,7 +373,6 @@ IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* ou
         const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
         const T v_x2_p1 = l * N;
         const T v_x2_p2 = l * v_x2_p1;
-        const T check_p1 = I_E2_p2 * (T(1) / T(12));
         const T o_v_x1 = v1 - w_1 * N;
         const T o_v_y1 = T(0);
         const T o_v_x2 = (T(1) / T(2)) * inv_I_E2 * v_x2_p2;
@@ -306,8 +383,8 @@ IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* ou
         const T o_R_y2 = T(0);
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; moment of inertia of 2 > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(-u), T(k), T(check_p1)) > T(0)) &
+        // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
         out_v_x1[i] = o_v_x1;
@@ -321,7 +398,7 @@ IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* ou
         out_approach_velocity[i] = o_approach_velocity;
         if constexpr (with_energy_lost)
             out_energy_lost[i] = o_energy_lost;
-        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+        status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
     if (failed == 0)

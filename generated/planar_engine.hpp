@@ -9,17 +9,31 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_MEMBER  what the structs' member functions are declared with
+//                   (default nothing; e.g. __host__ __device__)
+//   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
+//                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
 //                   infinity checks may then pass a NaN input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
+#endif
+#ifndef IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER
+#endif
+#ifndef IMPACTGEN_RESTRICT
+#if defined(__GNUC__) || defined(_MSC_VER)
+#define IMPACTGEN_RESTRICT __restrict
+#else
+#define IMPACTGEN_RESTRICT
+#endif
 #endif
 #ifndef IMPACTGEN_COLD
 #if defined(__GNUC__)
@@ -39,7 +53,10 @@ namespace impactgen::generated {
 #error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
-/// Why a call computed no post-impact state (the result is then all zeros).
+/// Why a call computed no post-impact state. On any status but ok the result
+/// holds the state unchanged: the velocities as before the impact, every
+/// impulse, the approach velocity and the energy lost zero (so an engine that
+/// writes the result back unconditionally keeps its bodies' velocities).
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
@@ -47,6 +64,7 @@ enum class impact_status : int {
     invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
+    invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
     singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
     overflow             ///< finite inputs whose result overflows
 };
@@ -60,11 +78,22 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
     case impact_status::invalid_inertia: return "invalid inertia";
     case impact_status::invalid_restitution: return "invalid restitution";
     case impact_status::not_approaching: return "not approaching";
+    case impact_status::invalid_normal: return "invalid normal";
     case impact_status::singular: return "singular effective mass";
     case impact_status::overflow: return "overflow";
     }
     return "?";
 }
+
+/// Members of an input or result struct that form a vector (Cols = 1) or a
+/// matrix, row-major, for adapters such as impactgen/eigen.hpp: entry[k] points
+/// to the member, or is null where the header fixed the value (then fixed[k]).
+/// A symmetric tensor's entries (r, c) and (c, r) point to the same member.
+template <typename S, int Rows, int Cols> struct view {
+    static constexpr int rows = Rows, cols = Cols;
+    S* entry[Rows * Cols];
+    long double fixed[Rows * Cols];
+};
 
 /// Floating-point operations of one call of a generated function.
 struct op_count {
@@ -97,6 +126,43 @@ template <typename T> struct planar_engine_result {
     T normal_impulse; ///< normal impulse, integral of N dt >= 0 along the unit normal: on 2 along +n, on 1 along -n
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
+    /// velocity of the centre of mass of 1 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 2 after impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+};
+
+/// The inputs of planar_engine by name (the same as its parameters).
+template <typename T> struct planar_engine_input {
+    T e; ///< coefficient of restitution, 0 <= e <= 1
+    T inv_m1; ///< inverse mass 1/m of 1 (> 0)
+    T inv_I1; ///< inverse moment of inertia 1/I of 1 about its centre of mass (> 0)
+    T r_t1; ///< centre of mass of 1, t
+    T r_n1; ///< centre of mass of 1, n
+    T v_t1; ///< velocity of the centre of mass of 1 before impact, t
+    T v_n1; ///< velocity of the centre of mass of 1 before impact, n
+    T w_b1; ///< angular velocity of 1 before impact, b
+    T inv_m2; ///< inverse mass 1/m of 2 (> 0)
+    T inv_I2; ///< inverse moment of inertia 1/I of 2 about its centre of mass (> 0)
+    T r_t2; ///< centre of mass of 2, t
+    T r_n2; ///< centre of mass of 2, n
+    T v_t2; ///< velocity of the centre of mass of 2 before impact, t
+    T v_n2; ///< velocity of the centre of mass of 2 before impact, n
+    T w_b2; ///< angular velocity of 2 before impact, b
+    /// centre of mass of 1 (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 1 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    /// centre of mass of 2 (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
+    /// velocity of the centre of mass of 2 before impact (vector)
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
 };
 
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
@@ -127,13 +193,28 @@ template <typename T> struct planar_engine_result {
 //   out.energy_lost = T_lost
 
 namespace detail {
+/// What a failed call of planar_engine returns: the state unchanged (velocities as
+/// before, impulses, approach velocity and energy lost zero).
+template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void planar_engine_unchanged(T /*e*/, T /*inv_m1*/, T /*inv_I1*/, T /*r_t1*/, T /*r_n1*/, T v_t1, T v_n1, T w_b1, T /*inv_m2*/, T /*inv_I2*/, T /*r_t2*/, T /*r_n2*/, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
+{
+    out.v_t1 = v_t1;
+    out.v_n1 = v_n1;
+    out.w_b1 = w_b1;
+    out.v_t2 = v_t2;
+    out.v_n2 = v_n2;
+    out.w_b2 = w_b2;
+    out.normal_impulse = T(0);
+    out.approach_velocity = T(0);
+    out.energy_lost = T(0);
+}
+
 /// planar_engine with each check right after the value it tests: the status of the
-/// inputs that fail the fast path of planar_engine (every member of out is then zero).
+/// inputs that fail the fast path of planar_engine (out then holds the state unchanged).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
     auto fail = [&](impact_status why) noexcept {
-        out = planar_engine_result<T>{};
+        detail::planar_engine_unchanged(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
         return detail::all_finite(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2) ? why : impact_status::non_finite_input;
     };
     (void)fail; // a fully numeric problem may have no check left
@@ -174,7 +255,8 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1,
 } // namespace detail
 
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then every member of out is zero). T: float, double, long double or alike.
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
 /// The checks do not branch one by one: they are folded into one flag, and only
 /// inputs that fail one of them take the slow path (detail::planar_engine_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
@@ -237,41 +319,51 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(const T* in, planar_eng
     return planar_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
 }
 
+/// The same with the inputs by name: planar_engine_input<T> in{}; in.e = ...;
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(const planar_engine_input<T>& in, planar_engine_result<T>& out) noexcept
+{
+    return planar_engine<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.inv_m2, in.inv_I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out);
+}
+
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
 /// (order of planar_engine_input_names) of impact i, out[j][i] output j. The arrays
 /// must not overlap. A first pass computes every impact without branches (it
 /// vectorises); if any impact failed a check, a second pass redoes those one by
-/// one for their status (their outputs are zero).
+/// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_FUNC void planar_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
 {
-    const T* const in_e = in[0];
-    const T* const in_inv_m1 = in[1];
-    const T* const in_inv_I1 = in[2];
-    const T* const in_r_t1 = in[3];
-    const T* const in_r_n1 = in[4];
-    const T* const in_v_t1 = in[5];
-    const T* const in_v_n1 = in[6];
-    const T* const in_w_b1 = in[7];
-    const T* const in_inv_m2 = in[8];
-    const T* const in_inv_I2 = in[9];
-    const T* const in_r_t2 = in[10];
-    const T* const in_r_n2 = in[11];
-    const T* const in_v_t2 = in[12];
-    const T* const in_v_n2 = in[13];
-    const T* const in_w_b2 = in[14];
-    T* const out_v_t1 = out[0];
-    T* const out_v_n1 = out[1];
-    T* const out_w_b1 = out[2];
-    T* const out_v_t2 = out[3];
-    T* const out_v_n2 = out[4];
-    T* const out_w_b2 = out[5];
-    T* const out_normal_impulse = out[6];
-    T* const out_approach_velocity = out[7];
-    T* const out_energy_lost = out[8];
+    const T* IMPACTGEN_RESTRICT const in_e = in[0];
+    const T* IMPACTGEN_RESTRICT const in_inv_m1 = in[1];
+    const T* IMPACTGEN_RESTRICT const in_inv_I1 = in[2];
+    const T* IMPACTGEN_RESTRICT const in_r_t1 = in[3];
+    const T* IMPACTGEN_RESTRICT const in_r_n1 = in[4];
+    const T* IMPACTGEN_RESTRICT const in_v_t1 = in[5];
+    const T* IMPACTGEN_RESTRICT const in_v_n1 = in[6];
+    const T* IMPACTGEN_RESTRICT const in_w_b1 = in[7];
+    const T* IMPACTGEN_RESTRICT const in_inv_m2 = in[8];
+    const T* IMPACTGEN_RESTRICT const in_inv_I2 = in[9];
+    const T* IMPACTGEN_RESTRICT const in_r_t2 = in[10];
+    const T* IMPACTGEN_RESTRICT const in_r_n2 = in[11];
+    const T* IMPACTGEN_RESTRICT const in_v_t2 = in[12];
+    const T* IMPACTGEN_RESTRICT const in_v_n2 = in[13];
+    const T* IMPACTGEN_RESTRICT const in_w_b2 = in[14];
+    T* IMPACTGEN_RESTRICT const out_v_t1 = out[0];
+    T* IMPACTGEN_RESTRICT const out_v_n1 = out[1];
+    T* IMPACTGEN_RESTRICT const out_w_b1 = out[2];
+    T* IMPACTGEN_RESTRICT const out_v_t2 = out[3];
+    T* IMPACTGEN_RESTRICT const out_v_n2 = out[4];
+    T* IMPACTGEN_RESTRICT const out_w_b2 = out[5];
+    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[6];
+    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[7];
+    T* IMPACTGEN_RESTRICT const out_energy_lost = out[8];
+    impact_status* IMPACTGEN_RESTRICT const status_out = status;
     unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#elif defined(__GNUC__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -319,7 +411,7 @@ IMPACTGEN_FUNC void planar_engine_batch(long n, const T* const* in, T* const* ou
         out_approach_velocity[i] = o_approach_velocity;
         if constexpr (with_energy_lost)
             out_energy_lost[i] = o_energy_lost;
-        status[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
+        status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
     if (failed == 0)
