@@ -337,6 +337,7 @@ public:
         fast_function();
         array_form();
         struct_form();
+        jacobian_function();
         batch_form();
         tables();
         header out;
@@ -378,6 +379,18 @@ private:
         }
         for (const std::string& nm : input_names_)
             in_ptr_[nm] = scope_.claim("in_" + nm);
+        if (pl_.has_jacobian) {
+            for (const step& st : pl_.jac.steps)
+                jac_step_names_.push_back(scope_.claim(st.sym.get_name()));
+            for (const symbol& x : pl_.jac.wrt)
+                wrt_names_.push_back(input_ident.at(x));
+            for (const output_value& ov : pl_.outputs) {
+                std::vector<std::string> row;
+                for (const std::string& w : wrt_names_)
+                    row.push_back(scope_.claim("d_" + ov.field + "_d_" + w));
+                jac_local_.push_back(row);
+            }
+        }
         input_ident_ = input_ident;
         status_ptr_ = scope_.claim("status_out");
         // The input struct's members are the parameters' names; the views of both
@@ -409,6 +422,24 @@ private:
             prog_.set_owner(ov.field);
             outs_.push_back({ov.field, prog_.lower(pool_, v)});
             outs_local_.push_back({local_of_.at(ov.field), outs_.back().second});
+        }
+        if (pl_.has_jacobian) {
+            const std::size_t base = s.steps.size();
+            for (std::size_t i = 0; i < pl_.jac.steps.size(); ++i) {
+                const std::string& nm = jac_step_names_[i];
+                scaled v = pool_.convert(pl_.jac.steps[i].value);
+                pool_.bind_step(pl_.jac.steps[i].sym, static_cast<int>(base + i), nm);
+                prog_.set_owner(nm);
+                int id = prog_.lower(pool_, v);
+                prog_.set_step(static_cast<int>(base + i), id);
+                if (!prog_.is_leaf(id) && !var_names_.count(id))
+                    var_names_[id] = nm;
+            }
+            for (std::size_t o = 0; o < pl_.outputs.size(); ++o)
+                for (std::size_t j = 0; j < wrt_names_.size(); ++j) {
+                    prog_.set_owner(jac_local_[o][j]);
+                    jac_outs_.push_back({jac_local_[o][j], prog_.lower(pool_, pool_.convert(pl_.jac.entries[o][j]))});
+                }
         }
         lst inverses; // the engine convention: a mass m is 1/inv_m
         for (const auto& [old, inv] : pl_.inverse_of)
@@ -551,6 +582,15 @@ private:
         };
         fast_terms_ = finite_terms(fast_);
         batch_terms_ = finite_terms(batch_);
+        if (pl_.has_jacobian) {
+            std::vector<std::pair<std::string, int>> all = outs_local_;
+            all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
+            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, true);
+            jac_terms_ = finite_terms(jac_);
+            for (const auto& [local, id] : jac_outs_)
+                if (needs_check(id))
+                    jac_terms_.push_back(local);
+        }
     }
 
     void banner()
@@ -756,6 +796,57 @@ private:
         h_ << "out);\n}\n\n";
     }
 
+    // Values and the dense Jacobian in one straight-line program (CSE across both).
+    void jacobian_function()
+    {
+        if (!pl_.has_jacobian)
+            return;
+        const std::string jr = o_.name + "_jacobian_result";
+        const std::size_t no = pl_.outputs.size(), nw = wrt_names_.size();
+        h_ << "inline constexpr int " << o_.name << "_wrt_count = " << nw << ";\n";
+        h_ << "/// The inputs the Jacobian differentiates by, in the order of its columns.\n";
+        h_ << "inline constexpr const char* " << o_.name << "_wrt_names[] = {";
+        for (const std::string& w : wrt_names_)
+            h_ << names::cpp_string_literal(w) << ", ";
+        h_ << "nullptr};\n\n";
+        h_ << "/// The post-impact state and its derivatives: d[i][j] = d(output i)/d(input j), outputs\n";
+        h_ << "/// in the order of " << o_.name << "_output_names, inputs in that of " << o_.name << "_wrt_names.\n";
+        h_ << "template <typename T> struct " << jr << " {\n";
+        h_ << "    " << result() << "<T> value;\n";
+        h_ << "    T d[" << no << "][" << nw << "];\n";
+        h_ << "};\n\n";
+        h_ << "/// " << o_.name << " and the exact derivatives of its outputs (velocities, impulses,\n";
+        h_ << "/// approach velocity, energy lost) by the inputs in " << o_.name << "_wrt_names: the\n";
+        h_ << "/// Jacobian of the impact map, derived symbolically (chain rule through the closed\n";
+        h_ << "/// form's steps) and sharing its arithmetic with the values. On a status other than ok\n";
+        h_ << "/// out.value holds the state unchanged and every derivative is zero (the map is not\n";
+        h_ << "/// differentiable there, or not defined).\n";
+        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(" << params() << jr << "<T>& out) noexcept\n{\n";
+        if (jac_.uses_sqrt)
+            h_ << "    using std::sqrt;\n";
+        h_ << jac_.code;
+        h_ << ok_flag("    ", jac_, jac_terms_);
+        h_ << "    if (!ok) {\n";
+        h_ << "        for (auto& row : out.d)\n";
+        h_ << "            for (T& x : row)\n";
+        h_ << "                x = T(0);\n";
+        h_ << "        return detail::" << checked() << "<T, true>(" << params_call() << "out.value);\n";
+        h_ << "    }\n";
+        for (const output_value& ov : pl_.outputs)
+            h_ << "    out.value." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
+        for (std::size_t o = 0; o < no; ++o)
+            for (std::size_t j = 0; j < nw; ++j)
+                h_ << "    out.d[" << o << "][" << j << "] = " << jac_local_[o][j] << ";\n";
+        h_ << "    return impact_status::ok;\n}\n\n";
+        h_ << "/// The same with the inputs by name.\n";
+        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(const " << input_struct() << "<T>& in, "
+           << jr << "<T>& out) noexcept\n{\n";
+        h_ << "    return " << o_.name << "_jacobian<T>(";
+        for (const std::string& nm : input_names_)
+            h_ << "in." << nm << ", ";
+        h_ << "out);\n}\n\n";
+    }
+
     // Batch form over arrays (structure of arrays), branchless so that it vectorises.
     void batch_form()
     {
@@ -862,6 +953,11 @@ private:
     std::map<ex, std::string, ex_is_less> input_ident_;
     std::vector<std::pair<std::string, int>> unchanged_outs_;
     std::string status_ptr_;
+    std::vector<std::string> jac_step_names_, wrt_names_;
+    std::vector<std::vector<std::string>> jac_local_; // [output][wrt] local of the derivative
+    std::vector<std::pair<std::string, int>> jac_outs_;
+    emitted jac_;
+    std::vector<std::string> jac_terms_;
     emitted unchanged_;
     std::vector<std::string> input_names_, step_names_;
     std::map<std::string, std::string> local_of_, out_ptr_, in_ptr_; // member -> local value / output pointer; input -> input pointer

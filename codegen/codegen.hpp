@@ -76,6 +76,18 @@ struct group {
     std::string meaning;
 };
 
+/// Derivatives of the impact map, by the chain rule through the solution's steps
+/// (forward mode, symbolically): every step s_k = f_k(inputs, earlier steps) gets
+/// d s_k/d x_j = df_k/dx_j + sum_m df_k/ds_m d s_m/d x_j, named as a step of its
+/// own when it is more than a number or a symbol, so that the values and the
+/// derivatives share one straight-line program (CSE across both).
+struct jacobian_plan {
+    std::vector<GiNaC::symbol> wrt;   ///< the inputs differentiated by, in order
+    std::vector<step> steps;          ///< derivative steps, in order of evaluation
+    /// d(output i)/d(wrt j), in inputs, solution steps and derivative steps.
+    std::vector<std::vector<GiNaC::ex>> entries;
+};
+
 /// The closed form prepared for code generation: solution steps (rewritten
 /// for the engine input conventions), outputs, and the function's inputs in order.
 struct plan {
@@ -95,8 +107,18 @@ struct plan {
     /// Each output with the impulses set to zero, in inputs only: what a failed call
     /// returns (the state unchanged; impulses, approach velocity and energy lost 0).
     std::vector<GiNaC::ex> unchanged;
+    bool has_jacobian = false;
+    jacobian_plan jac; ///< when options::jacobian
 };
 plan make_plan(const problem& p, const options& o);
+
+/// The derivatives of the plan's outputs by the inputs named (empty: every
+/// input); throws option_error(jacobian) for a name that is not an input.
+jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt);
+
+/// An output with every derivative step and solution step substituted: in inputs
+/// only (for checks and printing; large for the 3-D classes).
+GiNaC::ex in_inputs(const plan& pl, const GiNaC::ex& e);
 
 struct header {
     std::string text;

@@ -647,6 +647,10 @@ plan make_plan(const problem& p, const options& o)
     plan_outputs(pl);
     plan_groups(pl);
     plan_unchanged(pl);
+    if (o.jacobian || !o.wrt.empty()) {
+        pl.jac = plan_jacobian(pl, o.wrt);
+        pl.has_jacobian = true;
+    }
     return pl;
 }
 

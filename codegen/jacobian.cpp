@@ -1,0 +1,110 @@
+// Derivatives of the impact map for code generation: the chain rule applied
+// step by step to the solution's straight-line closed form (forward mode, exact,
+// by GiNaC's diff), so the Jacobian costs a multiple of the values, not of the
+// fully expanded formulas.
+#include "codegen.hpp"
+
+#include "names/escape.hpp"
+
+#include <set>
+
+namespace impactgen::codegen {
+using namespace GiNaC;
+
+namespace {
+
+// A derivative that is a number or a bare symbol stays inline; anything else is named.
+bool trivial(const ex& e) { return is_a<numeric>(e) || is_a<symbol>(e); }
+
+} // namespace
+
+jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
+{
+    jacobian_plan jp;
+    if (wrt.empty()) {
+        jp.wrt = pl.inputs;
+    } else {
+        std::set<std::string> seen;
+        for (const std::string& name : wrt) {
+            if (!seen.insert(name).second)
+                throw option_error(option_error::jacobian, names::display_text(name) + " is named twice");
+            const symbol* found = nullptr;
+            for (const symbol& x : pl.inputs)
+                if (x.get_name() == name)
+                    found = &x;
+            if (!found) {
+                std::string all;
+                for (const symbol& x : pl.inputs)
+                    all += (all.empty() ? "" : ", ") + x.get_name();
+                throw option_error(option_error::jacobian,
+                                   names::display_text(name) + " is not an input of the generated function (its inputs: " +
+                                       names::display_text(all.empty() ? std::string("none") : all, 400) + ")");
+            }
+            jp.wrt.push_back(*found);
+        }
+    }
+    if (jp.wrt.empty())
+        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
+
+    const std::vector<step>& steps = pl.sol.steps;
+    const std::size_t nw = jp.wrt.size();
+    // grad[k][j] = d step_k / d wrt_j (0, a number, an input, or a derivative step's symbol).
+    std::vector<std::vector<ex>> grad(steps.size(), std::vector<ex>(nw, 0));
+    // The earlier steps each step (or output) uses directly.
+    auto used_steps = [&](const ex& v, std::size_t before) {
+        std::vector<std::size_t> r;
+        for (std::size_t m = 0; m < before; ++m)
+            if (v.has(steps[m].sym))
+                r.push_back(m);
+        return r;
+    };
+    auto derivative = [&](const ex& v, const std::vector<std::size_t>& uses, std::size_t j) {
+        ex d = v.diff(jp.wrt[j]);
+        for (std::size_t m : uses)
+            if (!grad[m][j].is_zero())
+                d += v.diff(steps[m].sym) * grad[m][j];
+        return d;
+    };
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        const std::vector<std::size_t> uses = used_steps(steps[k].value, k);
+        for (std::size_t j = 0; j < nw; ++j) {
+            ex d = derivative(steps[k].value, uses, j);
+            if (trivial(d)) {
+                grad[k][j] = d;
+                continue;
+            }
+            step ds;
+            ds.sym = symbol("d" + steps[k].sym.get_name() + "_d" + jp.wrt[j].get_name());
+            ds.value = d;
+            ds.meaning = "d " + steps[k].sym.get_name() + " / d " + jp.wrt[j].get_name();
+            ds.role = steps[k].role;
+            ds.body = steps[k].body;
+            ds.row = steps[k].row;
+            ds.column = steps[k].column;
+            jp.steps.push_back(ds);
+            grad[k][j] = ds.sym;
+        }
+    }
+    for (const output_value& ov : pl.outputs) {
+        const std::vector<std::size_t> uses = used_steps(ov.value, steps.size());
+        std::vector<ex> row;
+        for (std::size_t j = 0; j < nw; ++j)
+            row.push_back(derivative(ov.value, uses, j));
+        jp.entries.push_back(row);
+    }
+    return jp;
+}
+
+ex in_inputs(const plan& pl, const ex& e)
+{
+    ex v = e;
+    for (auto st = pl.jac.steps.rbegin(); st != pl.jac.steps.rend(); ++st)
+        if (v.has(st->sym))
+            v = v.subs(st->sym == st->value);
+    for (auto st = pl.sol.steps.rbegin(); st != pl.sol.steps.rend(); ++st)
+        if (v.has(st->sym))
+            v = v.subs(st->sym == st->value);
+    return v;
+}
+
+} // namespace impactgen::codegen
