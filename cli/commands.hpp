@@ -17,6 +17,20 @@ namespace impactgen::cli {
 problem load(const std::string& class_or_file);
 
 void register_explain(CLI::App& app, std::function<int()>& action);
+
+} // namespace impactgen::cli
+
+#include "codegen/codegen.hpp"
+#include <nlohmann/json.hpp>
+
+namespace impactgen::cli {
+
+/// formulas --jacobian [--wrt a,b]: the codegen plan with its Jacobian, and its printers.
+codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt);
+std::string jacobian_text(const codegen::plan& pl);
+std::string jacobian_latex(const codegen::plan& pl);
+nlohmann::ordered_json jacobian_json(const codegen::plan& pl);
+
 void register_codegen(CLI::App& app, std::function<int()>& action);
 
 } // namespace impactgen::cli

@@ -69,9 +69,22 @@ int cmd_solve(const std::string& what, bool json)
     return 0;
 }
 
-int cmd_formulas(const std::string& what, const std::string& format)
+int cmd_formulas(const std::string& what, const std::string& format, bool jacobian, const std::string& wrt)
 {
     problem p = load(what);
+    if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
+        codegen::plan pl = cli::jacobian_plan_for(p, wrt);
+        if (format == "json") {
+            nlohmann::ordered_json a = print::answer_json(pl.deriv, pl.sol, true);
+            a["jacobian"] = cli::jacobian_json(pl);
+            std::cout << a.dump(2) << "\n";
+        } else if (format == "latex") {
+            std::cout << print::formulas_latex(pl.deriv, pl.sol) << cli::jacobian_latex(pl);
+        } else {
+            std::cout << print::formulas_text(pl.deriv, pl.sol) << cli::jacobian_text(pl);
+        }
+        return 0;
+    }
     derivation d = derive(p);
     solution s = solve(d);
     if (format == "json")
@@ -109,8 +122,13 @@ int cmd_bench(int repeats)
 } // namespace
 
 namespace {
+struct formulas_args {
+    bool jacobian = false;
+    std::string wrt;
+};
 int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
-             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats);
+             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats,
+             const formulas_args& fa);
 } // namespace
 
 int main(int argc, char** argv)
@@ -134,6 +152,11 @@ int main(int argc, char** argv)
     auto* formulas = app.add_subcommand("formulas", "Closed-form formulas for a named class or a problem file");
     formulas->add_option("problem", what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     formulas->add_option("--format", format, "text, latex or json")->check(CLI::IsMember({"text", "latex", "json"}));
+    bool jacobian = false;
+    std::string wrt;
+    formulas->add_flag("--jacobian", jacobian,
+                       "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen --jacobian computes them");
+    formulas->add_option("--wrt", wrt, "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 
     int repeats = 5;
     auto* bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
@@ -171,7 +194,9 @@ int main(int argc, char** argv)
                   << " (usage: impactgen --help, or impactgen SUBCOMMAND --help)\n";
         return 2;
     }
-    auto run_command = [&] { return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats); };
+    auto run_command = [&] {
+        return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats, {jacobian || !wrt.empty(), wrt});
+    };
     // The time budget: every input the reader accepts is done in well under a
     // second; a run past the budget is stopped with a message, never left to hang.
     const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
@@ -199,7 +224,8 @@ int main(int argc, char** argv)
 
 namespace {
 int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
-             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats)
+             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats,
+             const formulas_args& fa)
 {
     {
         if (*list)
@@ -207,7 +233,7 @@ int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App*
         if (*solve_cmd)
             return cmd_solve(what, json);
         if (*formulas)
-            return cmd_formulas(what, format);
+            return cmd_formulas(what, format, fa.jacobian, fa.wrt);
         if (*bench)
             return cmd_bench(repeats);
         if (extra_action)

@@ -16,6 +16,12 @@ namespace {
 // A derivative that is a number or a bare symbol stays inline; anything else is named.
 bool trivial(const ex& e) { return is_a<numeric>(e) || is_a<symbol>(e); }
 
+std::string tex(const symbol& s)
+{
+    const std::string t = s.get_TeX_name();
+    return t.empty() ? s.get_name() : t;
+}
+
 } // namespace
 
 jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
@@ -74,7 +80,8 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
                 continue;
             }
             step ds;
-            ds.sym = symbol("d" + steps[k].sym.get_name() + "_d" + jp.wrt[j].get_name());
+            ds.sym = symbol("d" + steps[k].sym.get_name() + "_d" + jp.wrt[j].get_name(),
+                            "\\frac{\\partial " + tex(steps[k].sym) + "}{\\partial " + tex(jp.wrt[j]) + "}");
             ds.value = d;
             ds.meaning = "d " + steps[k].sym.get_name() + " / d " + jp.wrt[j].get_name();
             ds.role = steps[k].role;

@@ -1,0 +1,134 @@
+// impactgen formulas --jacobian: the derivatives of the impact map, printed
+// after the closed form (text, LaTeX or JSON). They are the ones the generated
+// <name>_jacobian computes: codegen's plan, chain rule through the steps.
+#include "cli/commands.hpp"
+#include "codegen/codegen.hpp"
+#include "print/canonical.hpp"
+#include "names/escape.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <sstream>
+
+namespace impactgen::cli {
+using namespace GiNaC;
+
+namespace {
+
+std::string split_list(const std::string& s, std::vector<std::string>& out)
+{
+    std::istringstream is(s);
+    std::string item;
+    while (std::getline(is, item, ','))
+        if (!item.empty())
+            out.push_back(item);
+    return s;
+}
+
+// d(output)/d(input) in the notation of the format.
+// (a velocity after impact is primed, as in the closed form)
+std::string entry_name(const codegen::output_value& ov, const symbol& x, bool latex)
+{
+    const bool after = ov.kind == codegen::output_value::velocity || ov.kind == codegen::output_value::angular_velocity;
+    const std::string out = ov.field + (after ? "'" : "");
+    if (!latex)
+        return "d " + out + " / d " + print::symbol_text(x.get_name());
+    std::string tex;
+    switch (ov.kind) {
+    case codegen::output_value::normal_impulse: tex = "N"; break;
+    case codegen::output_value::approach_velocity: tex = "u"; break;
+    case codegen::output_value::energy_lost: tex = "T_{\\mathrm{lost}}"; break;
+    default: {
+        tex = print::symbol_latex(symbol(ov.field));
+        const std::size_t sub = tex.find('_');
+        if (after)
+            tex.insert(sub == std::string::npos ? tex.size() : sub, "'");
+    }
+    }
+    return "\\frac{\\partial " + tex + "}{\\partial " + print::symbol_latex(x) + "}";
+}
+
+} // namespace
+
+codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt)
+{
+    codegen::options o;
+    o.name = "formulas";
+    o.jacobian = true;
+    split_list(wrt, o.wrt);
+    try {
+        return codegen::make_plan(p, o);
+    } catch (const codegen::option_error& e) {
+        throw input_error(std::string(e.which == codegen::option_error::jacobian ? "--wrt" : "--jacobian") + ": " + e.what());
+    }
+}
+
+std::string jacobian_text(const codegen::plan& pl)
+{
+    std::ostringstream os;
+    const codegen::jacobian_plan& j = pl.jac;
+    os << "\nJacobian of the impact map, d(output after impact)/d(input), by the chain rule through the steps above\n";
+    os << "(inputs: ";
+    for (std::size_t k = 0; k < j.wrt.size(); ++k)
+        os << (k ? ", " : "") << print::symbol_text(j.wrt[k].get_name());
+    os << ")\n\n";
+    for (const step& st : j.steps)
+        os << print::symbol_text(st.sym.get_name()) << " = " << print::canonical_text(st.value) << "\n    (" << st.meaning << ")\n";
+    std::size_t zeros = 0;
+    for (std::size_t o = 0; o < pl.outputs.size(); ++o)
+        for (std::size_t k = 0; k < j.wrt.size(); ++k) {
+            if (j.entries[o][k].is_zero()) {
+                ++zeros;
+                continue;
+            }
+            os << entry_name(pl.outputs[o], j.wrt[k], false) << " = " << print::canonical_text(j.entries[o][k]) << "\n";
+        }
+    os << "(" << zeros << " of the " << pl.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
+    return os.str();
+}
+
+std::string jacobian_latex(const codegen::plan& pl)
+{
+    std::ostringstream os;
+    const codegen::jacobian_plan& j = pl.jac;
+    os << "% Jacobian of the impact map (chain rule through the steps)\n\\begin{align*}\n";
+    std::vector<std::string> lines;
+    for (const step& st : j.steps)
+        lines.push_back(print::symbol_latex(st.sym) + " &= " + print::canonical_latex(st.value));
+    for (std::size_t o = 0; o < pl.outputs.size(); ++o)
+        for (std::size_t k = 0; k < j.wrt.size(); ++k)
+            if (!j.entries[o][k].is_zero()) {
+                const std::string lhs = entry_name(pl.outputs[o], j.wrt[k], true), rhs = print::canonical_latex(j.entries[o][k]);
+                if (lhs != rhs) // dN/de is a step already
+                    lines.push_back(lhs + " &= " + rhs);
+            }
+    for (std::size_t k = 0; k < lines.size(); ++k)
+        os << "  " << lines[k] << (k + 1 < lines.size() ? " \\\\" : "") << "\n";
+    os << "\\end{align*}\n";
+    return os.str();
+}
+
+nlohmann::ordered_json jacobian_json(const codegen::plan& pl)
+{
+    const codegen::jacobian_plan& j = pl.jac;
+    nlohmann::ordered_json r;
+    r["wrt"] = nlohmann::ordered_json::array();
+    for (const symbol& x : j.wrt)
+        r["wrt"].push_back(x.get_name());
+    r["outputs"] = nlohmann::ordered_json::array();
+    for (const codegen::output_value& ov : pl.outputs)
+        r["outputs"].push_back(ov.field);
+    r["steps"] = nlohmann::ordered_json::array();
+    for (const step& st : j.steps)
+        r["steps"].push_back({{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
+    r["entries"] = nlohmann::ordered_json::array();
+    for (std::size_t o = 0; o < pl.outputs.size(); ++o) {
+        nlohmann::ordered_json row = nlohmann::ordered_json::array();
+        for (std::size_t k = 0; k < j.wrt.size(); ++k)
+            row.push_back(print::canonical_parser(j.entries[o][k]));
+        r["entries"].push_back(row);
+    }
+    return r;
+}
+
+} // namespace impactgen::cli
