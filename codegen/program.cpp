@@ -382,13 +382,14 @@ public:
             const std::map<int, std::string>& names, const std::vector<std::string>& taken, bool branchless, bool share_divisions)
         : prog_(prog), outputs_(outputs), checks_(checks), names_(names), branchless_(branchless),
           share_divisions_(share_divisions), n_(prog.size()), reach_(n_, false), materialised_(n_, false), covered_(n_, false),
-          refs_(n_, 0), used_names_(taken.begin(), taken.end())
+          needed_(n_, false), emitted_(n_, false), refs_(n_, 0), used_names_(taken.begin(), taken.end())
     {
     }
 
     emitted run()
     {
         mark_reachable();
+        mark_needed();
         name_materialised();
         mark_covered();
         if (branchless_ && share_divisions_)
@@ -428,6 +429,44 @@ private:
                     stack.push_back(c);
                 }
         }
+    }
+
+    // Values the outputs need (through any operand). A reachable value that is not
+    // needed only serves checks: it is computed as soon as its operands are.
+    void mark_needed()
+    {
+        std::vector<int> stack;
+        for (auto& o : outputs_)
+            stack.push_back(o.second);
+        while (!stack.empty()) {
+            int id = stack.back();
+            stack.pop_back();
+            if (needed_[static_cast<std::size_t>(id)])
+                continue;
+            needed_[static_cast<std::size_t>(id)] = true;
+            const op& o = prog_.at(id);
+            for (int c : {o.a, o.b})
+                if (c >= 0)
+                    stack.push_back(c);
+        }
+    }
+
+    bool check_only(int id) const
+    {
+        return reach_[static_cast<std::size_t>(id)] && !needed_[static_cast<std::size_t>(id)];
+    }
+
+    // Whether every named value the text of id refers to has been emitted.
+    bool operands_emitted(int id) const
+    {
+        const op& o = prog_.at(id);
+        for (int c : {o.a, o.b}) {
+            if (c < 0 || prog_.is_leaf(c))
+                continue;
+            if (materialised_[static_cast<std::size_t>(c)] ? !emitted_[static_cast<std::size_t>(c)] : !operands_emitted(c))
+                return false;
+        }
+        return true;
     }
 
     // A variable for every named step, every value used twice and every checked value.
@@ -533,6 +572,11 @@ private:
             add_unique(out_.nonneg_terms, x);
             add_unique(out_.nonneg_terms, "T(1) - " + (p < 2 ? "(" + x + ")" : x));
             break;
+        case check::normal_number: add_unique(out_.normal_terms, x); break;
+        case check::near_one:
+            add_unique(out_.nonneg_terms, (p < 2 ? "(" + x + ")" : x) + " - " + unit_bound(-1));
+            add_unique(out_.nonneg_terms, unit_bound(+1) + " - " + (p < 2 ? "(" + x + ")" : x));
+            break;
         }
         // (unless the finiteness of the outputs implies it)
         if (!covered_[static_cast<std::size_t>(id)])
@@ -556,10 +600,19 @@ private:
             case check::positive: cond = x + " > T(0) && detail::finite(" + x + ")"; break;
             case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
             case check::negative: cond = x + " < T(0)"; break;
+            case check::normal_number: cond = x + " >= std::numeric_limits<T>::min() && detail::finite(" + x + ")"; break;
+            case check::near_one: cond = x + " >= " + unit_bound(-1) + " && " + x + " <= " + unit_bound(+1); break;
             }
             out_.code += "    if (!(" + cond + ")) // " + names::comment_text(c.comment) + "\n";
             out_.code += "        return fail(impact_status::" + c.status + ");\n";
         }
+    }
+
+    // 1 - 2^-17 or 1 + 2^-17, the bounds of check::near_one, exact in float.
+    static std::string unit_bound(int sign)
+    {
+        const long d = unit_tolerance_denominator;
+        return "(T(" + std::to_string(d + sign) + ") / T(" + std::to_string(d) + "))";
     }
 
     std::string fresh(const std::string& base)
@@ -573,6 +626,7 @@ private:
     void emit_group(const std::vector<int>& members)
     {
         std::string& code = out_.code;
+        out_.shares_reciprocals = true;
         auto den = [&](int id) { return prog_.at(prog_.at(id).b).name; };
         std::string list;
         for (int id : members)
@@ -622,28 +676,67 @@ private:
             code += "    const T " + var_[pairs[j][1]] + " = " + den(pairs[j][0]) + " * " + s[j] + ";\n";
             out_.formula.mul += 2;
         }
-        for (int id : members)
+        for (int id : members) {
+            emitted_[static_cast<std::size_t>(id)] = true;
             emit_checks(id);
+        }
     }
 
-    // The materialised values in program order, each followed by its checks.
+    void emit_value(int id)
+    {
+        int p;
+        out_.code += "    const T " + var_[id] + " = " + printer_().text(id, p, true) + ";\n";
+        if (!branchless_)
+            out_.assignments.push_back({var_[id], math_().text(id, p, true)});
+        emitted_[static_cast<std::size_t>(id)] = true;
+        emit_checks(id);
+    }
+
+    // The values only checks use, each as soon as its operands are there (so that a
+    // check of the inputs, such as a principal minor of an inertia tensor, comes
+    // before the values that would fail on them).
+    void emit_ready_check_values()
+    {
+        for (bool progress = true; progress;) {
+            progress = false;
+            for (auto it = pending_.begin(); it != pending_.end();) {
+                if (operands_emitted(*it)) {
+                    const int id = *it;
+                    it = pending_.erase(it);
+                    emit_value(id);
+                    progress = true;
+                } else {
+                    ++it;
+                }
+            }
+        }
+    }
+
+    // The materialised values in program order, each followed by its checks; the
+    // values only checks use as soon as they can be computed.
     void emit_values()
     {
+        for (std::size_t i = 0; i < n_; ++i)
+            if (materialised_[i] && check_only(static_cast<int>(i)) && !grouped_.count(static_cast<int>(i)))
+                pending_.push_back(static_cast<int>(i));
+        emit_ready_check_values();
         for (std::size_t i = 0; i < n_; ++i) {
             const int id = static_cast<int>(i);
             if (reach_[i] && prog_.at(id).kind == op::sqrt_)
                 out_.uses_sqrt = true;
-            if (!materialised_[i] || grouped_.count(id)) {
-                if (group_at_.count(id))
+            if (!materialised_[i] || grouped_.count(id) || check_only(id)) {
+                if (group_at_.count(id)) {
                     emit_group(group_at_[id]);
+                    emit_ready_check_values();
+                }
                 continue;
             }
-            int p;
-            out_.code += "    const T " + var_[id] + " = " + printer_().text(id, p, true) + ";\n";
-            if (!branchless_)
-                out_.assignments.push_back({var_[id], math_().text(id, p, true)});
-            emit_checks(id);
+            emit_value(id);
+            emit_ready_check_values();
         }
+        for (std::size_t i = 0; i < n_; ++i)
+            if (materialised_[i] && !emitted_[i] && !grouped_.count(static_cast<int>(i)))
+                throw std::logic_error("code generation: a checked value was never emitted");
     }
 
     void emit_outputs()
@@ -668,12 +761,13 @@ private:
     const std::map<int, std::string>& names_;
     const bool branchless_, share_divisions_;
     const std::size_t n_;
-    std::vector<bool> reach_, materialised_, covered_;
+    std::vector<bool> reach_, materialised_, covered_, needed_, emitted_;
     std::vector<int> refs_;
     std::set<std::string> used_names_;
     std::map<int, std::string> var_;
     std::map<int, std::vector<int>> group_at_; // first member -> members
     std::set<int> grouped_;
+    std::vector<int> pending_; // values only checks use, not yet emitted, in program order
     emitted out_;
     op_counts uncounted_;
 };

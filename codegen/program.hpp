@@ -63,12 +63,27 @@ private:
 };
 
 /// What the emitted code checks and which status it returns when the check fails.
+/// A checked value that nothing but checks uses (a principal minor, the squared
+/// length of a declared-unit normal) is computed as soon as its operands are, so
+/// its check comes before the values computed after them.
 struct check {
-    enum kind_t { positive, unit_interval, negative } kind;
+    enum kind_t {
+        positive,      ///< x > 0, finite
+        unit_interval, ///< 0 <= x <= 1
+        negative,      ///< x < 0
+        normal_number, ///< x >= std::numeric_limits<T>::min(), finite: neither zero, denormal nor infinite
+        near_one       ///< |x - 1| <= unit_tolerance (the squared length of a unit vector rounded in float)
+    } kind;
     int op_id;
     std::string status;   ///< enumerator of impact_status
     std::string comment;
 };
+
+/// The tolerance of check::near_one, 2^-17 (64 float epsilons, about 7.6e-6): a vector
+/// normalised in float has |n.n - 1| of a few float epsilons, in any T the header is
+/// instantiated with; a vector whose length is off by more than about 3.8e-6 fails.
+/// As exact fractions: 1 - 2^-17 and 1 + 2^-17 (exact in float).
+inline constexpr long unit_tolerance_denominator = 131072;
 
 struct emitted {
     std::string code;     ///< the function body, indented by 4
@@ -79,7 +94,8 @@ struct emitted {
     std::vector<std::string> finite_terms;   ///< values that must be finite (tested in one sum)
     std::vector<std::string> positive_terms; ///< values that must be > 0 (their min)
     std::vector<std::string> nonneg_terms;   ///< values that must be >= 0 (their min)
-    std::vector<std::string> normal_terms;   ///< products that must be normal numbers (shared reciprocals)
+    std::vector<std::string> normal_terms;   ///< values that must be normal numbers (shared reciprocals' products, check::normal_number)
+    bool shares_reciprocals = false;         ///< reciprocals share divisions (their products are among normal_terms)
     std::vector<std::string> check_comments; ///< what the checks mean, in order
     /// Every value the checked form computes, in order, as `name = expression`
     /// from the same printer as the code (numbers written as in mathematics):

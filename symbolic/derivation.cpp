@@ -112,7 +112,7 @@ symbol fresh(const std::string& name, const std::string& tex) { return symbol(na
 
 } // namespace
 
-derivation derive(const problem& p)
+derivation derive(const problem& p, const derive_options& options)
 {
     validate(p);
     derivation d;
@@ -122,9 +122,16 @@ derivation derive(const problem& p)
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     d.impulse_form = !p.pivots.empty();
 
-    d.normal_length = sqrt(tidy(dot(p.contact.normal, p.contact.normal)));
-    for (int i = 0; i < 3; ++i)
-        d.n_hat[i] = tidy(p.contact.normal[i] / d.normal_length);
+    d.normal_assumed_unit = options.unit_normal;
+    if (options.unit_normal) {
+        d.normal_length = 1;
+        for (int i = 0; i < 3; ++i)
+            d.n_hat[i] = tidy(p.contact.normal[i]);
+    } else {
+        d.normal_length = sqrt(tidy(dot(p.contact.normal, p.contact.normal)));
+        for (int i = 0; i < 3; ++i)
+            d.n_hat[i] = tidy(p.contact.normal[i] / d.normal_length);
+    }
     contact_frame(d);
 
     // Unknowns and post-impact velocities.

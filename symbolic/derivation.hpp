@@ -57,8 +57,9 @@ struct derivation {
     std::vector<equation> equations;
     std::vector<std::string> remarks;  ///< principles that give no usable equation, and why
 
-    vec3 n_hat;                        ///< unit normal n / |n|
-    ex normal_length;                  ///< |n|
+    vec3 n_hat;                        ///< unit normal n / |n| (n itself when normal_assumed_unit)
+    ex normal_length;                  ///< |n| (1 when normal_assumed_unit)
+    bool normal_assumed_unit = false;  ///< derived with the normal taken as a unit vector (derive_options::unit_normal)
     vec3 t_dir, b_dir;                 ///< tangent directions (b_dir zero in 2-D); not unit in general
     bool frame_is_world = false;       ///< e_t, e_n, e_b are world axes (up to sign)
 
@@ -75,7 +76,15 @@ struct derivation {
     GiNaC::lst unknown_symbols() const;
 };
 
-derivation derive(const problem& p);
+struct derive_options {
+    /// The contact normal is a unit vector as given (the engine convention): n_hat = n,
+    /// never divided by |n|. Only the caller can know it (a symbolic normal's inputs are
+    /// then promised to have length 1); a constant normal of another length is the
+    /// caller's to refuse (codegen's --unit-normal does).
+    bool unit_normal = false;
+};
+
+derivation derive(const problem& p, const derive_options& options = {});
 
 /// Names a symbol of a body's quantity for printing: base, axis, body label,
 /// e.g. ("v", "t", "1", true) -> v'_t1.

@@ -164,12 +164,26 @@ solution solve(const derivation& d)
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
-                mat3 adj = adjugate(Js);
-                ex D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
-                vec3 at = mul(adj, t);
+                // A diagonal tensor (every off-diagonal entry identically zero) is inverted
+                // entry by entry: g_c = t_c / J_cc, with no determinant (J_xx J_yy J_zz, whose
+                // cube of the scale leaves float's range at I ~ 1e13 or 4e-15); otherwise
+                // g = adj(J) t / det(J).
+                bool diagonal = true;
+                for (int a = 0; a < 3; ++a)
+                    for (int c = a + 1; c < 3; ++c)
+                        diagonal = diagonal && tidy(Js[a][c]).is_zero() && tidy(Js[c][a]).is_zero();
+                vec3 at = t;
+                ex D = 1;
+                if (!diagonal) {
+                    mat3 adj = adjugate(Js);
+                    D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+                    at = mul(adj, t);
+                }
                 for (int c = 0; c < 3; ++c)
-                    sd.g[c] = sb.add(step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}", at[c] / D,
-                                     "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] + " component: change of angular velocity per unit impulse");
+                    sd.g[c] = sb.add(step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}",
+                                     diagonal ? t[c] / Js[c][c] : at[c] / D,
+                                     "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] + " component: change of angular velocity per unit impulse" +
+                                         (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)") : std::string()));
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
             }
         } else {

@@ -24,7 +24,7 @@ namespace impactgen {
 enum class step_role {
     lever_arm,              ///< (r x n) of a body about C (free) or E (pinned), one component
     pivot_inertia,          ///< a body's inertia about its pivot E (planar scalar, or a tensor entry)
-    inertia_determinant,    ///< det of a body's inertia tensor (3-D)
+    inertia_determinant,    ///< det of a body's inertia tensor (3-D; none for a diagonal tensor)
     angular_response,       ///< g = I^{-1} (r x n) of a body, one component
     effective_inverse_mass, ///< w_i of a body at the contact point along n
     approach_velocity,      ///< u = (v_B - v_A) . n before impact

@@ -621,30 +621,39 @@ TEST(CodegenStatus, BadInputs)
     EXPECT_EQ(call(1.5, 1, 2, 1, -1), impact_status::invalid_restitution);
     EXPECT_EQ(call(0.5, 1, 2, 1e300, -1e300), impact_status::overflow); // the kinetic energy overflows
 
-    // Engine convention: k = w_1 + w_2 must be positive; a negative inverse
-    // inertia entry can make it negative (singular), a tiny one overflow N.
+    // Engine convention: a tiny k = w_1 + w_2 overflows N; the inverse inertia
+    // tensors must be positive definite (their leading principal minors).
     gen::noncentral_3d_engine_result<double> r;
     double in[gen::noncentral_3d_engine_input_count] = {};
     in[0] = 0.5;      // e
     in[1] = 1e-320;   // inv_m1 (denormal, > 0)
     in[17] = 1e-320;  // inv_m2
+    for (int j : {2, 5, 7, 18, 21, 23}) // inv_I1_tt, _nn, _bb, inv_I2_tt, _nn, _bb: identity (no lever arm: k = 2e-320)
+        in[j] = 1;
     in[12] = -1;      // v_n1
     in[28] = -2;      // v_n2: u = v_n2 - v_n1 = -1 < 0, an impact
+    EXPECT_STREQ(gen::noncentral_3d_engine_input_names[2], "inv_I1_tt");
+    EXPECT_STREQ(gen::noncentral_3d_engine_input_names[7], "inv_I1_bb");
+    EXPECT_STREQ(gen::noncentral_3d_engine_input_names[23], "inv_I2_bb");
     EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::overflow)
         << "k = 2e-320: N = -(1+e) u / k overflows";
-    // Negative inverse inertia making k negative.
+    // A negative inverse inertia entry (it could make k negative) is no inverse inertia.
     in[1] = in[17] = 1;
     in[2] = -10; // inv_I1_tt
     in[10] = 1;  // r_b1, a lever arm about t
-    EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::singular);
+    EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::invalid_inertia);
+    in[2] = 1;
+    EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::ok);
+    in[3] = 2; // inv_I1_tn: the minor tt nn - tn^2 = -3 < 0, the determinant -3 too
+    EXPECT_EQ(gen::noncentral_3d_engine(static_cast<const double*>(in), r), impact_status::invalid_inertia);
 }
 
 // The fast path (one flag), the checked path (a status per check) and the batch
 // form agree on status and outputs, for valid inputs, bad inputs, and inputs whose
 // shared reciprocal products leave the normal range (the fast path then defers).
 template <typename Result, typename Fast, typename Checked, typename Batch, typename ToArray>
-void batch_agrees(const char* what, int n_in, int n_out, Fast fast, Checked checked, Batch batch, ToArray to_array,
-                  int min_ok)
+void batch_agrees(const char* what, int n_in, int n_out, const char* const* names, Fast fast, Checked checked, Batch batch,
+                  ToArray to_array, int min_ok)
 {
     using gen::impact_status;
     std::mt19937_64 rng(7);
@@ -653,11 +662,21 @@ void batch_agrees(const char* what, int n_in, int n_out, Fast fast, Checked chec
     std::vector<std::vector<double>> in(static_cast<std::size_t>(n_in), std::vector<double>(n)),
         out(static_cast<std::size_t>(n_out), std::vector<double>(n));
     const double bad[] = {std::nan(""), HUGE_VAL, -1, 0, 1e-160, 1e200, 2};
+    // The diagonal entries of 3-D (inverse) inertia tensors: most often dominant (the
+    // tensor positive definite, so that the 3-D headers compute impacts too).
+    auto tensor_diagonal = [&](int j) {
+        const std::string nm = names[j];
+        const std::size_t k = nm.rfind('_');
+        return (nm.rfind("I", 0) == 0 || nm.rfind("inv_I", 0) == 0) && k != std::string::npos && nm.size() == k + 3 &&
+               nm[k + 1] == nm[k + 2];
+    };
     for (long i = 0; i < n; ++i)
         for (int j = 0; j < n_in; ++j) {
             double x = j == 0 ? U(rng) : 0.2 + U(rng); // e in [0, 1]; masses, inertia, positions > 0
             if (j > 0 && U(rng) < 0.3)
                 x = 2 * U(rng) - 1;
+            if (tensor_diagonal(j) && U(rng) < 0.9)
+                x = 3.2 + U(rng); // > the sum of two off-diagonal entries in [-1, 1.2]
             if (U(rng) < 0.03)
                 x = bad[static_cast<std::size_t>(U(rng) * 7) % 7];
             in[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = x;
@@ -702,7 +721,7 @@ void batch_agrees(const char* what, int n_in, int n_out, Fast fast, Checked chec
 
 #define BATCH_AGREES(FN, MIN_OK)                                                                                      \
     batch_agrees<gen::FN##_result<double>>(                                                                           \
-        #FN, gen::FN##_input_count, gen::FN##_output_count,                                                           \
+        #FN, gen::FN##_input_count, gen::FN##_output_count, gen::FN##_input_names,                                    \
         [](const double* x, gen::FN##_result<double>& r) { return gen::FN(x, r); },                                   \
         [](const double* x, gen::FN##_result<double>& r) {                                                            \
             return std::apply([&](auto... v) { return gen::detail::FN##_checked(v..., r); }, to_tuple<gen::FN##_input_count>(x)); \
