@@ -118,6 +118,10 @@ nlohmann::ordered_json jacobian_json(const codegen::plan& pl)
     r["outputs"] = nlohmann::ordered_json::array();
     for (const codegen::output_value& ov : pl.outputs)
         r["outputs"].push_back(ov.field);
+    // The closed form's own steps first: the derivatives are written in them.
+    r["closed_form_steps"] = nlohmann::ordered_json::array();
+    for (const step& st : pl.sol.steps)
+        r["closed_form_steps"].push_back({{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
     r["steps"] = nlohmann::ordered_json::array();
     for (const step& st : j.steps)
         r["steps"].push_back({{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});

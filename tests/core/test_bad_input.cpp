@@ -9,6 +9,8 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <map>
+#include <random>
 #include <unistd.h>
 
 using namespace impactgen;
@@ -456,3 +458,60 @@ TEST(Reader, LongDecimalsAreExact)
 }
 
 } // namespace
+
+// formulas --jacobian --format json: the entries, written in the closed form's
+// steps and the derivative steps, equal the derivatives of the answer's own
+// formulas (in inputs only, from the solver, not from the chain rule), exactly
+// at seeded random rational points.
+TEST(Cli, FormulasJacobianMatchesDerivativesOfTheAnswer)
+{
+    for (const char* cls : {"central-direct", "central-oblique", "planar", "pinned-planar"}) {
+        run_result r = run_cli(std::string("formulas ") + cls + " --jacobian --format json");
+        ASSERT_EQ(r.code, 0) << cls << ": " << r.err;
+        auto a = nlohmann::json::parse(r.out);
+        const auto& j = a.at("jacobian");
+        auto parse = [&](const std::string& t) { return impactgen::parse_value(t, true, "jacobian test"); };
+        // Steps in order: each substituted into the later ones (from the last back).
+        std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> steps;
+        for (const char* key : {"closed_form_steps", "steps"})
+            for (const auto& st : j.at(key))
+                steps.push_back({impactgen::symbol_named(st.at("name").get<std::string>()), parse(st.at("value").get<std::string>())});
+        auto expand_steps = [&](GiNaC::ex e) {
+            for (auto it = steps.rbegin(); it != steps.rend(); ++it)
+                e = e.subs(it->first == it->second);
+            return e;
+        };
+        // The answer's formulas for some outputs, in inputs only.
+        std::map<std::string, GiNaC::ex> answer;
+        answer["normal_impulse"] = parse(a.at("normal_impulse").get<std::string>());
+        answer["energy_lost"] = parse(a.at("kinetic_energy").at("lost").get<std::string>());
+        const auto& outputs = j.at("outputs");
+        std::vector<GiNaC::symbol> wrt;
+        for (const auto& w : j.at("wrt"))
+            wrt.push_back(impactgen::symbol_named(w.get<std::string>()));
+        ASSERT_FALSE(wrt.empty());
+        std::mt19937 rng(2026);
+        int compared = 0;
+        for (int trial = 0; trial < 3; ++trial) {
+            GiNaC::lst point;
+            for (const auto& x : wrt) // positive values keep masses and inertia valid
+                point.append(x == GiNaC::numeric(static_cast<int>(rng() % 97 + 3), static_cast<int>(rng() % 13 + 7)));
+            for (std::size_t o = 0; o < outputs.size(); ++o) {
+                auto it = answer.find(outputs[o].get<std::string>());
+                if (it == answer.end())
+                    continue;
+                for (std::size_t k = 0; k < wrt.size(); ++k) {
+                    GiNaC::ex entry = expand_steps(parse(j.at("entries")[o][k].get<std::string>())).subs(point);
+                    GiNaC::ex exact = it->second.diff(wrt[k]).subs(point);
+                    EXPECT_TRUE((entry - exact).normal().is_zero())
+                        << cls << ": d " << it->first << " / d " << wrt[k] << " = " << entry << ", the answer's derivative " << exact;
+                    ++compared;
+                }
+            }
+        }
+        EXPECT_GT(compared, 0) << cls;
+    }
+    run_result bad = run_cli("formulas planar --wrt nosuch");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("--wrt: nosuch is not an input"), std::string::npos) << bad.err;
+}
