@@ -361,6 +361,10 @@ private:
         for (const std::string& r : reserved())
             if (names::is_safe_identifier(r))
                 scope_.reserve(r);
+        for (names::identifier_scope* sc : {&in_members_, &members_})
+            for (const char* own : {"view", "T"})
+                sc->reserve(own); // a member so named would hide the template parameter or the view type
+
         for (const char* suffix : {"", "_result", "_input", "_unchanged", "_jacobian", "_jacobian_result", "_wrt_count",
                                    "_wrt_names", "_checked", "_batch", "_input_count", "_output_count", "_input_names",
                                    "_output_names", "_ops", "_to_array"})

@@ -282,7 +282,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + R2)))) != 0u;
+                     static_cast<unsigned>(detail::finite(T((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + R2))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::central_oblique_checked<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
     out.v_t1 = o_v_t1;
@@ -381,7 +381,7 @@ IMPACTGEN_FUNC void central_oblique_batch(long n, const T* const* in, T* const* 
         const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
-                         static_cast<unsigned>(detail::finite((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + (R2 + rcp_q1))))) != 0u;
+                         static_cast<unsigned>(detail::finite(T((((o_v_t1 + o_v_n1) + (o_v_b1 + o_v_t2)) + ((o_v_n2 + o_v_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + R1) + (R2 + rcp_q1)))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

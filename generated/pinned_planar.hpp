@@ -293,7 +293,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
+                     static_cast<unsigned>(detail::finite(T(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -386,7 +386,7 @@ IMPACTGEN_FUNC void pinned_planar_batch(long n, const T* const* in, T* const* ou
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::finite(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1))))) != 0u;
+                         static_cast<unsigned>(detail::finite(T(((o_v_x1 + o_v_x2) + (o_w_z2 + o_normal_impulse)) + ((o_R_x2 + o_approach_velocity) + (o_energy_lost + check_p1)))))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

@@ -16,7 +16,8 @@
 // fixed as a constant (say a zero off-diagonal inertia entry, or a normal
 // component folded in with --set): the problem the header solves is then not
 // the one the caller has. A symmetric tensor's two entries (r, c) and (c, r)
-// share one member: it takes their mean.
+// share one member: it takes their mean. Entries the header ties to one input
+// otherwise (a velocity ["a", "a", 0]) must agree, or assign() returns false.
 #pragma once
 
 #include <Eigen/Core>
@@ -52,10 +53,17 @@ IMPACTGEN_FUNC bool assign(const View& v, const Eigen::MatrixBase<Derived>& m)
                 agrees = agrees && x == static_cast<T>(v.fixed[k]);
                 continue;
             }
-            bool shared = false; // an earlier entry (the transposed one) points here too
-            for (int j = 0; j < k; ++j)
-                shared = shared || v.entry[j] == p;
-            *p = shared ? (*p + x) / T(2) : x;
+            int first = k; // the first entry that points to this member
+            for (int j = k - 1; j >= 0; --j)
+                if (v.entry[j] == p)
+                    first = j;
+            if (first == k) {
+                *p = x;
+            } else if (first == c * View::cols + r) {
+                *p = (*p + x) / T(2); // a symmetric tensor's transposed entry: their mean
+            } else {
+                agrees = agrees && *p == x; // the header ties these entries to one input
+            }
         }
     return agrees;
 }
