@@ -329,9 +329,16 @@ void order_inputs(plan& pl, const options& o)
     problem q = pl.prob;
     std::vector<quantity> all = quantities(q);
     std::map<ex, std::string, ex_is_less> meaning;
-    for (const quantity& x : all)
-        if (is_a<symbol>(*x.value))
+    for (const quantity& x : all) {
+        if (!is_a<symbol>(*x.value))
+            continue;
+        const bool normal = x.value >= &q.contact.normal[0] && x.value <= &q.contact.normal[2];
+        if (normal && o.unit_normal) // the promise --unit-normal makes, in the parameter's documentation
+            meaning.emplace(*x.value, "contact normal, a unit vector (from body 1 into body 2; |n.n - 1| <= 2^-17), " +
+                                          q.axes[static_cast<std::size_t>(x.value - &q.contact.normal[0])]);
+        else
             meaning.emplace(*x.value, x.meaning);
+    }
     std::vector<ex> order;
     if (o.params_given) {
         for (const std::string& nm : o.params)

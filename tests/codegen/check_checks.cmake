@@ -1,0 +1,51 @@
+# The validity checks of generated headers (checks_main.cpp), compiled with compiler
+# CXX and standard STD under strict warnings, and run; first the headers' text: a
+# diagonal tensor has no determinant step, a unit normal no square root.
+# -D: CXX STD MAIN INCLUDE WORK.
+foreach(h checks_diag checks_diag_engine checks_diag_unit)
+  file(READ ${INCLUDE}/${h}.hpp text)
+  string(FIND "${text}" "const T D_" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "${h}.hpp: a diagonal inertia tensor has a determinant step (const T D_...)")
+  endif()
+endforeach()
+file(READ ${INCLUDE}/checks_full.hpp text)
+string(FIND "${text}" "const T D_box" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "checks_full.hpp: a full inertia tensor has no determinant step D_box (the text check above would prove nothing)")
+endif()
+file(READ ${INCLUDE}/checks_diag_unit.hpp text)
+foreach(word "sqrt(" "#include <cmath>")
+  string(FIND "${text}" "${word}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "checks_diag_unit.hpp (--unit-normal) normalises the normal: it has ${word}")
+  endif()
+endforeach()
+file(READ ${INCLUDE}/checks_diag.hpp text)
+string(FIND "${text}" "sqrt(" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "checks_diag.hpp (no --unit-normal) has no sqrt: the text check above would prove nothing")
+endif()
+
+set(flags -std=${STD} -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wdouble-promotion -Werror -O1)
+execute_process(COMMAND ${CXX} --version OUTPUT_VARIABLE version)
+if(version MATCHES "clang")
+  # The batch loop's `#pragma clang loop vectorize(assume_safety)` warns (-Wpass-failed)
+  # where clang cannot vectorise: long double, and sqrt under math-errno (a symbolic
+  # normal). That is the batch form's concern (tests/codegen/check_vectorize.cmake);
+  # here the checks are under test, so the warning is shown but not an error.
+  list(APPEND flags -Wno-error=pass-failed)
+endif()
+get_filename_component(cxx_name ${CXX} NAME)
+set(exe ${WORK}/checks_${cxx_name}_${STD})
+file(MAKE_DIRECTORY ${WORK})
+execute_process(COMMAND ${CXX} ${flags} -I${INCLUDE} ${MAIN} -o ${exe}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${CXX} -std=${STD} does not compile ${MAIN}:\n${out}${err}")
+endif()
+execute_process(COMMAND ${exe} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${exe} failed:\n${out}${err}")
+endif()
+message(STATUS "${out}")
