@@ -317,7 +317,7 @@ struct printer {
             // exact in T when |k| <= 2^53 (and written as an integer literal); otherwise via long double
             if (abs(k) <= numeric(9007199254740992LL))
                 return "T(" + number_text(k) + ")";
-            return "T(" + number_text(k) + ".0L)";
+            return "detail::constant<T>(" + number_text(k) + ".0L)";
         };
         const numeric limit(9007199254740992LL); // 2^53
         if (x.is_integer() && abs(x) <= limit)
@@ -326,7 +326,7 @@ struct printer {
             return "(" + integer(x.numer()) + " / " + integer(x.denom()) + ")";
         // Any other number as one long double literal of 40 significant digits: never
         // T(huge) / T(huge), which overflows to inf/inf in double or float.
-        return "T(" + decimal_literal(x) + ")";
+        return "detail::constant<T>(" + decimal_literal(x) + ")";
     }
 };
 

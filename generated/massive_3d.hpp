@@ -9,8 +9,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_11CC2725_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_B1A1758A_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_B1A1758A_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
@@ -106,6 +106,23 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T 
 {
     return (finite(x) && ... && finite(y));
 }
+/// A number of the header (a long double literal) in the scalar type: directly for
+/// float, double and long double; through double for other types (autodiff
+/// scalars such as Eigen's AutoDiffScalar or ceres::Jet are built on double), so
+/// that no implicit long double conversion is left for -Wconversion to flag.
+template <typename T> struct constant_of {
+    IMPACTGEN_MEMBER static T from(long double x) noexcept { return T(static_cast<double>(x)); }
+};
+template <> struct constant_of<float> {
+    IMPACTGEN_MEMBER static constexpr float from(long double x) noexcept { return static_cast<float>(x); }
+};
+template <> struct constant_of<double> {
+    IMPACTGEN_MEMBER static constexpr double from(long double x) noexcept { return static_cast<double>(x); }
+};
+template <> struct constant_of<long double> {
+    IMPACTGEN_MEMBER static constexpr long double from(long double x) noexcept { return x; }
+};
+template <typename T> IMPACTGEN_FUNC T constant(long double x) noexcept { return constant_of<T>::from(x); }
 template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
 template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
