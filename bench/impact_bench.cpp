@@ -15,6 +15,11 @@
 // and the engine input convention (1/m and I^{-1} given, as physics engines store them):
 //   <kind>/noncentral-3d-engine and <kind>/planar-engine, generated and hand-written on the
 //   same inputs.
+// Also (jacobian_bench.cpp) jacobian/<class> and autodiff/<class> for noncentral-3d,
+// noncentral-3d-engine and planar: the generated Jacobian against forward-mode autodiff of
+// the generated function, checked to agree before they run; and (batch_kernels.cpp)
+// batch-<compiler>/planar[-engine] and batch+energy-<compiler>/planar[-engine]: the batch
+// loop built out of line by the project's compiler and by the other of g++ and clang++.
 // Counters: ns_per_impact; the operation counts of each generated function are
 // printed first (from the constexpr <name>_ops of its header).
 #include "central_direct.hpp"
@@ -26,6 +31,9 @@
 #include "planar.hpp"
 #include "planar_engine.hpp"
 #include "numeric/momentum_solver.hpp"
+
+#include "batch_kernels.hpp"
+#include "jacobian_bench.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -481,6 +489,36 @@ template <typename F> void register_hand(const std::string& name, class_data* d,
     });
 }
 
+// batch-<compiler>/<class> and batch+energy-<compiler>/<class>: one compiler's out-of-line
+// build of the batch loop (batch_kernels.cpp), on the arrays of batch/<class>.
+void register_kernel(const std::string& name, class_data* d, void (*kernel)(long, const double* const*, double* const*, void*))
+{
+    benchmark::RegisterBenchmark(name.c_str(), [d, kernel](benchmark::State& st) {
+        std::vector<const double*> in;
+        std::vector<double*> out;
+        for (auto& a : d->soa_in)
+            in.push_back(a.data());
+        for (auto& a : d->soa_out)
+            out.push_back(a.data());
+        aligned_array status_mem(kBatch); // 8 bytes per impact >= sizeof(impact_status)
+        for (auto _ : st) {
+            kernel(kBatch, in.data(), out.data(), status_mem.data());
+            benchmark::ClobberMemory();
+        }
+        per_impact(st, kBatch);
+    });
+}
+
+void register_kernels(const impactgen_bench_kernel_set* k, class_data* planar, class_data* planar_engine)
+{
+    const std::string id = k->id;
+    std::printf("%-22s batch-%s: %s\n", "batch planar", k->id, k->compiler);
+    register_kernel("batch-" + id + "/planar", planar, k->planar);
+    register_kernel("batch+energy-" + id + "/planar", planar, k->planar_energy);
+    register_kernel("batch-" + id + "/planar-engine", planar_engine, k->planar_engine);
+    register_kernel("batch+energy-" + id + "/planar-engine", planar_engine, k->planar_engine_energy);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -502,14 +540,22 @@ int main(int argc, char** argv)
     }
     REGISTER_CLASS("noncentral-3d", noncentral_3d)
     register_hand("handwritten/noncentral-3d", hand, [](const double* x, hand_out& o) { return hand_noncentral(x, false, o); });
+    register_jacobian_benchmarks("noncentral-3d", hand->in.rows);
     REGISTER_CLASS("noncentral-3d-engine", noncentral_3d_engine)
     register_hand("handwritten/noncentral-3d-engine", hand, [](const double* x, hand_out& o) { return hand_noncentral(x, true, o); });
+    register_jacobian_benchmarks("noncentral-3d-engine", hand->in.rows);
     REGISTER_CLASS("massive-3d", massive_3d)
     register_hand("handwritten/massive-3d", hand, [](const double* x, hand_out& o) { return hand_massive(x, o); });
     REGISTER_CLASS("planar", planar)
     register_hand("handwritten/planar", hand, [](const double* x, hand_out& o) { return hand_planar<false>(x, o); });
+    register_jacobian_benchmarks("planar", hand->in.rows);
+    class_data* planar_data = hand;
     REGISTER_CLASS("planar-engine", planar_engine)
     register_hand("handwritten/planar-engine", hand, [](const double* x, hand_out& o) { return hand_planar<true>(x, o); });
+    register_kernels(impactgen_bench_kernels_main(), planar_data, hand);
+#ifdef IMPACTGEN_BENCH_OTHER_KERNELS
+    register_kernels(impactgen_bench_kernels_other(), planar_data, hand);
+#endif
     REGISTER_CLASS("pinned-planar", pinned_planar)
     // inputs: e, m1, l, v1, m2
     register_hand("handwritten/pinned-planar", hand, [](const double* x, hand_out& o) { return hand_pinned(x[0], x[2], x[1], x[4], x[3], o); });
