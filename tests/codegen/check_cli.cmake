@@ -33,6 +33,17 @@ expect_error("--namespace: \"a::\": " planar --namespace a::)
 expect_error("not a regular file" planar --output /dev/null)
 expect_error("--set: e is given two values" planar --set e=1/2,e=1/3)
 expect_error("--name: \"class_\" is not a usable C" planar --name class_)
+# --wrt: a name that is not an input (or one named twice) is refused with one line that
+# names the option, the name and the inputs there are, and exit code 1.
+expect_error("^impactgen: error: --[a-z]+: nosuch is not an input of the generated function \\(its inputs: e, m1, I1, r_t1, " planar --wrt nosuch)
+expect_error("^impactgen: error: --[a-z]+: nosuch is not an input" planar --jacobian --wrt e,nosuch)
+expect_error("^impactgen: error: --[a-z]+: e is named twice" planar --wrt e,m1,e)
+execute_process(COMMAND ${IMPACTGEN} codegen planar --wrt nosuch RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
+string(REGEX MATCHALL "\n" lines "${err}")
+list(LENGTH lines n_lines)
+if(NOT rc EQUAL 1 OR NOT n_lines EQUAL 1 OR NOT out STREQUAL "")
+  message(FATAL_ERROR "codegen planar --wrt nosuch: expected exit code 1, one line on stderr and nothing on stdout, got rc=${rc}: ${err}${out}")
+endif()
 # The engine convention with an inertia that uses the mass (the rod's m2 l^2/12).
 execute_process(COMMAND ${IMPACTGEN} codegen pinned-planar --inverse-mass RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
 if(NOT rc EQUAL 0)
