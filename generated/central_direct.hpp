@@ -314,28 +314,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_direct(const central_direct_i
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[6] is not written (it may be null).
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_FUNC void central_direct_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+namespace detail {
+/// The first pass of central_direct_batch (every impact, no branch): 1 when some
+/// impact failed a check, else 0.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_FUNC unsigned central_direct_batch_pass(long n, const T* IMPACTGEN_RESTRICT in_e, const T* IMPACTGEN_RESTRICT in_m1, const T* IMPACTGEN_RESTRICT in_R1, const T* IMPACTGEN_RESTRICT in_v_n1, const T* IMPACTGEN_RESTRICT in_m2, const T* IMPACTGEN_RESTRICT in_R2, const T* IMPACTGEN_RESTRICT in_v_n2, T* IMPACTGEN_RESTRICT out_v_t1, T* IMPACTGEN_RESTRICT out_v_n1, T* IMPACTGEN_RESTRICT out_v_t2, T* IMPACTGEN_RESTRICT out_v_n2, T* IMPACTGEN_RESTRICT out_normal_impulse, T* IMPACTGEN_RESTRICT out_approach_velocity, T* IMPACTGEN_RESTRICT out_energy_lost, impact_status* IMPACTGEN_RESTRICT status_out) noexcept
 {
-    const T* IMPACTGEN_RESTRICT const in_e = in[0];
-    const T* IMPACTGEN_RESTRICT const in_m1 = in[1];
-    const T* IMPACTGEN_RESTRICT const in_R1 = in[2];
-    const T* IMPACTGEN_RESTRICT const in_v_n1 = in[3];
-    const T* IMPACTGEN_RESTRICT const in_m2 = in[4];
-    const T* IMPACTGEN_RESTRICT const in_R2 = in[5];
-    const T* IMPACTGEN_RESTRICT const in_v_n2 = in[6];
-    T* IMPACTGEN_RESTRICT const out_v_t1 = out[0];
-    T* IMPACTGEN_RESTRICT const out_v_n1 = out[1];
-    T* IMPACTGEN_RESTRICT const out_v_t2 = out[2];
-    T* IMPACTGEN_RESTRICT const out_v_n2 = out[3];
-    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[4];
-    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[5];
-    T* IMPACTGEN_RESTRICT const out_energy_lost = out[6];
-    impact_status* IMPACTGEN_RESTRICT const status_out = status;
-    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#elif defined(__GNUC__)
+    unsigned failed = 0;
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -378,6 +364,28 @@ IMPACTGEN_FUNC void central_direct_batch(long n, const T* const* in, T* const* o
         status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
+    return failed;
+}
+} // namespace detail
+
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_FUNC void central_direct_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_m1 = in[1];
+    const T* const in_R1 = in[2];
+    const T* const in_v_n1 = in[3];
+    const T* const in_m2 = in[4];
+    const T* const in_R2 = in[5];
+    const T* const in_v_n2 = in[6];
+    T* const out_v_t1 = out[0];
+    T* const out_v_n1 = out[1];
+    T* const out_v_t2 = out[2];
+    T* const out_v_n2 = out[3];
+    T* const out_normal_impulse = out[4];
+    T* const out_approach_velocity = out[5];
+    T* const out_energy_lost = out[6];
+    const unsigned failed = detail::central_direct_batch_pass<T, with_energy_lost>(n, in_e, in_m1, in_R1, in_v_n1, in_m2, in_R2, in_v_n2, out_v_t1, out_v_n1, out_v_t2, out_v_n2, out_normal_impulse, out_approach_velocity, out_energy_lost, status);
     if (failed == 0)
         return;
     for (long i = 0; i < n; ++i)

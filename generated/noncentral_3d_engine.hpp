@@ -479,62 +479,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(const noncentral
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[14] is not written (it may be null).
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_FUNC void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+namespace detail {
+/// The first pass of noncentral_3d_engine_batch (every impact, no branch): 1 when some
+/// impact failed a check, else 0.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_FUNC unsigned noncentral_3d_engine_batch_pass(long n, const T* IMPACTGEN_RESTRICT in_e, const T* IMPACTGEN_RESTRICT in_inv_m1, const T* IMPACTGEN_RESTRICT in_inv_I1_tt, const T* IMPACTGEN_RESTRICT in_inv_I1_tn, const T* IMPACTGEN_RESTRICT in_inv_I1_tb, const T* IMPACTGEN_RESTRICT in_inv_I1_nn, const T* IMPACTGEN_RESTRICT in_inv_I1_nb, const T* IMPACTGEN_RESTRICT in_inv_I1_bb, const T* IMPACTGEN_RESTRICT in_r_t1, const T* IMPACTGEN_RESTRICT in_r_n1, const T* IMPACTGEN_RESTRICT in_r_b1, const T* IMPACTGEN_RESTRICT in_v_t1, const T* IMPACTGEN_RESTRICT in_v_n1, const T* IMPACTGEN_RESTRICT in_v_b1, const T* IMPACTGEN_RESTRICT in_w_t1, const T* IMPACTGEN_RESTRICT in_w_n1, const T* IMPACTGEN_RESTRICT in_w_b1, const T* IMPACTGEN_RESTRICT in_inv_m2, const T* IMPACTGEN_RESTRICT in_inv_I2_tt, const T* IMPACTGEN_RESTRICT in_inv_I2_tn, const T* IMPACTGEN_RESTRICT in_inv_I2_tb, const T* IMPACTGEN_RESTRICT in_inv_I2_nn, const T* IMPACTGEN_RESTRICT in_inv_I2_nb, const T* IMPACTGEN_RESTRICT in_inv_I2_bb, const T* IMPACTGEN_RESTRICT in_r_t2, const T* IMPACTGEN_RESTRICT in_r_n2, const T* IMPACTGEN_RESTRICT in_r_b2, const T* IMPACTGEN_RESTRICT in_v_t2, const T* IMPACTGEN_RESTRICT in_v_n2, const T* IMPACTGEN_RESTRICT in_v_b2, const T* IMPACTGEN_RESTRICT in_w_t2, const T* IMPACTGEN_RESTRICT in_w_n2, const T* IMPACTGEN_RESTRICT in_w_b2, T* IMPACTGEN_RESTRICT out_v_t1, T* IMPACTGEN_RESTRICT out_v_n1, T* IMPACTGEN_RESTRICT out_v_b1, T* IMPACTGEN_RESTRICT out_w_t1, T* IMPACTGEN_RESTRICT out_w_n1, T* IMPACTGEN_RESTRICT out_w_b1, T* IMPACTGEN_RESTRICT out_v_t2, T* IMPACTGEN_RESTRICT out_v_n2, T* IMPACTGEN_RESTRICT out_v_b2, T* IMPACTGEN_RESTRICT out_w_t2, T* IMPACTGEN_RESTRICT out_w_n2, T* IMPACTGEN_RESTRICT out_w_b2, T* IMPACTGEN_RESTRICT out_normal_impulse, T* IMPACTGEN_RESTRICT out_approach_velocity, T* IMPACTGEN_RESTRICT out_energy_lost, impact_status* IMPACTGEN_RESTRICT status_out) noexcept
 {
-    const T* IMPACTGEN_RESTRICT const in_e = in[0];
-    const T* IMPACTGEN_RESTRICT const in_inv_m1 = in[1];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_tt = in[2];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_tn = in[3];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_tb = in[4];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_nn = in[5];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_nb = in[6];
-    const T* IMPACTGEN_RESTRICT const in_inv_I1_bb = in[7];
-    const T* IMPACTGEN_RESTRICT const in_r_t1 = in[8];
-    const T* IMPACTGEN_RESTRICT const in_r_n1 = in[9];
-    const T* IMPACTGEN_RESTRICT const in_r_b1 = in[10];
-    const T* IMPACTGEN_RESTRICT const in_v_t1 = in[11];
-    const T* IMPACTGEN_RESTRICT const in_v_n1 = in[12];
-    const T* IMPACTGEN_RESTRICT const in_v_b1 = in[13];
-    const T* IMPACTGEN_RESTRICT const in_w_t1 = in[14];
-    const T* IMPACTGEN_RESTRICT const in_w_n1 = in[15];
-    const T* IMPACTGEN_RESTRICT const in_w_b1 = in[16];
-    const T* IMPACTGEN_RESTRICT const in_inv_m2 = in[17];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_tt = in[18];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_tn = in[19];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_tb = in[20];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_nn = in[21];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_nb = in[22];
-    const T* IMPACTGEN_RESTRICT const in_inv_I2_bb = in[23];
-    const T* IMPACTGEN_RESTRICT const in_r_t2 = in[24];
-    const T* IMPACTGEN_RESTRICT const in_r_n2 = in[25];
-    const T* IMPACTGEN_RESTRICT const in_r_b2 = in[26];
-    const T* IMPACTGEN_RESTRICT const in_v_t2 = in[27];
-    const T* IMPACTGEN_RESTRICT const in_v_n2 = in[28];
-    const T* IMPACTGEN_RESTRICT const in_v_b2 = in[29];
-    const T* IMPACTGEN_RESTRICT const in_w_t2 = in[30];
-    const T* IMPACTGEN_RESTRICT const in_w_n2 = in[31];
-    const T* IMPACTGEN_RESTRICT const in_w_b2 = in[32];
-    T* IMPACTGEN_RESTRICT const out_v_t1 = out[0];
-    T* IMPACTGEN_RESTRICT const out_v_n1 = out[1];
-    T* IMPACTGEN_RESTRICT const out_v_b1 = out[2];
-    T* IMPACTGEN_RESTRICT const out_w_t1 = out[3];
-    T* IMPACTGEN_RESTRICT const out_w_n1 = out[4];
-    T* IMPACTGEN_RESTRICT const out_w_b1 = out[5];
-    T* IMPACTGEN_RESTRICT const out_v_t2 = out[6];
-    T* IMPACTGEN_RESTRICT const out_v_n2 = out[7];
-    T* IMPACTGEN_RESTRICT const out_v_b2 = out[8];
-    T* IMPACTGEN_RESTRICT const out_w_t2 = out[9];
-    T* IMPACTGEN_RESTRICT const out_w_n2 = out[10];
-    T* IMPACTGEN_RESTRICT const out_w_b2 = out[11];
-    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[12];
-    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[13];
-    T* IMPACTGEN_RESTRICT const out_energy_lost = out[14];
-    impact_status* IMPACTGEN_RESTRICT const status_out = status;
-    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#elif defined(__GNUC__)
+    unsigned failed = 0;
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -625,6 +577,62 @@ IMPACTGEN_FUNC void noncentral_3d_engine_batch(long n, const T* const* in, T* co
         status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
+    return failed;
+}
+} // namespace detail
+
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_FUNC void noncentral_3d_engine_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_inv_m1 = in[1];
+    const T* const in_inv_I1_tt = in[2];
+    const T* const in_inv_I1_tn = in[3];
+    const T* const in_inv_I1_tb = in[4];
+    const T* const in_inv_I1_nn = in[5];
+    const T* const in_inv_I1_nb = in[6];
+    const T* const in_inv_I1_bb = in[7];
+    const T* const in_r_t1 = in[8];
+    const T* const in_r_n1 = in[9];
+    const T* const in_r_b1 = in[10];
+    const T* const in_v_t1 = in[11];
+    const T* const in_v_n1 = in[12];
+    const T* const in_v_b1 = in[13];
+    const T* const in_w_t1 = in[14];
+    const T* const in_w_n1 = in[15];
+    const T* const in_w_b1 = in[16];
+    const T* const in_inv_m2 = in[17];
+    const T* const in_inv_I2_tt = in[18];
+    const T* const in_inv_I2_tn = in[19];
+    const T* const in_inv_I2_tb = in[20];
+    const T* const in_inv_I2_nn = in[21];
+    const T* const in_inv_I2_nb = in[22];
+    const T* const in_inv_I2_bb = in[23];
+    const T* const in_r_t2 = in[24];
+    const T* const in_r_n2 = in[25];
+    const T* const in_r_b2 = in[26];
+    const T* const in_v_t2 = in[27];
+    const T* const in_v_n2 = in[28];
+    const T* const in_v_b2 = in[29];
+    const T* const in_w_t2 = in[30];
+    const T* const in_w_n2 = in[31];
+    const T* const in_w_b2 = in[32];
+    T* const out_v_t1 = out[0];
+    T* const out_v_n1 = out[1];
+    T* const out_v_b1 = out[2];
+    T* const out_w_t1 = out[3];
+    T* const out_w_n1 = out[4];
+    T* const out_w_b1 = out[5];
+    T* const out_v_t2 = out[6];
+    T* const out_v_n2 = out[7];
+    T* const out_v_b2 = out[8];
+    T* const out_w_t2 = out[9];
+    T* const out_w_n2 = out[10];
+    T* const out_w_b2 = out[11];
+    T* const out_normal_impulse = out[12];
+    T* const out_approach_velocity = out[13];
+    T* const out_energy_lost = out[14];
+    const unsigned failed = detail::noncentral_3d_engine_batch_pass<T, with_energy_lost>(n, in_e, in_inv_m1, in_inv_I1_tt, in_inv_I1_tn, in_inv_I1_tb, in_inv_I1_nn, in_inv_I1_nb, in_inv_I1_bb, in_r_t1, in_r_n1, in_r_b1, in_v_t1, in_v_n1, in_v_b1, in_w_t1, in_w_n1, in_w_b1, in_inv_m2, in_inv_I2_tt, in_inv_I2_tn, in_inv_I2_tb, in_inv_I2_nn, in_inv_I2_nb, in_inv_I2_bb, in_r_t2, in_r_n2, in_r_b2, in_v_t2, in_v_n2, in_v_b2, in_w_t2, in_w_n2, in_w_b2, out_v_t1, out_v_n1, out_v_b1, out_w_t1, out_w_n1, out_w_b1, out_v_t2, out_v_n2, out_v_b2, out_w_t2, out_w_n2, out_w_b2, out_normal_impulse, out_approach_velocity, out_energy_lost, status);
     if (failed == 0)
         return;
     for (long i = 0; i < n; ++i)

@@ -361,38 +361,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(const planar_input<T>& in, pla
 /// vectorises); if any impact failed a check, a second pass redoes those one by
 /// one for their status (their outputs are then the state unchanged).
 /// with_energy_lost = false: energy_lost is neither computed nor checked, and out[8] is not written (it may be null).
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_FUNC void planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+namespace detail {
+/// The first pass of planar_batch (every impact, no branch): 1 when some
+/// impact failed a check, else 0.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_FUNC unsigned planar_batch_pass(long n, const T* IMPACTGEN_RESTRICT in_e, const T* IMPACTGEN_RESTRICT in_m1, const T* IMPACTGEN_RESTRICT in_I1, const T* IMPACTGEN_RESTRICT in_r_t1, const T* IMPACTGEN_RESTRICT in_r_n1, const T* IMPACTGEN_RESTRICT in_v_t1, const T* IMPACTGEN_RESTRICT in_v_n1, const T* IMPACTGEN_RESTRICT in_w_b1, const T* IMPACTGEN_RESTRICT in_m2, const T* IMPACTGEN_RESTRICT in_I2, const T* IMPACTGEN_RESTRICT in_r_t2, const T* IMPACTGEN_RESTRICT in_r_n2, const T* IMPACTGEN_RESTRICT in_v_t2, const T* IMPACTGEN_RESTRICT in_v_n2, const T* IMPACTGEN_RESTRICT in_w_b2, T* IMPACTGEN_RESTRICT out_v_t1, T* IMPACTGEN_RESTRICT out_v_n1, T* IMPACTGEN_RESTRICT out_w_b1, T* IMPACTGEN_RESTRICT out_v_t2, T* IMPACTGEN_RESTRICT out_v_n2, T* IMPACTGEN_RESTRICT out_w_b2, T* IMPACTGEN_RESTRICT out_normal_impulse, T* IMPACTGEN_RESTRICT out_approach_velocity, T* IMPACTGEN_RESTRICT out_energy_lost, impact_status* IMPACTGEN_RESTRICT status_out) noexcept
 {
-    const T* IMPACTGEN_RESTRICT const in_e = in[0];
-    const T* IMPACTGEN_RESTRICT const in_m1 = in[1];
-    const T* IMPACTGEN_RESTRICT const in_I1 = in[2];
-    const T* IMPACTGEN_RESTRICT const in_r_t1 = in[3];
-    const T* IMPACTGEN_RESTRICT const in_r_n1 = in[4];
-    const T* IMPACTGEN_RESTRICT const in_v_t1 = in[5];
-    const T* IMPACTGEN_RESTRICT const in_v_n1 = in[6];
-    const T* IMPACTGEN_RESTRICT const in_w_b1 = in[7];
-    const T* IMPACTGEN_RESTRICT const in_m2 = in[8];
-    const T* IMPACTGEN_RESTRICT const in_I2 = in[9];
-    const T* IMPACTGEN_RESTRICT const in_r_t2 = in[10];
-    const T* IMPACTGEN_RESTRICT const in_r_n2 = in[11];
-    const T* IMPACTGEN_RESTRICT const in_v_t2 = in[12];
-    const T* IMPACTGEN_RESTRICT const in_v_n2 = in[13];
-    const T* IMPACTGEN_RESTRICT const in_w_b2 = in[14];
-    T* IMPACTGEN_RESTRICT const out_v_t1 = out[0];
-    T* IMPACTGEN_RESTRICT const out_v_n1 = out[1];
-    T* IMPACTGEN_RESTRICT const out_w_b1 = out[2];
-    T* IMPACTGEN_RESTRICT const out_v_t2 = out[3];
-    T* IMPACTGEN_RESTRICT const out_v_n2 = out[4];
-    T* IMPACTGEN_RESTRICT const out_w_b2 = out[5];
-    T* IMPACTGEN_RESTRICT const out_normal_impulse = out[6];
-    T* IMPACTGEN_RESTRICT const out_approach_velocity = out[7];
-    T* IMPACTGEN_RESTRICT const out_energy_lost = out[8];
-    impact_status* IMPACTGEN_RESTRICT const status_out = status;
-    unsigned failed = 0; // any impact that failed a check (the second pass is skipped when none did)
-#if defined(__clang__)
-#pragma clang loop vectorize(assume_safety)
-#elif defined(__GNUC__)
+    unsigned failed = 0;
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
     for (long i = 0; i < n; ++i) {
@@ -455,6 +431,38 @@ IMPACTGEN_FUNC void planar_batch(long n, const T* const* in, T* const* out, impa
         status_out[i] = ok ? impact_status::ok : impact_status::overflow; // refined below
         failed |= static_cast<unsigned>(!ok);
     }
+    return failed;
+}
+} // namespace detail
+
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_FUNC void planar_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept
+{
+    const T* const in_e = in[0];
+    const T* const in_m1 = in[1];
+    const T* const in_I1 = in[2];
+    const T* const in_r_t1 = in[3];
+    const T* const in_r_n1 = in[4];
+    const T* const in_v_t1 = in[5];
+    const T* const in_v_n1 = in[6];
+    const T* const in_w_b1 = in[7];
+    const T* const in_m2 = in[8];
+    const T* const in_I2 = in[9];
+    const T* const in_r_t2 = in[10];
+    const T* const in_r_n2 = in[11];
+    const T* const in_v_t2 = in[12];
+    const T* const in_v_n2 = in[13];
+    const T* const in_w_b2 = in[14];
+    T* const out_v_t1 = out[0];
+    T* const out_v_n1 = out[1];
+    T* const out_w_b1 = out[2];
+    T* const out_v_t2 = out[3];
+    T* const out_v_n2 = out[4];
+    T* const out_w_b2 = out[5];
+    T* const out_normal_impulse = out[6];
+    T* const out_approach_velocity = out[7];
+    T* const out_energy_lost = out[8];
+    const unsigned failed = detail::planar_batch_pass<T, with_energy_lost>(n, in_e, in_m1, in_I1, in_r_t1, in_r_n1, in_v_t1, in_v_n1, in_w_b1, in_m2, in_I2, in_r_t2, in_r_n2, in_v_t2, in_v_n2, in_w_b2, out_v_t1, out_v_n1, out_w_b1, out_v_t2, out_v_n2, out_w_b2, out_normal_impulse, out_approach_velocity, out_energy_lost, status);
     if (failed == 0)
         return;
     for (long i = 0; i < n; ++i)

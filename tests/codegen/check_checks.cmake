@@ -28,14 +28,6 @@ if(at EQUAL -1)
 endif()
 
 set(flags -std=${STD} -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wdouble-promotion -Werror -O1)
-execute_process(COMMAND ${CXX} --version OUTPUT_VARIABLE version)
-if(version MATCHES "clang")
-  # The batch loop's `#pragma clang loop vectorize(assume_safety)` warns (-Wpass-failed)
-  # where clang cannot vectorise: long double, and sqrt under math-errno (a symbolic
-  # normal). That is the batch form's concern (tests/codegen/check_vectorize.cmake);
-  # here the checks are under test, so the warning is shown but not an error.
-  list(APPEND flags -Wno-error=pass-failed)
-endif()
 get_filename_component(cxx_name ${CXX} NAME)
 set(exe ${WORK}/checks_${cxx_name}_${STD})
 file(MAKE_DIRECTORY ${WORK})
