@@ -26,7 +26,7 @@ struct codegen_args {
     bool inverse_inertia = false, inverse_mass = false, unit_normal = false, jacobian = false;
 };
 
-int run(const codegen_args& a, CLI::Option* params_opt)
+int run(const codegen_args& a, CLI::Option* params_opt, CLI::Option* wrt_opt)
 {
     using namespace impactgen;
     problem p = cli::load(a.what);
@@ -51,8 +51,10 @@ int run(const codegen_args& a, CLI::Option* params_opt)
     o.inverse_inertia = a.inverse_inertia;
     o.inverse_mass = a.inverse_mass;
     o.unit_normal = a.unit_normal;
-    o.jacobian = a.jacobian || !a.wrt.empty();
-    o.wrt = split(a.wrt, ',');
+    o.jacobian = a.jacobian || wrt_opt->count() > 0;
+    if (wrt_opt->count() > 0 && a.wrt.empty())
+        throw input_error("--wrt: no input named (expected input names separated by commas)");
+    cli::split_wrt(a.wrt, o.wrt);
     codegen::header h;
     try {
         h = codegen::generate(p, o);
@@ -104,7 +106,7 @@ void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& actio
                   "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly");
-    cmd->add_option("--wrt", args->wrt,
+    auto* wrt = cmd->add_option("--wrt", args->wrt,
                     "comma-separated inputs the Jacobian differentiates by, in this order (default: every input); implies --jacobian");
-    cmd->parse_complete_callback([args, params, &action] { action = [args, params] { return run(*args, params); }; });
+    cmd->parse_complete_callback([args, params, wrt, &action] { action = [args, params, wrt] { return run(*args, params, wrt); }; });
 }

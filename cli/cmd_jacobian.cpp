@@ -15,15 +15,22 @@ using namespace GiNaC;
 
 namespace {
 
-std::string split_list(const std::string& s, std::vector<std::string>& out)
+} // namespace
+
+void split_wrt(const std::string& s, std::vector<std::string>& out)
 {
-    std::istringstream is(s);
+    if (s.empty())
+        return;
     std::string item;
-    while (std::getline(is, item, ','))
-        if (!item.empty())
-            out.push_back(item);
-    return s;
+    std::istringstream is(s + ",");
+    while (std::getline(is, item, ',')) {
+        if (item.empty())
+            throw input_error("--wrt: \"" + names::display_text(s) + "\" has an empty item (expected input names separated by commas)");
+        out.push_back(item);
+    }
 }
+
+namespace {
 
 // d(output)/d(input) in the notation of the format.
 // (a velocity after impact is primed, as in the closed form)
@@ -55,11 +62,11 @@ codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt)
     codegen::options o;
     o.name = "formulas";
     o.jacobian = true;
-    split_list(wrt, o.wrt);
+    split_wrt(wrt, o.wrt);
     try {
         return codegen::make_plan(p, o);
     } catch (const codegen::option_error& e) {
-        throw input_error(std::string(e.which == codegen::option_error::jacobian ? "--wrt" : "--jacobian") + ": " + e.what());
+        throw input_error(std::string("--") + codegen::option_error::option_name(e.which) + ": " + e.what());
     }
 }
 

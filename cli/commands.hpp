@@ -27,6 +27,8 @@ namespace impactgen::cli {
 
 /// formulas --jacobian [--wrt a,b]: the codegen plan with its Jacobian, and its printers.
 codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt);
+/// The --wrt list "a,b,c" (throws input_error on an empty item: "a,,b", ",").
+void split_wrt(const std::string& s, std::vector<std::string>& out);
 std::string jacobian_text(const codegen::plan& pl);
 std::string jacobian_latex(const codegen::plan& pl);
 nlohmann::ordered_json jacobian_json(const codegen::plan& pl);

@@ -195,7 +195,10 @@ int main(int argc, char** argv)
         return 2;
     }
     auto run_command = [&] {
-        return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats, {jacobian || !wrt.empty(), wrt});
+        const bool wrt_given = formulas->get_option("--wrt")->count() > 0;
+        if (wrt_given && wrt.empty())
+            throw input_error("--wrt: no input named (expected input names separated by commas)");
+        return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats, {jacobian || wrt_given, wrt});
     };
     // The time budget: every input the reader accepts is done in well under a
     // second; a run past the budget is stopped with a message, never left to hang.

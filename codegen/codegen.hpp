@@ -36,7 +36,7 @@ struct options {
 /// (the command line turns it into its flag); the message names the problem.
 class option_error : public input_error {
 public:
-    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space, unit_normal, jacobian };
+    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space, unit_normal, jacobian, wrt };
     option_error(option which, const std::string& message, std::string symbol = "")
         : input_error(message), which(which), symbol(std::move(symbol))
     {

@@ -33,7 +33,7 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
         std::set<std::string> seen;
         for (const std::string& name : wrt) {
             if (!seen.insert(name).second)
-                throw option_error(option_error::jacobian, names::display_text(name) + " is named twice");
+                throw option_error(option_error::wrt, names::display_text(name) + " is named twice");
             const symbol* found = nullptr;
             for (const symbol& x : pl.inputs)
                 if (x.get_name() == name)
@@ -42,7 +42,7 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
                 std::string all;
                 for (const symbol& x : pl.inputs)
                     all += (all.empty() ? "" : ", ") + x.get_name();
-                throw option_error(option_error::jacobian,
+                throw option_error(option_error::wrt,
                                    names::display_text(name) + " is not an input of the generated function (its inputs: " +
                                        names::display_text(all.empty() ? std::string("none") : all, 400) + ")");
             }

@@ -598,6 +598,7 @@ const char* option_error::option_name(option o)
     case name_space: return "namespace";
     case unit_normal: return "unit-normal";
     case jacobian: return "jacobian";
+    case wrt: return "wrt";
     }
     return "?";
 }
