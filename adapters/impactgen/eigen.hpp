@@ -35,6 +35,18 @@ namespace impactgen::eigen {
 template <typename View>
 using scalar_of = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(std::declval<const View&>().entry[0])>>>;
 
+namespace detail {
+/// A fixed entry (long double) in the scalar type: directly for the floating-point
+/// types, through double for others (autodiff scalars are built on double).
+template <typename T> IMPACTGEN_FUNC T fixed_value(long double x)
+{
+    if constexpr (std::is_floating_point<T>::value)
+        return static_cast<T>(x);
+    else
+        return T(static_cast<double>(x));
+}
+} // namespace detail
+
 /// Writes m into the members the view points to; false when m disagrees with an
 /// entry the header fixed (that entry is then not written: it has no member).
 template <typename View, typename Derived>
@@ -47,10 +59,10 @@ IMPACTGEN_FUNC bool assign(const View& v, const Eigen::MatrixBase<Derived>& m)
     for (int r = 0; r < View::rows; ++r)
         for (int c = 0; c < View::cols; ++c) {
             const int k = r * View::cols + c;
-            const T x = static_cast<T>(m(r, c));
+            const T x = T(m(r, c));
             T* p = v.entry[k];
             if (p == nullptr) {
-                agrees = agrees && x == static_cast<T>(v.fixed[k]);
+                agrees = agrees && x == detail::fixed_value<T>(v.fixed[k]);
                 continue;
             }
             int first = k; // the first entry that points to this member
@@ -77,7 +89,7 @@ IMPACTGEN_FUNC Eigen::Matrix<scalar_of<View>, View::rows, View::cols> to_eigen(c
     for (int r = 0; r < View::rows; ++r)
         for (int c = 0; c < View::cols; ++c) {
             const int k = r * View::cols + c;
-            m(r, c) = v.entry[k] != nullptr ? static_cast<T>(*v.entry[k]) : static_cast<T>(v.fixed[k]);
+            m(r, c) = v.entry[k] != nullptr ? T(*v.entry[k]) : detail::fixed_value<T>(v.fixed[k]);
         }
     return m;
 }

@@ -5,7 +5,10 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "tied.hpp"
 #include "wall_sqrt2.hpp"
+
+#include <impactgen/eigen.hpp>
 
 #include <gtest/gtest.h>
 
@@ -61,4 +64,24 @@ TEST(Autodiff, AutoDiffScalarMatchesTheJacobian)
         }
     }
     EXPECT_GT(compared, 1000);
+}
+
+// The Eigen adapter with an autodiff scalar: fixed entries (a diagonal tensor's
+// zeros) compared and read back, vectors written and read, under -Wconversion.
+TEST(Autodiff, EigenAdapterWithAutoDiffScalar)
+{
+    using ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2, 1>>;
+    ig::tied_input<ad> in{};
+    Eigen::Matrix<ad, 3, 3> inertia = Eigen::Matrix<ad, 3, 3>::Zero();
+    inertia(0, 0) = ad(1.0, 2, 0);
+    inertia(1, 1) = ad(2.0, 2, 1);
+    inertia(2, 2) = ad(3.0);
+    EXPECT_TRUE(impactgen::eigen::assign(in.I_box(), inertia));
+    EXPECT_EQ(in.A.value(), 1.0);
+    EXPECT_EQ(in.B.derivatives()(1), 1.0);
+    const Eigen::Matrix<ad, 3, 3> back = impactgen::eigen::to_eigen(in.I_box());
+    EXPECT_EQ(back(0, 1).value(), 0.0);
+    EXPECT_EQ(back(2, 2).value(), 3.0);
+    inertia(0, 1) = inertia(1, 0) = ad(0.5);
+    EXPECT_FALSE(impactgen::eigen::assign(in.I_box(), inertia)); // not the diagonal tensor the header solves
 }
