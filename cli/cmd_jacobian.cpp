@@ -33,24 +33,32 @@ void split_wrt(const std::string& s, std::vector<std::string>& out)
 namespace {
 
 // d(output)/d(input) in the notation of the format.
+// The closed form's own step for an output (N, u, T_lost: named clear of the problem's symbols).
+const step* step_of(const codegen::plan& pl, const codegen::output_value& ov)
+{
+    switch (ov.kind) {
+    case codegen::output_value::normal_impulse: return pl.sol.find(step_role::normal_impulse);
+    case codegen::output_value::approach_velocity: return pl.sol.find(step_role::approach_velocity);
+    case codegen::output_value::energy_lost: return pl.sol.find(step_role::energy_lost);
+    default: return nullptr;
+    }
+}
+
 // (a velocity after impact is primed, as in the closed form)
-std::string entry_name(const codegen::output_value& ov, const symbol& x, bool latex)
+std::string entry_name(const codegen::plan& pl, const codegen::output_value& ov, const symbol& x, bool latex)
 {
     const bool after = ov.kind == codegen::output_value::velocity || ov.kind == codegen::output_value::angular_velocity;
     const std::string out = ov.field + (after ? "'" : "");
     if (!latex)
         return "d " + out + " / d " + print::symbol_text(x.get_name());
     std::string tex;
-    switch (ov.kind) {
-    case codegen::output_value::normal_impulse: tex = "N"; break;
-    case codegen::output_value::approach_velocity: tex = "u"; break;
-    case codegen::output_value::energy_lost: tex = "T_{\\mathrm{lost}}"; break;
-    default: {
+    if (const step* st = step_of(pl, ov)) {
+        tex = print::symbol_latex(st->sym);
+    } else {
         tex = print::symbol_latex(symbol(ov.field));
         const std::size_t sub = tex.find('_');
         if (after)
             tex.insert(sub == std::string::npos ? tex.size() : sub, "'");
-    }
     }
     return "\\frac{\\partial " + tex + "}{\\partial " + print::symbol_latex(x) + "}";
 }
@@ -88,7 +96,7 @@ std::string jacobian_text(const codegen::plan& pl)
                 ++zeros;
                 continue;
             }
-            os << entry_name(pl.outputs[o], j.wrt[k], false) << " = " << print::canonical_text(j.entries[o][k]) << "\n";
+            os << entry_name(pl, pl.outputs[o], j.wrt[k], false) << " = " << print::canonical_text(j.entries[o][k]) << "\n";
         }
     os << "(" << zeros << " of the " << pl.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
     return os.str();
@@ -105,7 +113,7 @@ std::string jacobian_latex(const codegen::plan& pl)
     for (std::size_t o = 0; o < pl.outputs.size(); ++o)
         for (std::size_t k = 0; k < j.wrt.size(); ++k)
             if (!j.entries[o][k].is_zero()) {
-                const std::string lhs = entry_name(pl.outputs[o], j.wrt[k], true), rhs = print::canonical_latex(j.entries[o][k]);
+                const std::string lhs = entry_name(pl, pl.outputs[o], j.wrt[k], true), rhs = print::canonical_latex(j.entries[o][k]);
                 if (lhs != rhs) // dN/de is a step already
                     lines.push_back(lhs + " &= " + rhs);
             }

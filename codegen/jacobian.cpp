@@ -54,6 +54,21 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
 
     const std::vector<step>& steps = pl.sol.steps;
     const std::size_t nw = jp.wrt.size();
+    // Derivative steps are named d<step>_d<input>, clear of every name the problem and
+    // its closed form use (a symbol called dN_dm1 stays the symbol), with a trailing _.
+    std::set<std::string> taken;
+    for (const symbol& x : pl.prob.parameters())
+        taken.insert(x.get_name());
+    for (const symbol& x : pl.inputs)
+        taken.insert(x.get_name());
+    for (const step& st : steps)
+        taken.insert(st.sym.get_name());
+    auto fresh = [&](std::string name) {
+        while (taken.count(name))
+            name += "_";
+        taken.insert(name);
+        return name;
+    };
     // grad[k][j] = d step_k / d wrt_j (0, a number, an input, or a derivative step's symbol).
     std::vector<std::vector<ex>> grad(steps.size(), std::vector<ex>(nw, 0));
     // The earlier steps each step (or output) uses directly.
@@ -80,7 +95,7 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
                 continue;
             }
             step ds;
-            ds.sym = symbol("d" + steps[k].sym.get_name() + "_d" + jp.wrt[j].get_name(),
+            ds.sym = symbol(fresh("d" + steps[k].sym.get_name() + "_d" + jp.wrt[j].get_name()),
                             "\\frac{\\partial " + tex(steps[k].sym) + "}{\\partial " + tex(jp.wrt[j]) + "}");
             ds.value = d;
             ds.meaning = "d " + steps[k].sym.get_name() + " / d " + jp.wrt[j].get_name();

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <set>
 #include <map>
 #include <random>
 #include <unistd.h>
@@ -465,17 +466,33 @@ TEST(Reader, LongDecimalsAreExact)
 // at seeded random rational points.
 TEST(Cli, FormulasJacobianMatchesDerivativesOfTheAnswer)
 {
-    for (const char* cls : {"central-direct", "central-oblique", "planar", "pinned-planar"}) {
-        run_result r = run_cli(std::string("formulas ") + cls + " --jacobian --format json");
+    // A problem whose symbols are named like the derivative steps (dN_dm1) and the impulse (N):
+    // the steps are renamed clear of them, so the JSON reads back unambiguously.
+    const std::string clash = ::testing::TempDir() + "impactgen_clash_" + std::to_string(getpid()) + ".json";
+    {
+        std::ofstream out(clash);
+        out << R"({"dimension": 2, "restitution": "e", "bodies": [
+            {"name": "a", "mass": "m1", "position": [0, 0], "velocity": ["dN_dm1", 0]},
+            {"name": "b", "mass": "N", "position": [1, 0], "velocity": ["dw_1_dm1", 0]}],
+            "contact": {"bodies": ["a", "b"], "point": [0.5, 0], "normal": [1, 0]}})";
+    }
+    for (const std::string cls : {"central-direct", "central-oblique", "planar", "pinned-planar", clash.c_str()}) {
+        run_result r = run_cli("formulas " + cls + " --jacobian --format json");
         ASSERT_EQ(r.code, 0) << cls << ": " << r.err;
         auto a = nlohmann::json::parse(r.out);
         const auto& j = a.at("jacobian");
         auto parse = [&](const std::string& t) { return impactgen::parse_value(t, true, "jacobian test"); };
         // Steps in order: each substituted into the later ones (from the last back).
         std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> steps;
+        std::set<std::string> step_names;
         for (const char* key : {"closed_form_steps", "steps"})
-            for (const auto& st : j.at(key))
-                steps.push_back({impactgen::symbol_named(st.at("name").get<std::string>()), parse(st.at("value").get<std::string>())});
+            for (const auto& st : j.at(key)) {
+                const std::string name = st.at("name").get<std::string>();
+                EXPECT_TRUE(step_names.insert(name).second) << cls << ": step " << name << " twice";
+                steps.push_back({impactgen::symbol_named(name), parse(st.at("value").get<std::string>())});
+            }
+        for (const auto& w : j.at("wrt"))
+            EXPECT_FALSE(step_names.count(w.get<std::string>())) << cls << ": a step is named like the input " << w;
         auto expand_steps = [&](GiNaC::ex e) {
             for (auto it = steps.rbegin(); it != steps.rend(); ++it)
                 e = e.subs(it->first == it->second);
