@@ -84,6 +84,51 @@ std::string balanced_sum(std::vector<std::string> level)
     return level.empty() ? std::string() : level[0];
 }
 
+// A term of the finiteness sum of a branchless form: its text, when its value is ready
+// (an estimate of the latency from the inputs, in cycles) and whether the form may leave
+// it 0 (energy_lost under with_energy_lost = false: then it is not added at all).
+struct sum_term {
+    std::string text;
+    int ready = 0;
+    bool optional = false;
+};
+
+// The sum of the terms, added in the order their values are ready (the two earliest
+// first, like a Huffman tree): the terms known early (inputs, values before the
+// impulse) are summed while the impulse is computed, and the flag waits for as few
+// additions as possible after the last value. The optional term is added last, under
+// with_energy_lost. Each side of the conditional converted to T (autodiff expression types).
+std::string timed_sum(const std::vector<sum_term>& terms)
+{
+    struct node {
+        std::string text;
+        int ready;
+        std::size_t order;
+    };
+    std::vector<node> nodes;
+    std::string optional;
+    for (const sum_term& t : terms) {
+        if (t.optional)
+            optional = t.text;
+        else
+            nodes.push_back({t.text, t.ready, nodes.size()});
+    }
+    auto wrap = [](const std::string& x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
+    std::size_t next = nodes.size();
+    while (nodes.size() > 1) {
+        auto earlier = [](const node& a, const node& b) { return a.ready != b.ready ? a.ready < b.ready : a.order < b.order; };
+        std::sort(nodes.begin(), nodes.end(), earlier);
+        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3, next++};
+        nodes.erase(nodes.begin(), nodes.begin() + 2);
+        nodes.push_back(sum);
+    }
+    if (optional.empty())
+        return nodes.empty() ? std::string() : "T(" + nodes[0].text + ")";
+    if (nodes.empty())
+        return "T(" + optional + ")";
+    return "with_energy_lost ? T(" + wrap(nodes[0].text) + " + " + optional + ") : T(" + nodes[0].text + ")";
+}
+
 // energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
 std::string energy_optional(const std::string& code, const std::string& lhs)
 {
@@ -112,7 +157,7 @@ std::size_t mins(const emitted& em)
 
 // Every check of a branchless form in one flag: signs through a min (which may drop a
 // NaN: every value in a min is also in the sum), finiteness through one sum.
-std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<std::string>& finite_terms)
+std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<sum_term>& finite_terms)
 {
     std::vector<std::string> parts;
     // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
@@ -134,7 +179,7 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
     // The sum converted to T too: with an autodiff T a sum of values is an expression
     // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
     if (!finite_terms.empty())
-        parts.push_back("detail::finite(T(" + balanced_sum(finite_terms) + "))");
+        parts.push_back("detail::finite(" + timed_sum(finite_terms) + ")");
     std::string text;
     if (!form.check_comments.empty() || form.shares_reciprocals) {
         std::string what = names::comment_text(join(form.check_comments, "; "));
@@ -565,9 +610,14 @@ private:
     void emit_forms()
     {
         const std::vector<std::string> taken = scope_.names();
+        // energy_lost: the fast and batch forms leave it 0 under with_energy_lost = false.
+        int energy = -1;
+        for (std::size_t k = 0; k < pl_.outputs.size(); ++k)
+            if (pl_.outputs[k].kind == output_value::energy_lost)
+                energy = static_cast<int>(k);
         em_ = emit_cpp(prog_, outs_, checks_, var_names_, taken);
-        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true);
-        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, true);
+        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, false, energy);
+        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, true, energy);
         unchanged_ = emit_cpp(prog_, unchanged_outs_, {}, {}, taken);
         // Inputs the outputs do not depend on still count for the finiteness check.
         std::set<std::string> reached;
@@ -590,29 +640,85 @@ private:
                 sum_terms_.push_back(nm);
                 unused_inputs.push_back(nm);
             }
+        // When each value is ready: a latency estimate from the inputs (cycles of a
+        // current x86 core), to add the terms of the finiteness sum in that order.
+        std::vector<int> ready(prog_.size(), 0);
+        for (std::size_t i = 0; i < prog_.size(); ++i) {
+            const op& o = prog_.at(static_cast<int>(i));
+            int cost = 0;
+            switch (o.kind) {
+            case op::input: case op::constant: cost = 0; break;
+            case op::add: case op::sub: case op::neg: cost = 3; break;
+            case op::mul: cost = 4; break;
+            case op::div: cost = 14; break;
+            case op::sqrt_: cost = 20; break;
+            }
+            int before = 0;
+            for (int c : {o.a, o.b})
+                if (c >= 0)
+                    before = std::max(before, ready[static_cast<std::size_t>(c)]);
+            ready[i] = before + cost;
+        }
+        std::map<std::string, int> id_of_name;
+        for (const auto& [id, nm] : var_names_)
+            id_of_name[nm] = id;
+        // An output is left out of the sum when the finiteness of another one implies it
+        // (an operand of +, -, *, negation, sqrt or the numerator of / is finite when the
+        // result is: N in v' = v - N/m, u in N = -(1 + e) u / k); energy_lost implies
+        // nothing (a form may leave it 0). Of outputs with the same value, the first stays.
+        std::vector<bool> implied(outs_.size(), false);
+        for (std::size_t j = 0; j < outs_.size(); ++j) {
+            if (static_cast<int>(j) == energy)
+                continue;
+            std::vector<bool> seen(prog_.size(), false);
+            std::vector<int> stack;
+            auto operands = [&](int id) {
+                const op& o = prog_.at(id);
+                if (o.a >= 0)
+                    stack.push_back(o.a);
+                if (o.b >= 0 && o.kind != op::div)
+                    stack.push_back(o.b);
+            };
+            operands(outs_[j].second);
+            while (!stack.empty()) {
+                const int id = stack.back();
+                stack.pop_back();
+                if (seen[static_cast<std::size_t>(id)])
+                    continue;
+                seen[static_cast<std::size_t>(id)] = true;
+                operands(id);
+            }
+            for (std::size_t k = 0; k < outs_.size(); ++k)
+                if (k != j && (seen[static_cast<std::size_t>(outs_[k].second)] || (outs_[k].second == outs_[j].second && k > j)))
+                    implied[k] = true;
+        }
         // The terms of the finiteness check in the branchless forms (local output values).
-        auto finite_terms = [&](const emitted& form) {
-            std::vector<std::string> t;
-            for (const auto& [field, id] : outs_)
-                if (needs_check(id))
-                    t.push_back(local_of_.at(field));
+        auto finite_terms = [&](const emitted& form, bool energy_optional) {
+            std::vector<sum_term> t;
+            auto has = [&](const std::string& x) {
+                return std::any_of(t.begin(), t.end(), [&](const sum_term& y) { return y.text == x; });
+            };
+            for (std::size_t k = 0; k < outs_.size(); ++k)
+                if (needs_check(outs_[k].second) && !implied[k])
+                    t.push_back({local_of_.at(outs_[k].first), ready[static_cast<std::size_t>(outs_[k].second)],
+                                 energy_optional && static_cast<int>(k) == energy});
             for (const std::string& nm : unused_inputs)
-                t.push_back(nm);
+                t.push_back({nm, 0, false});
             for (const std::string& x : form.finite_terms)
-                if (std::find(t.begin(), t.end(), x) == t.end())
-                    t.push_back(x);
+                if (!has(x))
+                    t.push_back({x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
             return t;
         };
-        fast_terms_ = finite_terms(fast_);
-        batch_terms_ = finite_terms(batch_);
+        fast_terms_ = finite_terms(fast_, true);
+        batch_terms_ = finite_terms(batch_, true);
         if (pl_.has_jacobian) {
             std::vector<std::pair<std::string, int>> all = outs_local_;
             all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
             jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, true);
-            jac_terms_ = finite_terms(jac_);
+            jac_terms_ = finite_terms(jac_, false);
             for (const auto& [local, id] : jac_outs_)
                 if (needs_check(id))
-                    jac_terms_.push_back(local);
+                    jac_terms_.push_back({local, ready[static_cast<std::size_t>(id)], false});
         }
     }
 
@@ -1014,7 +1120,7 @@ private:
     std::vector<std::vector<std::string>> jac_local_; // [output][wrt] local of the derivative
     std::vector<std::pair<std::string, int>> jac_outs_;
     emitted jac_;
-    std::vector<std::string> jac_terms_;
+    std::vector<sum_term> jac_terms_;
     emitted unchanged_;
     std::vector<std::string> input_names_, step_names_;
     std::map<std::string, std::string> local_of_, out_ptr_, in_ptr_; // member -> local value / output pointer; input -> input pointer
@@ -1024,7 +1130,8 @@ private:
     std::vector<std::pair<std::string, int>> outs_, outs_local_;
     std::vector<check> checks_;
     emitted em_, fast_, batch_;
-    std::vector<std::string> sum_terms_, fast_terms_, batch_terms_;
+    std::vector<std::string> sum_terms_;
+    std::vector<sum_term> fast_terms_, batch_terms_;
     std::ostringstream h_;
 };
 

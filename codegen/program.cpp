@@ -379,10 +379,11 @@ void add_unique(std::vector<std::string>& v, const std::string& t)
 class emitter {
 public:
     emitter(const program& prog, const std::vector<std::pair<std::string, int>>& outputs, const std::vector<check>& checks,
-            const std::map<int, std::string>& names, const std::vector<std::string>& taken, bool branchless, bool share_divisions)
+            const std::map<int, std::string>& names, const std::vector<std::string>& taken, bool branchless, bool share_divisions,
+            int optional_output)
         : prog_(prog), outputs_(outputs), checks_(checks), names_(names), branchless_(branchless),
-          share_divisions_(share_divisions), n_(prog.size()), reach_(n_, false), materialised_(n_, false), covered_(n_, false),
-          needed_(n_, false), emitted_(n_, false), refs_(n_, 0), used_names_(taken.begin(), taken.end())
+          share_divisions_(share_divisions), optional_output_(optional_output), n_(prog.size()), reach_(n_, false),
+          materialised_(n_, false), covered_(n_, false), needed_(n_, false), emitted_(n_, false), refs_(n_, 0), used_names_(taken.begin(), taken.end())
     {
     }
 
@@ -502,12 +503,14 @@ private:
 
     // Values whose finiteness follows from the finiteness of the outputs: an operand of
     // +, -, *, negation, sqrt, or the numerator of /, is finite when the result is
-    // (inf and NaN propagate); a denominator is not (1/inf = 0).
+    // (inf and NaN propagate); a denominator is not (1/inf = 0). An optional output (left 0
+    // when not requested) covers nothing.
     void mark_covered()
     {
         std::vector<int> stack;
-        for (auto& o : outputs_)
-            stack.push_back(o.second);
+        for (std::size_t k = 0; k < outputs_.size(); ++k)
+            if (static_cast<int>(k) != optional_output_)
+                stack.push_back(outputs_[k].second);
         while (!stack.empty()) {
             int id = stack.back();
             stack.pop_back();
@@ -760,6 +763,7 @@ private:
     const std::vector<check>& checks_;
     const std::map<int, std::string>& names_;
     const bool branchless_, share_divisions_;
+    const int optional_output_;
     const std::size_t n_;
     std::vector<bool> reach_, materialised_, covered_, needed_, emitted_;
     std::vector<int> refs_;
@@ -776,9 +780,9 @@ private:
 
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& taken, bool branchless, bool share_divisions)
+                 const std::vector<std::string>& taken, bool branchless, bool share_divisions, int optional_output)
 {
-    return emitter(prog, outputs, checks, names, taken, branchless, share_divisions).run();
+    return emitter(prog, outputs, checks, names, taken, branchless, share_divisions, optional_output).run();
 }
 
 } // namespace impactgen::codegen

@@ -111,8 +111,12 @@ struct emitted {
 /// share_divisions (branchless only): reciprocals of positive inputs share one division
 /// (fewer divisions for the throughput of a vectorised loop; a longer chain of latency)
 /// (the body of a vectorisable batch loop).
+/// optional_output: the index in outputs of a value the form may leave 0 instead of
+/// computing it (energy_lost under with_energy_lost = false), or -1: its finiteness then
+/// implies nothing about the values it is made of (they are checked in their own right).
 emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
                  const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& taken, bool branchless = false, bool share_divisions = false);
+                 const std::vector<std::string>& taken, bool branchless = false, bool share_divisions = false,
+                 int optional_output = -1);
 
 } // namespace impactgen::codegen

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 6 add/sub, 7 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 6 add/sub, 7 mul, 3 div, 0 sqrt + 6 add, 4 min (checks), 1 branch;
-//   batch loop: 6 add/sub, 10 mul, 2 div, 0 sqrt + 7 add, 4 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 6 add/sub, 7 mul, 3 div, 0 sqrt + 5 add, 4 min (checks), 1 branch;
+//   batch loop: 6 add/sub, 10 mul, 2 div, 0 sqrt + 6 add, 4 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
@@ -281,7 +281,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_direct(T e, T m1, T R1, T v_n
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(T(((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + R2))))) != 0u;
+                     static_cast<unsigned>(detail::finite(with_energy_lost ? T((o_v_n2 + (((R1 + R2) + k) + o_v_n1)) + o_energy_lost) : T(o_v_n2 + (((R1 + R2) + k) + o_v_n1))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::central_direct_checked<T, with_energy_lost>(e, m1, R1, v_n1, m2, R2, v_n2, out);
     out.v_t1 = o_v_t1;
@@ -352,7 +352,7 @@ IMPACTGEN_FUNC unsigned central_direct_batch_pass(long n, const T* IMPACTGEN_RES
         const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(w_2), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
-                         static_cast<unsigned>(detail::finite(T(((o_v_n1 + o_v_n2) + (o_normal_impulse + o_approach_velocity)) + ((o_energy_lost + R1) + (R2 + rcp_q1)))))) != 0u;
+                         static_cast<unsigned>(detail::finite(with_energy_lost ? T((o_v_n2 + (((rcp_q1 + (R1 + R2)) + k) + o_v_n1)) + o_energy_lost) : T(o_v_n2 + (((rcp_q1 + (R1 + R2)) + k) + o_v_n1))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_t2[i] = o_v_t2;

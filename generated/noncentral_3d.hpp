@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 65 mul, 5 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 16 add, 10 min (checks), 1 branch;
-//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 17 add, 10 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 15 add, 10 min (checks), 1 branch;
+//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 16 add, 10 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
@@ -466,7 +466,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(T(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + r_n2)))) != 0u;
+                     static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) + o_v_n1))))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -599,7 +599,7 @@ IMPACTGEN_FUNC unsigned noncentral_3d_batch_pass(long n, const T* IMPACTGEN_REST
         const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
-                         static_cast<unsigned>(detail::finite(T(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (r_n2 + rcp_q1))))) != 0u;
+                         static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) + o_v_n1))))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 38 add/sub, 55 mul, 1 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 38 add/sub, 55 mul, 1 div, 0 sqrt + 20 add, 10 min (checks), 1 branch;
-//   batch loop: 38 add/sub, 55 mul, 1 div, 0 sqrt + 20 add, 10 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 38 add/sub, 55 mul, 1 div, 0 sqrt + 19 add, 10 min (checks), 1 branch;
+//   batch loop: 38 add/sub, 55 mul, 1 div, 0 sqrt + 19 add, 10 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -438,7 +438,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(T e, T inv_m1, T
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse inertia tensor of 1 positive definite: tt entry > 0, finite; inverse inertia tensor of 2 positive definite: tt entry > 0, finite; inverse inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; inverse inertia tensor of 1 positive definite: determinant > 0, finite; inverse inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; inverse inertia tensor of 2 positive definite: determinant > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(inv_I1_tt), T(inv_I2_tt), T(check_p1), T(check_p2), T(check_p3), T(check_p4), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(T(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (((r_n2 + check_p1) + (check_p2 + check_p3)) + check_p4))))) != 0u;
+                     static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + (((((r_n1 + r_n2) + (check_p1 + check_p2)) + ((check_p3 + check_p4) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + (((((r_n1 + r_n2) + (check_p1 + check_p2)) + ((check_p3 + check_p4) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)))) + k) + o_v_n1))))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -557,7 +557,7 @@ IMPACTGEN_FUNC unsigned noncentral_3d_engine_batch_pass(long n, const T* IMPACTG
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse inertia tensor of 1 positive definite: tt entry > 0, finite; inverse inertia tensor of 2 positive definite: tt entry > 0, finite; inverse inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; inverse inertia tensor of 1 positive definite: determinant > 0, finite; inverse inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; inverse inertia tensor of 2 positive definite: determinant > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(inv_I1_tt), T(inv_I2_tt), T(check_p1), T(check_p2), T(check_p3), T(check_p4), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::finite(T(((((o_v_t1 + o_v_n1) + (o_v_b1 + o_w_t1)) + ((o_w_n1 + o_w_b1) + (o_v_t2 + o_v_n2))) + (((o_v_b2 + o_w_t2) + (o_w_n2 + o_w_b2)) + ((o_normal_impulse + o_approach_velocity) + (o_energy_lost + r_n1)))) + (((r_n2 + check_p1) + (check_p2 + check_p3)) + check_p4))))) != 0u;
+                         static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + (((((r_n1 + r_n2) + (check_p1 + check_p2)) + ((check_p3 + check_p4) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + (((((r_n1 + r_n2) + (check_p1 + check_p2)) + ((check_p3 + check_p4) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)))) + k) + o_v_n1))))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

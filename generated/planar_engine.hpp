@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 12 add/sub, 17 mul, 1 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 10 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 1 div, 0 sqrt + 10 add, 6 min (checks), 1 branch;
-//   batch loop: 12 add/sub, 17 mul, 1 div, 0 sqrt + 10 add, 6 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 6 min (checks), 1 branch;
+//   batch loop: 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 6 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -314,7 +314,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1
     // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u), T(k)) > T(0)) &
                      static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(T((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2))))) != 0u;
+                     static_cast<unsigned>(detail::finite(with_energy_lost ? T(((o_v_n2 + ((((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) + o_v_n1)) + (o_w_b1 + o_w_b2)) + o_energy_lost) : T((o_v_n2 + ((((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) + o_v_n1)) + (o_w_b1 + o_w_b2))))) != 0u;
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -393,7 +393,7 @@ IMPACTGEN_FUNC unsigned planar_engine_batch_pass(long n, const T* IMPACTGEN_REST
         // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u), T(k)) > T(0)) &
                          static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::finite(T((((o_v_t1 + o_v_n1) + (o_w_b1 + o_v_t2)) + ((o_v_n2 + o_w_b2) + (o_normal_impulse + o_approach_velocity))) + ((o_energy_lost + r_n1) + r_n2))))) != 0u;
+                         static_cast<unsigned>(detail::finite(with_energy_lost ? T(((o_v_n2 + ((((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) + o_v_n1)) + (o_w_b1 + o_w_b2)) + o_energy_lost) : T((o_v_n2 + ((((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) + o_v_n1)) + (o_w_b1 + o_w_b2))))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_w_b1[i] = o_w_b1;
