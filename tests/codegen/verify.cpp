@@ -794,6 +794,31 @@ TEST(CodegenBatch, FastCheckedAndBatchAgree)
         }
     }
     EXPECT_EQ(gen::planar(0.5, 1.0, 0.5, 0.1, 0.2, 0.0, 1e300, 0.0, 2.0, 1.0, 0.3, -0.2, 0.0, -1e300, 0.0, c), gen::impact_status::overflow);
+
+    // k = 1/m1 + r_t1^2/I1 overflows (r_t1 = 1e150, I1 = 1e-10): singular in every form, with
+    // and without energy_lost (without it, energy_lost used to be what proved k finite).
+    {
+        double x[15] = {0.5, 1, 1e-10, 1e150, 0, 0, 1, 0, 1, 1, 0, 0, 0, -1, 0};
+        gen::planar_result<double> r;
+        EXPECT_EQ((gen::planar<double, false>(static_cast<const double*>(x), r)), gen::impact_status::singular);
+        EXPECT_EQ((gen::planar<double, true>(static_cast<const double*>(x), r)), gen::impact_status::singular);
+        EXPECT_EQ(r.normal_impulse, 0.0);
+        const double* in[15];
+        double cols[15][1];
+        for (int j = 0; j < 15; ++j) {
+            cols[j][0] = x[j];
+            in[j] = cols[j];
+        }
+        double oc[9][1];
+        double* out[9];
+        for (int j = 0; j < 9; ++j)
+            out[j] = oc[j];
+        gen::impact_status st[1];
+        gen::planar_batch<double, false>(1, in, out, st);
+        EXPECT_EQ(st[0], gen::impact_status::singular);
+        gen::planar_batch<double, true>(1, in, out, st);
+        EXPECT_EQ(st[0], gen::impact_status::singular);
+    }
 }
 
 // The checked-in header for noncentral-3d is what the library generates now, and
