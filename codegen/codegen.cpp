@@ -977,6 +977,15 @@ private:
             for (std::size_t j = 0; j < nw; ++j)
                 h_ << "    out.d[" << o << "][" << j << "] = " << jac_local_[o][j] << ";\n";
         h_ << "    return impact_status::ok;\n}\n\n";
+        h_ << "/// The same with the inputs in an array, in the order of " << o_.name << "_input_names.\n";
+        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(const T* in, " << jr
+           << "<T>& out) noexcept\n{\n";
+        if (input_names_.empty())
+            h_ << "    (void)in;\n";
+        h_ << "    return " << o_.name << "_jacobian<T>(";
+        for (std::size_t i = 0; i < input_names_.size(); ++i)
+            h_ << "in[" << i << "], ";
+        h_ << "out);\n}\n\n";
         h_ << "/// The same with the inputs by name.\n";
         h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(const " << input_struct() << "<T>& in, "
            << jr << "<T>& out) noexcept\n{\n";
