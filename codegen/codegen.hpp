@@ -116,10 +116,6 @@ plan make_plan(const problem& p, const options& o);
 /// input); throws option_error(jacobian) for a name that is not an input.
 jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt);
 
-/// An output with every derivative step and solution step substituted: in inputs
-/// only (for checks and printing; large for the 3-D classes).
-GiNaC::ex in_inputs(const plan& pl, const GiNaC::ex& e);
-
 struct header {
     std::string text;
     op_counts formula, checks;

@@ -117,16 +117,4 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
     return jp;
 }
 
-ex in_inputs(const plan& pl, const ex& e)
-{
-    ex v = e;
-    for (auto st = pl.jac.steps.rbegin(); st != pl.jac.steps.rend(); ++st)
-        if (v.has(st->sym))
-            v = v.subs(st->sym == st->value);
-    for (auto st = pl.sol.steps.rbegin(); st != pl.sol.steps.rend(); ++st)
-        if (v.has(st->sym))
-            v = v.subs(st->sym == st->value);
-    return v;
-}
-
 } // namespace impactgen::codegen
