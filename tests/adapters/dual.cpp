@@ -79,6 +79,10 @@ TEST(Dual, NarrowAutodiffTypeMatchesTheJacobian)
             dual out[ig::box_floor_dual_output_count];
             ig::box_floor_dual_to_array(r, out);
             for (int i = 0; i < ig::box_floor_dual_output_count; ++i) {
+                // Two double evaluations of the same derivative along different operation orders
+                // (the dual's product and quotient rules vs the chain rule through the steps), on
+                // well-conditioned inputs (diagonally dominant inertia, |values| <= 4): a few
+                // hundred roundings apart, ~1e-13; 1e-11 leaves room, a wrong term is O(1).
                 EXPECT_NEAR(out[i].v, jac.d[i][j], 1e-11 * (1 + std::fabs(jac.d[i][j]))) << "d output " << i << " / d input " << j;
                 ++compared;
             }
