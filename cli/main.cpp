@@ -61,6 +61,15 @@ int cmd_solve(const std::string& what, bool json)
                           "); use 'impactgen formulas' for closed forms");
     }
     derivation d = derive(p);
+    if (p.has_friction()) {
+        friction_solution f = solve_friction(d);
+        regime_case c = select_regime(d, f);
+        if (json)
+            std::cout << print::answer_json(d, c, false).dump(2) << "\n";
+        else
+            std::cout << print::answer_text(d, c);
+        return 0;
+    }
     solution s = solve(d);
     if (json)
         std::cout << print::answer_json(d, s, false).dump(2) << "\n";

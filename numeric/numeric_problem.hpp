@@ -32,6 +32,7 @@ template <typename T> struct problem {
     std::size_t body1 = 0, body2 = 1;
     vec<T> point = vec<T>::Zero();
     vec<T> normal = vec<T>::UnitY();
+    T friction = 0; ///< Coulomb's mu at the contact (0: smooth)
     std::vector<pivot<T>> pivots;
 
     const pivot<T>* pivot_of(std::size_t b) const

@@ -62,15 +62,39 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
     out["kinetic_energy"] = {{"before", val(s.energy_before, "kinetic_energy.before")},
                              {"after", val(s.energy_after, "kinetic_energy.after")},
                              {"lost", val(s.energy_lost, "kinetic_energy.lost")}};
+    // Format version 2: a smooth contact has no tangential impulse.
+    nlohmann::ordered_json zero = nlohmann::ordered_json::array();
+    for (int c = 0; c < p.dimension; ++c)
+        zero.push_back(symbolic ? nlohmann::ordered_json("0") : nlohmann::ordered_json(0.0));
+    out["tangential_impulse"] = zero;
+    out["regime"] = "smooth";
     return out;
 }
 
-std::string answer_text(const derivation& d, const solution& s)
+nlohmann::ordered_json answer_json(const derivation& d, const regime_case& c, bool symbolic)
+{
+    nlohmann::ordered_json out = answer_json(d, c.sol, symbolic);
+    valuer val{c.sol, symbolic};
+    nlohmann::ordered_json t = nlohmann::ordered_json::array();
+    for (int k = 0; k < d.prob.dimension; ++k)
+        t.push_back(val(c.tangential_impulse[k], "tangential_impulse"));
+    out["tangential_impulse"] = t;
+    out["regime"] = regime_name(c.kind);
+    return out;
+}
+
+std::string answer_text(const derivation& d, const solution& s) { return answer_text(d, s, nullptr); }
+
+std::string answer_text(const derivation& d, const regime_case& c) { return answer_text(d, c.sol, &c); }
+
+std::string answer_text(const derivation& d, const solution& s, const regime_case* friction)
 {
     const problem& p = d.prob;
     std::ostringstream os;
     auto show = [&](const ex& e) {
         ex v = tidy(s.expand_steps(e));
+        if (is_a<numeric>(v) && !ex_to<numeric>(v).is_rational()) // a float: a root found numerically
+            return decimal(v);
         std::string exact = parser_syntax(v);
         try {
             std::string dec = decimal(v);
@@ -86,7 +110,12 @@ std::string answer_text(const derivation& d, const solution& s)
         return r + ")";
     };
     os << "Impact of " << p.bodies[p.contact.body1].name << " (body 1) on " << p.bodies[p.contact.body2].name
-       << " (body 2), e = " << parser_syntax(p.restitution) << "\n\n";
+       << " (body 2), e = " << parser_syntax(p.restitution);
+    if (friction)
+        os << ", mu = " << parser_syntax(p.contact.friction);
+    os << "\n\n";
+    if (friction)
+        os << "Regime: " << regime_name(friction->kind) << " (" << friction->name << ")\n\n";
     os << "After impact:\n";
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         os << "  " << p.bodies[i].name << ":\n";
@@ -97,6 +126,8 @@ std::string answer_text(const derivation& d, const solution& s)
             os << "    angular velocity  " << show_vec(s.after[i].angular_velocity, 3) << "\n";
     }
     os << "  normal impulse      " << show(s.normal_impulse) << "\n";
+    if (friction)
+        os << "  tangential impulse  " << show_vec(friction->tangential_impulse, p.dimension) << "\n";
     for (std::size_t k = 0; k < s.pivot_impulses.size(); ++k)
         os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(s.pivot_impulses[k], p.dimension) << "\n";
     os << "Kinetic energy:\n";

@@ -355,6 +355,7 @@ std::vector<symbol> problem::parameters() const
     }
     collect_v(contact.point);
     collect_v(contact.normal);
+    collect(contact.friction);
     for (const pivot& pv : pivots)
         collect_v(pv.point);
     std::vector<symbol> r;
@@ -424,6 +425,8 @@ void validate(const problem& p)
     if (decided(p.restitution, "restitution", "e") == decision::negative ||
         decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
         throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
+    if (decided(p.contact.friction, "contact.friction", "mu") == decision::negative)
+        throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " + show(p.contact.friction));
     std::set<std::string> seen;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         const body& b = p.bodies[i];
@@ -611,7 +614,7 @@ problem read_problem(const std::string& text, const std::string& source)
     const json_value& jc = require(root, "contact", "problem");
     if (!jc.is_object())
         throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
-    warn_unknown_keys(jc, {"bodies", "point", "normal"}, "contact", p.warnings);
+    warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, "contact", p.warnings);
     const json_value& cb = require(jc, "bodies", "contact");
     if (!cb.is_array() || cb.items().size() != 2)
         throw input_error("contact.bodies: expected a list of the two bodies that touch");
@@ -619,6 +622,12 @@ problem read_problem(const std::string& text, const std::string& source)
     p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
     p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
     p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
+    if (const json_value* jf = jc.find("friction")) {
+        p.contact.friction = scalar(*jf, "contact.friction");
+        // mu = 0 (exactly, however written) is the smooth impact, unchanged
+        if (is_constant(p.contact.friction) && decide(p.contact.friction) == decision::zero)
+            p.contact.friction = 0;
+    }
 
     if (const json_value* jp = root.find("pivots")) {
         if (!jp->is_array())
@@ -678,6 +687,7 @@ problem substitute(const problem& p, const ex& values)
     }
     sv(q.contact.point);
     sv(q.contact.normal);
+    q.contact.friction = p.contact.friction.subs(values);
     for (pivot& pv : q.pivots)
         sv(pv.point);
     return q;

@@ -51,6 +51,7 @@ struct contact_spec {
     std::size_t body1 = 0, body2 = 1; ///< A is on body 1, B on body 2
     vec3 point = zero_vec();          ///< the contact point O
     vec3 normal = zero_vec();         ///< from body 1 into body 2; any non-zero length
+    ex friction = 0;                  ///< Coulomb's coefficient mu >= 0 (format version 2); 0: smooth
 };
 
 struct problem {
@@ -66,6 +67,8 @@ struct problem {
     /// Every symbol the problem's values contain, sorted by name.
     std::vector<GiNaC::symbol> parameters() const;
     bool is_numeric() const { return parameters().empty(); }
+    /// True when the contact has a friction coefficient that is not identically 0.
+    bool has_friction() const { return !contact.friction.is_zero(); }
     /// The pivot of a body, or nullptr.
     const pivot* pivot_of(std::size_t body) const;
     /// True when the impulse cannot move the body (infinite mass, or a pinned particle).

@@ -8,6 +8,7 @@
 
 #include <random>
 #include <set>
+#include <sstream>
 
 namespace impactgen {
 using namespace GiNaC;
@@ -33,40 +34,35 @@ bool atomic(const ex& e)
     return is_a<numeric>(e) || is_a<symbol>(e) || (is_a<GiNaC::mul>(e) && e.nops() == 2 && is_a<numeric>(e.op(1)) && is_a<symbol>(e.op(0)));
 }
 
-class step_builder {
-public:
-    step_builder(solution& s, const problem& p) : s_(s)
-    {
-        for (const symbol& x : p.parameters())
-            taken_.insert(x.get_name());
-    }
-    /// A named step, or the value itself when it is too simple to name.
-    ex add(step_role role, std::size_t body, int row, int column, const std::string& name, const std::string& tex,
-           const ex& value, const std::string& meaning, bool force = false)
-    {
-        if (!force && atomic(value))
-            return value;
-        std::string n = name, t = tex;
-        while (taken_.count(n)) {
-            n += "_";
-            t += "{}'";
-        }
-        taken_.insert(n);
-        symbol sym(n, t);
-        s_.steps.push_back({sym, value, meaning, role, body, row, column});
-        return sym;
-    }
-
-private:
-    solution& s_;
-    std::set<std::string> taken_;
-};
-
 bool short_label(const std::string& l) { return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0])); }
 std::string sub(const std::string& label) { return short_label(label) ? label : "," + label; }
 std::string tsub(const std::string& label) { return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}"; }
 
 } // namespace
+
+step_builder::step_builder(solution& s, const problem& p) : s_(s)
+{
+    for (const symbol& x : p.parameters())
+        taken_.insert(x.get_name());
+    for (const step& st : s.steps)
+        taken_.insert(st.sym.get_name());
+}
+
+ex step_builder::add(step_role role, std::size_t body, int row, int column, const std::string& name, const std::string& tex,
+                     const ex& value, const std::string& meaning, bool force)
+{
+    if (!force && atomic(value))
+        return value;
+    std::string n = name, t = tex;
+    while (taken_.count(n)) {
+        n += "_";
+        t += "{}'";
+    }
+    taken_.insert(n);
+    symbol sym(n, t);
+    s_.steps.push_back({sym, value, meaning, role, body, row, column});
+    return sym;
+}
 
 const step* solution::find(step_role role, std::size_t body, int row, int column) const
 {
@@ -103,6 +99,13 @@ lst solution::step_values(const ex& input_values) const
 solution solve(const derivation& d)
 {
     const problem& p = d.prob;
+    if (p.has_friction()) {
+        std::ostringstream mu;
+        mu << p.contact.friction;
+        throw input_error((p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
+                          ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
+                          ") is solved by 'impactgen solve' (numbers) and 'impactgen formulas'");
+    }
     solution s;
     step_builder sb(s, p);
     const int dim = p.dimension;

@@ -13,6 +13,7 @@
 
 #include "derivation.hpp"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,17 @@ enum class step_role {
     approach_velocity,      ///< u = (v_B - v_A) . n before impact
     contact_inverse_mass,   ///< k = w_1 + w_2
     normal_impulse,         ///< N = -(1 + e) u / k
-    energy_lost             ///< T - T' of the bodies of finite mass
+    energy_lost,            ///< T - T' of the bodies of finite mass
+    // Friction (symbolic/friction.hpp): world axes in row/column.
+    inverse_inertia,        ///< an entry of a body's inverse inertia tensor (about C, or E when pinned)
+    contact_response,       ///< an entry of K = K_1 + K_2: change of u per unit impulse on body 2
+    relative_velocity,      ///< a component of u = v_B - v_A before impact
+    response_determinant,   ///< det K (stick)
+    impulse_component,      ///< a component of the contact impulse P on body 2
+    tangential_impulse,     ///< P_t along e_t (planar), or a world component of P_t
+    slide_denominator,      ///< D = n.K(n - mu d): normal response while sliding along d
+    slide_direction,        ///< a world component of the sliding direction d
+    separation_velocity     ///< a component of u' after impact (tangential: sliding speed)
 };
 
 inline constexpr std::size_t no_body = static_cast<std::size_t>(-1);
@@ -69,6 +80,20 @@ struct solution {
 };
 
 solution solve(const derivation& d);
+
+/// Names the steps of a solution: a step's name never equals a problem symbol's or an
+/// earlier step's (a trailing _ is added); values too simple to name stay inline.
+class step_builder {
+public:
+    step_builder(solution& s, const problem& p);
+    /// A named step, or the value itself when it is too simple to name (unless force).
+    ex add(step_role role, std::size_t body, int row, int column, const std::string& name, const std::string& tex,
+           const ex& value, const std::string& meaning, bool force = false);
+
+private:
+    solution& s_;
+    std::set<std::string> taken_;
+};
 
 /// Each equation with the solution substituted, normalised: all zero when the
 /// closed form is right. Substitutes input values first when given; with input

@@ -1,0 +1,90 @@
+// Impact with Coulomb friction (problem format version 2, contact.friction = mu).
+//
+// The contact impulse on body 2 is P = P_n n + P_t (P_t normal to n; on body 1 it is -P).
+// Each body's impulse-momentum equations are linear in P, so the relative velocity
+// of the contact points after impact is
+//
+//   u' = u + K P,        K = K_1 + K_2   (the contact response, symmetric)
+//   K_i P = P / m_i + (I_i^{-1} (r_i x P)) x r_i       free body, r_i = O - C_i
+//   K_i P = (I_{E,i}^{-1} (rho_i x P)) x rho_i         pinned at E, rho_i = O - E
+//   K_i = 0                                           infinite mass, pinned particle
+//
+// (a particle drops the rotational term). With u_n = u.n < 0 the approach velocity,
+// Newton's law u'.n = -e u_n and Coulomb's law give three kinds of solution:
+//
+//   stick   u'_t = 0:        P = -K^{-1} (u + e u_n n)       holds when |P_t| <= mu P_n
+//   slide   along a unit d (tangent): P = P_n (n - mu d),
+//           D = n.K(n - mu d),  P_n = -(1 + e) u_n / D,  u' = u + P_n K (n - mu d)
+//           holds when D > 0 and u'_t = lambda d with lambda > 0
+//   planar: d = +e_t or -e_t (two closed forms);
+//   3-D, K isotropic on the tangent plane and K n parallel to n (spheres, particles,
+//   central impacts of spheres): d = u_t / |u_t| (closed form);
+//   3-D otherwise: d = cos(theta) e_t + sin(theta) e_b with theta a root of
+//           g(theta) = n . (h x d),  h = D u + a K (n - mu d),  a = -(1 + e) u_n,
+//           a trigonometric polynomial of degree 2 (at most four roots).
+//
+// Exactly one kind must hold; a problem for which none or several hold is refused
+// naming them. mu = 0 is the smooth impact of solution.hpp, unchanged.
+#pragma once
+
+#include "solution.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen {
+
+enum class regime { smooth, stick, slide };
+/// "smooth", "stick" or "slide": the answer's regime key.
+const char* regime_name(regime r);
+
+/// value > 0 (strict) or value >= 0, in the case's steps and the inputs.
+struct regime_condition {
+    ex value;
+    bool strict = true;
+    std::string meaning;  ///< plain text, e.g. "mu P_n - P_t >= 0 (inside the cone)"
+};
+
+/// One candidate solution of the law: a regime with its closed form (in steps)
+/// and the inequalities under which it is the answer.
+struct regime_case {
+    regime kind = regime::stick;
+    int sign = 0;                 ///< planar slide: +1 when u'_t points along +e_t, -1 along -e_t
+    std::string name;             ///< "stick", "slide along +e_t", "slide along u_t", "slide"
+    solution sol;                 ///< steps (the shared ones first), bodies after, P_n, pivot impulses, energies
+    vec3 impulse;                 ///< P in world axes, on body 2
+    vec3 tangential_impulse;      ///< P_t = P - P_n n, world axes, on body 2
+    ex tangential_scalar;         ///< planar: P_t . e_t; 3-D: 0
+    vec3 direction;               ///< slide: the unit sliding direction d (world); stick: zero
+    ex sliding_speed;             ///< slide: lambda = u'_t . d; stick: 0
+    std::vector<regime_condition> conditions;
+    /// 3-D slide without a closed form: d = c e_t + s e_b with these two symbols
+    /// (cos and sin of the sliding angle), and the equation g(c, s) = 0 they solve.
+    bool needs_angle = false;
+    GiNaC::symbol dir_c{"c_d"}, dir_s{"s_d"};
+    ex angle_equation;            ///< g, in steps and dir_c, dir_s
+};
+
+struct friction_solution {
+    ex mu;
+    vec3 n_hat, e_t, e_b;         ///< the unit contact frame (e_b zero in 2-D)
+    bool isotropic = false;       ///< 3-D: K isotropic on the tangent plane and uncoupled from n
+    std::vector<regime_case> cases; ///< stick first, then the slide cases
+};
+
+/// The closed forms of every regime. The derivation must have been made for a problem
+/// with friction (mu may be symbolic). Throws input_error when the contact response K
+/// is singular (a pinned body struck by an immovable one: the tangential impulse is
+/// indeterminate).
+friction_solution solve_friction(const derivation& d);
+
+/// A numeric problem's answer: the one regime that holds, its values substituted
+/// (exact where the closed form is; for a 3-D slide without one, the sliding angle at
+/// 50 significant digits). Decided exactly or refused: input_error naming the regimes
+/// when none holds, several hold, or the decision is too close to call.
+regime_case select_regime(const derivation& d, const friction_solution& f);
+
+/// The conditions of the case, as values (inputs substituted), for tests.
+std::vector<ex> condition_values(const regime_case& c, const ex& input_values = GiNaC::lst{});
+
+} // namespace impactgen
