@@ -29,6 +29,8 @@ problem impactgen::cli::load(const std::string& what)
         std::string names;
         for (const named_class& c : named_classes())
             names += (names.empty() ? "" : ", ") + c.name;
+        for (const named_class& c : friction_classes())
+            names += ", " + c.name;
         throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
     }
     problem p = load_problem_file(what);
@@ -46,6 +48,9 @@ int cmd_list()
         derivation d = derive(c.build());
         std::printf("%-16s %2zu unknowns  %s\n", c.name.c_str(), d.count_unknowns(), c.description.c_str());
     }
+    std::printf("\nwith Coulomb friction (past the notes; regimes stick and slide):\n");
+    for (const named_class& c : friction_classes())
+        std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
     return 0;
 }
 
@@ -81,6 +86,8 @@ int cmd_solve(const std::string& what, bool json)
 int cmd_formulas(const std::string& what, const std::string& format, bool jacobian, const std::string& wrt)
 {
     problem p = load(what);
+    if (jacobian && p.has_friction())
+        throw input_error(what + ": --jacobian is not available with friction (the impact map is piecewise: one closed form per regime)");
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {
@@ -95,6 +102,16 @@ int cmd_formulas(const std::string& what, const std::string& format, bool jacobi
         return 0;
     }
     derivation d = derive(p);
+    if (p.has_friction()) {
+        friction_solution f = solve_friction(d);
+        if (format == "json")
+            std::cout << print::formulas_json(d, f).dump(2) << "\n";
+        else if (format == "latex")
+            std::cout << print::formulas_latex(d, f);
+        else
+            std::cout << print::formulas_text(d, f);
+        return 0;
+    }
     solution s = solve(d);
     if (format == "json")
         std::cout << print::answer_json(d, s, true).dump(2) << "\n";

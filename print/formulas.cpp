@@ -66,4 +66,184 @@ std::string formulas_latex(const derivation& d, const solution& s)
     return os.str();
 }
 
+// ---- friction ---------------------------------------------------------------
+
+namespace {
+
+// The steps a case adds to the shared ones (every case starts with the same shared steps).
+std::size_t shared_count(const friction_solution& f)
+{
+    if (f.cases.size() < 2)
+        return 0;
+    std::size_t n = 0;
+    const auto& a = f.cases[0].sol.steps;
+    const auto& b = f.cases[1].sol.steps;
+    while (n < a.size() && n < b.size() && a[n].sym.is_equal(b[n].sym))
+        ++n;
+    return n;
+}
+
+std::string relation(const regime_condition& c) { return c.strict ? " > 0" : " >= 0"; }
+
+struct case_line {
+    std::string name_text, name_tex;
+    ex value;
+    std::string meaning;
+};
+
+std::vector<case_line> case_results(const derivation& d, const regime_case& c)
+{
+    std::vector<case_line> lines;
+    const problem& p = d.prob;
+    for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
+        const unknown& u = d.unknowns[k];
+        if (u.kind == unknown_kind::normal_impulse)
+            continue;
+        lines.push_back({u.sym.get_name(), symbol_latex(u.sym), c.sol.unknown_values.op(k).rhs(), u.meaning});
+    }
+    if (p.dimension == 3)
+        for (int a = 0; a < 3; ++a)
+            if (!is_a<symbol>(c.tangential_impulse[a])) // a step already
+                lines.push_back({"F_" + p.axes[a], "F_{" + p.axes[a] + "}", c.tangential_impulse[a],
+                             "tangential impulse on body 2, " + p.axes[a] + " component"});
+    return lines;
+}
+
+} // namespace
+
+ex stick_threshold(const derivation& d, const friction_solution& f)
+{
+    const regime_case& st = f.cases.front();
+    const ex Pn = st.sol.normal_impulse;
+    if (d.prob.dimension == 2)
+        return abs(tidy(st.sol.expand_steps(st.tangential_scalar / Pn)));
+    return sqrt(dot(st.tangential_impulse, st.tangential_impulse)) / Pn;
+}
+
+std::string formulas_text(const derivation& d, const friction_solution& f)
+{
+    std::ostringstream os;
+    const problem& p = d.prob;
+    os << p.source << ": impact with Coulomb friction mu = " << canonical_text(f.mu) << ", " << f.cases.size()
+       << " candidate regimes; exactly one holds\n";
+    auto vec_text = [&](const vec3& v) {
+        std::string r = "(";
+        for (int a = 0; a < p.dimension; ++a)
+            r += (a ? ", " : "") + canonical_text(v[a]);
+        return r + ")";
+    };
+    os << "unit normal n = " << vec_text(f.n_hat) << ", tangent e_t = " << vec_text(f.e_t);
+    if (p.dimension == 3)
+        os << ", e_b = " << vec_text(f.e_b);
+    os << "\n\n";
+    const std::size_t shared = shared_count(f);
+    const auto& first = f.cases.front().sol.steps;
+    for (std::size_t k = 0; k < shared; ++k)
+        os << symbol_text(first[k].sym.get_name()) << " = " << canonical_text(first[k].value) << "\n    (" << first[k].meaning << ")\n";
+    for (std::size_t ci = 0; ci < f.cases.size(); ++ci) {
+        const regime_case& c = f.cases[ci];
+        os << "\nRegime " << ci + 1 << ": " << c.name << "\n";
+        for (std::size_t k = shared; k < c.sol.steps.size(); ++k)
+            os << "  " << symbol_text(c.sol.steps[k].sym.get_name()) << " = " << canonical_text(c.sol.steps[k].value) << "\n      ("
+               << c.sol.steps[k].meaning << ")\n";
+        if (c.needs_angle)
+            os << "  the sliding direction d = c_d e_t + s_d e_b (c_d^2 + s_d^2 = 1) solves\n      0 = "
+               << canonical_text(c.angle_equation) << "\n      (u'_t parallel to d: a trigonometric polynomial of degree 2 in the sliding angle)\n";
+        for (const case_line& l : case_results(d, c))
+            os << "  " << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n";
+        os << "  holds when:\n";
+        for (const regime_condition& rc : c.conditions)
+            os << "    " << rc.meaning << ":  " << canonical_text(rc.value) << relation(rc) << "\n";
+    }
+    os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when\n  mu >= mu* = |F| / N = "
+       << canonical_text(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    return os.str();
+}
+
+std::string formulas_latex(const derivation& d, const friction_solution& f)
+{
+    std::ostringstream os;
+    const problem& p = d.prob;
+    os << "% impactgen formulas -- " << p.source << ": impact with Coulomb friction\n";
+    const std::size_t shared = shared_count(f);
+    const auto& first = f.cases.front().sol.steps;
+    os << "\\begin{align*}\n";
+    for (std::size_t k = 0; k < shared; ++k)
+        os << "  " << symbol_latex(first[k].sym) << " &= " << canonical_latex(first[k].value) << " \\\\\n";
+    os << "  \\mu^{*} &= " << canonical_latex(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    os << "\\end{align*}\n";
+    for (const regime_case& c : f.cases) {
+        os << "% regime: " << c.name << "\n\\begin{align*}\n";
+        for (std::size_t k = shared; k < c.sol.steps.size(); ++k)
+            os << "  " << symbol_latex(c.sol.steps[k].sym) << " &= " << canonical_latex(c.sol.steps[k].value) << " \\\\\n";
+        if (c.needs_angle)
+            os << "  0 &= " << canonical_latex(c.angle_equation) << " \\\\\n";
+        for (const case_line& l : case_results(d, c))
+            os << "  " << l.name_tex << " &= " << canonical_latex(l.value) << " \\\\\n";
+        for (std::size_t k = 0; k < c.conditions.size(); ++k)
+            os << "  " << canonical_latex(c.conditions[k].value) << " &" << (c.conditions[k].strict ? ">" : "\\geq") << " 0"
+               << (k + 1 < c.conditions.size() ? " \\\\" : "") << "\n";
+        os << "\\end{align*}\n";
+    }
+    return os.str();
+}
+
+nlohmann::ordered_json formulas_json(const derivation& d, const friction_solution& f)
+{
+    const problem& p = d.prob;
+    nlohmann::ordered_json out;
+    out["friction"] = canonical_parser(f.mu);
+    auto vec_json = [&](const vec3& v) {
+        nlohmann::ordered_json a = nlohmann::ordered_json::array();
+        for (int k = 0; k < p.dimension; ++k)
+            a.push_back(canonical_parser(v[k]));
+        return a;
+    };
+    out["normal"] = vec_json(f.n_hat);
+    out["regimes"] = nlohmann::ordered_json::array();
+    for (const regime_case& c : f.cases) {
+        nlohmann::ordered_json r;
+        r["regime"] = regime_name(c.kind);
+        r["case"] = c.name;
+        r["steps"] = nlohmann::ordered_json::array();
+        for (const step& st : c.sol.steps)
+            r["steps"].push_back({{"name", st.sym.get_name()}, {"value", canonical_parser(st.value)}, {"meaning", st.meaning}});
+        if (c.needs_angle)
+            r["angle_equation"] = {{"unknowns", {c.dir_c.get_name(), c.dir_s.get_name()}},
+                                   {"direction", "d = c_d e_t + s_d e_b, c_d^2 + s_d^2 = 1"},
+                                   {"e_t", vec_json(f.e_t)},
+                                   {"e_b", vec_json(f.e_b)},
+                                   {"equation", canonical_parser(c.angle_equation)}};
+        nlohmann::ordered_json bodies = nlohmann::ordered_json::object();
+        for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+            nlohmann::ordered_json b;
+            b["velocity"] = vec_json(c.sol.after[i].velocity);
+            if (p.dimension == 2) {
+                b["angular_velocity"] = canonical_parser(c.sol.after[i].angular_velocity[2]);
+            } else {
+                nlohmann::ordered_json w = nlohmann::ordered_json::array();
+                for (int k = 0; k < 3; ++k)
+                    w.push_back(canonical_parser(c.sol.after[i].angular_velocity[k]));
+                b["angular_velocity"] = w;
+            }
+            bodies[p.bodies[i].name] = b;
+        }
+        r["answer"] = {{"bodies", bodies},
+                       {"normal_impulse", canonical_parser(c.sol.normal_impulse)},
+                       {"tangential_impulse", vec_json(c.tangential_impulse)},
+                       {"regime", regime_name(c.kind)}};
+        nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
+        for (const vec3& R : c.sol.pivot_impulses)
+            pivots.push_back(vec_json(R));
+        r["answer"]["pivot_impulses"] = pivots;
+        r["conditions"] = nlohmann::ordered_json::array();
+        for (const regime_condition& rc : c.conditions)
+            r["conditions"].push_back({{"expression", canonical_parser(rc.value)}, {"relation", c.needs_angle || rc.strict ? ">" : ">="},
+                                       {"meaning", rc.meaning}});
+        out["regimes"].push_back(r);
+    }
+    out["stick_threshold"] = canonical_parser(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f))));
+    return out;
+}
+
 } // namespace impactgen::print

@@ -218,9 +218,9 @@ void add_tangential(const derivation& d, regime_case& c, step_builder& sb, const
         return;
     }
     for (int a = 0; a < 3; ++a)
-        c.tangential_impulse[a] = sb.add(step_role::tangential_impulse, no_body, a, -1, "Pt_" + p.axes[a], "P_{t," + p.axes[a] + "}",
+        c.tangential_impulse[a] = sb.add(step_role::tangential_impulse, no_body, a, -1, "F_" + p.axes[a], "F_{" + p.axes[a] + "}",
                                          c.impulse[a] - Pn * d.n_hat[a],
-                                         "tangential impulse P - P_n n on body 2, " + p.axes[a] + " component");
+                                         "tangential (friction) impulse P - N n on body 2, " + p.axes[a] + " component");
 }
 
 regime_case stick_case(const derivation& d, const solution& shared_steps, const shared_part& sh, const ex& mu)
@@ -259,21 +259,21 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
                       "contact impulse on body 2 when sticking, " + p.axes[a] + " component", true);
     }
     c.impulse = P;
-    ex Pn = sb.add(step_role::normal_impulse, no_body, -1, -1, "P_n", "P_{n}", dot(P, n),
-                   "normal impulse P.n (integral of N dt), on body 2 along +n, on body 1 along -n", true);
+    ex Pn = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", dot(P, n),
+                   "normal impulse P.n, on body 2 along +n, on body 1 along -n", true);
     c.sol.normal_impulse = Pn;
     if (dim == 2) {
-        c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "P_t", "P_{t}", dot(P, d.t_dir),
-                                     "tangential impulse P.e_t on body 2", true);
+        c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", dot(P, d.t_dir),
+                                     "tangential (friction) impulse P.e_t on body 2", true);
         add_tangential(d, c, sb, Pn);
-        c.conditions.push_back({mu * Pn - c.tangential_scalar, false, "mu P_n - P_t >= 0 (the impulse inside the friction cone)"});
-        c.conditions.push_back({mu * Pn + c.tangential_scalar, false, "mu P_n + P_t >= 0 (the impulse inside the friction cone)"});
+        c.conditions.push_back({mu * Pn - c.tangential_scalar, false, "mu N - F >= 0 (the impulse inside the friction cone)"});
+        c.conditions.push_back({mu * Pn + c.tangential_scalar, false, "mu N + F >= 0 (the impulse inside the friction cone)"});
     } else {
         c.tangential_scalar = 0;
         add_tangential(d, c, sb, Pn);
-        c.conditions.push_back({Pn, false, "P_n >= 0 (the contact pushes)"});
+        c.conditions.push_back({Pn, false, "N >= 0 (the contact pushes)"});
         c.conditions.push_back({mu * mu * Pn * Pn - dot(c.tangential_impulse, c.tangential_impulse), false,
-                                "mu^2 P_n^2 - |P_t|^2 >= 0 (the impulse inside the friction cone)"});
+                                "mu^2 N^2 - |F|^2 >= 0 (the impulse inside the friction cone)"});
     }
     c.direction = zero_vec();
     c.sliding_speed = 0;
@@ -307,17 +307,17 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
     const vec3 Q = mul(sh.K, m); // u' = u + P_n Q
     ex D = sb.add(step_role::slide_denominator, no_body, -1, -1, "D_s", "D_{s}", dot(n, Q),
                   "normal response while sliding: n.K(n - mu d) (must be > 0)", true);
-    ex Pn = sb.add(step_role::normal_impulse, no_body, -1, -1, "P_n", "P_{n}", -(1 + e) * sh.un / D,
-                   "normal impulse -(1 + e) u_n / D_s (integral of N dt), on body 2 along +n", true);
+    ex Pn = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + e) * sh.un / D,
+                   "normal impulse -(1 + e) u_n / D_s, on body 2 along +n", true);
     c.sol.normal_impulse = Pn;
     vec3 P = zero_vec();
     for (int a = 0; a < dim; ++a)
         P[a] = sb.add(step_role::impulse_component, no_body, a, -1, "P_" + p.axes[a], "P_{" + p.axes[a] + "}", Pn * m[a],
-                      "contact impulse P_n (n - mu d) on body 2, " + p.axes[a] + " component", true);
+                      "contact impulse N (n - mu d) on body 2, " + p.axes[a] + " component", true);
     c.impulse = P;
     if (dim == 2) {
-        c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "P_t", "P_{t}", -ex(sign) * mu * Pn,
-                                     "tangential impulse on body 2 along e_t: -mu P_n times the sign of u'_t", true);
+        c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", -ex(sign) * mu * Pn,
+                                     "tangential (friction) impulse on body 2 along e_t: -mu N times the sign of u'_t", true);
         for (int a = 0; a < 3; ++a)
             c.tangential_impulse[a] = 0;
         for (int a = 0; a < 2; ++a)
@@ -332,7 +332,7 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
         after[a] = sh.u[a] + Pn * Q[a];
     c.sliding_speed = sb.add(step_role::separation_velocity, no_body, -1, -1, "lambda", "\\lambda", dot(after, dir),
                              "sliding speed u'.d after impact (must be > 0)", true);
-    c.conditions.push_back({D, true, "D_s > 0 (the normal impulse is positive)"});
+    c.conditions.push_back({D, true, "D_s > 0 (the normal impulse N is positive)"});
     c.conditions.push_back({c.sliding_speed, true, "lambda = u'_t.d > 0 (the contact slides along d after impact)"});
     if (needs_angle) {
         // g = n.(h x d), h = D u + a K (n - mu d): u'_t parallel to d.
@@ -472,14 +472,14 @@ friction_solution solve_friction(const derivation& d)
             return f; // no tangential motion: only sticking (with P_t = 0) can hold
         solution with_speed = shared;
         step_builder sb2(with_speed, p);
-        ex speed = sb2.add(step_role::relative_velocity, no_body, -1, -1, "u_t", "u_{t}", sqrt(ut2),
+        ex speed = sb2.add(step_role::relative_velocity, no_body, -1, -1, "u_s", "u_{s}", sqrt(ut2),
                            "tangential speed |u - u_n n| of the contact points before impact", true);
         vec3 dir = zero_vec();
         for (int a = 0; a < 3; ++a)
             dir[a] = sb2.add(step_role::slide_direction, no_body, a, -1, "d_" + p.axes[a], "d_{" + p.axes[a] + "}",
                              ut[a] / speed, "sliding direction u_t / |u_t|, " + p.axes[a] + " component", true);
         regime_case c = slide_case(d, with_speed, sh, f.mu, dir, "slide along u_t", 0, false);
-        c.conditions.insert(c.conditions.begin(), {speed, true, "|u_t| > 0 (the contact points move tangentially)"});
+        c.conditions.insert(c.conditions.begin(), {speed, true, "u_s > 0 (the contact points move tangentially)"});
         f.cases.push_back(c);
         return f;
     }

@@ -136,7 +136,52 @@ problem pinned_planar()
     return p;
 }
 
+// Past the notes: Coulomb friction at the contact (format version 2), coefficient mu.
+problem with_friction(problem p, const std::string& name)
+{
+    p.source = name;
+    p.contact.friction = S("mu", "\\mu");
+    return p;
+}
+
+problem planar_friction() { return with_friction(planar(), "planar-friction"); }
+
+problem noncentral_3d_friction() { return with_friction(noncentral_3d(), "noncentral-3d-friction"); }
+
+// The classic: a ball (radius R, mass m, I = 2 m R^2 / 5, spin w) strikes the
+// immovable floor obliquely (v_n < 0) and leaves rolling when mu is large enough.
+problem ball_floor_friction()
+{
+    problem p = base("ball-floor-friction", 2);
+    const ex m = S("m"), R = S("R");
+    body floor;
+    floor.name = floor.label = "floor";
+    floor.infinite_mass = true;
+    floor.mass = 0;
+    floor.position = {0, -R, 0}; // any point below the surface: an infinite mass at rest
+    body ball;
+    ball.name = ball.label = "ball";
+    ball.mass = m;
+    ball.particle = false;
+    ball.inertia[2][2] = 2 * m * R * R / 5;
+    ball.position = {0, R, 0};
+    ball.velocity = {S("v_t", "v_{t}"), S("v_n", "v_{n}"), 0};
+    ball.angular_velocity[2] = S("w", "\\omega");
+    p.bodies = {floor, ball};
+    return with_friction(p, "ball-floor-friction");
+}
+
 } // namespace
+
+const std::vector<named_class>& friction_classes()
+{
+    static const std::vector<named_class> all = {
+        {"planar-friction", "planar impact of two free rigid bodies with Coulomb friction mu", planar_friction},
+        {"ball-floor-friction", "a spinning ball strikes the floor obliquely with friction: it sticks (leaves rolling) or slides", ball_floor_friction},
+        {"noncentral-3d-friction", "two free rigid bodies in 3-D with full inertia tensors and Coulomb friction mu", noncentral_3d_friction},
+    };
+    return all;
+}
 
 const std::vector<named_class>& named_classes()
 {
@@ -154,6 +199,9 @@ const std::vector<named_class>& named_classes()
 const named_class* find_named_class(const std::string& name)
 {
     for (const named_class& c : named_classes())
+        if (c.name == name)
+            return &c;
+    for (const named_class& c : friction_classes())
         if (c.name == name)
             return &c;
     return nullptr;

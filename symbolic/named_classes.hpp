@@ -17,7 +17,9 @@ struct named_class {
 
 /// All named classes, in the order of the notes.
 const std::vector<named_class>& named_classes();
-/// The class of that name, or nullptr.
+/// Past the notes: the classes with Coulomb friction (format version 2).
+const std::vector<named_class>& friction_classes();
+/// The class of that name (smooth or with friction), or nullptr.
 const named_class* find_named_class(const std::string& name);
 
 } // namespace impactgen
