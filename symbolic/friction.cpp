@@ -592,6 +592,9 @@ regime_case select_regime(const derivation& d, const friction_solution& f)
     const problem& p = d.prob;
     const std::string where = p.source.empty() ? std::string("contact.friction")
                                                : names::display_text(p.source) + ": contact.friction";
+    if (!p.is_numeric())
+        throw input_error(where + ": the regime of a problem with symbols depends on their values; "
+                                  "'impactgen formulas' gives each regime with the inequalities that select it");
     std::vector<regime_case> holding;
     for (const regime_case& c : f.cases) {
         if (!c.needs_angle) {
@@ -657,8 +660,13 @@ regime_case select_regime(const derivation& d, const friction_solution& f)
         }
         Digits = saved;
     }
-    if (holding.size() == 1)
+    if (holding.size() == 1) {
+        if (decide(f.mu) == decision::zero) { // mu = 0: the smooth impact (F = 0), whichever case carried it
+            holding[0].kind = regime::smooth;
+            holding[0].name = "smooth";
+        }
         return holding[0];
+    }
     std::string names;
     for (const regime_case& c : (holding.empty() ? f.cases : holding))
         names += (names.empty() ? "" : ", ") + c.name;
