@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <sstream>
 
 namespace impactgen {
 using namespace GiNaC;
@@ -587,7 +588,7 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
 
 } // namespace
 
-regime_case select_regime(const derivation& d, const friction_solution& f)
+std::vector<regime_case> holding_regimes(const derivation& d, const friction_solution& f)
 {
     const problem& p = d.prob;
     const std::string where = p.source.empty() ? std::string("contact.friction")
@@ -651,6 +652,10 @@ regime_case select_regime(const derivation& d, const friction_solution& f)
                 if (ok) {
                     regime_case r = substituted(c, dirv, vals, true);
                     r.needs_angle = false;
+                    std::ostringstream angle;
+                    angle.precision(6);
+                    angle << t.to_double();
+                    r.name = "slide at the angle " + angle.str() + " rad from e_t towards e_b";
                     holding.push_back(r);
                 }
             }
@@ -660,13 +665,21 @@ regime_case select_regime(const derivation& d, const friction_solution& f)
         }
         Digits = saved;
     }
-    if (holding.size() == 1) {
-        if (decide(f.mu) == decision::zero) { // mu = 0: the smooth impact (F = 0), whichever case carried it
-            holding[0].kind = regime::smooth;
-            holding[0].name = "smooth";
-        }
-        return holding[0];
+    if (holding.size() == 1 && decide(f.mu) == decision::zero) { // mu = 0: the smooth impact (F = 0)
+        holding[0].kind = regime::smooth;
+        holding[0].name = "smooth";
     }
+    return holding;
+}
+
+regime_case select_regime(const derivation& d, const friction_solution& f)
+{
+    const problem& p = d.prob;
+    const std::string where = p.source.empty() ? std::string("contact.friction")
+                                               : names::display_text(p.source) + ": contact.friction";
+    std::vector<regime_case> holding = holding_regimes(d, f);
+    if (holding.size() == 1)
+        return holding[0];
     std::string names;
     for (const regime_case& c : (holding.empty() ? f.cases : holding))
         names += (names.empty() ? "" : ", ") + c.name;

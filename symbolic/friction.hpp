@@ -84,6 +84,11 @@ friction_solution solve_friction(const derivation& d);
 /// when none holds, several hold, or the decision is too close to call.
 regime_case select_regime(const derivation& d, const friction_solution& f);
 
+/// Every regime that holds for a numeric problem (select_regime's candidates; a 3-D slide
+/// without closed form gives one case per sliding angle that holds). Throws input_error
+/// when a condition cannot be decided or the problem has symbols.
+std::vector<regime_case> holding_regimes(const derivation& d, const friction_solution& f);
+
 /// The conditions of the case, as values (inputs substituted), for tests.
 std::vector<ex> condition_values(const regime_case& c, const ex& input_values = GiNaC::lst{});
 
