@@ -115,7 +115,8 @@ std::string answer_text(const derivation& d, const solution& s, const regime_cas
         os << ", mu = " << parser_syntax(p.contact.friction);
     os << "\n\n";
     if (friction)
-        os << "Regime: " << regime_name(friction->kind) << " (" << friction->name << ")\n\n";
+        os << "Regime: " << regime_name(friction->kind)
+           << (friction->name == regime_name(friction->kind) ? std::string() : " (" + friction->name + ")") << "\n\n";
     os << "After impact:\n";
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         os << "  " << p.bodies[i].name << ":\n";
