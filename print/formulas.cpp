@@ -155,7 +155,7 @@ std::string formulas_text(const derivation& d, const friction_solution& f)
         for (const regime_condition& rc : c.conditions)
             os << "    " << rc.meaning << ":  " << canonical_text(rc.value) << relation(rc) << "\n";
     }
-    os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when\n  mu >= mu* = |F| / N = "
+    os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when its N > 0 and\n  mu >= mu* = |F| / N = "
        << canonical_text(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
     return os.str();
 }

@@ -598,3 +598,80 @@ TEST(Uniqueness, ThreeRegimesCanHoldIn3D)
 }
 
 } // namespace
+
+namespace {
+
+// Where the regimes meet, their formulas agree: at mu = mu* = |F|/N of the stick
+// impulse, the slide formula along d = -F/|F| (planar: the sign -sign(F); 3-D: the
+// direction of the stick's F, opposite) gives the stick answer, body by body.
+TEST(Continuity, StickAndSlideMeetAtTheThreshold)
+{
+    sampler rnd(impactgen::testing::seed_from_env() + 2);
+    for (const std::string name : {"planar-friction", "ball-floor-friction", "noncentral-3d-friction"}) {
+        const problem p = find_named_class(name)->build();
+        int checked = 0;
+        for (int k = 0; k < samples(name == "noncentral-3d-friction" ? 20 : 60); ++k) {
+            lst values = class_inputs(p, rnd, k);
+            problem q = substitute(p, values);
+            try {
+                validate(q);
+            } catch (const input_error&) {
+                continue;
+            }
+            // The stick impulse does not depend on mu: solve once with mu = 1 to read mu*.
+            q.contact.friction = 1;
+            derivation d1 = derive(q);
+            friction_solution f1 = solve_friction(d1);
+            const regime_case& st = f1.cases[0];
+            lst sv = st.sol.step_values(lst{});
+            const ex N = st.sol.normal_impulse.subs(sv);
+            vec3 F = subs(st.tangential_impulse, sv);
+            const ex F2 = tidy(dot(F, F));
+            if (decide(F2) == decision::zero || decide(N) != decision::positive)
+                continue; // no friction needed to stick (mu* = 0), or a stick impulse that pulls (never sticks)
+            const ex mu_star = sqrt(F2) / N;
+            q.contact.friction = mu_star;
+            derivation d = derive(q);
+            friction_solution f = solve_friction(d);
+            lst stick_values = f.cases[0].sol.step_values(lst{});
+            // The slide case along -F: planar by its sign, 3-D by the angle of -F in (e_t, e_b).
+            const regime_case* slide = nullptr;
+            lst dir;
+            if (q.dimension == 2) {
+                const int s = ex_to<numeric>(F[0] * d.t_dir[0] + F[1] * d.t_dir[1]).is_negative() ? 1 : -1;
+                for (const regime_case& c : f.cases)
+                    if (c.kind == regime::slide && c.sign == s)
+                        slide = &c;
+            } else {
+                slide = &f.cases.back();
+                ASSERT_TRUE(slide->needs_angle) << name;
+                const ex len = sqrt(F2);
+                dir = lst{slide->dir_c == -dot(F, f.e_t) / len, slide->dir_s == -dot(F, f.e_b) / len};
+            }
+            ASSERT_NE(slide, nullptr);
+            lst slide_values;
+            for (const step& stp : slide->sol.steps)
+                slide_values.append(stp.sym == stp.value.subs(dir).subs(slide_values));
+            double scale = 1;
+            for (const body& b : q.bodies)
+                scale = std::max({scale, mag(b.velocity), mag(b.angular_velocity)});
+            for (std::size_t i = 0; i < q.bodies.size(); ++i)
+                for (int a = 0; a < 3; ++a) {
+                    const ex vs = f.cases[0].sol.after[i].velocity[a].subs(stick_values);
+                    const ex vl = slide->sol.after[i].velocity[a].subs(dir).subs(slide_values);
+                    EXPECT_TRUE(zero(vs - vl, scale, name + ": v' at mu*"));
+                    const ex ws = f.cases[0].sol.after[i].angular_velocity[a].subs(stick_values);
+                    const ex wl = slide->sol.after[i].angular_velocity[a].subs(dir).subs(slide_values);
+                    EXPECT_TRUE(zero(ws - wl, scale * 100, name + ": w' at mu*"));
+                }
+            // The slide's sliding speed vanishes there: the boundary lambda = 0.
+            EXPECT_TRUE(zero(slide->sliding_speed.subs(dir).subs(slide_values), scale, name + ": lambda at mu*"));
+            ++checked;
+            if (::testing::Test::HasFailure())
+                return;
+        }
+        EXPECT_GT(checked, 5) << name;
+    }
+}
+
+} // namespace
