@@ -1,5 +1,6 @@
 // impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex]:
-// the derivation walked through the way the lecture notes do it.
+// the derivation walked through the way the lecture notes do it; with Coulomb
+// friction, the way textbooks solve it (stick, else slide; every regime).
 #include "cli/commands.hpp"
 #include "print/explain.hpp"
 #include "symbolic/named_classes.hpp"
@@ -24,10 +25,16 @@ void register_explain(CLI::App& app, std::function<int()>& action)
         action = [opt] {
             problem p = load(opt->what);
             derivation d = derive(p);
-            solution s = solve(d);
-            print::worked_example example;
-            bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
-            print::document doc = print::explain(d, s, has_example ? &example : nullptr);
+            print::document doc;
+            if (p.has_friction()) {
+                // Stick, then slide, and which holds; solve_friction refuses a singular K.
+                doc = print::explain_friction(d, solve_friction(d));
+            } else {
+                solution s = solve(d);
+                print::worked_example example;
+                bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
+                doc = print::explain(d, s, has_example ? &example : nullptr);
+            }
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

@@ -1,6 +1,7 @@
 // explain(): the explanation document, section by section as the notes go:
 // set-up, impulses, equations, count and solution, checks.
 #include "explain.hpp"
+#include "explain_detail.hpp"
 
 #include "canonical.hpp"
 #include "expression.hpp"
@@ -14,7 +15,7 @@
 namespace impactgen::print {
 using namespace GiNaC;
 
-namespace {
+namespace detail {
 
 std::string body_ref(const problem& p, std::size_t i)
 {
@@ -22,11 +23,6 @@ std::string body_ref(const problem& p, std::size_t i)
     std::string role = i == p.contact.body1 ? "body 1" : i == p.contact.body2 ? "body 2" : "body";
     return b.numbered ? role : role + " (" + b.name + ")";
 }
-
-std::string number_word(std::size_t n) { return std::to_string(n); }
-
-// Print-only symbols: names for quantities that are not GiNaC symbols of the problem.
-symbol show(const std::string& name, const std::string& tex) { return symbol(name, tex); }
 
 paragraph& vector_span(paragraph& p, const vec3& v, int n)
 {
@@ -39,6 +35,7 @@ paragraph& vector_span(paragraph& p, const vec3& v, int n)
     return p.w(")");
 }
 
+namespace {
 int count_nodes(const ex& e, int limit)
 {
     int n = 0;
@@ -46,7 +43,52 @@ int count_nodes(const ex& e, int limit)
         ++n;
     return n;
 }
-bool printable(const ex& e) { return count_nodes(e, 400) < 400; }
+} // namespace
+
+bool printable(const ex& e, int limit) { return count_nodes(e, limit) < limit; }
+
+math_row row(const ex& lhs, const ex& rhs, const std::string& tag, const std::string& note)
+{
+    math_row r;
+    r.tag = tag;
+    r.lhs = lhs;
+    r.rhs = rhs;
+    if (!note.empty())
+        r.note.w(note);
+    return r;
+}
+
+math_row note_row(const std::string& text, const std::string& tex, const ex& rhs, const std::string& note)
+{
+    math_row r = row(0, rhs, "", note);
+    r.lhs_note = {text, tex};
+    return r;
+}
+
+math_row formula_row(const std::string& text, const std::string& tex, const std::string& note)
+{
+    math_row r = note_row(text, tex, 0, note);
+    r.rel = "";
+    return r;
+}
+
+std::string decimal_note(const ex& v)
+{
+    ex x = v.evalf();
+    if (!is_a<numeric>(v) || ex_to<numeric>(v).is_integer() || !is_a<numeric>(x))
+        return "";
+    return "≈ " + decimal(v);
+}
+
+} // namespace detail
+
+namespace {
+using namespace detail;
+
+std::string number_word(std::size_t n) { return std::to_string(n); }
+
+// Print-only symbols: names for quantities that are not GiNaC symbols of the problem.
+symbol show(const std::string& name, const std::string& tex) { return symbol(name, tex); }
 
 const step* find_step(const solution& s, step_role role, std::size_t body = no_body) { return s.find(role, body); }
 
@@ -60,49 +102,32 @@ ex expand_some(const solution& s, const ex& e, const std::vector<step_role>& rol
     return r;
 }
 
-math_row row(const ex& lhs, const ex& rhs, const std::string& tag = "", const std::string& note = "")
-{
-    math_row r;
-    r.tag = tag;
-    r.lhs = lhs;
-    r.rhs = rhs;
-    if (!note.empty())
-        r.note.w(note);
-    return r;
-}
-
-math_row note_row(const std::string& text, const std::string& tex, const ex& rhs, const std::string& note = "")
-{
-    math_row r = row(0, rhs, "", note);
-    r.lhs_note = {text, tex};
-    return r;
-}
-
-std::string decimal_note(const ex& v)
-{
-    ex x = v.evalf();
-    if (!is_a<numeric>(v) || ex_to<numeric>(v).is_integer() || !is_a<numeric>(x))
-        return "";
-    return "≈ " + decimal(v);
-}
-
 // ---------------------------------------------------------------- sections
 
-section setup_section(const derivation& d)
+} // namespace
+
+section detail::setup_section(const derivation& d, const friction_setup* fr)
 {
     const problem& p = d.prob;
     const int dim = p.dimension;
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     section sec{"1. Set-up", {}};
 
+    const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
+                                : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
     sec.para(paragraph()
-                 .w(std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact: point A of " + body_ref(p, i1) +
-                    " strikes point B of " + body_ref(p, i2) +
+                 .w(kind + ": point A of " + body_ref(p, i1) + " strikes point B of " + body_ref(p, i2) +
                     ". The impulsive forces change the velocities instantly without changing the positions."));
     if (is_a<symbol>(p.restitution))
         sec.para(paragraph().w("Newton's coefficient of restitution is ").m(p.restitution).w(" (0 ≤ e ≤ 1)."));
     else
         sec.para(paragraph().w("Newton's coefficient of restitution is e = ").m(p.restitution).w("."));
+    if (fr) {
+        if (is_a<symbol>(fr->mu))
+            sec.para(paragraph().w("Coulomb's coefficient of friction between the bodies is ").m(fr->mu).w(" (μ ≥ 0)."));
+        else
+            sec.para(paragraph().w("Coulomb's coefficient of friction between the bodies is μ = ").m(fr->mu).w("."));
+    }
 
     std::vector<paragraph> bodies;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
@@ -180,6 +205,14 @@ section setup_section(const derivation& d)
         r.note.w(u.meaning);
         unknown_rows.push_back(r);
     }
+    if (fr)
+        for (const auto& [sym, meaning] : fr->impulses) {
+            math_row r;
+            r.lhs = sym;
+            r.rel = "";
+            r.note.w(meaning);
+            unknown_rows.push_back(r);
+        }
     sec.rows(unknown_rows);
 
     // Why this many.
@@ -211,7 +244,21 @@ section setup_section(const derivation& d)
         why.push_back(q);
         sum += (sum.empty() ? "" : " + ") + std::to_string(nv + nw);
     }
-    if (d.impulse_form) {
+    if (fr) {
+        std::size_t nr = 0;
+        for (const unknown& u : d.unknowns)
+            if (u.kind == unknown_kind::pivot_impulse)
+                ++nr;
+        const std::size_t nt = static_cast<std::size_t>(dim - 1);
+        std::string text = "impulses: 1 + " + std::to_string(nt) + (nr ? " + " + std::to_string(nr) : "") +
+                           " -- with friction the contact impulse has an unknown tangential part, so each body's impulse-momentum "
+                           "is written with the impulses as unknowns: the normal impulse N and the " +
+                           (dim == 2 ? std::string("friction impulse F along e_t") : std::string("2 components of the friction impulse F in the tangent plane"));
+        if (nr)
+            text += ", and the " + std::to_string(nr) + " components of the pivot's reaction impulse";
+        why.push_back(paragraph().w(text));
+        sum += " + 1 + " + std::to_string(nt) + (nr ? " + " + std::to_string(nr) : "");
+    } else if (d.impulse_form) {
         std::size_t nr = 0;
         for (const unknown& u : d.unknowns)
             if (u.kind == unknown_kind::pivot_impulse)
@@ -223,9 +270,12 @@ section setup_section(const derivation& d)
     }
     sec.para(paragraph().w("Two free rigid bodies in 3-D have 3 + 3 unknowns each: 12 in all. Here:"));
     sec.list(why);
-    sec.para(paragraph().w("Number of unknowns: " + sum + " = " + std::to_string(d.count_unknowns()) + "."));
+    const std::size_t extra = fr ? fr->impulses.size() : 0;
+    sec.para(paragraph().w("Number of unknowns: " + sum + " = " + std::to_string(d.count_unknowns() + extra) + "."));
     return sec;
 }
+
+namespace {
 
 section impulse_section(const derivation& d)
 {

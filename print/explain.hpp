@@ -9,6 +9,7 @@
 // (canonical.hpp), so the output is byte-stable and can be kept as golden files.
 #pragma once
 
+#include "symbolic/friction.hpp"
 #include "symbolic/solution.hpp"
 
 #include <string>
@@ -81,6 +82,13 @@ bool notes_example(const std::string& class_name, worked_example& out);
 /// The explanation of one impact. `example` (optional, may be null): values to
 /// substitute into every step of a symbolic problem at the end.
 document explain(const derivation& d, const solution& s, const worked_example* example = nullptr);
+
+/// The explanation of an impact with Coulomb friction (problem.contact.friction not 0):
+/// the contact law, impulse-momentum with the friction impulse, the contact response K,
+/// stick tested against the cone, then slide; the regimes as conditions on mu, the
+/// energy, existence and uniqueness; for a numeric problem every number and the
+/// regime that holds (or why none or several do).
+document explain_friction(const derivation& d, const friction_solution& f);
 
 std::string explain_text(const document& doc);      ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document& doc);  ///< $...$ math (GiNaC-compatible LaTeX)

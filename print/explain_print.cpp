@@ -6,6 +6,7 @@
 
 #include "names/escape.hpp"
 
+#include <cctype>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,6 +35,54 @@ std::string harden(std::string s)
             c = hard_space;
     return s;
 }
+
+// |x| for GiNaC's abs(x): the canonical printer prints a function by name,
+// abs(x) and \operatorname{abs}\left(x\right); the notes write |x|.
+std::string bars_text(std::string s)
+{
+    for (std::size_t at = s.find("abs("); at != std::string::npos; at = s.find("abs(", at)) {
+        if (at > 0 && (std::isalnum(static_cast<unsigned char>(s[at - 1])) || s[at - 1] == '_')) {
+            at += 4;
+            continue;
+        }
+        std::size_t k = at + 4;
+        for (int depth = 1; k < s.size(); ++k) {
+            if (s[k] == '(')
+                ++depth;
+            else if (s[k] == ')' && --depth == 0)
+                break;
+        }
+        if (k >= s.size())
+            break;
+        s = s.substr(0, at) + "|" + s.substr(at + 4, k - at - 4) + "|" + s.substr(k + 1);
+        ++at;
+    }
+    return s;
+}
+
+std::string bars_latex(std::string s)
+{
+    const std::string open = "\\operatorname{abs}\\left(";
+    for (std::size_t at = s.find(open); at != std::string::npos; at = s.find(open, at)) {
+        std::size_t k = at + open.size();
+        int depth = 1;
+        for (; k < s.size(); ++k) {
+            if (s.compare(k, 5, "\\left") == 0)
+                ++depth;
+            else if (s.compare(k, 6, "\\right") == 0 && --depth == 0)
+                break;
+        }
+        if (k >= s.size())
+            break;
+        // \right) -> \right|
+        s = s.substr(0, at) + "\\left|" + s.substr(at + open.size(), k - at - open.size()) + "\\right|" + s.substr(k + 7);
+        ++at;
+    }
+    return s;
+}
+
+std::string math_text(const ex& e) { return bars_text(canonical_text(e)); }
+std::string math_latex(const ex& e) { return bars_latex(canonical_latex(e)); }
 
 // Greedy wrap at `width` columns; `first` and `rest` are the line prefixes.
 std::string wrap(const std::string& text, const std::string& first, const std::string& rest)
@@ -66,7 +115,7 @@ std::string text_spans(const paragraph& p)
         if (s.k == span::words)
             out += s.text;
         else if (s.k == span::math)
-            out += harden(canonical_text(s.expr));
+            out += harden(math_text(s.expr));
         else
             out += harden(s.formula.text);
     }
@@ -75,7 +124,7 @@ std::string text_spans(const paragraph& p)
 
 std::string text_row_left(const math_row& r)
 {
-    return r.lhs_note.text.empty() ? canonical_text(r.lhs) : r.lhs_note.text;
+    return r.lhs_note.text.empty() ? math_text(r.lhs) : r.lhs_note.text;
 }
 
 // ---------------------------------------------------------------- LaTeX
@@ -88,7 +137,8 @@ std::string tex_words(const std::string& s)
         {"≤", "$\\le$"},   {"≥", "$\\ge$"},       {"∫", "$\\int$"},    {"→", "$\\to$"},         {"′", "$'$"},
         {"ω", "$\\omega$"}, {"·", "$\\cdot$"},    {"×", "$\\times$"},  {"∞", "$\\infty$"},      {"≈", "$\\approx$"},
         {"²", "$^2$"},     {"⁻¹", "$^{-1}$"},     {"ε", "$\\varepsilon$"}, {"±", "$\\pm$"},     {"τ", "$\\tau$"},
-        {"|", "$|$"},      {"<", "$<$"},          {">", "$>$"},
+        {"|", "$|$"},      {"<", "$<$"},          {">", "$>$"},           {"μ", "$\\mu$"},       {"λ", "$\\lambda$"},
+        {"θ", "$\\theta$"}, {"≠", "$\\ne$"},    {"√", "$\\surd$"},    {"∓", "$\\mp$"},       {"⁺", "$^+$"},     {"é", "\\'{e}"},
     };
     std::string out;
     for (std::size_t i = 0; i < s.size();) {
@@ -156,7 +206,7 @@ std::string tex_spans(const paragraph& p, bool markdown)
                 out += tex_words(s.text);
             }
         } else if (s.k == span::math) {
-            out += "$" + canonical_latex(s.expr) + "$";
+            out += "$" + math_latex(s.expr) + "$";
         } else {
             out += "$" + s.formula.tex + "$";
         }
@@ -166,11 +216,11 @@ std::string tex_spans(const paragraph& p, bool markdown)
 
 std::string tex_row(const math_row& r)
 {
-    std::string left = r.lhs_note.text.empty() ? canonical_latex(r.lhs) : r.lhs_note.tex;
+    std::string left = r.lhs_note.text.empty() ? math_latex(r.lhs) : r.lhs_note.tex;
     if (!r.rel.empty())
-        left += " " + tex_rel(r.rel) + " " + canonical_latex(r.rhs);
+        left += " " + tex_rel(r.rel) + " " + math_latex(r.rhs);
     if (r.has_then)
-        left += " = " + canonical_latex(r.then);
+        left += " = " + math_latex(r.then);
     return left;
 }
 
@@ -202,9 +252,9 @@ std::string explain_text(const document& doc)
                     std::string line = "  " + tag + std::string(tag_width - columns(tag) + (tag_width ? 2 : 0), ' ') +
                                        text_row_left(r);
                     if (!r.rel.empty())
-                        line += " " + r.rel + " " + canonical_text(r.rhs);
+                        line += " " + r.rel + " " + math_text(r.rhs);
                     if (r.has_then)
-                        line += " = " + canonical_text(r.then);
+                        line += " = " + math_text(r.then);
                     std::string note = text_spans(r.note);
                     if (note.empty()) {
                         os << line << "\n";

@@ -1,0 +1,36 @@
+// What explain.cpp (smooth impacts) and explain_friction.cpp (Coulomb friction)
+// share: the set-up section and the small builders of rows and spans.
+#pragma once
+
+#include "explain.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impactgen::print::detail {
+
+/// "body 1", "body 2 (ball)", ...
+std::string body_ref(const problem& p, std::size_t i);
+/// (a, b[, c]) with every component through the canonical printer.
+paragraph& vector_span(paragraph& p, const vec3& v, int n);
+/// Small enough to print as one formula (fewer than `limit` nodes).
+bool printable(const GiNaC::ex& e, int limit = 400);
+math_row row(const GiNaC::ex& lhs, const GiNaC::ex& rhs, const std::string& tag = "", const std::string& note = "");
+math_row note_row(const std::string& text, const std::string& tex, const GiNaC::ex& rhs, const std::string& note = "");
+/// A notation row without a value: the formula itself (text and TeX), and a note.
+math_row formula_row(const std::string& text, const std::string& tex, const std::string& note = "");
+/// "≈ 0.142857142857143" for an exact number that is not an integer, else "".
+std::string decimal_note(const GiNaC::ex& v);
+
+/// With friction, the set-up also names Coulomb's coefficient and the impulses
+/// that become unknowns: N (unless the derivation has it already) and F.
+struct friction_setup {
+    GiNaC::ex mu;
+    std::vector<std::pair<GiNaC::ex, std::string>> impulses; ///< unknown symbol, meaning
+};
+
+/// Section 1: bodies, contact frame, unknowns and their count.
+section setup_section(const derivation& d, const friction_setup* friction = nullptr);
+
+} // namespace impactgen::print::detail
