@@ -690,10 +690,10 @@ template <typename T> fv3<T> alart_curnier(const friction_contact<T>& fc, const 
 /// Damped semismooth Newton from x (Armijo backtracking on |F|^2). Converged when
 /// |F| <= newton_tolerance * max(V, w |x|) and the step has stopped contracting
 /// (|dx| <= 8 eps |x|, or no smaller than half the previous step: the rounding floor).
-template <typename T> bool newton_from(const friction_contact<T>& fc, const friction_options<T>& opt, fv3<T>& x, int& iterations, T rho_scale = 1)
+template <typename T> bool newton_from(const friction_contact<T>& fc, const friction_options<T>& opt, fv3<T>& x, int& iterations)
 {
     const T eps = std::numeric_limits<T>::epsilon();
-    const T rho = rho_scale / fc.compliance_scale;
+    const T rho = T(1) / fc.compliance_scale; // the Alart-Curnier parameter: 1 / max |W_ij|
     fm3<T> J;
     fv3<T> F = alart_curnier(fc, x, rho, &J);
     T previous = std::numeric_limits<T>::infinity();
