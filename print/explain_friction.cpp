@@ -6,6 +6,7 @@
 // that holds. Built from solve_friction()'s closed forms (symbolic/friction.hpp);
 // every formula is a GiNaC expression printed by the canonical printer.
 #include "explain.hpp"
+#include "formulas.hpp"
 #include "explain_detail.hpp"
 
 #include "canonical.hpp"
@@ -484,10 +485,13 @@ section stick_section(const context& c)
     }
     sec.rows(conds);
     sec.para(paragraph().w("As the stick impulse does not depend on μ, the test is a condition on μ alone: sticking holds exactly when "
-                           "μ ≥ μ*, the threshold"));
+                           "the stick impulse pushes (N > 0) and μ ≥ μ*, the threshold"));
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     thr.push_back(row(mu_star, stick_threshold_value(c), "", c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
+    if (!stick_can_hold(c.d, c.f))
+        sec.para(paragraph().w("Here the stick impulse pulls (N ≤ 0, whatever μ): no μ makes the contact stick, and μ* below is "
+                               "not a threshold."));
     if (c.dim == 2) {
         planar_frame k;
         const ex one_e = 1 + c.e;

@@ -2,6 +2,7 @@
 
 #include "canonical.hpp"
 #include "expression.hpp"
+#include "symbolic/decide.hpp"
 
 #include <sstream>
 
@@ -111,6 +112,17 @@ std::vector<case_line> case_results(const derivation& d, const regime_case& c)
 
 } // namespace
 
+bool stick_can_hold(const derivation& d, const friction_solution& f)
+{
+    (void)d;
+    // The stick impulse does not depend on mu: with numbers for the rest, its sign is known.
+    const regime_case& st = f.cases.front();
+    const ex N = tidy(st.sol.expand_steps(st.sol.normal_impulse));
+    if (!is_constant(N))
+        return true; // decided by the values: the condition N > 0 is printed with the threshold
+    return decide(N) == decision::positive;
+}
+
 ex stick_threshold(const derivation& d, const friction_solution& f)
 {
     const regime_case& st = f.cases.front();
@@ -155,8 +167,11 @@ std::string formulas_text(const derivation& d, const friction_solution& f)
         for (const regime_condition& rc : c.conditions)
             os << "    " << rc.meaning << ":  " << canonical_text(rc.value) << relation(rc) << "\n";
     }
-    os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when its N > 0 and\n  mu >= mu* = |F| / N = "
-       << canonical_text(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    if (stick_can_hold(d, f))
+        os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when its N > 0 and\n  mu >= mu* = |F| / N = "
+           << canonical_text(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    else
+        os << "\nThe stick impulse pulls (N <= 0), and it does not depend on mu: no mu makes the contact stick.\n";
     return os.str();
 }
 
@@ -170,7 +185,10 @@ std::string formulas_latex(const derivation& d, const friction_solution& f)
     os << "\\begin{align*}\n";
     for (std::size_t k = 0; k < shared; ++k)
         os << "  " << symbol_latex(first[k].sym) << " &= " << canonical_latex(first[k].value) << " \\\\\n";
-    os << "  \\mu^{*} &= " << canonical_latex(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    if (stick_can_hold(d, f))
+        os << "  \\mu^{*} &= " << canonical_latex(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+    else
+        os << "  N_{\\text{stick}} &\\leq 0 \\quad \\text{(no } \\mu \\text{ sticks)}\n";
     os << "\\end{align*}\n";
     for (const regime_case& c : f.cases) {
         os << "% regime: " << c.name << "\n\\begin{align*}\n";
@@ -242,7 +260,9 @@ nlohmann::ordered_json formulas_json(const derivation& d, const friction_solutio
                                        {"meaning", rc.meaning}});
         out["regimes"].push_back(r);
     }
-    out["stick_threshold"] = canonical_parser(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f))));
+    // null when the stick impulse pulls (N <= 0, decided for numbers): no mu sticks
+    out["stick_threshold"] = stick_can_hold(d, f) ? nlohmann::ordered_json(canonical_parser(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))))
+                                                  : nlohmann::ordered_json(nullptr);
     return out;
 }
 

@@ -21,6 +21,10 @@ std::string formulas_latex(const derivation& d, const friction_solution& f);
 /// expressions in GiNaC's syntax, in the steps (which read back in order).
 nlohmann::ordered_json formulas_json(const derivation& d, const friction_solution& f);
 
+/// False when the stick impulse is a number (every value but mu given) and pulls (N <= 0): no mu sticks,
+/// and no threshold is printed.
+bool stick_can_hold(const derivation& d, const friction_solution& f);
+
 /// The threshold of sticking: stick holds iff mu >= mu* = |P_t| / P_n, where P is the
 /// stick impulse (which does not depend on mu). In the stick case's steps; for a planar
 /// problem |P_t| is written as an absolute value.

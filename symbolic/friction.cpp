@@ -348,6 +348,35 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
     return c;
 }
 
+// The sign of a condition's value. decide() refuses a value whose terms' magnitude bound
+// leaves double's range (a term of 10^-400 inside a condition of size 3, from a tiny mu);
+// a condition's value is never printed, only its sign: then CLN floats decide it, at 60
+// and 120 digits (their exponent range is unbounded), when both agree to 30 digits.
+decision condition_sign(const ex& v)
+{
+    decision d = decide(v);
+    if (d != decision::out_of_range && d != decision::undecided)
+        return d;
+    const long saved = Digits;
+    ex a, b;
+    try {
+        Digits = 60;
+        a = v.evalf();
+        Digits = 120;
+        b = v.evalf();
+    } catch (...) {
+        Digits = saved;
+        return d;
+    }
+    Digits = saved;
+    if (!is_a<numeric>(a) || !is_a<numeric>(b) || !ex_to<numeric>(a).is_real() || !ex_to<numeric>(b).is_real())
+        return d;
+    const numeric x = ex_to<numeric>(a), y = ex_to<numeric>(b);
+    if (y.is_zero() || abs(x - y) > abs(y) * numeric(1, 10).power(30))
+        return d;
+    return y.is_positive() ? decision::positive : decision::negative;
+}
+
 // Evaluates the case's steps in order for the input values (none for a numeric
 // problem) and decides its conditions; stops at the first denominator that is not
 // positive. Returns false when the case does not hold; throws when undecidable.
@@ -359,7 +388,7 @@ bool holds(const regime_case& c, const ex& inputs, lst& values, const std::strin
         v = is_constant(v) ? tidy(v) : v;
         values.append(st.sym == v);
         if (st.role == step_role::slide_denominator) {
-            decision dd = decide(margin_scale > 0 ? v.evalf() : v);
+            decision dd = margin_scale > 0 ? decide(v.evalf()) : condition_sign(v);
             if (dd == decision::not_real || dd == decision::out_of_range || dd == decision::undecided)
                 throw input_error(where + ": the sign of the sliding denominator D_s " + decision_text(dd));
             if (dd != decision::positive)
@@ -382,7 +411,7 @@ bool holds(const regime_case& c, const ex& inputs, lst& values, const std::strin
                 return false;
             continue;
         }
-        decision dd = decide(v);
+        decision dd = condition_sign(v);
         if (dd == decision::not_real || dd == decision::out_of_range || dd == decision::undecided)
             throw input_error(where + ": whether " + rc.meaning + " holds " + decision_text(dd));
         if (dd == decision::negative || (rc.strict && dd == decision::zero))

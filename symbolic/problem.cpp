@@ -174,6 +174,13 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
                         ++j;
                 }
             }
+            // One number: at most one decimal point, and not run into a name or another number
+            // ("0.3.1", "0..3", "1e2e3", "2x" are refused, never read as something else).
+            const std::string token = s.substr(i, j - i);
+            if (std::count(token.begin(), token.end(), '.') > 1 || (j < s.size() && (is_ident_char(s[j]) || s[j] == '.')))
+                throw input_error(where + ": malformed number in \"" + names::display_text(s) +
+                                  "\" (a number has at most one decimal point and an exponent like 1e-3, "
+                                  "and a product is written with *)");
             // A placeholder symbol: GiNaC's parser would evaluate 2^(2^40) eagerly.
             std::string name = reserved_prefix + std::to_string(numbers.nops());
             symbol placeholder(name);

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -532,3 +534,367 @@ TEST(Cli, FormulasJacobianMatchesDerivativesOfTheAnswer)
     EXPECT_EQ(bad.code, 1);
     EXPECT_NE(bad.err.find("--wrt: nosuch is not an input"), std::string::npos) << bad.err;
 }
+
+// Coulomb friction (format version 2, contact.friction) from the command line:
+// hostile values of mu, exact thresholds, edge cases checked against hand
+// solutions, and the findings of the friction fuzzer (tests/fuzz) and of a
+// hostile session with the feature.
+namespace {
+
+// A floor (infinite mass) and a particle of mass 1 falling on it at (vx, -1), e = 1/2:
+// u_n = -1, u_t = vx, K = 1: stick P = (-vx, 3/2), so mu* = |vx| / (3/2).
+std::string floor_particle(const std::string& mu, const std::string& vx = "3")
+{
+    return R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+        {"name": "p", "mass": 1, "position": [0, 0], "velocity": [)" + vx + R"(, -1]}],
+      "contact": {"bodies": ["floor", "p"], "point": [0, 0], "normal": [0, 1], "friction": )" + mu + "}}";
+}
+
+// A problem's text in a file of this test, then impactgen with the arguments.
+run_result run_on(const std::string& text, const std::string& args, const std::string& tag = "")
+{
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string file = ::testing::TempDir() + "impactgen_fr_" + info->name() + tag + "_" + std::to_string(getpid()) + ".json";
+    std::ofstream(file) << text;
+    run_result r = run_cli(args + " " + file);
+    std::remove(file.c_str());
+    return r;
+}
+
+void expect_refusal(const run_result& r, const std::string& what, const std::string& part)
+{
+    EXPECT_EQ(r.code, 1) << what << ": " << r.out << r.err;
+    EXPECT_TRUE(r.out.empty()) << what << ": printed " << r.out;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("impactgen: error: ", 0), 0u) << what << ": " << r.err;
+    EXPECT_NE(r.err.find(part), std::string::npos) << what << ": the message lacks \"" << part << "\": " << r.err;
+}
+
+double number_at(const json& a, std::initializer_list<const char*> path, int index = -1)
+{
+    const json* x = &a;
+    for (const char* k : path)
+        x = &x->at(k);
+    return index < 0 ? x->get<double>() : x->at(static_cast<std::size_t>(index)).get<double>();
+}
+
+TEST(Friction, HostileValuesOfMuAreRefusedNamingTheKey)
+{
+    const std::vector<std::string> values = {
+        "-1", "\"-10^(-300)\"", "\"1/3 - sqrt(2)/4\"", "\"inf\"", "\"-inf\"", "\"NaN\"", "\"I\"", "\"(-1)^(1/3)\"", "\"asin(2)\"",
+        "null", "true", "[0.3]", "{\"mu\": 0.3}", "\"\"", "\" \"", "\"1/0\"", "\"0/0\"", "\"log(0)\"", "\"exp(1000)\"",
+        "\"2^(2^40)\"", "\"mu^(10^6)\"", "\"" + std::string(40, '(') + "1/3" + std::string(40, ')') + "\"",
+        "\"sin(1)^2+cos(1)^2-1\"", "\"0^0\"", "\"tan(Pi/2)\"", "\"foo(2)\"", "\"1e999\"", "1e-999"};
+    for (const std::string& mu : values)
+        expect_refusal(run_on(floor_particle(mu), "solve --json"), "friction " + mu, "contact.friction");
+    // A number token beyond double is refused by the JSON reader, which names the last key only.
+    expect_refusal(run_on(floor_particle("1e999"), "solve --json"), "friction 1e999", "friction: non-finite");
+    // A symbol: formulas answers, solve needs numbers.
+    expect_refusal(run_on(floor_particle("\"mu\""), "solve --json"), "friction mu", "needs numbers");
+    EXPECT_EQ(run_on(floor_particle("\"mu\""), "formulas --format json").code, 0);
+}
+
+TEST(Friction, ZeroFrictionHoweverWrittenIsTheSmoothAnswer)
+{
+    const run_result smooth = run_on(floor_particle("0"), "solve --json");
+    ASSERT_EQ(smooth.code, 0) << smooth.err;
+    for (const std::string mu : {"-0", "0.0", "0e5", "\"0\"", "\"Pi - Pi\"", "\"sqrt(2) - 2^(1/2)\"", "\"(sqrt(2)+1)*(sqrt(2)-1)-1\""}) {
+        const run_result r = run_on(floor_particle(mu), "solve --json");
+        ASSERT_EQ(r.code, 0) << mu << ": " << r.err;
+        EXPECT_EQ(r.out, smooth.out) << mu;
+        const json a = json::parse(r.out);
+        EXPECT_EQ(a.at("regime"), "smooth") << mu;
+        EXPECT_EQ(a.at("tangential_impulse"), json::parse("[0.0, 0.0]")) << mu;
+    }
+    // Every answer carries the two keys; mu = 0 is smooth for the smooth-only commands too.
+    EXPECT_EQ(run_on(floor_particle("\"0*mu\"", "\"v\""), "formulas --jacobian --format json").code, 0);
+    EXPECT_EQ(run_on(floor_particle("\"mu - mu\"", "\"v\""), "codegen").code, 0);
+}
+
+TEST(Friction, FrictionKeyElsewhereIsIgnoredWithAWarning)
+{
+    std::string text = floor_particle("0");
+    text.replace(text.find("\"friction\": 0"), 13, "\"mu\": 0.3");
+    text.replace(text.find("\"restitution\""), 0, "\"friction\": 0.3, ");
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out).at("regime"), "smooth");
+    EXPECT_NE(r.err.find("warning: "), std::string::npos);
+    EXPECT_NE(r.err.find("friction: unknown key"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("contact.mu: unknown key"), std::string::npos) << r.err;
+}
+
+TEST(Friction, StickingThresholdIsExact)
+{
+    // mu* = |vx| / (3/2) = 2 for vx = 3: mu = mu* sticks (the cone includes its boundary).
+    struct want {
+        std::string mu, regime;
+        double vx_after, F;
+    };
+    for (const want& w : std::vector<want>{{"2", "stick", 0, -3},
+                                          {"\"2 - 10^(-40)\"", "slide", 1.5e-40, -3},
+                                          {"\"2 + 10^(-40)\"", "stick", 0, -3},
+                                          {"\"10^300\"", "stick", 0, -3},
+                                          {"1e300", "stick", 0, -3},
+                                          {"123456789012345678901234567890", "stick", 0, -3},
+                                          {"\"1/5\"", "slide", 2.7, -0.3},
+                                          {"1e-300", "slide", 3, -1.5e-300},
+                                          {"\"10^(-300)\"", "slide", 3, -1.5e-300}}) {
+        const run_result r = run_on(floor_particle(w.mu), "solve --json");
+        ASSERT_EQ(r.code, 0) << w.mu << ": " << r.err;
+        const json a = json::parse(r.out);
+        EXPECT_EQ(a.at("regime"), w.regime) << w.mu;
+        // Exact values rounded once to double: a few ulps.
+        EXPECT_NEAR(number_at(a, {"normal_impulse"}), 1.5, 1e-15) << w.mu;
+        EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 0), w.F, 1e-15 * std::fabs(w.F)) << w.mu;
+        EXPECT_NEAR(number_at(a, {"bodies", "p", "velocity"}, 0), w.vx_after, 1e-15 * std::max(1.0, w.vx_after)) << w.mu;
+        EXPECT_NEAR(number_at(a, {"bodies", "p", "velocity"}, 1), 0.5, 1e-15) << w.mu;
+    }
+    // u_t = 0: sticks with no friction impulse.
+    const run_result r = run_on(floor_particle("0.5", "0"), "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out).at("regime"), "stick");
+    EXPECT_EQ(json::parse(r.out).at("tangential_impulse"), json::parse("[0.0, 0.0]"));
+}
+
+TEST(Friction, ThresholdsOfTheExamplesFromFormulasAreExact)
+{
+    // formulas prints mu* for a symbolic mu; solve sticks at mu*, slides 10^-30 below, sticks 10^-30 above.
+    for (const char* name : {"ball-backspin", "rod-slips", "sphere-wall-3d"}) {
+        std::ifstream in(std::string(IMPACTGEN_SOURCE_DIR "/examples/friction/") + name + ".json");
+        json p = json::parse(in);
+        p["contact"]["friction"] = "mu";
+        const run_result f = run_on(p.dump(), "formulas --format json", "f");
+        ASSERT_EQ(f.code, 0) << name << ": " << f.err;
+        const std::string t = json::parse(f.out).at("stick_threshold").get<std::string>();
+        for (const auto& [mu, regime] : std::vector<std::pair<std::string, std::string>>{
+                 {t, "stick"}, {"(" + t + ")*(1 - 10^(-30))", "slide"}, {"(" + t + ")*(1 + 10^(-30))", "stick"}}) {
+            p["contact"]["friction"] = mu;
+            const run_result r = run_on(p.dump(), "solve --json", "s");
+            ASSERT_EQ(r.code, 0) << name << ", mu = " << mu << ": " << r.err;
+            EXPECT_EQ(json::parse(r.out).at("regime"), regime) << name << ", mu = " << mu;
+        }
+    }
+}
+
+TEST(Friction, GrazingImpactSlides)
+{
+    // A ball (I = 2/5, R = 1) skimming the floor at u_n = -10^-300, u_t = 3: N = 3/2 10^-300, F = -mu N.
+    for (const char* vy : {"\"-10^(-300)\"", "-1e-300"}) {
+        const std::string text = R"({"dimension": 2, "restitution": 0.5, "bodies": [
+            {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+            {"name": "ball", "mass": 1, "inertia": "2/5", "position": [0, 1], "velocity": [3, )" + std::string(vy) + R"(]}],
+          "contact": {"bodies": ["floor", "ball"], "point": [0, 0], "normal": [0, 1], "friction": 0.3}})";
+        const run_result r = run_on(text, "solve --json");
+        ASSERT_EQ(r.code, 0) << vy << ": " << r.err;
+        const json a = json::parse(r.out);
+        EXPECT_EQ(a.at("regime"), "slide") << vy;
+        EXPECT_NEAR(number_at(a, {"normal_impulse"}), 1.5e-300, 1e-315) << vy;
+        EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 0), -4.5e-301, 1e-315) << vy;
+        // w' = (O - C) x (F e_x) / I = (0, -1) x (F, 0) / (2/5) = F / (2/5)
+        EXPECT_NEAR(number_at(a, {"bodies", "ball", "angular_velocity"}), -4.5e-301 / 0.4, 1e-315) << vy;
+    }
+}
+
+TEST(Friction, HingedRodStruckByABallSticksAsByHand)
+{
+    // Rod (m 2, I_C 1/6, C (0, -1/2)) hinged at E = 0, struck at O = (1, -1) by a particle (m 1/2, v (5, 1)),
+    // n = (1, 0), e = 0.6, mu = 0.4. Stick: the ball leaves with the contact point of the rod
+    // (w' (1, 1) for w' about E) in its tangent and 3 along n: v' = (w' - 3, w'), and
+    // I_E w' = rho x P with P = -m (v' - v), I_E = 1/6 + 2/4 = 2/3, rho = (1, -1):
+    // w' = 2.7, v' = (-0.3, 2.7), P = (2.65, -0.85) (|F|/N = 0.32 < 0.4), R = m_rod v'_C - P = (0.05, 0.85).
+    const std::string text = R"({"dimension": 2, "restitution": 0.6, "bodies": [
+        {"name": "ball", "mass": 0.5, "position": [1, -1], "velocity": [5, 1]},
+        {"name": "rod", "mass": 2, "inertia": "1/6", "position": [0, -0.5], "velocity": [0, 0]}],
+      "contact": {"bodies": ["ball", "rod"], "point": [1, -1], "normal": [1, 0], "friction": 0.4},
+      "pivots": [{"body": "rod", "point": [0, 0]}]})";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "stick");
+    const double tol = 1e-14;
+    EXPECT_NEAR(number_at(a, {"bodies", "ball", "velocity"}, 0), -0.3, tol);
+    EXPECT_NEAR(number_at(a, {"bodies", "ball", "velocity"}, 1), 2.7, tol);
+    EXPECT_NEAR(number_at(a, {"bodies", "rod", "angular_velocity"}), 2.7, tol);
+    EXPECT_NEAR(number_at(a, {"normal_impulse"}), 2.65, tol);
+    EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 1), -0.85, tol);
+    EXPECT_NEAR(a.at("pivot_impulses").at(0).at(0).get<double>(), 0.05, tol);
+    EXPECT_NEAR(a.at("pivot_impulses").at(0).at(1).get<double>(), 0.85, tol);
+}
+
+TEST(Friction, ObliqueNormalsWrittenAnyWayGiveOneAnswer)
+{
+    // A ball (m 1, I 2/5, R 1) on a plane with normal (1, 1, 1)/sqrt(3), written three ways.
+    // Independent solution (sympy): u_n = -5 sqrt(3)/6, stick N = 5 sqrt(3)/4 with mu* = 0.342096545021106;
+    // mu = 0.2 slides along u_t (the isotropic case) with the same N.
+    const double N = 5 * std::sqrt(3.0) / 4;
+    for (const char* normal : {"[1, 1, 1]", R"J(["1/sqrt(3)", "1/sqrt(3)", "1/sqrt(3)"])J", R"J(["sqrt(3)", "sqrt(3)", "sqrt(3)"])J"})
+        for (const char* mu : {"0.2", "1"}) {
+            const std::string text = R"J({"dimension": 3, "restitution": 0.5, "bodies": [
+                {"name": "plane", "mass": "inf", "position": [-1, -1, -1], "velocity": [0, 0, 0]},
+                {"name": "ball", "mass": 1, "inertia": ["2/5", "2/5", "2/5"], "position": ["1/sqrt(3)", "1/sqrt(3)", "1/sqrt(3)"],
+                 "velocity": [-2, -1, 0.5], "angular_velocity": [0, 1, 0]}],
+              "contact": {"bodies": ["plane", "ball"], "point": [0, 0, 0], "normal": )J" + std::string(normal) +
+                                     R"(, "friction": )" + mu + "}}";
+            const run_result r = run_on(text, "solve --json");
+            ASSERT_EQ(r.code, 0) << normal << ", mu " << mu << ": " << r.err;
+            const json a = json::parse(r.out);
+            EXPECT_NEAR(number_at(a, {"normal_impulse"}), N, 1e-14) << normal;
+            if (std::string(mu) == "0.2") {
+                EXPECT_EQ(a.at("regime"), "slide") << normal;
+                const double F[3] = {0.29131574717953074, 0.0278395372955957, -0.3191552844751264};
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(number_at(a, {"tangential_impulse"}, c), F[c], 1e-14) << normal << " component " << c;
+            } else {
+                EXPECT_EQ(a.at("regime"), "stick") << normal;
+            }
+        }
+}
+
+TEST(Friction, PiecewiseMapHasNoJacobianAndSmoothOnlyCommandsRefuseOrAnswer)
+{
+    const std::string text = floor_particle("0.3", "\"v\"");
+    expect_refusal(run_on(text, "formulas --jacobian --format json"), "--jacobian with friction", "friction");
+    const run_result f = run_on(text, "formulas --format json");
+    ASSERT_EQ(f.code, 0) << f.err;
+    const json j = json::parse(f.out);
+    for (const char* key : {"friction", "normal", "regimes", "stick_threshold"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    ASSERT_EQ(j.at("regimes").size(), 3u); // stick, slide along +e_t, slide along -e_t
+    EXPECT_EQ(j.at("regimes").at(0).at("regime"), "stick");
+    // codegen and explain either answer or refuse in one line (friction is being added to them).
+    for (const char* cmd : {"codegen", "explain", "explain --format markdown"}) {
+        const run_result r = run_on(text, cmd);
+        EXPECT_TRUE(r.code == 0 || (r.code == 1 && std::count(r.err.begin(), r.err.end(), '\n') == 1)) << cmd << ": " << r.err;
+    }
+}
+
+// ---- Findings still open (reported to the lead): enable each when it is fixed. ----
+// Run them with --gtest_also_run_disabled_tests --gtest_filter='Friction.DISABLED_*'.
+
+// A tiny mu (10^-200) with one irrational value in the problem was refused with "whether
+// lambda = u'_t.d > 0 ... holds is out of the range of double" (lambda is about 3): decide()
+// refuses values below 10^-308.25 as out of range, and some term of a condition reaches it.
+// The same problem with mu = 10^-170, or with C = (3/2, 1), slides.
+TEST(Friction, TinyMuWithAnIrrationalValueSlides)
+{
+    const std::string text = R"J({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+        {"name": "B", "mass": 1, "inertia": 1, "position": ["sqrt(2)", 1], "velocity": [1, -1]}],
+      "contact": {"bodies": ["floor", "B"], "point": [0, 0], "normal": [0, 1], "friction": "10^(-200)"}})J";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "slide");
+    // K_nn = 1 + 2 / 1 = 3: N = (1 + e) / 3 = 1/2, F = -mu N.
+    EXPECT_NEAR(number_at(a, {"normal_impulse"}), 0.5, 1e-15);
+    EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 0), -5e-201, 1e-215);
+}
+
+// A 3-D impact of a particle on a body with a ball joint, one value exp(1)/2 and two
+// decimals 0.277, 0.909: refused with "whether mu^2 N^2 - |F|^2 >= 0 ... holds is out of the
+// range of double", though N = 31.73, |F| = 22.41 (mu* = 0.706 < mu = 1: it sticks;
+// independent solution with sympy). Changing 0.277 to 0.3 gives the stick answer.
+TEST(Friction, ConeConditionOfModerateSizeIsDecided)
+{
+    const std::string text = R"({"dimension": 3, "restitution": "2/3", "bodies": [
+        {"name": "puck", "mass": 9, "position": [-1, -1.2, -1], "velocity": [4, -1, -4.5], "angular_velocity": [1, 1, 2]},
+        {"name": "cue", "mass": 2, "inertia": [[12.25, -2, -2], [-2, 9.25, -7], [-2, -7, 9.25]], "position": [-0.3, 0.277, "exp(1)/2"],
+         "velocity": [0, 0, 0]}],
+      "contact": {"bodies": ["puck", "cue"], "point": [0.5, 0.6, 1], "normal": [1, 0, 0], "friction": 1},
+      "pivots": [{"body": "cue", "point": [0.909, 1.75, 1.3]}]})";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "stick");
+    EXPECT_NEAR(number_at(a, {"normal_impulse"}), 31.7338743693712, 1e-9);
+}
+
+// The stick impulse of this rod has N = -33/100 < 0, so no mu sticks; formulas printed
+// "mu >= mu* = |F| / N = 256/33" as the condition for sticking, and the README says sticking
+// holds exactly when mu >= mu*: solve (rightly) slides at mu = 10 > 256/33.
+TEST(Friction, StickingThresholdIsOnlyPrintedWhenTheStickImpulsePushes)
+{
+    const std::string rod = R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+        {"name": "rod", "mass": 1, "inertia": "1/12", "position": [0.3, 0.4], "velocity": [7, -2], "angular_velocity": 0}],
+      "contact": {"bodies": ["floor", "rod"], "point": [0, 0], "normal": [0, 1], "friction": MU}})";
+    auto with_mu = [&](const std::string& mu) {
+        std::string t = rod;
+        return t.replace(t.find("MU"), 2, mu);
+    };
+    const run_result f = run_on(with_mu("\"mu\""), "formulas --format json", "f");
+    ASSERT_EQ(f.code, 0) << f.err;
+    const json t = json::parse(f.out).at("stick_threshold");
+    // Either no threshold is claimed, or every mu at or above it sticks.
+    const GiNaC::ex value = t.is_string() ? parse_value(t.get<std::string>(), true, "mu*").evalf() : GiNaC::ex(GiNaC::symbol("none"));
+    if (GiNaC::is_a<GiNaC::numeric>(value)) {
+        const double mu_star = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+        for (double factor : {1.0, 2.0, 10.0}) {
+            std::ostringstream mu;
+            mu << "\"(" << t.get<std::string>() << ")*" << factor << "\"";
+            const run_result r = run_on(with_mu(mu.str()), "solve --json", "s");
+            ASSERT_EQ(r.code, 0) << r.err;
+            EXPECT_EQ(json::parse(r.out).at("regime"), "stick") << "mu = " << factor << " mu* = " << factor * mu_star;
+        }
+    }
+    const run_result text = run_on(with_mu("\"mu\""), "formulas", "t");
+    EXPECT_EQ(text.out.find("mu >= mu* = |F| / N = 256/33"), std::string::npos) << text.out;
+}
+
+// A rod hinged at its centre, struck by a moving wall (infinite mass) with friction, was
+// refused ("the contact response K is singular ... the tangential impulse is not
+// determined"), though the law has exactly one solution: the contact point can only move
+// along (-1/2, 1), so restitution fixes w' = 3 and u'_t = -3; sticking is impossible and
+// the slide along -e_t holds (D_s = 6/5 > 0, lambda = 3 > 0), the other slide does not
+// (lambda = -3): N = 5/4, F = (0, 3/8) on the wall, the pivot impulse R = P = (5/4, 3/8).
+TEST(Friction, DISABLED_PinnedBodyStruckByAnImmovableOneSlides)
+{
+    const std::string text = R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "wall", "mass": "inf", "position": [2, 0], "velocity": [-1, 0]},
+        {"name": "rod", "mass": 1, "inertia": "1/12", "position": [0, 0], "velocity": [0, 0]}],
+      "contact": {"bodies": ["rod", "wall"], "point": [1, 0.5], "normal": [1, 0], "friction": 0.3},
+      "pivots": [{"body": "rod", "point": [0, 0]}]})";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "slide");
+    EXPECT_NEAR(number_at(a, {"normal_impulse"}), 1.25, 1e-15);
+    EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 1), 0.375, 1e-15);
+    EXPECT_NEAR(number_at(a, {"bodies", "rod", "angular_velocity"}), 3, 1e-15);
+}
+
+// mu = 10^308 on the rod above: a slide with N = 3 / (52/25 + 36/25 10^308) = 2.083e-308
+// (a subnormal double) and |F| = mu N = 2.083; the answer printed "normal_impulse": 0.0
+// next to F = -2.083, so the printed answer breaks the cone |F| <= mu N. Values below
+// 2.2e-308 are printed as 0 (velocity 1e-310 too).
+TEST(Friction, DISABLED_SubnormalValuesAreNotPrintedAsZero)
+{
+    const std::string text = R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+        {"name": "rod", "mass": 1, "inertia": "1/12", "position": [0.3, 0.4], "velocity": [7, -2], "angular_velocity": 0}],
+      "contact": {"bodies": ["floor", "rod"], "point": [0, 0], "normal": [0, 1], "friction": 1e308}})";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "slide");
+    const double N = number_at(a, {"normal_impulse"}), F = number_at(a, {"tangential_impulse"}, 0);
+    EXPECT_GT(N, 2.08e-308);
+    EXPECT_LE(std::fabs(F), 1e308 * N * (1 + 1e-9));
+}
+
+// A decimal with two points in an expression string was read as another number: "0.3.1"
+// as 0.31, "1.2.3" as 1.23, "0..3" as 0.3, "3.." as 3 (friction, mass, any value), where
+// "0.3e" is refused; and "1e2e3" was refused naming the reader's internal symbol
+// ("symbol \"impactgen_number_0e3\" not found").
+TEST(Friction, MalformedDecimalsAreRefused)
+{
+    for (const std::string mu : {"\"0.3.1\"", "\"1.2.3\"", "\"0..3\"", "\"3..\"", "\"1e2e3\""}) {
+        const run_result r = run_on(floor_particle(mu), "solve --json");
+        expect_refusal(r, "friction " + mu, "contact.friction");
+        EXPECT_EQ(r.err.find("impactgen_number_"), std::string::npos) << r.err;
+    }
+}
+
+} // namespace
