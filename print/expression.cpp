@@ -18,7 +18,10 @@ double to_double(const ex& e)
     ex v = e.evalf();
     if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
         throw std::invalid_argument("not a real number: " + parser_syntax(e));
-    double d = ex_to<numeric>(v).to_double();
+    const numeric& x = ex_to<numeric>(v);
+    double d = x.to_double();
+    if (d == 0 && !x.is_zero()) // CLN flushes values below DBL_MIN to 0: scale into range, then back (a subnormal)
+        d = std::ldexp((x * numeric(2).power(600)).to_double(), -600);
     if (!std::isfinite(d))
         throw std::invalid_argument("not a finite number: " + parser_syntax(e));
     return d == 0 ? 0.0 : d; // no "-0"

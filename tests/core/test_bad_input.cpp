@@ -869,7 +869,7 @@ TEST(Friction, DISABLED_PinnedBodyStruckByAnImmovableOneSlides)
 // (a subnormal double) and |F| = mu N = 2.083; the answer printed "normal_impulse": 0.0
 // next to F = -2.083, so the printed answer breaks the cone |F| <= mu N. Values below
 // 2.2e-308 are printed as 0 (velocity 1e-310 too).
-TEST(Friction, DISABLED_SubnormalValuesAreNotPrintedAsZero)
+TEST(Friction, SubnormalValuesAreNotPrintedAsZero)
 {
     const std::string text = R"({"dimension": 2, "restitution": 0.5, "bodies": [
         {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
