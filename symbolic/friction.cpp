@@ -554,7 +554,8 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
     if (scale.is_zero())
         throw input_error(where + ": every sliding direction satisfies the law (the sliding equation vanishes "
                                   "identically): the regimes 'stick' and 'slide' cannot be told apart");
-    const numeric tiny = scale * numeric(1, 10).power(40);
+    // The angle to 10^-(Digits - 10) radians (1e-40 at 50 digits), whatever the scale of g.
+    const numeric tiny = numeric(1, 10).power(static_cast<int>(Digits) - 10);
     std::vector<numeric> roots;
     std::function<void(const numeric&, const numeric&, const numeric&, const numeric&, int)> isolate =
         [&](const numeric& lo, const numeric& hi, const numeric& glo, const numeric& ghi, int depth) {
@@ -634,8 +635,16 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
             continue;
         }
         // The sliding angle: roots of g(c, s) = 0 on the unit circle, at 50 digits.
+        // 50 digits, and two more per decade of a large mu: the sliding equation's coefficients
+        // span mu^2, and the root must hold to 1e-40 of the smallest.
         const long saved = Digits;
-        Digits = 50;
+        long digits = 50;
+        {
+            const ex m = f.mu.evalf();
+            if (is_a<numeric>(m) && abs(ex_to<numeric>(m)) > 1)
+                digits += std::min(400L, 2 * static_cast<long>(std::ceil(std::log10(std::max(1.0, std::abs(ex_to<numeric>(m).to_double()))))) + 2);
+        }
+        Digits = digits;
         try {
             lst fixed; // the steps that do not depend on the direction, as floats
             for (const step& st : c.sol.steps) {

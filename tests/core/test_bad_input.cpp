@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -882,6 +883,43 @@ TEST(Friction, SubnormalValuesAreNotPrintedAsZero)
     const double N = number_at(a, {"normal_impulse"}), F = number_at(a, {"tangential_impulse"}, 0);
     EXPECT_GT(N, 2.08e-308);
     EXPECT_LE(std::fabs(F), 1e308 * N * (1 + 1e-9));
+}
+
+// A 3-D slide without a closed form (the sliding angle a root found at 50 digits) with a huge
+// mu: up to mu = 10^20 F is antiparallel to u'_t to 16 digits; from mu = 10^40 on, solve
+// answers with F/|F| = (-0.90398929, -0.42755509, 0) (the same direction for another problem
+// of the fuzzer) while -u'_t/|u'_t| = (-0.90436325, -0.42676353, 0): Coulomb's law is broken
+// by 0.9 mrad. (Found by the friction fuzzer, IMPACTGEN_DEEP=1 IMPACTGEN_SEED=7.)
+TEST(Friction, HugeMuGeneralSlideKeepsFAntiparallelToTheSlip)
+{
+    const std::string text = R"({"dimension": 3, "restitution": 0, "bodies": [
+        {"name": "rod", "mass": 0.7, "inertia": [[6.5, -2, -4], [-2, 2.5, 4], [-4, 4, 8.5]], "position": [-1.8, -1, -0.5],
+         "velocity": [-5, -3.3, -3.8], "angular_velocity": [2.4, -2, 2.8]},
+        {"name": "B", "mass": 7.8, "inertia": [0.7, 2, 3], "position": [0, -1, -1.7], "velocity": [0, 0, 0]}],
+      "contact": {"bodies": ["rod", "B"], "point": [-1, 0, 1], "normal": [0, 0, 1], "friction": 1e40},
+      "pivots": [{"body": "B", "point": [-1.6, -1.6, -0.3]}]})";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "slide");
+    // u' = v'_B + w'_B x (O - C_B) - v'_rod - w'_rod x (O - C_rod); n = z, so u'_t is its x, y part.
+    auto contact_velocity = [&](const char* name, const double c[3]) {
+        const json& b = a.at("bodies").at(name);
+        double v[3], w[3], rr[3] = {-1 - c[0], 0 - c[1], 1 - c[2]};
+        for (int k = 0; k < 3; ++k) {
+            v[k] = b.at("velocity").at(k).get<double>();
+            w[k] = b.at("angular_velocity").at(k).get<double>();
+        }
+        return std::array<double, 3>{v[0] + w[1] * rr[2] - w[2] * rr[1], v[1] + w[2] * rr[0] - w[0] * rr[2], v[2] + w[0] * rr[1] - w[1] * rr[0]};
+    };
+    const double c_rod[3] = {-1.8, -1, -0.5}, c_b[3] = {0, -1, -1.7};
+    const auto vb = contact_velocity("B", c_b), va = contact_velocity("rod", c_rod);
+    const double ux = vb[0] - va[0], uy = vb[1] - va[1], slip = std::hypot(ux, uy);
+    const double fx = number_at(a, {"tangential_impulse"}, 0), fy = number_at(a, {"tangential_impulse"}, 1), f = std::hypot(fx, fy);
+    ASSERT_GT(slip, 1);
+    // F/|F| = -u'_t/|u'_t|: both from doubles of size 1..10, a few ulps each.
+    EXPECT_NEAR(fx / f, -ux / slip, 1e-12);
+    EXPECT_NEAR(fy / f, -uy / slip, 1e-12);
 }
 
 // A decimal with two points in an expression string was read as another number: "0.3.1"
