@@ -1270,9 +1270,16 @@ private:
                         }
                         const step* js = s.find(step_role::inverse_inertia, i, static_cast<int>(std::min(r, c)),
                                                 static_cast<int>(std::max(r, c)));
-                        if (!js)
-                            throw std::logic_error("codegen friction: no inverse inertia step");
-                        inv[r][c] = js->sym;
+                        if (js) {
+                            inv[r][c] = js->sym;
+                            continue;
+                        }
+                        // A number too simple to be a step (a numeric tensor): adj(J) / det(J) itself.
+                        mat3 Jt;
+                        for (std::size_t a2 = 0; a2 < 3; ++a2)
+                            for (std::size_t c2 = 0; c2 < 3; ++c2)
+                                Jt[a2][c2] = tidy(J[a2][c2]);
+                        inv[r][c] = tidy(adjugate(Jt)[r][c] / det(Jt));
                     }
             }
             vec3 e = zero_vec();

@@ -922,6 +922,18 @@ TEST(Friction, HugeMuGeneralSlideKeepsFAntiparallelToTheSlip)
     EXPECT_NEAR(fy / f, -uy / slip, 1e-12);
 }
 
+// codegen of a numeric 3-D problem with friction and a full (non-diagonal) inertia tensor was
+// refused with an internal message that names no file or key: "impactgen: error: codegen
+// friction: no inverse inertia step" (examples/friction/box-corner-3d.json, the README's own
+// example; with a diagonal tensor the header is written). Found by the friction fuzzer.
+TEST(Friction, CodegenWritesAHeaderForAFullInertiaTensor)
+{
+    const run_result r = run_cli("codegen " IMPACTGEN_SOURCE_DIR "/examples/friction/box-corner-3d.json");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("friction_status"), std::string::npos);
+    EXPECT_EQ(r.err.find("inverse inertia step"), std::string::npos) << r.err;
+}
+
 // A decimal with two points in an expression string was read as another number: "0.3.1"
 // as 0.31, "1.2.3" as 1.23, "0..3" as 0.3, "3.." as 3 (friction, mass, any value), where
 // "0.3e" is refused; and "1e2e3" was refused naming the reader's internal symbol
