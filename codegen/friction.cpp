@@ -641,6 +641,68 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     trig2_refine(a0, a1, b1, a2, b2, n, cl, sl, tw, gl, dl, gh, dh, ww, rc, rs);
     return n;
 }
+
+/// The sliding direction (c, s) (cos and sin of its angle from e_t towards e_b) of the one
+/// solution of a 3-D impact that has at most one solution and does not stick (the caller
+/// checked both: see the emitted function's test). With a = -(1 + e) u_n > 0, the tangential impulse
+/// over N, tau, lies in the disc |tau| <= mu, and u'_t / N = (b + M tau) / a with
+/// b = a K_tn + u_t K_nn and M = a K_tt + u_t K_nt^T (2 x 2, tangential axes); sliding,
+/// tau = -mu d for the sliding direction d, and u'_t = lambda d (lambda > 0) reads
+/// (mu M + l 1) d = b with l = a lambda / N > 0. Given m = mu M and b, d = x / |x| with
+/// x(l) = adj(m + l 1) b / det(m + l 1), and l is the root of |x(l)| = 1: |x| falls
+/// strictly for l >= 0 when m + m^T is positive definite, from above 1 at l = 0 (the
+/// stick candidate is outside the cone) to below 1 at l = |b|, so the root is one and
+/// bracketed. Newton's method on psi(l) = det(m + l 1) / |adj(m) b + l b| - 1 (linear
+/// in l when m is a multiple of 1: one step), from the estimate l = |b| - b.m b / |b|^2,
+/// a bisection whenever a step leaves the bracket, until a step is below 4 eps |b|: at
+/// most 12 iterations (3 to 4 on random impacts); false when it has
+/// not settled by then or a value is not finite (the caller then searches every
+/// direction with trig2_roots).
+template <typename T>
+IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c, T& s) noexcept
+{
+    using std::sqrt;
+    // The direction does not change when m and b are scaled together.
+    const T sc = max_of(max_of(max_of(abs_of(m11), abs_of(m12)), max_of(abs_of(m21), abs_of(m22))), max_of(abs_of(b1), abs_of(b2)));
+    if (!(sc > T(0) && detail::finite(sc)))
+        return false;
+    const T r = T(1) / sc;
+    m11 *= r;
+    m12 *= r;
+    m21 *= r;
+    m22 *= r;
+    b1 *= r;
+    b2 *= r;
+    const T tr = m11 + m22, det = m11 * m22 - m12 * m21;
+    const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
+    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * std::numeric_limits<T>::epsilon() * nb;
+    // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
+    T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
+    for (int it = 0; it < 12; ++it) {
+        // x = (a1 + l b1, a2 + l b2) = adj(m + l 1) b, q = det(m + l 1); the Newton step
+        // psi / psi' = (q - |x|) |x|^2 / ((2 l + tr) |x|^2 - q (x.b)), psi < 0 where q < |x|.
+        const T x1 = a1 + l * b1, x2 = a2 + l * b2, xx2 = x1 * x1 + x2 * x2, xx = sqrt(xx2);
+        const T q = l * (l + tr) + det;
+        const T step = (q - xx) * xx2 / ((T(2) * l + tr) * xx2 - q * (x1 * b1 + x2 * b2));
+        if (!detail::finite(step))
+            return false;
+        if (q < xx)
+            lo = l;
+        else
+            hi = l;
+        T next = l - step;
+        if (!(next > lo && next < hi))
+            next = (lo + hi) / T(2);
+        if (abs_of(next - l) <= tol || q == xx) {
+            const T inv = T(1) / xx;
+            c = x1 * inv;
+            s = x2 * inv;
+            return true;
+        }
+        l = next;
+    }
+    return false;
+}
 )IMPACTGEN";
 
 // ---------------------------------------------------------------------------
@@ -652,7 +714,7 @@ const std::set<std::string>& reserved()
     static const std::set<std::string> r = {
         "out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed", "with_energy_lost", "impact_status",
         "op_count", "to_string", "finite", "all_finite", "min_of", "max_of", "abs_of", "sqrt", "std", "i", "n", "r", "a", "view",
-        "friction_status", "impact_regime", "friction_status_of", "boundary_tolerance", "trig2_roots", "constant"};
+        "friction_status", "impact_regime", "friction_status_of", "boundary_tolerance", "trig2_roots", "slide_direction", "constant"};
     return r;
 }
 
@@ -1498,6 +1560,32 @@ private:
                 keep_names_.push_back(scope_.claim("keep_" + std::to_string(k)));
                 a_.output(keep_names_.back(), lcoef[k]);
             }
+            // When the solution is provably unique (detail::slide_direction): with
+            // a = -(1 + e) u_n, tau = P_t / N (|tau| <= mu), D(tau) = K_nn + K_nt.tau and
+            // N = a / D(tau), u'_t / N = (b + M tau) / a with b = a K_tn + u_t K_nn and
+            // M = a K_tt + u_t K_nt^T (tangential axes t, b). A solution (N > 0) has
+            // -(b + M tau) in the normal cone of the disc |tau| <= mu at tau, so it solves the
+            // variational inequality of b + M tau on the disc cut to D(tau) >= delta (any
+            // delta below its D): if M + M^T is positive definite that inequality has one
+            // solution only, so the law has at most one. Tested with a margin
+            // (31 M11 M22 >= 32 ((M12 + M21) / 2)^2) so that rounding cannot pass a problem
+            // that is not; then a stick candidate that holds is the answer, and otherwise the
+            // slide's direction is the root of one monotone scalar equation.
+            const vec3 nh = d_.n_hat;
+            const ex a = -(1 + q.restitution) * un;
+            auto Kdot = [&](const vec3& x, const vec3& y) { return dot(x, mul(K, y)); };
+            const ex Knn = Kdot(nh, nh), Knt = Kdot(f_.e_t, nh), Knb = Kdot(f_.e_b, nh);
+            const ex Ktt = Kdot(f_.e_t, f_.e_t), Ktb = Kdot(f_.e_t, f_.e_b), Kbb = Kdot(f_.e_b, f_.e_b);
+            const ex ut = dot(u, f_.e_t), ub = dot(u, f_.e_b);
+            const ex& mu = q.contact.friction;
+            const ex M11 = a * Ktt + ut * Knt, M12 = a * Ktb + ut * Knb, M21 = a * Ktb + ub * Knt, M22 = a * Kbb + ub * Knb;
+            const ex fast[7] = {mu * M11, mu * M12, mu * M21, mu * M22, a * Knt + ut * Knn, a * Knb + ub * Knn,
+                                31 * M11 * M22 - 8 * (M12 + M21) * (M12 + M21)};
+            const char* fnm[7] = {"slide_m11", "slide_m12", "slide_m21", "slide_m22", "slide_b1", "slide_b2", "unique_monotone"};
+            for (int k = 0; k < 7; ++k) {
+                fast_names_.push_back(scope_.claim(fnm[k]));
+                a_.output(fast_names_.back(), fast[k]);
+            }
         }
         // Links: aliases of stage A values.
         for (const ex& s : link_order_)
@@ -1661,6 +1749,8 @@ private:
         near_name_ = scope_.claim("slide_near");
         slides_finite_name_ = scope_.claim("slides_finite");
         keep_array_name_ = scope_.claim("keep");
+        unique_name_ = scope_.claim("unique");
+        pass_name_ = scope_.claim("pass");
     }
 
     // ---- text
@@ -1946,7 +2036,7 @@ private:
             h_ << "    {\n";
             ind = "        ";
         }
-        const std::string i2 = ind + "    ";
+        std::string i2 = ind + "    ";
         // Counting the candidates that hold; a slide whose impulse is the stick candidate's
         // within rounding is the same solution (at the stick/slide boundary). The closed
         // forms are selected without a branch (the first that holds: stick, then the
@@ -2000,19 +2090,41 @@ private:
             h_ << ind << "// only where lambda D may be > 0 (the filter keep_*).\n";
             h_ << ind << "T " << roots_c_name_ << "[4];\n" << ind << "T " << roots_s_name_ << "[4];\n";
             h_ << ind << "const T " << keep_array_name_ << "[5] = {" << join(keep_names_, ", ") << "};\n";
-            h_ << ind << "int " << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", " << keep_array_name_
-               << ", " << roots_c_name_ << ", " << roots_s_name_ << ");\n";
-            h_ << ind << "if (" << n_roots_name_ << " == -2) // a coefficient of g overflowed\n"
-               << i2 << "return fail(friction_status::overflow);\n";
-            h_ << ind << "// g = 0 identically: every direction satisfies it; a slide that holds in any of\n";
-            h_ << ind << "// these four is one of infinitely many (ambiguous)\n";
-            h_ << ind << "const bool " << every_name_ << " = " << n_roots_name_ << " == -1;\n";
-            h_ << ind << "if (" << every_name_ << ") {\n";
+            h_ << ind << "// At most one solution when M + M^T is positive definite (with a margin;\n";
+            h_ << ind << "// detail::slide_direction): then pass 0 takes the stick candidate when it\n";
+            h_ << ind << "// holds, else the one slide; pass 1 (not unique, or the slide not confirmed within\n";
+            h_ << ind << "// rounding) searches every direction and counts what holds.\n";
+            h_ << ind << "const bool " << unique_name_ << " = ((static_cast<unsigned>(" << fast_names_[0]
+               << " > T(0)) & static_cast<unsigned>(" << fast_names_[6] << " > T(0))) != 0u);\n";
+            h_ << ind << "bool " << slides_finite_name_ << " = true;\n";
+            h_ << ind << "for (int " << pass_name_ << " = " << unique_name_ << " ? 0 : 1; " << pass_name_ << " < 2; ++" << pass_name_
+               << ") {\n";
+            const std::string j2 = i2 + "    ";
+            h_ << i2 << "int " << n_roots_name_ << " = 0;\n";
+            h_ << i2 << "if (" << pass_name_ << " == 0) {\n";
+            h_ << j2 << "if (!" << stick_holds_name_ << " && !detail::slide_direction(" << fast_names_[0] << ", " << fast_names_[1]
+               << ", " << fast_names_[2] << ", " << fast_names_[3] << ", " << fast_names_[4] << ", " << fast_names_[5] << ", "
+               << roots_c_name_ << "[0], " << roots_s_name_ << "[0]))\n";
+            h_ << j2 << "    continue;\n";
+            h_ << j2 << n_roots_name_ << " = " << stick_holds_name_ << " ? 0 : 1;\n";
+            h_ << i2 << "} else {\n";
+            h_ << j2 << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", " << keep_array_name_ << ", "
+               << roots_c_name_ << ", " << roots_s_name_ << ");\n";
+            h_ << i2 << "}\n";
+            h_ << i2 << "if (" << n_roots_name_ << " == -2) // a coefficient of g overflowed\n"
+               << j2 << "return fail(friction_status::overflow);\n";
+            h_ << i2 << "// g = 0 identically: every direction satisfies it; a slide that holds in any of\n";
+            h_ << i2 << "// these four is one of infinitely many (ambiguous)\n";
+            h_ << i2 << "const bool " << every_name_ << " = " << n_roots_name_ << " == -1;\n";
+            h_ << i2 << "if (" << every_name_ << ") {\n";
             const char* cs[4][2] = {{"T(1)", "T(0)"}, {"T(0)", "T(1)"}, {"T(-1)", "T(0)"}, {"T(0)", "T(-1)"}};
             for (int k = 0; k < 4; ++k)
-                h_ << i2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n" << i2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
-            h_ << i2 << n_roots_name_ << " = 4;\n" << ind << "}\n";
-            h_ << ind << "bool " << slides_finite_name_ << " = true;\n";
+                h_ << j2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n" << j2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
+            h_ << j2 << n_roots_name_ << " = 4;\n" << i2 << "}\n";
+            // the loop over the roots, one level deeper (inside the passes)
+            const std::string ind_outer = ind, i2_outer = i2;
+            ind = i2;
+            i2 = j2;
             h_ << ind << "for (int " << loop_name_ << " = 0; " << loop_name_ << " < " << n_roots_name_ << "; ++" << loop_name_ << ") {\n";
             h_ << i2 << "const T " << dir_c_name_ << " = " << roots_c_name_ << "[" << loop_name_ << "];\n";
             h_ << i2 << "const T " << dir_s_name_ << " = " << roots_s_name_ << "[" << loop_name_ << "];\n";
@@ -2029,6 +2141,17 @@ private:
             h_ << i2 << "    if (" << count_name_ << " == " << step << ") {\n" << select_text(cn, "slide", i2 + "        ") << i2 << "    }\n";
             h_ << i2 << "}\n";
             h_ << ind << "}\n";
+            // Pass 0 found the one solution, or starts over with every direction.
+            h_ << ind << "if (" << pass_name_ << " == 0) {\n";
+            h_ << i2 << "if (" << count_name_ << " == 1)\n" << i2 << "    break;\n";
+            h_ << i2 << count_name_ << " = " << join(counted, " + ") << ";\n";
+            h_ << i2 << apart_name_ << " = 0;\n";
+            h_ << i2 << at_stick_name_ << " = " << stick_holds_name_ << ";\n";
+            h_ << i2 << slides_finite_name_ << " = true;\n";
+            h_ << ind << "}\n";
+            h_ << ind_outer << "}\n";
+            ind = ind_outer;
+            i2 = i2_outer;
         }
         // A candidate or condition that is not finite (overflow in a square, say) decides
         // nothing: then the status is overflow rather than no_solution or ambiguous.
@@ -2195,9 +2318,9 @@ private:
     std::map<ex, ex, ex_is_less> link_value_;
     std::vector<ex> link_order_;
     std::vector<case_names> names_;
-    std::vector<std::string> trig_names_, keep_names_;
+    std::vector<std::string> trig_names_, keep_names_, fast_names_;
     std::string mu_name_, dir_c_name_, dir_s_name_;
-    std::string keep_array_name_;
+    std::string keep_array_name_, unique_name_, pass_name_;
     std::string loop_name_, tau_name_, slides_finite_name_, apart_name_, at_stick_name_, merge_name_, near_name_;
     std::string count_name_, stick_holds_name_, regime_name_, roots_c_name_, roots_s_name_, n_roots_name_, every_name_, edge_name_;
     stage a_, b_, s_, c_, u_;

@@ -2,7 +2,7 @@
 //   impactgen codegen noncentral-3d-friction --name noncentral_3d_friction --namespace impactgen::generated
 // Closed forms of the impact with Coulomb friction (3-D, sliding direction found at run time), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
-// Arithmetic of the straight-line parts: 106 add/sub, 171 mul, 5 div, 0 sqrt (shared steps, checks, candidates);
+// Arithmetic of the straight-line parts: 113 add/sub, 180 mul, 5 div, 0 sqrt (shared steps, checks, candidates);
 //   10 add/sub, 21 mul, 1 div, 0 sqrt per sliding direction (at most 4);
 //   74 add/sub, 78 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
@@ -135,8 +135,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_FB141112_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_FB141112_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -714,6 +714,68 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     trig2_refine(a0, a1, b1, a2, b2, n, cl, sl, tw, gl, dl, gh, dh, ww, rc, rs);
     return n;
 }
+
+/// The sliding direction (c, s) (cos and sin of its angle from e_t towards e_b) of the one
+/// solution of a 3-D impact that has at most one solution and does not stick (the caller
+/// checked both: see the emitted function's test). With a = -(1 + e) u_n > 0, the tangential impulse
+/// over N, tau, lies in the disc |tau| <= mu, and u'_t / N = (b + M tau) / a with
+/// b = a K_tn + u_t K_nn and M = a K_tt + u_t K_nt^T (2 x 2, tangential axes); sliding,
+/// tau = -mu d for the sliding direction d, and u'_t = lambda d (lambda > 0) reads
+/// (mu M + l 1) d = b with l = a lambda / N > 0. Given m = mu M and b, d = x / |x| with
+/// x(l) = adj(m + l 1) b / det(m + l 1), and l is the root of |x(l)| = 1: |x| falls
+/// strictly for l >= 0 when m + m^T is positive definite, from above 1 at l = 0 (the
+/// stick candidate is outside the cone) to below 1 at l = |b|, so the root is one and
+/// bracketed. Newton's method on psi(l) = det(m + l 1) / |adj(m) b + l b| - 1 (linear
+/// in l when m is a multiple of 1: one step), from the estimate l = |b| - b.m b / |b|^2,
+/// a bisection whenever a step leaves the bracket, until a step is below 4 eps |b|: at
+/// most 12 iterations (3 to 4 on random impacts); false when it has
+/// not settled by then or a value is not finite (the caller then searches every
+/// direction with trig2_roots).
+template <typename T>
+IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c, T& s) noexcept
+{
+    using std::sqrt;
+    // The direction does not change when m and b are scaled together.
+    const T sc = max_of(max_of(max_of(abs_of(m11), abs_of(m12)), max_of(abs_of(m21), abs_of(m22))), max_of(abs_of(b1), abs_of(b2)));
+    if (!(sc > T(0) && detail::finite(sc)))
+        return false;
+    const T r = T(1) / sc;
+    m11 *= r;
+    m12 *= r;
+    m21 *= r;
+    m22 *= r;
+    b1 *= r;
+    b2 *= r;
+    const T tr = m11 + m22, det = m11 * m22 - m12 * m21;
+    const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
+    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * std::numeric_limits<T>::epsilon() * nb;
+    // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
+    T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
+    for (int it = 0; it < 12; ++it) {
+        // x = (a1 + l b1, a2 + l b2) = adj(m + l 1) b, q = det(m + l 1); the Newton step
+        // psi / psi' = (q - |x|) |x|^2 / ((2 l + tr) |x|^2 - q (x.b)), psi < 0 where q < |x|.
+        const T x1 = a1 + l * b1, x2 = a2 + l * b2, xx2 = x1 * x1 + x2 * x2, xx = sqrt(xx2);
+        const T q = l * (l + tr) + det;
+        const T step = (q - xx) * xx2 / ((T(2) * l + tr) * xx2 - q * (x1 * b1 + x2 * b2));
+        if (!detail::finite(step))
+            return false;
+        if (q < xx)
+            lo = l;
+        else
+            hi = l;
+        T next = l - step;
+        if (!(next > lo && next < hi))
+            next = (lo + hi) / T(2);
+        if (abs_of(next - l) <= tol || q == xx) {
+            const T inv = T(1) / xx;
+            c = x1 * inv;
+            s = x2 * inv;
+            return true;
+        }
+        l = next;
+    }
+    return false;
+}
 } // namespace detail
 #endif
 
@@ -899,17 +961,28 @@ template <typename T> struct noncentral_3d_friction_input {
 //   stick_P_b = -(inv_stick_D_K * (u_b * (K_tt * K_nn - K_tn * K_tn) + u_t * stick_D_K_p1 - stick_P_t_p1 *
 //       stick_P_n_p1))
 //   stick_F_n = stick_P_n - stick_P_n
-//   trig_a0_p1 = mu * K_nb * u_t * (1/2)
-//   trig_a0_p2 = (1/2) * mu * K_tn * u_b
+//   trig_a0_p1 = K_nb * u_t
+//   trig_a0_p2 = mu * trig_a0_p1 * (1/2)
+//   trig_a0_p3 = K_tn * u_b
+//   trig_a0_p4 = (1/2) * mu * trig_a0_p3
 //   trig_a1_p1 = 1 + e
 //   trig_a1_p2 = K_nn * u_b - K_nb * u_n * trig_a1_p1
 //   trig_b1_p1 = trig_a1_p1 * K_tn * u_n
 //   trig_b1_p2 = K_nn * u_t
-//   trig_a2_p1 = mu * trig_a1_p1 * K_tb * u_n - trig_a0_p1 - trig_a0_p2
-//   trig_b2_p1 = (1/2) * mu * trig_a1_p1 * K_bb * u_n
-//   trig_b2_p2 = (1/2) * mu * K_tn * u_t
-//   trig_b2_p3 = (1/2) * mu * K_nb * u_b
-//   trig_b2_p4 = (1/2) * mu * trig_a1_p1 * K_tt * u_n
+//   trig_a2_p1 = trig_a1_p1 * K_tb * u_n
+//   trig_a2_p2 = mu * trig_a2_p1 - trig_a0_p2 - trig_a0_p4
+//   trig_b2_p1 = trig_a1_p1 * K_bb * u_n
+//   trig_b2_p2 = (1/2) * mu * trig_b2_p1
+//   trig_b2_p3 = K_tn * u_t
+//   trig_b2_p4 = (1/2) * mu * trig_b2_p3
+//   trig_b2_p5 = K_nb * u_b
+//   trig_b2_p6 = (1/2) * mu * trig_b2_p5
+//   trig_b2_p7 = trig_a1_p1 * K_tt * u_n
+//   trig_b2_p8 = (1/2) * mu * trig_b2_p7
+//   keep_1_p1 = trig_b1_p2 - trig_b1_p1
+//   slide_m11_p1 = trig_b2_p3 - trig_b2_p7
+//   slide_m22_p1 = trig_b2_p1 - trig_b2_p5
+//   unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * 2
 //   c_stick_N = stick_P_n
 //   c_stick_P_t = stick_P_t
 //   c_stick_F_t = stick_P_t
@@ -920,16 +993,23 @@ template <typename T> struct noncentral_3d_friction_input {
 //   c_stick_cond1 = stick_P_n
 //   c_stick_cond2 = mu * stick_P_n * stick_P_n * mu - stick_F_n * stick_F_n - stick_P_b * stick_P_b -
 //       stick_P_t * stick_P_t
-//   trig_a0 = trig_a0_p1 - trig_a0_p2
+//   trig_a0 = trig_a0_p2 - trig_a0_p4
 //   trig_a1 = trig_a1_p2
 //   trig_b1 = trig_b1_p1 - trig_b1_p2
-//   trig_a2 = trig_a2_p1
-//   trig_b2 = trig_b2_p1 + trig_b2_p2 - trig_b2_p3 - trig_b2_p4
-//   keep_0 = trig_b2_p1 + trig_b2_p4 - trig_b2_p3 - trig_b2_p2
-//   keep_1 = trig_b1_p2 - trig_b1_p1
+//   trig_a2 = trig_a2_p2
+//   trig_b2 = trig_b2_p2 + trig_b2_p4 - trig_b2_p6 - trig_b2_p8
+//   keep_0 = trig_b2_p2 + trig_b2_p8 - trig_b2_p6 - trig_b2_p4
+//   keep_1 = keep_1_p1
 //   keep_2 = trig_a1_p2
-//   keep_3 = trig_b2_p3 + trig_b2_p4 - trig_b2_p1 - trig_b2_p2
-//   keep_4 = trig_a2_p1
+//   keep_3 = trig_b2_p6 + trig_b2_p8 - trig_b2_p2 - trig_b2_p4
+//   keep_4 = trig_a2_p2
+//   slide_m11 = mu * slide_m11_p1
+//   slide_m12 = mu * (trig_a0_p1 - trig_a2_p1)
+//   slide_m21 = -(mu * (trig_a2_p1 - trig_a0_p3))
+//   slide_m22 = -(mu * slide_m22_p1)
+//   slide_b1 = keep_1_p1
+//   slide_b2 = trig_a1_p2
+//   unique_monotone = -(slide_m11_p1 * slide_m22_p1 * 31 + unique_monotone_p1 * unique_monotone_p1 * 8)
 //   lk_1 = inv_m1
 //   lk_2 = inv_m2
 //   lk_J_tt1 = J_tt1
@@ -1185,17 +1265,28 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T stick_P_n = inv_stick_D_K * (u_b * stick_P_n_p1 + u_t * stick_D_K_p3 - stick_P_t_p1 * (K_tt * K_bb - K_tb * K_tb));
     const T stick_P_b = -(inv_stick_D_K * (u_b * (K_tt * K_nn - K_tn * K_tn) + u_t * stick_D_K_p1 - stick_P_t_p1 * stick_P_n_p1));
     const T stick_F_n = stick_P_n - stick_P_n;
-    const T trig_a0_p1 = mu * K_nb * u_t * (T(1) / T(2));
-    const T trig_a0_p2 = (T(1) / T(2)) * mu * K_tn * u_b;
+    const T trig_a0_p1 = K_nb * u_t;
+    const T trig_a0_p2 = mu * trig_a0_p1 * (T(1) / T(2));
+    const T trig_a0_p3 = K_tn * u_b;
+    const T trig_a0_p4 = (T(1) / T(2)) * mu * trig_a0_p3;
     const T trig_a1_p1 = T(1) + e;
     const T trig_a1_p2 = K_nn * u_b - K_nb * u_n * trig_a1_p1;
     const T trig_b1_p1 = trig_a1_p1 * K_tn * u_n;
     const T trig_b1_p2 = K_nn * u_t;
-    const T trig_a2_p1 = mu * trig_a1_p1 * K_tb * u_n - trig_a0_p1 - trig_a0_p2;
-    const T trig_b2_p1 = (T(1) / T(2)) * mu * trig_a1_p1 * K_bb * u_n;
-    const T trig_b2_p2 = (T(1) / T(2)) * mu * K_tn * u_t;
-    const T trig_b2_p3 = (T(1) / T(2)) * mu * K_nb * u_b;
-    const T trig_b2_p4 = (T(1) / T(2)) * mu * trig_a1_p1 * K_tt * u_n;
+    const T trig_a2_p1 = trig_a1_p1 * K_tb * u_n;
+    const T trig_a2_p2 = mu * trig_a2_p1 - trig_a0_p2 - trig_a0_p4;
+    const T trig_b2_p1 = trig_a1_p1 * K_bb * u_n;
+    const T trig_b2_p2 = (T(1) / T(2)) * mu * trig_b2_p1;
+    const T trig_b2_p3 = K_tn * u_t;
+    const T trig_b2_p4 = (T(1) / T(2)) * mu * trig_b2_p3;
+    const T trig_b2_p5 = K_nb * u_b;
+    const T trig_b2_p6 = (T(1) / T(2)) * mu * trig_b2_p5;
+    const T trig_b2_p7 = trig_a1_p1 * K_tt * u_n;
+    const T trig_b2_p8 = (T(1) / T(2)) * mu * trig_b2_p7;
+    const T keep_1_p1 = trig_b1_p2 - trig_b1_p1;
+    const T slide_m11_p1 = trig_b2_p3 - trig_b2_p7;
+    const T slide_m22_p1 = trig_b2_p1 - trig_b2_p5;
+    const T unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * T(2);
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1205,16 +1296,23 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T c_stick_F_b = stick_P_b;
     const T c_stick_cond1 = stick_P_n;
     const T c_stick_cond2 = mu * stick_P_n * stick_P_n * mu - stick_F_n * stick_F_n - stick_P_b * stick_P_b - stick_P_t * stick_P_t;
-    const T trig_a0 = trig_a0_p1 - trig_a0_p2;
+    const T trig_a0 = trig_a0_p2 - trig_a0_p4;
     const T trig_a1 = trig_a1_p2;
     const T trig_b1 = trig_b1_p1 - trig_b1_p2;
-    const T trig_a2 = trig_a2_p1;
-    const T trig_b2 = trig_b2_p1 + trig_b2_p2 - trig_b2_p3 - trig_b2_p4;
-    const T keep_0 = trig_b2_p1 + trig_b2_p4 - trig_b2_p3 - trig_b2_p2;
-    const T keep_1 = trig_b1_p2 - trig_b1_p1;
+    const T trig_a2 = trig_a2_p2;
+    const T trig_b2 = trig_b2_p2 + trig_b2_p4 - trig_b2_p6 - trig_b2_p8;
+    const T keep_0 = trig_b2_p2 + trig_b2_p8 - trig_b2_p6 - trig_b2_p4;
+    const T keep_1 = keep_1_p1;
     const T keep_2 = trig_a1_p2;
-    const T keep_3 = trig_b2_p3 + trig_b2_p4 - trig_b2_p1 - trig_b2_p2;
-    const T keep_4 = trig_a2_p1;
+    const T keep_3 = trig_b2_p6 + trig_b2_p8 - trig_b2_p2 - trig_b2_p4;
+    const T keep_4 = trig_a2_p2;
+    const T slide_m11 = mu * slide_m11_p1;
+    const T slide_m12 = mu * (trig_a0_p1 - trig_a2_p1);
+    const T slide_m21 = -(mu * (trig_a2_p1 - trig_a0_p3));
+    const T slide_m22 = -(mu * slide_m22_p1);
+    const T slide_b1 = keep_1_p1;
+    const T slide_b2 = trig_a1_p2;
+    const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
     const T lk_1 = inv_m1;
     const T lk_2 = inv_m2;
     const T lk_J_tt1 = J_tt1;
@@ -1277,57 +1375,79 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
         T root_c[4];
         T root_s[4];
         const T keep[5] = {keep_0, keep_1, keep_2, keep_3, keep_4};
-        int n_roots = detail::trig2_roots(trig_a0, trig_a1, trig_b1, trig_a2, trig_b2, keep, root_c, root_s);
-        if (n_roots == -2) // a coefficient of g overflowed
-            return fail(friction_status::overflow);
-        // g = 0 identically: every direction satisfies it; a slide that holds in any of
-        // these four is one of infinitely many (ambiguous)
-        const bool every_direction = n_roots == -1;
-        if (every_direction) {
-            root_c[0] = T(1);
-            root_s[0] = T(0);
-            root_c[1] = T(0);
-            root_s[1] = T(1);
-            root_c[2] = T(-1);
-            root_s[2] = T(0);
-            root_c[3] = T(0);
-            root_s[3] = T(-1);
-            n_roots = 4;
-        }
+        // At most one solution when M + M^T is positive definite (with a margin;
+        // detail::slide_direction): then pass 0 takes the stick candidate when it
+        // holds, else the one slide; pass 1 (not unique, or the slide not confirmed within
+        // rounding) searches every direction and counts what holds.
+        const bool unique = ((static_cast<unsigned>(slide_m11 > T(0)) & static_cast<unsigned>(unique_monotone > T(0))) != 0u);
         bool slides_finite = true;
-        for (int k = 0; k < n_roots; ++k) {
-            const T c_d = root_c[k];
-            const T s_d = root_s[k];
-            const T slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d;
-            const T slide_N = -((e + T(1)) * lk_u_n_2 / slide_D_s);
-            const T slide_P_t = -(mu * c_d * slide_N);
-            const T slide_P_b = -(s_d * mu * slide_N);
-            const T slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d * (slide_N * (mu * c_d * lk_K_tt + s_d * mu * lk_K_tb - lk_K_tn) - lk_u_t));
-            const T c_slide_N = slide_N;
-            const T c_slide_P_t = slide_P_t;
-            const T c_slide_F_t = slide_P_t;
-            const T c_slide_P_n = slide_N;
-            const T c_slide_F_n = T(0);
-            const T c_slide_P_b = slide_P_b;
-            const T c_slide_F_b = slide_P_b;
-            const T c_slide_cond1 = slide_D_s;
-            const T c_slide_cond2 = slide_lambda;
-            slides_finite = slides_finite && detail::finite((c_slide_cond1 + c_slide_cond2) + c_slide_N);
-            const bool slide_near = detail::abs_of(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of(c_slide_P_b - c_stick_P_b) <= merge;
-            at_stick = at_stick || slide_near;
-            if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
-                n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
-                n_holding += (every_direction ? 2 : 1);
-                if (n_holding == (every_direction ? 2 : 1)) {
-                    regime_now = impact_regime::slide;
-                    sel_N = c_slide_N;
-                    sel_P_t = c_slide_P_t;
-                    sel_F_t = c_slide_F_t;
-                    sel_P_n = c_slide_P_n;
-                    sel_F_n = c_slide_F_n;
-                    sel_P_b = c_slide_P_b;
-                    sel_F_b = c_slide_F_b;
+        for (int pass = unique ? 0 : 1; pass < 2; ++pass) {
+            int n_roots = 0;
+            if (pass == 0) {
+                if (!stick_holds && !detail::slide_direction(slide_m11, slide_m12, slide_m21, slide_m22, slide_b1, slide_b2, root_c[0], root_s[0]))
+                    continue;
+                n_roots = stick_holds ? 0 : 1;
+            } else {
+                n_roots = detail::trig2_roots(trig_a0, trig_a1, trig_b1, trig_a2, trig_b2, keep, root_c, root_s);
+            }
+            if (n_roots == -2) // a coefficient of g overflowed
+                return fail(friction_status::overflow);
+            // g = 0 identically: every direction satisfies it; a slide that holds in any of
+            // these four is one of infinitely many (ambiguous)
+            const bool every_direction = n_roots == -1;
+            if (every_direction) {
+                root_c[0] = T(1);
+                root_s[0] = T(0);
+                root_c[1] = T(0);
+                root_s[1] = T(1);
+                root_c[2] = T(-1);
+                root_s[2] = T(0);
+                root_c[3] = T(0);
+                root_s[3] = T(-1);
+                n_roots = 4;
+            }
+            for (int k = 0; k < n_roots; ++k) {
+                const T c_d = root_c[k];
+                const T s_d = root_s[k];
+                const T slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d;
+                const T slide_N = -((e + T(1)) * lk_u_n_2 / slide_D_s);
+                const T slide_P_t = -(mu * c_d * slide_N);
+                const T slide_P_b = -(s_d * mu * slide_N);
+                const T slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d * (slide_N * (mu * c_d * lk_K_tt + s_d * mu * lk_K_tb - lk_K_tn) - lk_u_t));
+                const T c_slide_N = slide_N;
+                const T c_slide_P_t = slide_P_t;
+                const T c_slide_F_t = slide_P_t;
+                const T c_slide_P_n = slide_N;
+                const T c_slide_F_n = T(0);
+                const T c_slide_P_b = slide_P_b;
+                const T c_slide_F_b = slide_P_b;
+                const T c_slide_cond1 = slide_D_s;
+                const T c_slide_cond2 = slide_lambda;
+                slides_finite = slides_finite && detail::finite((c_slide_cond1 + c_slide_cond2) + c_slide_N);
+                const bool slide_near = detail::abs_of(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of(c_slide_P_b - c_stick_P_b) <= merge;
+                at_stick = at_stick || slide_near;
+                if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
+                    n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
+                    n_holding += (every_direction ? 2 : 1);
+                    if (n_holding == (every_direction ? 2 : 1)) {
+                        regime_now = impact_regime::slide;
+                        sel_N = c_slide_N;
+                        sel_P_t = c_slide_P_t;
+                        sel_F_t = c_slide_F_t;
+                        sel_P_n = c_slide_P_n;
+                        sel_F_n = c_slide_F_n;
+                        sel_P_b = c_slide_P_b;
+                        sel_F_b = c_slide_F_b;
+                    }
                 }
+            }
+            if (pass == 0) {
+                if (n_holding == 1)
+                    break;
+                n_holding = static_cast<int>(stick_holds);
+                n_apart = 0;
+                at_stick = stick_holds;
+                slides_finite = true;
             }
         }
         if (n_holding != 1) {

@@ -134,8 +134,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_FB141112_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_FB141112_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -712,6 +712,68 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
         return 0;
     trig2_refine(a0, a1, b1, a2, b2, n, cl, sl, tw, gl, dl, gh, dh, ww, rc, rs);
     return n;
+}
+
+/// The sliding direction (c, s) (cos and sin of its angle from e_t towards e_b) of the one
+/// solution of a 3-D impact that has at most one solution and does not stick (the caller
+/// checked both: see the emitted function's test). With a = -(1 + e) u_n > 0, the tangential impulse
+/// over N, tau, lies in the disc |tau| <= mu, and u'_t / N = (b + M tau) / a with
+/// b = a K_tn + u_t K_nn and M = a K_tt + u_t K_nt^T (2 x 2, tangential axes); sliding,
+/// tau = -mu d for the sliding direction d, and u'_t = lambda d (lambda > 0) reads
+/// (mu M + l 1) d = b with l = a lambda / N > 0. Given m = mu M and b, d = x / |x| with
+/// x(l) = adj(m + l 1) b / det(m + l 1), and l is the root of |x(l)| = 1: |x| falls
+/// strictly for l >= 0 when m + m^T is positive definite, from above 1 at l = 0 (the
+/// stick candidate is outside the cone) to below 1 at l = |b|, so the root is one and
+/// bracketed. Newton's method on psi(l) = det(m + l 1) / |adj(m) b + l b| - 1 (linear
+/// in l when m is a multiple of 1: one step), from the estimate l = |b| - b.m b / |b|^2,
+/// a bisection whenever a step leaves the bracket, until a step is below 4 eps |b|: at
+/// most 12 iterations (3 to 4 on random impacts); false when it has
+/// not settled by then or a value is not finite (the caller then searches every
+/// direction with trig2_roots).
+template <typename T>
+IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c, T& s) noexcept
+{
+    using std::sqrt;
+    // The direction does not change when m and b are scaled together.
+    const T sc = max_of(max_of(max_of(abs_of(m11), abs_of(m12)), max_of(abs_of(m21), abs_of(m22))), max_of(abs_of(b1), abs_of(b2)));
+    if (!(sc > T(0) && detail::finite(sc)))
+        return false;
+    const T r = T(1) / sc;
+    m11 *= r;
+    m12 *= r;
+    m21 *= r;
+    m22 *= r;
+    b1 *= r;
+    b2 *= r;
+    const T tr = m11 + m22, det = m11 * m22 - m12 * m21;
+    const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
+    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * std::numeric_limits<T>::epsilon() * nb;
+    // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
+    T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
+    for (int it = 0; it < 12; ++it) {
+        // x = (a1 + l b1, a2 + l b2) = adj(m + l 1) b, q = det(m + l 1); the Newton step
+        // psi / psi' = (q - |x|) |x|^2 / ((2 l + tr) |x|^2 - q (x.b)), psi < 0 where q < |x|.
+        const T x1 = a1 + l * b1, x2 = a2 + l * b2, xx2 = x1 * x1 + x2 * x2, xx = sqrt(xx2);
+        const T q = l * (l + tr) + det;
+        const T step = (q - xx) * xx2 / ((T(2) * l + tr) * xx2 - q * (x1 * b1 + x2 * b2));
+        if (!detail::finite(step))
+            return false;
+        if (q < xx)
+            lo = l;
+        else
+            hi = l;
+        T next = l - step;
+        if (!(next > lo && next < hi))
+            next = (lo + hi) / T(2);
+        if (abs_of(next - l) <= tol || q == xx) {
+            const T inv = T(1) / xx;
+            c = x1 * inv;
+            s = x2 * inv;
+            return true;
+        }
+        l = next;
+    }
+    return false;
 }
 } // namespace detail
 #endif

@@ -949,4 +949,18 @@ template <typename T> T kinetic_energy(const problem<T>& p)
     return kinetic_energy(p, v, w);
 }
 
+#if defined(IMPACTGEN_NUMERIC_PREBUILT)
+// The project's own tests and benchmarks link impactgen_numeric_prebuilt
+// (numeric/prebuilt/), which compiles the solver once per scalar type: here it is only
+// declared (instantiating it costs ~15 s of compile time per type and translation unit).
+#define IMPACTGEN_NUMERIC_FRICTION_INSTANCES(T)                                                                        \
+    extern template friction_answer<T> solve_friction<T>(const problem<T>&, const friction_options<T>&);            \
+    extern template T kinetic_energy<T>(const problem<T>&, const std::vector<vec<T>>&, const std::vector<vec<T>>&); \
+    extern template T kinetic_energy<T>(const problem<T>&);
+IMPACTGEN_NUMERIC_FRICTION_INSTANCES(float)
+IMPACTGEN_NUMERIC_FRICTION_INSTANCES(double)
+IMPACTGEN_NUMERIC_FRICTION_INSTANCES(long double)
+#undef IMPACTGEN_NUMERIC_FRICTION_INSTANCES
+#endif
+
 } // namespace impactgen::numeric

@@ -19,7 +19,10 @@ if [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" != "1" ]]; then
   # hold for the build as well as for ctest.
   export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # -O1 -g1 (line tables: stack traces with file and line) compiles in half the time
+  # of -O2 -g with the sanitizers on, and the sanitized tests run nearly as fast.
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTGEN_SANITIZE=ON \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
         -DIMPACTGEN_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
   cmake --build build-sanitize -j"$jobs"
   # Sanitized code runs ~5-10x slower: fewer random samples per class (the
