@@ -527,8 +527,11 @@ section stick_section(const context& c)
         }
     }
     sec.rows(thr);
-    sec.para(paragraph().w("If μ ≥ μ* the contact sticks and the answer is above. If μ < μ* the friction the contact would need "
-                           "exceeds μN: it cannot stick, and it slides."));
+    if (stick_can_hold(c.d, c.f))
+        sec.para(paragraph().w("If μ ≥ μ* the contact sticks and the answer is above. If μ < μ* the friction the contact would "
+                               "need exceeds μN: it cannot stick, and it slides."));
+    else
+        sec.para(paragraph().w("Whatever μ, the contact cannot stick: only a slide can hold, if any does."));
     return sec;
 }
 

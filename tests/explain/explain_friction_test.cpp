@@ -3,6 +3,7 @@
 // the refusal explained, the energy, golden files, LaTeX, byte stability.
 #include "print/canonical.hpp"
 #include "print/explain.hpp"
+#include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
 
 #include <gtest/gtest.h>
@@ -289,6 +290,20 @@ TEST(FrictionExplain, EnergyGainIsMentionedWhenItHappens)
     std::string text = flat(explain_text(e.doc));
     EXPECT_NE(text.find("The kinetic energy rises in this impact"), std::string::npos);
     EXPECT_NE(text.find("T_lost = -32224/15625"), std::string::npos);
+}
+
+// A stick impulse that pulls (N < 0 whatever mu): no threshold, and the text does not claim
+// that a large mu would make the contact stick.
+TEST(FrictionExplain, StickThatPullsIsNotAThreshold)
+{
+    explained e = explain_file("rod-cannot-stick.json");
+    ASSERT_FALSE(stick_can_hold(e.d, e.f));
+    regime_case sel = select_regime(e.d, e.f);
+    EXPECT_EQ(sel.kind, regime::slide);
+    const std::string text = flat(explain_text(e.doc));
+    EXPECT_NE(text.find("no μ makes the contact stick"), std::string::npos);
+    EXPECT_NE(text.find("Whatever μ, the contact cannot stick"), std::string::npos);
+    EXPECT_EQ(text.find("If μ ≥ μ* the contact sticks"), std::string::npos);
 }
 
 // None or several regimes: explained, not a crash; the CLI exits 0 with the explanation.
