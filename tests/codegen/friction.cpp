@@ -839,6 +839,50 @@ cln_closed_form::evaluator& cln_evaluator(const class_model& m)
 
 // ---------------------------------------------------------------------------
 
+// What the comparisons of the header with the closed form (exact, or in CLN long floats)
+// count over the samples the closed form answers with one regime and the header with ok.
+struct closed_form_tally {
+    long compared = 0, regime_checked = 0, ill_conditioned = 0;
+    std::map<int, long> regimes;
+    double worst = 0;
+    std::string worst_what;
+};
+
+// One such sample: unless too ill-conditioned to compare (eps kappa > 1e-6), the same
+// regime but within 1e-10 of the stick/slide boundary mu* (where both answers are the same
+// impulse to within the rounding, checked next), and every output within 1e3 eps kappa
+// (exact_tol at least) of the closed form's. `what` names the sample in messages.
+void compare_with_closed_form(const class_model& m, const std::vector<double>& x, const run_result& r, const exact_answer& a,
+                              const std::string& what, closed_form_tally& t)
+{
+    const fclass& c = *m.fc;
+    const double kappa = conditioning(m, x, r);
+    if (eps * kappa > 1e-6) {
+        ++t.ill_conditioned;
+        return;
+    }
+    ++t.regimes[a.regime];
+    if (r.regime != a.regime) {
+        const double mu = x[static_cast<std::size_t>(index_of(c.in_names, c.n_in, "mu"))];
+        double mu_star = 0;
+        ASSERT_TRUE(critical_mu(c, x, mu_star)) << what;
+        EXPECT_LT(std::fabs(mu / mu_star - 1), 1e-10) << what << ": regime " << r.regime << ", closed form " << a.regime;
+    } else {
+        ++t.regime_checked;
+    }
+    std::string which;
+    const double d = worst_difference(m, x, r.out, a.out, which);
+    if (d > t.worst) {
+        t.worst = d;
+        t.worst_what = which;
+    }
+    EXPECT_LE(d, std::max(exact_tol, 1e3 * eps * kappa)) << what << ": " << which;
+    if (d > 1e-9 && std::getenv("FRICTION_DEBUG"))
+        std::cout << what << ": difference " << d << " (" << which << "), header regime " << r.regime << ", closed form "
+                  << a.regime << ", conditioning " << kappa << "\n";
+    ++t.compared;
+}
+
 class friction_class : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(friction_class, agrees_with_select_regime_exactly)
@@ -849,10 +893,8 @@ TEST_P(friction_class, agrees_with_select_regime_exactly)
     const long n = count_for(c.name, "IMPACTGEN_FRICTION_EXACT", three_d ? 400 : 2000, 20000);
     sampler s(seed(1 + static_cast<unsigned>(c.n_in)));
     const int mu_i = index_of(c.in_names, c.n_in, "mu");
-    long compared = 0, regime_checked = 0, none = 0, several = 0, undecided = 0, status_agree = 0, ill_conditioned = 0;
-    std::map<int, long> regimes;
-    double worst = 0;
-    std::string worst_what;
+    long none = 0, several = 0, undecided = 0, status_agree = 0;
+    closed_form_tally t;
     for (long i = 0; i < n; ++i) {
         std::vector<double> x = approaching(c, s);
         if (i % 10 == 1) { // near the stick/slide boundary
@@ -873,36 +915,13 @@ TEST_P(friction_class, agrees_with_select_regime_exactly)
             continue;
         }
         ASSERT_EQ(r.status, ok) << c.name << " sample " << i << ": exact regime " << a.regime;
-        const double kappa = conditioning(m, x, r);
-        if (eps * kappa > 1e-6) {
-            ++ill_conditioned;
-            continue;
-        }
-        ++regimes[a.regime];
-        // The regime: the same, but within rounding of the stick/slide boundary (where both
-        // answers are the same impulse to within the rounding, checked below).
-        if (r.regime != a.regime) {
-            const double mu = x[static_cast<std::size_t>(mu_i)];
-            double mu_star = 0;
-            ASSERT_TRUE(critical_mu(c, x, mu_star)) << c.name << " sample " << i;
-            EXPECT_LT(std::fabs(mu / mu_star - 1), 1e-10) << c.name << " sample " << i << ": regime " << r.regime << ", exact " << a.regime;
-        } else {
-            ++regime_checked;
-        }
-        std::string which;
-        const double d = worst_difference(m, x, r.out, a.out, which);
-        if (d > worst) {
-            worst = d;
-            worst_what = which;
-        }
-        EXPECT_LE(d, std::max(exact_tol, 1e3 * eps * kappa)) << c.name << " sample " << i << ": " << which;
-        ++compared;
+        compare_with_closed_form(m, x, r, a, c.name + " sample " + std::to_string(i), t);
     }
-    std::cout << c.name << " vs select_regime (exact): " << compared << " compared (" << regime_checked << " regimes equal; stick "
-              << regimes[stick] << ", slide " << regimes[slide] << ", smooth " << regimes[smooth] << "), worst relative difference "
-              << worst << " (" << worst_what << "); exact none " << none << ", several " << several << " (header agrees on "
-              << status_agree << "), too close to call " << undecided << "; ill-conditioned (eps kappa > 1e-6) " << ill_conditioned << "\n";
-    EXPECT_GT(compared, n / 2);
+    std::cout << c.name << " vs select_regime (exact): " << t.compared << " compared (" << t.regime_checked << " regimes equal; stick "
+              << t.regimes[stick] << ", slide " << t.regimes[slide] << ", smooth " << t.regimes[smooth] << "), worst relative difference "
+              << t.worst << " (" << t.worst_what << "); exact none " << none << ", several " << several << " (header agrees on "
+              << status_agree << "), too close to call " << undecided << "; ill-conditioned (eps kappa > 1e-6) " << t.ill_conditioned << "\n";
+    EXPECT_GT(t.compared, n / 2);
 }
 
 // The closed form evaluated by CLN long floats (cln_closed_form.hpp): the samples of
@@ -925,12 +944,11 @@ TEST_P(friction_class, agrees_with_the_closed_form_in_cln)
     const auto start = std::chrono::steady_clock::now();
     cln_closed_form::evaluator& ev = cln_evaluator(m);
     const double compile_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    long compared = 0, regime_checked = 0, none = 0, several = 0, status_agree = 0, too_close = 0, undecided = 0,
-         ill_conditioned = 0, self_checked = 0, self_undecided = 0, degenerate = 0, status_differs = 0;
-    std::map<int, long> regimes;
+    long none = 0, several = 0, status_agree = 0, too_close = 0, undecided = 0, self_checked = 0, self_undecided = 0,
+         degenerate = 0, status_differs = 0;
+    closed_form_tally t;
     std::map<std::string, long> close_why;
-    double worst = 0, worst_self = 0, worst_bound = 0;
-    std::string worst_what;
+    double worst_self = 0, worst_bound = 0;
     auto inputs_text = [&](const std::vector<double>& x) {
         std::ostringstream t;
         t.precision(17);
@@ -1026,50 +1044,22 @@ TEST_P(friction_class, agrees_with_the_closed_form_in_cln)
             continue;
         }
         ASSERT_EQ(r.status, ok) << c.name << " sample " << i << ": closed form regime " << a.regime << ": " << inputs_text(x);
-        const double kappa = conditioning(m, x, r);
-        if (eps * kappa > 1e-6) {
-            ++ill_conditioned;
-            continue;
-        }
-        ++regimes[a.regime];
-        // The regime: the same, but within rounding of the stick/slide boundary (where both
-        // answers are the same impulse to within the rounding, checked below).
-        if (r.regime != a.regime) {
-            const double mu = x[static_cast<std::size_t>(mu_i)];
-            double mu_star = 0;
-            ASSERT_TRUE(critical_mu(c, x, mu_star)) << c.name << " sample " << i << ": " << inputs_text(x);
-            EXPECT_LT(std::fabs(mu / mu_star - 1), 1e-10)
-                << c.name << " sample " << i << ": regime " << r.regime << ", closed form " << a.regime << ": " << inputs_text(x);
-        } else {
-            ++regime_checked;
-        }
-        std::string which;
-        const double d = worst_difference(m, x, r.out, a.out, which);
-        if (d > worst) {
-            worst = d;
-            worst_what = which;
-        }
-        EXPECT_LE(d, std::max(exact_tol, 1e3 * eps * kappa)) << c.name << " sample " << i << ": " << which << ": " << inputs_text(x);
-        if (d > 1e-9 && std::getenv("FRICTION_DEBUG"))
-            std::cout << c.name << " sample " << i << ": difference " << d << " (" << which << "), header regime " << r.regime
-                      << ", closed form " << a.regime << (f.kind == cln_closed_form::answer::undecided ? " (select_regime)" : "")
-                      << ", conditioning " << kappa << "\n";
-        ++compared;
+        compare_with_closed_form(m, x, r, a, c.name + " sample " + std::to_string(i) + " (" + inputs_text(x) + ")", t);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << c.name << " vs the closed form in CLN long floats (" << ev.code().bits() << " bits, " << ev.code().size()
-              << " nodes): " << n << " samples, " << compared << " compared (" << regime_checked << " regimes equal; stick "
-              << regimes[stick] << ", slide " << regimes[slide] << ", smooth " << regimes[smooth] << "), worst relative difference "
-              << worst << " (" << worst_what << "); none " << none << ", several " << several << " (header agrees on "
+              << " nodes): " << n << " samples, " << t.compared << " compared (" << t.regime_checked << " regimes equal; stick "
+              << t.regimes[stick] << ", slide " << t.regimes[slide] << ", smooth " << t.regimes[smooth] << "), worst relative difference "
+              << t.worst << " (" << t.worst_what << "); none " << none << ", several " << several << " (header agrees on "
               << status_agree << ", differs apart from D ~ 0 on " << status_differs << "); too close for the long floats " << too_close << " (decided by select_regime; too close "
-              << "for it too " << undecided << "); ill-conditioned (eps kappa > 1e-6) " << ill_conditioned << ", header not ok beside a "
+              << "for it too " << undecided << "); ill-conditioned (eps kappa > 1e-6) " << t.ill_conditioned << ", header not ok beside a "
               << "slide with D within 1e-7 of 0 " << degenerate << "; self-check against "
               << "select_regime on " << self_checked << " (undecided there " << self_undecided << "), worst relative difference "
               << worst_self << ", worst difference / error bound " << worst_bound << "; " << seconds << " s (compiling "
               << compile_seconds << " s)\n";
     for (const auto& [why, k] : close_why)
         std::cout << "  too close: " << why << ": " << k << "\n";
-    EXPECT_GT(compared, n / 2);
+    EXPECT_GT(t.compared, n / 2);
     EXPECT_LE(too_close, n / 100 + 5); // the fast path decides almost every sample
 }
 
