@@ -23,9 +23,11 @@ struct notation {
     std::string text, tex;
 };
 
-/// One piece of running text: words, an expression, or notation.
+/// One piece of running text: words, an expression, notation, or a reference
+/// to a numbered equation (text: its tag, "3"; printed "(3)", linked where the
+/// format can link).
 struct span {
-    enum kind { words, math, note } k = words;
+    enum kind { words, math, note, ref } k = words;
     std::string text;
     GiNaC::ex expr;
     notation formula;
@@ -36,6 +38,7 @@ struct paragraph {
     paragraph& w(const std::string& t) { spans.push_back({span::words, t, 0, {}}); return *this; }
     paragraph& m(const GiNaC::ex& e) { spans.push_back({span::math, "", e, {}}); return *this; }
     paragraph& n(const std::string& text, const std::string& tex) { spans.push_back({span::note, "", 0, {text, tex}}); return *this; }
+    paragraph& ref(const std::string& tag) { spans.push_back({span::ref, tag, 0, {}}); return *this; }
 };
 
 /// A displayed relation lhs REL rhs with an optional tag "(3)" and a note.
@@ -49,19 +52,29 @@ struct math_row {
     paragraph note;                        ///< printed under or beside the row
 };
 
+/// A figure of the impact, already drawn in each format that shows pictures.
+struct figure_art {
+    std::string caption;                   ///< plain words (escaped by each printer)
+    std::string tikz;                      ///< a tikzpicture environment (LaTeX needs \usepackage{tikz})
+    std::string svg;                       ///< one self-contained <svg> element (HTML)
+    std::string alt;                       ///< a one-line description (text, Markdown, the SVG's title)
+};
+
 struct block {
-    enum kind { text, list, rows } k = text;
+    enum kind { text, list, rows, figure } k = text;
     paragraph para;                        ///< text
     std::vector<paragraph> items;          ///< list
     std::vector<math_row> math;            ///< rows
+    figure_art art;                        ///< figure
 };
 
 struct section {
     std::string title;
     std::vector<block> blocks;
-    section& para(const paragraph& p) { blocks.push_back({block::text, p, {}, {}}); return *this; }
-    section& list(const std::vector<paragraph>& items) { blocks.push_back({block::list, {}, items, {}}); return *this; }
-    section& rows(const std::vector<math_row>& r) { blocks.push_back({block::rows, {}, {}, r}); return *this; }
+    section& para(const paragraph& p) { blocks.push_back({block::text, p, {}, {}, {}}); return *this; }
+    section& list(const std::vector<paragraph>& items) { blocks.push_back({block::list, {}, items, {}, {}}); return *this; }
+    section& rows(const std::vector<math_row>& r) { blocks.push_back({block::rows, {}, {}, r, {}}); return *this; }
+    section& picture(const figure_art& a) { blocks.push_back({block::figure, {}, {}, {}, a}); return *this; }
 };
 
 struct document {

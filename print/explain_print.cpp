@@ -116,6 +116,8 @@ std::string text_spans(const paragraph& p)
             out += s.text;
         else if (s.k == span::math)
             out += harden(math_text(s.expr));
+        else if (s.k == span::ref)
+            out += "(" + s.text + ")";
         else
             out += harden(s.formula.text);
     }
@@ -207,6 +209,8 @@ std::string tex_spans(const paragraph& p, bool markdown)
             }
         } else if (s.k == span::math) {
             out += "$" + math_latex(s.expr) + "$";
+        } else if (s.k == span::ref) {
+            out += markdown ? "(" + s.text + ")" : "\\eqref{eq:" + s.text + "}";
         } else {
             out += "$" + s.formula.tex + "$";
         }
@@ -241,6 +245,9 @@ std::string explain_text(const document& doc)
                 os << "\n";
                 for (const paragraph& item : b.items)
                     os << wrap(text_spans(item), "  - ", "    ");
+                break;
+            case block::figure:
+                os << "\n" << wrap("[Figure: " + b.art.alt + "]", "", "");
                 break;
             case block::rows: {
                 os << "\n";
@@ -287,6 +294,9 @@ std::string explain_markdown(const document& doc)
                 os << "\n";
                 for (const paragraph& item : b.items)
                     os << "- " << tex_spans(item, true) << "\n";
+                break;
+            case block::figure:
+                os << "\n*Figure: " << b.art.alt << "*\n";
                 break;
             case block::rows:
                 os << "\n";
@@ -335,6 +345,9 @@ std::string explain_latex(const document& doc)
                     os << "  \\item " << tex_spans(item, false) << "\n";
                 os << "\\end{itemize}\n";
                 break;
+            case block::figure:
+                os << "\n\\begin{center}\n" << b.art.tikz << "\n\\end{center}\n";
+                break;
             case block::rows: {
                 bool plain = true;
                 for (const math_row& r : b.math)
@@ -351,7 +364,7 @@ std::string explain_latex(const document& doc)
                 for (const math_row& r : b.math) {
                     os << "\\begin{equation*}\n  " << tex_row(r);
                     if (!r.tag.empty())
-                        os << " \\tag{" << tex_words(r.tag) << "}";
+                        os << " \\tag{" << tex_words(r.tag) << "}\\label{eq:" << tex_words(r.tag) << "}";
                     os << "\n\\end{equation*}\n";
                     std::string note = tex_spans(r.note, false);
                     if (!note.empty())

@@ -168,7 +168,7 @@ TEST_P(EveryClass, EnergyCheckIsRight)
     bool at_one_found = false;
     for (const math_row& r : rows_of(e.doc, "5.")) {
         std::ostringstream note;
-        note << explain_text(document{"", {section{"", {block{block::text, r.note, {}, {}}}}}});
+        note << explain_text(document{"", {section{"", {block{block::text, r.note, {}, {}, {}}}}}});
         if (note.str().find("at e = 1") == std::string::npos)
             continue;
         at_one_found = true;
