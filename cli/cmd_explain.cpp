@@ -1,6 +1,8 @@
-// impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex]:
+// impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex|html]:
 // the derivation walked through the way the lecture notes do it; with Coulomb
 // friction, the way textbooks solve it (stick, else slide; every regime).
+// html is one self-contained page (inline CSS, MathML, no script) to open in
+// a browser or print.
 #include "cli/commands.hpp"
 #include "print/explain.hpp"
 #include "symbolic/named_classes.hpp"
@@ -19,8 +21,9 @@ void register_explain(CLI::App& app, std::function<int()>& action)
     auto opt = std::make_shared<options>();
     auto* cmd = app.add_subcommand("explain", "Walk through the derivation and solution the way the lecture notes do");
     cmd->add_option("problem", opt->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
-    cmd->add_option("--format", opt->format, "text (default), markdown or latex (a complete document)")
-        ->check(CLI::IsMember({"text", "markdown", "latex"}));
+    cmd->add_option("--format", opt->format,
+                    "text (default), markdown, latex (a complete document) or html (one self-contained page, MathML)")
+        ->check(CLI::IsMember({"text", "markdown", "latex", "html"}));
     cmd->callback([opt, &action] {
         action = [opt] {
             problem p = load(opt->what);
@@ -39,6 +42,8 @@ void register_explain(CLI::App& app, std::function<int()>& action)
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")
                 std::cout << print::explain_latex(doc);
+            else if (opt->format == "html")
+                std::cout << print::explain_html(doc);
             else
                 std::cout << print::explain_text(doc);
             return 0;

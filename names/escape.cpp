@@ -195,6 +195,24 @@ std::string html_text(std::string_view s)
     return out;
 }
 
+std::string xml_text(std::string_view s)
+{
+    // html_text per code point, except the two non-characters XML 1.0 excludes
+    // from its Char production: replaced like an invalid byte.
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        const unit u = next_unit(s, i);
+        const std::string_view bytes = s.substr(i, u.len);
+        i += u.len;
+        if (u.valid && (u.cp == 0xFFFE || u.cp == 0xFFFF))
+            out += "&#xFFFD;";
+        else
+            out += html_text(bytes);
+    }
+    return out;
+}
+
 std::string display_text(std::string_view s, std::size_t max_bytes)
 {
     std::string out;

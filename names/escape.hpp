@@ -48,6 +48,13 @@ std::string latex_text(std::string_view s);
 /// "&#xFFFD;"; other valid UTF-8 is kept.
 std::string html_text(std::string_view s);
 
+/// XML 1.0 text or (quoted) attribute value, e.g. inside an SVG <title> or
+/// <text>: html_text's rules, and in addition the two code points that XML 1.0
+/// forbids although they are valid UTF-8, U+FFFE and U+FFFF, become
+/// "&#xFFFD;" like an invalid byte (a parser would reject the document).
+/// The output is well-formed XML character data for any input.
+std::string xml_text(std::string_view s);
+
 /// One line for a terminal or an error message: control bytes (including
 /// '\n' and NUL), invalid UTF-8 bytes and the code points listed above are
 /// shown as "\xNN" per byte; a backslash is kept as is. When the escaped text

@@ -1,5 +1,9 @@
 #include "canonical.hpp"
 
+#include "tex_to_mathml.hpp"
+
+#include "names/escape.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <map>
@@ -31,10 +35,66 @@ std::string numeric_text(const numeric& n)
 
 printed print_ex(const ex& e, syntax sx);
 
+// ---- MathML pieces. Every printed MathML string is a sequence of elements;
+// where one element is needed (a child of <msup>, <mfrac>) it goes through one().
+
+std::string tag(const std::string& name, const std::string& content) { return "<" + name + ">" + content + "</" + name + ">"; }
+std::string mn(const std::string& digits) { return tag("mn", digits); }
+std::string mo(const std::string& op) { return tag("mo", op); }
+
+// The number of top-level elements of generated MathML (text content is
+// escaped, so every '<' starts a tag).
+std::size_t top_level_elements(const std::string& s)
+{
+    std::size_t count = 0;
+    int depth = 0;
+    for (std::size_t k = s.find('<'); k != std::string::npos; k = s.find('<', k + 1)) {
+        std::size_t end = s.find('>', k);
+        if (end == std::string::npos)
+            break;
+        if (s[k + 1] == '/') {
+            --depth;
+        } else {
+            if (depth == 0)
+                ++count;
+            if (s[end - 1] != '/')
+                ++depth;
+        }
+        k = end;
+    }
+    return count;
+}
+
+std::string one(const std::string& s) { return top_level_elements(s) == 1 ? s : tag("mrow", s); }
+
+// Parentheses or bars around MathML. They stretch (as \left( \right) do) only
+// around something taller than a line of symbols with scripts: Chromium
+// stretches a delimiter to the exact height of its row, and around v_{t1}
+// that gives a larger, wider glyph where TeX keeps the normal one.
+std::string fenced(const std::string& open, const std::string& inside, const std::string& close)
+{
+    bool tall = false;
+    for (const char* t : {"<mfrac", "<msqrt", "<munder", "<mover", "stretchy=\"true\""})
+        tall = tall || inside.find(t) != std::string::npos;
+    const std::string attr = tall ? "" : " stretchy=\"false\"";
+    return tag("mrow", "<mo" + attr + ">" + open + "</mo>" + inside + "<mo" + attr + ">" + close + "</mo>");
+}
+
+/// The minus sign a printed form starts with when it is negative.
+std::string minus_sign(syntax sx) { return sx == syntax::mathml ? mo("−") : "-"; }
+bool starts_with_minus(const std::string& s, syntax sx)
+{
+    const std::string m = minus_sign(sx);
+    return s.size() > m.size() && s.compare(0, m.size(), m) == 0;
+}
+std::string without_minus(const std::string& s, syntax sx) { return s.substr(minus_sign(sx).size()); }
+
 std::string wrap(const printed& p, prec need, syntax sx)
 {
     if (p.level >= need && !(p.negative && need > p_sum))
         return p.s;
+    if (sx == syntax::mathml) // a sign inside: its own row, where it is a prefix
+        return fenced("(", starts_with_minus(p.s, sx) ? tag("mrow", p.s) : p.s, ")");
     return sx == syntax::latex ? "\\left(" + p.s + "\\right)" : "(" + p.s + ")";
 }
 
@@ -46,6 +106,13 @@ printed print_numeric(const numeric& n, syntax sx)
     numeric a = abs(n);
     std::string body;
     prec level = p_atom;
+    if (sx == syntax::mathml) {
+        if (a.is_integer() || !a.is_rational())
+            body = mn(numeric_text(a));
+        else
+            body = tag("mfrac", mn(numeric_text(a.numer())) + mn(numeric_text(a.denom())));
+        return {neg ? minus_sign(sx) + body : body, neg ? p_sum : level, neg};
+    }
     if (a.is_integer()) {
         body = numeric_text(a);
     } else if (a.is_rational()) {
@@ -67,6 +134,46 @@ const char* superscript(long k)
     return k >= 0 && k <= 9 ? sup[k] : nullptr;
 }
 
+// A TeX name that ends in its only script, a subscript: X_{...} or X_a with
+// nothing before the _ that is a script, a prime or a group. A power can be
+// written right after it (r_{t1}^{2}); anything else with a script in it is
+// braced first ({v'_{x1}}^{2}, {I^{1}_{nb}}^{2}), or TeX sees a double superscript.
+bool subscript_only(const std::string& s)
+{
+    const std::size_t u = s.find('_');
+    if (u == std::string::npos || u == 0 || u + 1 >= s.size() || s.find_first_of("^'{}()", 0) < u)
+        return false;
+    if (s[u + 1] != '{')
+        return u + 2 == s.size() && std::isalnum(static_cast<unsigned char>(s[u + 1]));
+    int depth = 0;
+    for (std::size_t k = u + 1; k < s.size(); ++k) {
+        if (s[k] == '\\') { // an escaped character (\_, \{) is not a brace
+            ++k;
+            continue;
+        }
+        if (s[k] == '{')
+            ++depth;
+        else if (s[k] == '}' && --depth == 0)
+            return k + 1 == s.size();
+    }
+    return false;
+}
+
+// MathML base^exponent: a lone <msub> (a subscripted symbol) becomes one
+// <msubsup>; a base with a superscript of its own (v'_{x1}, I^{1}_{nb}) is
+// put in parentheses, (I^1_nb)^2, where LaTeX braces it: a second superscript
+// right after the first reads as one.
+std::string mathml_power(const std::string& base, const std::string& exponent)
+{
+    const std::string open = "<msub>", close = "</msub>";
+    const bool single = top_level_elements(base) == 1;
+    if (single && base.compare(0, open.size(), open) == 0)
+        return "<msubsup>" + base.substr(open.size(), base.size() - open.size() - close.size()) + exponent + "</msubsup>";
+    if (single && (base.compare(0, 6, "<msup>") == 0 || base.compare(0, 9, "<msubsup>") == 0))
+        return tag("msup", fenced("(", base, ")") + exponent);
+    return tag("msup", one(base) + exponent);
+}
+
 // base^exp with exp > 0 (negative exponents are moved to denominators by the caller).
 printed print_power(const ex& base, const ex& exponent, syntax sx)
 {
@@ -74,14 +181,21 @@ printed print_power(const ex& base, const ex& exponent, syntax sx)
     if (exponent.is_equal(numeric(1, 2))) {
         if (sx == syntax::latex)
             return {"\\sqrt{" + b.s + "}", p_atom};
+        if (sx == syntax::mathml)
+            return {tag("msqrt", b.s), p_atom};
         if (sx == syntax::parser)
             return {"sqrt(" + b.s + ")", p_atom};
         return {"√" + wrap(b, p_atom, sx), p_power};
     }
     std::string bs = wrap(b, p_atom, sx);
-    // I^{1}_{nb} or v'_{x1} squared: brace the base, or TeX sees a double superscript.
-    if (sx == syntax::latex && bs.compare(0, 6, "\\left(") != 0 && bs.find_first_of("^_'") != std::string::npos)
+    if (sx == syntax::latex && bs.compare(0, 6, "\\left(") != 0 && bs.find_first_of("^_'") != std::string::npos &&
+        !subscript_only(bs))
         bs = "{" + bs + "}";
+    if (sx == syntax::mathml) {
+        if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_pos_integer())
+            return {mathml_power(bs, mn(std::to_string(ex_to<numeric>(exponent).to_long()))), p_power};
+        return {mathml_power(bs, one(print_ex(exponent, sx).s)), p_power};
+    }
     if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_pos_integer()) {
         long k = ex_to<numeric>(exponent).to_long();
         if (sx == syntax::latex)
@@ -148,7 +262,11 @@ printed print_product(const ex& e, syntax sx)
     const bool neg = coeff.is_negative();
     const numeric p = abs(coeff.numer()), q = coeff.denom();
 
-    const std::string times = sx == syntax::latex ? " " : sx == syntax::parser ? "*" : "·";
+    // MathML: an invisible times (U+2062) between factors, a dot before a number.
+    const std::string times = sx == syntax::latex    ? " "
+                              : sx == syntax::parser ? "*"
+                              : sx == syntax::mathml ? mo("&#x2062;")
+                                                     : "·";
     prec sole_level = p_atom;
     auto join = [&](const std::vector<factor>& fs, const numeric& number, bool& single_sum, std::size_t& count) {
         std::string out;
@@ -156,7 +274,7 @@ printed print_product(const ex& e, syntax sx)
         single_sum = false;
         sole_level = p_atom;
         if (number != 1) {
-            out = numeric_text(number);
+            out = sx == syntax::mathml ? mn(numeric_text(number)) : numeric_text(number);
             ++count;
         }
         for (const factor& f : fs) {
@@ -169,7 +287,10 @@ printed print_product(const ex& e, syntax sx)
             std::string piece = alone ? pf.s : wrap(pf, p_power, sx);
             if (!out.empty()) {
                 bool digit = !piece.empty() && std::isdigit(static_cast<unsigned char>(piece[0]));
-                out += (sx == syntax::latex && digit) ? " \\cdot " : times;
+                if (sx == syntax::mathml)
+                    out += piece.compare(0, 4, "<mn>") == 0 ? mo("⋅") : times;
+                else
+                    out += (sx == syntax::latex && digit) ? " \\cdot " : times;
             }
             out += piece;
             ++count;
@@ -182,7 +303,7 @@ printed print_product(const ex& e, syntax sx)
     const prec top_level = num_count == 1 ? sole_level : p_product;
     std::string bottom = join(den, q, den_sum, den_count);
     if (top.empty())
-        top = "1";
+        top = sx == syntax::mathml ? mn("1") : "1";
     std::string body;
     prec level = p_product;
     if (den_count == 0) {
@@ -190,6 +311,9 @@ printed print_product(const ex& e, syntax sx)
         level = num_count == 0 ? p_atom : top_level;
     } else if (sx == syntax::latex) {
         body = "\\frac{" + top + "}{" + bottom + "}";
+        level = p_atom;
+    } else if (sx == syntax::mathml) {
+        body = tag("mfrac", one(top) + one(bottom));
         level = p_atom;
     } else {
         if (num_sum)
@@ -200,8 +324,8 @@ printed print_product(const ex& e, syntax sx)
     }
     if (neg) {
         if (level == p_sum)
-            body = sx == syntax::latex ? "\\left(" + body + "\\right)" : "(" + body + ")";
-        return {"-" + body, p_sum, true};
+            body = wrap({body, p_sum}, p_product, sx);
+        return {minus_sign(sx) + body, p_sum, true};
     }
     return {body, level};
 }
@@ -282,19 +406,18 @@ printed print_sum(const ex& e, syntax sx)
         const term& t = terms[i];
         bool neg = t.coeff.is_negative();
         printed p = print_product(t.rest * abs(t.coeff), sx);
-        if (p.negative && p.s.size() > 1 && p.s[0] == '-' && p.level != p_sum) {
+        if (p.negative && starts_with_minus(p.s, sx)) {
+            // A sign of the product's own; "-(...)" keeps its parentheses' need.
             neg = !neg;
-            p.s = p.s.substr(1);
+            p.s = without_minus(p.s, sx);
             p.negative = false;
-        } else if (p.negative && p.s.size() > 1 && p.s[0] == '-') {
-            // "-(...)" from a product: drop the sign and its parentheses' need stays.
-            neg = !neg;
-            p.s = p.s.substr(1);
-            p.negative = false;
-            p.level = p_product;
+            if (p.level == p_sum)
+                p.level = p_product;
         }
         std::string body = p.level == p_sum ? wrap(p, p_product, sx) : p.s;
-        if (i == 0)
+        if (sx == syntax::mathml)
+            out += (i == 0 && !neg) ? body : mo(neg ? "−" : "+") + body;
+        else if (i == 0)
             out = neg ? "-" + body : body;
         else
             out += (neg ? " - " : " + ") + body;
@@ -330,6 +453,8 @@ printed print_ex_uncached(const ex& e, syntax sx)
         return print_numeric(ex_to<numeric>(e), sx);
     if (is_a<symbol>(e)) {
         const symbol& s = ex_to<symbol>(e);
+        if (sx == syntax::mathml)
+            return {symbol_mathml(s), p_atom};
         return {sx == syntax::latex ? symbol_latex(s) : sx == syntax::parser ? s.get_name() : symbol_text(s.get_name()), p_atom};
     }
     if (is_a<add>(e))
@@ -339,6 +464,14 @@ printed print_ex_uncached(const ex& e, syntax sx)
     if (is_a<function>(e)) {
         const function& f = ex_to<function>(e);
         std::string args;
+        if (sx == syntax::mathml) {
+            // abs(x) as |x|; others f(x, y) with a function application (U+2061).
+            for (std::size_t i = 0; i < e.nops(); ++i)
+                args += (i ? mo(",") : "") + one(print_ex(e.op(i), sx).s);
+            if (f.get_name() == "abs")
+                return {fenced("|", args, "|"), p_atom};
+            return {tag("mrow", tag("mi", names::xml_text(f.get_name())) + mo("&#x2061;") + fenced("(", args, ")")), p_atom};
+        }
         for (std::size_t i = 0; i < e.nops(); ++i)
             args += (i ? ", " : "") + print_ex(e.op(i), sx).s;
         if (sx == syntax::latex)
@@ -347,10 +480,10 @@ printed print_ex_uncached(const ex& e, syntax sx)
     }
     if (is_a<constant>(e)) {
         std::ostringstream os;
-        if (sx == syntax::latex)
+        if (sx == syntax::latex || sx == syntax::mathml)
             os << GiNaC::latex;
         os << e;
-        return {os.str(), p_atom};
+        return {sx == syntax::mathml ? one(tex_to_mathml(os.str())) : os.str(), p_atom};
     }
     std::ostringstream os;
     os << e;
@@ -415,9 +548,13 @@ std::string symbol_latex(const symbol& s)
     return t;
 }
 
+std::string symbol_mathml(const symbol& s) { return one(tex_to_mathml(symbol_latex(s))); }
+
 std::string canonical(const ex& e, syntax s)
 {
     std::string out = print_ex(e, s).s;
+    if (s == syntax::mathml) // one element: a leading minus is first in its row, a prefix sign
+        out = one(out);
     if (text_cache().size() > 100000)
         text_cache().clear();
     return out;

@@ -39,7 +39,20 @@ struct paragraph {
     paragraph& m(const GiNaC::ex& e) { spans.push_back({span::math, "", e, {}}); return *this; }
     paragraph& n(const std::string& text, const std::string& tex) { spans.push_back({span::note, "", 0, {text, tex}}); return *this; }
     paragraph& ref(const std::string& tag) { spans.push_back({span::ref, tag, 0, {}}); return *this; }
+    /// Teaching prose written by the project itself: words with symbols set
+    /// between dollars, "the impulse acts along $e_n$ on $C1$"; see
+    /// prose_notation() for what may stand between them. It takes a C string
+    /// so that a std::string (a user's name, a value) cannot reach it by
+    /// accident: what a user writes goes through w() and stays words.
+    paragraph& t(const char* prose);
 };
+
+/// The notation of one symbol group of teaching prose (the text between two
+/// dollars): identifiers (a letter or Greek letter, primes, "_sub", "^sup";
+/// "C1" is C with subscript 1; "~v_C" marks a vector, e_t, e_n, e_b are unit
+/// vectors), numbers, and the signs + - = / ( ) , | < > ± ∓ × · ≤ ≥ → ∞ ≈ ≠ ⁻¹ ² ∫ √.
+/// Anything else is a programming error (std::logic_error naming it).
+notation prose_notation(const std::string& src);
 
 /// A displayed relation lhs REL rhs with an optional tag "(3)" and a note.
 struct math_row {
@@ -86,6 +99,8 @@ struct document {
 struct worked_example {
     std::string caption;
     GiNaC::lst values;
+    bool problem_numbers = false;  ///< the values are the problem's own (a numeric problem taught in symbols first)
+    std::vector<std::string> units; ///< per value: " kg", " m/s", ... or "" (empty vector: none)
 };
 
 /// The worked example of the notes for a named class, if the notes have one
@@ -106,5 +121,6 @@ document explain_friction(const derivation& d, const friction_solution& f);
 std::string explain_text(const document& doc);      ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document& doc);  ///< $...$ math (GiNaC-compatible LaTeX)
 std::string explain_latex(const document& doc);     ///< a complete amsmath document for pdflatex
+std::string explain_html(const document& doc);      ///< one self-contained HTML5 page, mathematics in MathML
 
 } // namespace impactgen::print

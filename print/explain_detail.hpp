@@ -18,16 +18,32 @@ paragraph& vector_span(paragraph& p, const vec3& v, int n);
 bool printable(const GiNaC::ex& e, int limit = 400);
 math_row row(const GiNaC::ex& lhs, const GiNaC::ex& rhs, const std::string& tag = "", const std::string& note = "");
 math_row note_row(const std::string& text, const std::string& tex, const GiNaC::ex& rhs, const std::string& note = "");
-/// A notation row without a value: the formula itself (text and TeX), and a note.
-math_row formula_row(const std::string& text, const std::string& tex, const std::string& note = "");
+/// A notation row without a value: the formula itself (text and TeX), and a note
+/// (teaching prose, see paragraph::t, or a paragraph built by the caller).
+math_row formula_row(const std::string& text, const std::string& tex, const char* note = "");
+math_row formula_row(const std::string& text, const std::string& tex, const paragraph& note);
 /// "≈ 0.142857142857143" for an exact number that is not an integer, else "".
 std::string decimal_note(const GiNaC::ex& v);
+
+/// The figure of the impact (figure/), drawn from the derivation's problem and frame.
+figure_art figure_of(const derivation& d);
+
+/// A step's meaning in teaching prose, from its role, body and component (typed),
+/// not from the solution's ASCII sentence.
+paragraph step_note(const problem& p, const step& st);
+
+/// What a number measures, for its unit when the problem gives "units": "SI".
+enum class quantity { mass, inertia, length, velocity, angular_velocity, impulse, energy };
+/// " kg", " m/s", ... (with the leading space), or "" when the problem gives no units.
+std::string unit(const problem& p, quantity q);
+/// The units of a problem in words: "SI (masses in kg, ...)".
+std::string units_key(const problem& p);
 
 /// With friction, the set-up also names Coulomb's coefficient and the impulses
 /// that become unknowns: N (unless the derivation has it already) and F.
 struct friction_setup {
     GiNaC::ex mu;
-    std::vector<std::pair<GiNaC::ex, std::string>> impulses; ///< unknown symbol, meaning
+    std::vector<std::pair<GiNaC::ex, paragraph>> impulses; ///< unknown symbol, meaning
 };
 
 /// Section 1: bodies, contact frame, unknowns and their count.

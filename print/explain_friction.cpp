@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <set>
 
 namespace impactgen::print {
@@ -93,6 +94,14 @@ ex abs_split(const ex& r, const ex& e)
 }
 
 // An exact number's decimal, for a note; "" when it is not a constant or is an integer.
+// Six significant digits: what a reader takes in; the exact value is printed beside it.
+std::string short_decimal(const ex& x)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", to_double(x));
+    return buf;
+}
+
 std::string approx_note(const ex& v)
 {
     if (!is_constant(v))
@@ -102,7 +111,7 @@ std::string approx_note(const ex& v)
     ex x = v.evalf();
     if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
         return "";
-    return "≈ " + decimal(x);
+    return "≈ " + short_decimal(x);
 }
 
 bool is_float(const ex& v) { return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational(); }
@@ -126,7 +135,7 @@ math_row value_row(const ex& sym, const ex& value, const std::string& note = "")
 {
     if (is_float(value)) {
         const std::string dec = decimal(value);
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, paragraph().w(note));
     }
     if (!is_constant(value) || !is_a<numeric>(value))
         for (const_preorder_iterator it = value.preorder_begin(); it != value.preorder_end(); ++it)
@@ -135,12 +144,47 @@ math_row value_row(const ex& sym, const ex& value, const std::string& note = "")
     if (is_constant(value) && !is_a<numeric>(value) && canonical_text(value).size() > 60) {
         // exact but unreadable (nested roots of large rationals): its decimal
         const std::string dec = decimal(value.evalf());
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, paragraph().w(note));
     }
     std::string n = approx_note(value);
     if (!note.empty())
         n = n.empty() ? note : n + ", " + note;
     return row(sym, value, "", n);
+}
+
+// A regime's name in teaching prose, from its kind, sign and angle.
+paragraph regime_words(const regime_case& rc)
+{
+    paragraph q;
+    if (rc.kind == regime::stick)
+        return q.w("stick");
+    if (rc.sign > 0)
+        return q.t("slide along $+e_t$");
+    if (rc.sign < 0)
+        return q.t("slide along $-e_t$");
+    if (rc.has_angle) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.6g", rc.angle);
+        return q.w(std::string("slide at the angle ") + buf).t(" rad from $e_t$ towards $e_b$");
+    }
+    if (rc.needs_angle)
+        return q.t("slide along $~d$ (at a root $θ$)");
+    return q.t("slide along $u_t$");
+}
+
+// A regime condition in teaching prose, from its kind.
+paragraph condition_note(const regime_condition& rc)
+{
+    paragraph q;
+    switch (rc.kind) {
+    case condition_kind::cone_below: return q.t("$μN - F ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::cone_above: return q.t("$μN + F ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::pushes: return q.t("$N ≥ 0$ (the contact pushes)");
+    case condition_kind::cone: return q.t("$μ² N² - |~F|² ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::slide_denominator: return q.t("$D_s > 0$ (the normal impulse $N$ is positive)");
+    case condition_kind::slides: return q.t("$λ = ~u′_t·~d > 0$ (the contact slides along $~d$ after impact)");
+    }
+    return q.w(rc.meaning);
 }
 
 // lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), a pointer to
@@ -150,7 +194,22 @@ math_row srow(const ex& lhs, const ex& rhs, const std::string& note = "")
     if (printable(rhs, 400))
         return row(lhs, rhs, "", note);
     const std::string more = "too long to print here; impactgen formulas prints it";
-    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots", note.empty() ? more : note + " (" + more + ")");
+    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots", paragraph().w(note.empty() ? more : note + " (" + more + ")"));
+}
+
+// A step's row, its meaning from its role (teaching prose with symbols in math).
+math_row srow(const problem& p, const step& st)
+{
+    math_row r = srow(st.sym, st.value);
+    paragraph note = step_note(p, st);
+    if (!r.note.spans.empty()) { // too long to print: the note says so
+        note.w(" (");
+        for (const span& x : r.note.spans)
+            note.spans.push_back(x);
+        note.w(")");
+    }
+    r.note = note;
+    return r;
 }
 
 struct context {
@@ -215,7 +274,6 @@ struct context {
     }
 };
 
-std::string sign_word(int s) { return s > 0 ? "+" : "-"; }
 
 // ---------------------------------------------------------------- 2. the law
 
@@ -224,19 +282,22 @@ section law_section(const context& c)
     const problem& p = c.p;
     section sec{"2. The contact law: restitution and Coulomb friction", {}};
     std::vector<paragraph> items;
-    items.push_back(paragraph().w("The contact impulse on " + body_ref(p, c.i2) + " is P = N e_n + F, and on " + body_ref(p, c.i1) +
-                                  " it is -P (action and reaction): N ≥ 0 is the normal impulse, F the friction impulse, "
-                                  "tangential (normal to e_n)."));
-    items.push_back(paragraph().w("Newton's law of restitution acts on the normal relative velocity of the contact points, exactly as "
-                                  "without friction: u′_n = -e u_n, with u = v_B - v_A and u_n = u·e_n < 0 for an impact."));
-    items.push_back(paragraph().w("Coulomb's law bounds the friction impulse by the cone |F| ≤ μN, and there are two regimes:"));
-    items.push_back(paragraph().w("stick: the contact points leave with no relative tangential velocity, u′_t = 0, with any F inside "
+    items.push_back(paragraph()
+                        .w("The contact impulse on " + body_ref(p, c.i2))
+                        .t(" is $~P = N e_n + ~F$, and on ")
+                        .w(body_ref(p, c.i1))
+                        .t(" it is $-~P$ (action and reaction): $N ≥ 0$ is the normal impulse, $~F$ the friction impulse, "
+                           "tangential (normal to $e_n$)."));
+    items.push_back(paragraph().t("Newton's law of restitution acts on the normal relative velocity of the contact points, exactly as "
+                                  "without friction: $u′_n = -e u_n$, with $u = v_B - v_A$ and $u_n = u·e_n < 0$ for an impact."));
+    items.push_back(paragraph().t("Coulomb's law bounds the friction impulse by the cone $|F| ≤ μN$, and there are two regimes:"));
+    items.push_back(paragraph().t("stick: the contact points leave with no relative tangential velocity, $u′_t = 0$, with any $F$ inside "
                                   "the cone;"));
-    items.push_back(paragraph().w("slide: u′_t ≠ 0, and friction is at its limit and opposes the sliding of B relative to A: "
-                                  "F = -μN u′_t/|u′_t|."));
+    items.push_back(paragraph().t("slide: $u′_t ≠ 0$, and friction is at its limit and opposes the sliding of $B$ relative to A: "
+                                  "$F = -μN u′_t/|u′_t|$."));
     for (const pivot& pv : p.pivots) {
         paragraph q;
-        q.w("The pin at E = ");
+        q.t("The pin at $E =$ ");
         vector_span(q, pv.point, p.dimension);
         q.w(" exerts an unknown reaction impulse R on " + body_ref(p, pv.body) + ".");
         items.push_back(q);
@@ -249,9 +310,9 @@ section law_section(const context& c)
     sec.rows({formula_row("P = N e_n + F,   |F| ≤ μ N", "\\underline{P} = N\\,\\hat{\\underline{e}}_n + \\underline{F},\\quad |\\underline{F}| \\le \\mu N",
                           "the contact impulse on body 2 and Coulomb's cone"),
               formula_row("u′_n = -e u_n", "u'_n = -e\\,u_n", "restitution: the normal velocity of separation"),
-              formula_row("stick: u′_t = 0", "\\text{stick: } \\underline{u}'_t = \\underline{0}", "needs |F| ≤ μN"),
+              formula_row("stick: u′_t = 0", "\\text{stick: } \\underline{u}'_t = \\underline{0}", "needs $|~F| ≤ μN$"),
               formula_row("slide: F = -μ N u′_t/|u′_t|", "\\text{slide: } \\underline{F} = -\\mu N\\,\\underline{u}'_t/|\\underline{u}'_t|",
-                          "needs u′_t ≠ 0, in the direction d = u′_t/|u′_t|")});
+                          "needs $~u′_t ≠ 0$, in the direction $~d = ~u′_t/|~u′_t|$")});
     sec.para(paragraph().w("This is the algebraic law of textbooks (Newton's restitution with Coulomb friction at the level of impulses): "
                            "the friction impulse has one direction for the whole impact. A contact whose sliding stops or turns "
                            "during the impact needs the impact to be followed through its duration (Routh's method); the answer "
@@ -332,28 +393,68 @@ section equations_section(const context& c)
 {
     const problem& p = c.p;
     section sec{"3. The equations: impulse-momentum with the friction impulse", {}};
-    sec.para(paragraph().w("With friction the notes' smooth-contact equations fail: they said that no impulse acts along the tangent, "
-                           "so each body's centre-of-mass velocity along e_t" + std::string(c.dim == 3 ? " and e_b" : "") +
-                           " is unchanged. Now the friction impulse F acts along the tangent, and m (v′_C - v_C)·e_t = ±F·e_t. "
-                           "So impulse-momentum is written for each body with the impulses N and F as unknowns."));
-    sec.para(paragraph().w("Angular momentum needs no change: the contact impulse P, friction part included, acts at the contact point O, "
-                           "so each free body's angular momentum about O is still conserved (a pinned body's about its pivot E changes by "
-                           "the moment of P about E). What friction changes is the linear momentum along the tangent, and the moment "
-                           "about the centre of mass: I_C (ω′ - ω) = r × P now has a part r × F from the friction impulse."));
+    sec.para(paragraph()
+                 .t("With friction the notes' smooth-contact equations fail: they said that no impulse acts along the tangent, "
+                    "so each body's centre-of-mass velocity along $e_t$")
+                 .t(c.dim == 3 ? " and $e_b$" : "")
+                 .t(" is unchanged. Now the friction impulse $~F$ acts along the tangent, and $m (~v′_C - ~v_C)·e_t = ±~F·e_t$. "
+                    "So impulse-momentum is written for each body with the impulses $N$ and $~F$ as unknowns."));
+    sec.para(paragraph().t("Angular momentum needs no change: the contact impulse $P$, friction part included, acts at the contact point $O$, "
+                           "so each free body's angular momentum about $O$ is still conserved (a pinned body's about its pivot $E$ changes by "
+                           "the moment of $P$ about $E)$. What friction changes is the linear momentum along the tangent, and the moment "
+                           "about the centre of mass: $I_C (ω′ - ω) = r × P$ now has a part $r × F$ from the friction impulse."));
+    // Grouped by principle and bodies; the words come from those (typed), not from the ASCII reason.
     std::size_t k = 0;
     while (k < c.eqs.size()) {
-        const std::string& reason = c.eqs[k].reason;
-        const principle why = c.eqs[k].why;
+        const equation& first = c.eqs[k];
+        const principle why = first.why;
         std::vector<math_row> rows;
         std::size_t j = k;
-        for (; j < c.eqs.size() && c.eqs[j].reason == reason && c.eqs[j].why == why; ++j) {
+        for (; j < c.eqs.size() && c.eqs[j].bodies == first.bodies && c.eqs[j].why == why; ++j) {
             const equation& eq = c.eqs[j];
-            const std::string comp = eq.component >= 0 ? p.axes[static_cast<std::size_t>(eq.component)] + " component" : "";
-            rows.push_back(row(eq.lhs, eq.rhs, eq.label, comp));
+            math_row r = row(eq.lhs, eq.rhs, eq.label);
+            if (eq.component >= 0)
+                r.note.w("component along " + p.axes[static_cast<std::size_t>(eq.component)]);
+            rows.push_back(r);
         }
         std::string title = why == principle::linear_impulse ? "Linear impulse-momentum" : principle_name(why);
         title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
-        sec.para(paragraph().w(title + ": " + reason + "."));
+        const std::size_t i = first.bodies.empty() ? c.i1 : first.bodies[0];
+        const std::string who = display_name(p.bodies[i]);
+        const pivot* pv = p.pivot_of(i);
+        paragraph q;
+        q.w(title + ": ");
+        switch (why) {
+        case principle::linear_impulse:
+            q.w("the change of linear momentum of " + who + " equals the impulses on it: ")
+                .t(i == c.i1 ? "$-~P = -(N e_n + ~F)$" : "$~P = N e_n + ~F$")
+                .t(pv ? " and the pivot impulse $~R$" : "")
+                .w("; with friction the tangential components change too.");
+            break;
+        case principle::angular_momentum:
+            if (pv)
+                q.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change of angular "
+                    "momentum of ")
+                    .w(who)
+                    .t(" about $E$ is the moment $(O - E) × ~P$ of the contact impulse, its friction part included.");
+            else
+                q.w("the whole contact impulse on " + who)
+                    .t(", normal and friction part alike, acts at $O$, which is fixed in the inertial frame: it has no moment "
+                       "about $O$, so the angular momentum of ")
+                    .w(who)
+                    .t(" about $O$ is conserved, with friction as without.");
+            break;
+        case principle::pivot_fixed:
+            q.t("the pivot $E$ of ").w(who).t(" does not move: $~v′_C + ~ω′ × ~r_CE = 0$.");
+            break;
+        case principle::restitution:
+            q.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ times "
+                "their velocity of approach.");
+            break;
+        default:
+            q.w(first.reason + ".");
+        }
+        sec.para(q);
         sec.rows(rows);
         k = j;
     }
@@ -363,18 +464,24 @@ section equations_section(const context& c)
     for (std::size_t t = 0; t < c.stick_law.size(); ++t) {
         const equation& eq = c.stick_law[t];
         law.push_back(row(eq.lhs, eq.rhs, eq.label,
-                          "stick: (v′_B - v′_A)·e_" + c.tnames[t] + " = 0, the contact points leave together along e_" + c.tnames[t]));
+                          ""));
+        law.back().note.t("stick: $(~v′_B - ~v′_A)·$").n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t])
+            .t(" $= 0$, the contact points leave together along ").n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t]);
     }
     if (c.dim == 2) {
         for (int s : {1, -1}) {
-            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label,
-                             "slide along " + sign_word(s) + "e_t (u′_t " + (s > 0 ? ">" : "<") + " 0)");
+            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label);
+            r.note.t(s > 0 ? "slide along $+e_t$ ($u′_t > 0$)" : "slide along $-e_t$ ($u′_t < 0$)");
             law.push_back(r);
         }
     } else {
         for (std::size_t t = 0; t < c.slide_law.size(); ++t)
-            law.push_back(row(c.slide_law[t].lhs, c.slide_law[t].rhs, c.slide_law[t].label,
-                              t == 0 ? "slide along the unit tangent d = (d_t, d_b) = u′_t/|u′_t| (components along e_t, e_b)" : ""));
+        {
+            math_row r = row(c.slide_law[t].lhs, c.slide_law[t].rhs, c.slide_law[t].label);
+            if (t == 0)
+                r.note.t("slide along the unit tangent $~d = (d_t, d_b) = ~u′_t/|~u′_t|$ (components along $e_t$, $e_b$)");
+            law.push_back(r);
+        }
     }
     sec.rows(law);
     const std::size_t n_eq = c.eqs.size() + c.tangents.size();
@@ -392,9 +499,9 @@ section response_section(const context& c)
 {
     const problem& p = c.p;
     section sec{"4. The contact response K", {}};
-    sec.para(paragraph().w("Every equation is linear in the impulse. Solve each body's equations for its velocities in terms of P and "
-                           "put them into the velocities of the contact points: the relative velocity u = v_B - v_A then changes "
-                           "linearly with P, through a symmetric matrix K, the contact response (the inverse of an effective mass):"));
+    sec.para(paragraph().t("Every equation is linear in the impulse. Solve each body's equations for its velocities in terms of $P$ and "
+                           "put them into the velocities of the contact points: the relative velocity $u = v_B - v_A$ then changes "
+                           "linearly with $P$, through a symmetric matrix $K$, the contact response (the inverse of an effective mass):"));
     std::vector<math_row> rows;
     rows.push_back(formula_row("u′ = u + K P,   K = K_1 + K_2", "\\underline{u}' = \\underline{u} + \\underline{\\underline{K}}\\,\\underline{P},\\quad \\underline{\\underline{K}} = \\underline{\\underline{K}}_1 + \\underline{\\underline{K}}_2",
                                "u′ - u is the velocity change of B minus that of A; body 1 receives -P"));
@@ -403,27 +510,27 @@ section response_section(const context& c)
         const std::string who = body_ref(p, i);
         if (p.immovable(i))
             rows.push_back(formula_row("K_" + std::string(i == c.i1 ? "1" : "2") + " = 0", "\\underline{\\underline{K}}_" + std::string(i == c.i1 ? "1" : "2") + " = 0",
-                                       who + (b.infinite_mass ? ": infinite mass, the impulse cannot move it" : ": a particle pinned at a fixed point")));
+                                       paragraph().w(who + (b.infinite_mass ? ": infinite mass, the impulse cannot move it" : ": a particle pinned at a fixed point"))));
         else if (p.pivot_of(i))
             rows.push_back(formula_row("K_i P = (I_E⁻¹(ρ × P)) × ρ,   ρ = O - E", "\\underline{\\underline{K}}_i\\underline{P} = (\\underline{\\underline{I}}_E^{-1}(\\underline{\\rho}\\times\\underline{P}))\\times\\underline{\\rho},\\quad \\underline{\\rho} = O - E",
-                                       who + ": it can only turn about its pivot E (I_E its inertia about E)"));
+                                       paragraph().w(who).t(": it can only turn about its pivot $E$ ($~~I_E$ its inertia about $E$)")));
         else if (b.particle)
-            rows.push_back(formula_row("K_i P = P/m_i", "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i", who + ": a particle"));
+            rows.push_back(formula_row("K_i P = P/m_i", "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i", paragraph().w(who + ": a particle")));
         else
             rows.push_back(formula_row("K_i P = P/m_i + (I_i⁻¹(r_i × P)) × r_i,   r_i = O - C_i", "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i + (\\underline{\\underline{I}}_i^{-1}(\\underline{r}_i\\times\\underline{P}))\\times\\underline{r}_i,\\quad \\underline{r}_i = O - C_i",
-                                       who + ": a free rigid body, translation plus the rotation the moment r_i × P gives"));
+                                       paragraph().w(who).t(": a free rigid body, translation plus the rotation the moment $~r_i × ~P$ gives")));
     }
     sec.rows(rows);
-    sec.para(paragraph().w("K is symmetric and positive definite (each K_i is the velocity response of a body to an impulse: "
-                           "P·K P > 0 is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
+    sec.para(paragraph().t("$K$ is symmetric and positive definite (each $K_i$ is the velocity response of a body to an impulse: "
+                           "$P·K P > 0$ is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
                            "the relative velocity before impact, through named steps:"));
     std::vector<math_row> steps;
     const auto& st = c.stick().sol.steps;
     for (std::size_t k = 0; k < c.shared; ++k)
-        steps.push_back(srow(st[k].sym, st[k].value, st[k].meaning));
+        steps.push_back(srow(c.p, st[k]));
     sec.rows(steps);
-    sec.para(paragraph().w("u_n < 0: the contact points approach. Its tangential part u_t = u - u_n e_n is the velocity with which "
-                           "B slides over A before impact."));
+    sec.para(paragraph().t("$u_n < 0$: the contact points approach. Its tangential part $u_t = u - u_n e_n$ is the velocity with which "
+                           "$B$ slides over A before impact."));
     return sec;
 }
 
@@ -447,15 +554,15 @@ section stick_section(const context& c)
 {
     const regime_case& st = c.stick();
     section sec{"5. Assume sticking", {}};
-    sec.para(paragraph().w("Textbooks try sticking first. Then u′_t = 0, and restitution gives u′_n = -e u_n, so u′ = -e u_n e_n and "
-                           "u′ = u + K P becomes a linear system for the whole impulse P:"));
+    sec.para(paragraph().t("Textbooks try sticking first. Then $u′_t = 0$, and restitution gives $u′_n = -e u_n$, so $u′ = -e u_n e_n$ and "
+                           "$u′ = u + K P$ becomes a linear system for the whole impulse $P$:"));
     sec.rows({formula_row("K P = -(u + e u_n e_n)", "\\underline{\\underline{K}}\\,\\underline{P} = -(\\underline{u} + e\\,u_n\\,\\hat{\\underline{e}}_n)",
-                          "P = -K⁻¹(u + e u_n e_n): K is positive definite, so D_K = det K > 0")});
+                          "$~P = -K⁻¹(~u + e u_n e_n)$: $K$ is positive definite, so $D_K = det K > 0$")});
     std::vector<math_row> steps;
     for (std::size_t k = c.shared; k < st.sol.steps.size(); ++k)
-        steps.push_back(srow(st.sol.steps[k].sym, st.sol.steps[k].value, st.sol.steps[k].meaning));
+        steps.push_back(srow(c.p, st.sol.steps[k]));
     sec.rows(steps);
-    sec.para(paragraph().w("μ does not appear: the stick impulse does not depend on μ. If it sticks, the bodies leave with"));
+    sec.para(paragraph().t("$μ$ does not appear: the stick impulse does not depend on $μ$. If it sticks, the bodies leave with"));
     std::vector<math_row> unknowns;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k)
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
@@ -470,27 +577,28 @@ section stick_section(const context& c)
             at_rest = at_rest && b.velocity[a].is_zero() && b.angular_velocity[a].is_zero();
         if (b.infinite_mass && at_rest && !c.p.bodies[other].particle) {
             paragraph q;
-            q.w("Here " + body_ref(c.p, i) + " is at rest and cannot move, so u′_t = 0 means that the contact point of " +
-                body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation (" + c.stick_law[0].label + "): ");
-            q.m(c.stick_law[0].lhs).w(" = 0.");
+            q.w("Here " + body_ref(c.p, i)).t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
+                .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ").ref(c.stick_law[0].label).w(": ");
+            q.m(c.stick_law[0].lhs).t(" $= 0$.");
             sec.para(q);
         }
     }
-    sec.para(paragraph().w("Test: the stick impulse must lie inside the friction cone, |F| ≤ μN:"));
+    sec.para(paragraph().t("Test: the stick impulse must lie inside the friction cone, $|F| ≤ μN$:"));
     std::vector<math_row> conds;
     for (const regime_condition& rc : st.conditions) {
-        math_row r = row(rc.value, 0, "", rc.meaning);
+        math_row r = row(rc.value, 0);
+        r.note = condition_note(rc);
         r.rel = rc.strict ? ">" : "≥";
         conds.push_back(r);
     }
     sec.rows(conds);
-    sec.para(paragraph().w("As the stick impulse does not depend on μ, the test is a condition on μ alone: sticking holds exactly when "
-                           "the stick impulse pushes (N > 0) and μ ≥ μ*, the threshold"));
+    sec.para(paragraph().t("As the stick impulse does not depend on $μ$, the test is a condition on $μ$ alone: sticking holds exactly when "
+                           "the stick impulse pushes $(N > 0)$ and $μ ≥ μ*$, the threshold"));
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     thr.push_back(row(mu_star, stick_threshold_value(c), "", c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
     if (!stick_can_hold(c.d, c.f))
-        sec.para(paragraph().w("Here the stick impulse pulls (N ≤ 0, whatever μ): no μ makes the contact stick, and μ* below is "
+        sec.para(paragraph().t("Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
                                "not a threshold."));
     if (c.dim == 2) {
         planar_frame k;
@@ -499,8 +607,8 @@ section stick_section(const context& c)
         const ex num = k.Knn * k.ut - one_e * k.Ktn * k.un, den = k.Ktn * k.ut - one_e * k.Ktt * k.un;
         thr.push_back(formula_row("μ* = |K_nn u_t - (1 + e) K_tn u_n| / (K_tn u_t - (1 + e) K_tt u_n)",
                                   "\\mu^{*} = \\frac{|K_{nn} u_t - (1 + e) K_{tn} u_n|}{K_{tn} u_t - (1 + e) K_{tt} u_n}",
-                                  "in the contact frame: K_tt = e_t·K e_t, K_tn = e_t·K e_n, K_nn = e_n·K e_n, u_t = u·e_t, "
-                                  "u_n = u·e_n (D_K cancels; N > 0 when sticking is possible)"));
+                                  "in the contact frame: $K_tt = e_t·K e_t$, $K_tn = e_t·K e_n$, $K_nn = e_n·K e_n$, $u_t = ~u·e_t$, "
+                                  "$u_n = ~u·e_n$ ($D_K$ cancels; $N > 0$ when sticking is possible)"));
         // With this problem's K when its entries are small.
         const vec3& et = c.d.t_dir;
         const ex kt = c.kform(et, et), ktn = c.kform(et, c.n), kn = c.kform(c.n, c.n);
@@ -516,8 +624,11 @@ section stick_section(const context& c)
             r = factor(normal(r));
             const ex shown = abs_split(r, c.e);
             if (printable(shown, 60) && !(shown - abs(num) / den).is_zero())
-                thr.push_back(row(mu_star, shown, "", "with this problem's K: K_tt = " + canonical_text(kvals[0]) + ", K_tn = " +
-                                                          canonical_text(kvals[1]) + ", K_nn = " + canonical_text(kvals[2])));
+            {
+                math_row mr = row(mu_star, shown);
+                mr.note.t("with this problem's $K$: $K_tt$ = ").m(kvals[0]).t(", $K_tn$ = ").m(kvals[1]).t(", $K_nn$ = ").m(kvals[2]);
+                thr.push_back(mr);
+            }
         }
         ex ratio = tidy(st.sol.expand_steps(st.tangential_scalar / st.sol.normal_impulse));
         if (!is_constant(ratio) && printable(ratio, 60)) { // factor() is slow on large rational functions
@@ -528,10 +639,10 @@ section stick_section(const context& c)
     }
     sec.rows(thr);
     if (stick_can_hold(c.d, c.f))
-        sec.para(paragraph().w("If μ ≥ μ* the contact sticks and the answer is above. If μ < μ* the friction the contact would "
-                               "need exceeds μN: it cannot stick, and it slides."));
+        sec.para(paragraph().t("If $μ ≥ μ*$ the contact sticks and the answer is above. If $μ < μ*$ the friction the contact would "
+                               "need exceeds $μN$: it cannot stick, and it slides."));
     else
-        sec.para(paragraph().w("Whatever μ, the contact cannot stick: only a slide can hold, if any does."));
+        sec.para(paragraph().t("Whatever $μ$, the contact cannot stick: only a slide can hold, if any does."));
     return sec;
 }
 
@@ -540,51 +651,60 @@ section stick_section(const context& c)
 section slide_section(const context& c)
 {
     section sec{"6. If the test fails: sliding", {}};
-    sec.para(paragraph().w("A sliding contact has friction at its limit, opposite to the sliding: F = -μN d, where d is the unit "
-                           "direction of u′_t. The impulse P = N (e_n - μ d) then has one unknown N (once d is known), and "
+    sec.para(paragraph().t("A sliding contact has friction at its limit, opposite to the sliding: $F = -μN d$, where $d$ is the unit "
+                           "direction of $u′_t$. The impulse $P = N (e_n - μ d)$ then has one unknown $N$ (once $d$ is known), and "
                            "restitution alone gives it:"));
     sec.rows({formula_row("u′_n = u_n + N e_n·K(e_n - μ d) = -e u_n", "u'_n = u_n + N\\,\\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - \\mu\\,\\underline{d}) = -e\\,u_n"),
               formula_row("N = -(1 + e) u_n / D_s,   D_s = e_n·K(e_n - μ d)", "N = -\\frac{(1 + e)\\,u_n}{D_s},\\quad D_s = \\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - \\mu\\,\\underline{d})",
-                          "D_s must be positive, else N would not be")});
-    sec.para(paragraph().w("Then check that the contact really slides along d after impact: λ = u′·d > 0 (the sliding speed)."));
+                          "$D_s$ must be positive, else $N$ would not be")});
+    sec.para(paragraph().t("Then check that the contact really slides along $d$ after impact: $λ = u′·d > 0$ (the sliding speed)."));
     if (c.dim == 2)
-        sec.para(paragraph().w("In the plane d = +e_t or d = -e_t, two closed forms. The one to try is opposite to the friction the stick "
-                               "impulse needed: if its F < 0 (friction on body 2 along -e_t) the contact tends to slide along +e_t, "
-                               "usually the direction of u_t. The check λ > 0 confirms it."));
+        sec.para(paragraph().t("In the plane $d = +e_t$ or $d = -e_t$, two closed forms. The one to try is opposite to the friction the stick "
+                               "impulse needed: if its $F < 0$ (friction on body 2 along $-e_t)$ the contact tends to slide along $+e_t$, "
+                               "usually the direction of $u_t$. The check $λ > 0$ confirms it."));
     else if (c.f.isotropic)
-        sec.para(paragraph().w("Here K does not couple the normal to the tangent plane (K e_n is along e_n) and is isotropic in it "
+        sec.para(paragraph().t("Here $K$ does not couple the normal to the tangent plane $(K e_n$ is along $e_n)$ and is isotropic in it "
                                "(the same for every tangent direction): sliding does not turn the tangential velocity, and "
-                               "d = u_t/|u_t|, the direction of sliding before impact."));
+                               "$d = u_t/|u_t|$, the direction of sliding before impact."));
     else
-        sec.para(paragraph().w("Here K couples the tangent directions with each other and with the normal, so the contact does not "
-                               "in general keep sliding the way it came: the sliding direction d = c_d e_t + s_d e_b "
-                               "(c_d = cos θ, s_d = sin θ) is itself unknown, and u′_t along d is one more equation for θ."));
+        sec.para(paragraph().t("Here $K$ couples the tangent directions with each other and with the normal, so the contact does not "
+                               "in general keep sliding the way it came: the sliding direction $d = c_d e_t + s_d e_b$ "
+                               "$(c_d = cos θ$, $s_d = sin θ)$ is itself unknown, and $u′_t$ along $d$ is one more equation for $θ$."));
     for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
         const regime_case& sc = c.f.cases[ci];
         paragraph head;
         if (c.dim == 2)
-            head.w("Slide along " + sign_word(sc.sign) + "e_t (d = " + (sc.sign > 0 ? "" : "-") + "e_t, F = " +
-                   (sc.sign > 0 ? "-" : "") + "μN):");
+            head.t(sc.sign > 0 ? "Slide along $+e_t$ ($~d = e_t$, $F = -μN$):" : "Slide along $-e_t$ ($~d = -e_t$, $F = μN$):");
         else if (!sc.needs_angle)
-            head.w("Slide along u_t (d = u_t/|u_t|, F = -μN d):");
+            head.t("Slide along $u_t (d = u_t/|u_t|$, $F = -μN d)$:");
         else
-            head.w("Slide along d = c_d e_t + s_d e_b:");
+            head.t("Slide along $d = c_d e_t + s_d e_b$:");
         sec.para(head);
         std::vector<math_row> steps;
         for (std::size_t k = c.shared; k < sc.sol.steps.size(); ++k)
-            steps.push_back(srow(sc.sol.steps[k].sym, sc.sol.steps[k].value, sc.sol.steps[k].meaning));
+            steps.push_back(srow(c.p, sc.sol.steps[k]));
         sec.rows(steps);
         if (sc.needs_angle) {
-            sec.para(paragraph().w("u′_t along d, i.e. e_n·((D_s u + a K(e_n - μ d)) × d) = 0 with a = -(1 + e) u_n, is the "
+            sec.para(paragraph().t("$u′_t$ along $d$, i.e. $e_n·((D_s u + a K(e_n - μ d)) × d) = 0$ with $a = -(1 + e) u_n$, is the "
                                    "equation for the sliding angle:"));
-            math_row g = srow(0, sc.angle_equation, "with c_d² + s_d² = 1: a trigonometric polynomial of degree 2 in θ, at most "
-                                                       "four roots; no closed form, so a numeric problem's roots are found numerically");
+            math_row g = srow(0, sc.angle_equation);
+            paragraph gn;
+            gn.t("with $c_d² + s_d² = 1$: a trigonometric polynomial of degree 2 in $θ$, at most four roots; no closed form, so "
+                 "a numeric problem's roots are found numerically");
+            if (!g.note.spans.empty()) {
+                gn.w(" (");
+                for (const span& x : g.note.spans)
+                    gn.spans.push_back(x);
+                gn.w(")");
+            }
+            g.note = gn;
             sec.rows({g});
         }
         sec.para(paragraph().w(std::string("It holds when") + (sc.needs_angle ? " (at a root θ)" : "") + ":"));
         std::vector<math_row> conds;
         for (const regime_condition& rc : sc.conditions) {
-            math_row r = row(rc.value, 0, "", rc.meaning);
+            math_row r = row(rc.value, 0);
+            r.note = condition_note(rc);
             r.rel = rc.strict ? ">" : "≥";
             conds.push_back(r);
         }
@@ -597,8 +717,8 @@ section slide_section(const context& c)
         sec.rows(unknowns);
     }
     if (c.f.cases.size() == 1)
-        sec.para(paragraph().w("Here the contact points have no tangential velocity before impact (u_t = 0): the stick impulse has "
-                               "F = 0, inside the cone for every μ, and there is nothing to slide."));
+        sec.para(paragraph().t("Here the contact points have no tangential velocity before impact $(u_t = 0)$: the stick impulse has "
+                               "$F = 0$, inside the cone for every $μ$, and there is nothing to slide."));
     return sec;
 }
 
@@ -648,7 +768,7 @@ section regimes_section(const context& c)
     std::vector<paragraph> items;
     items.push_back(paragraph().w("stick: μ ≥ μ*" + std::string(c.dim == 3 ? " (and N ≥ 0)" : "") + ", from section 5."));
     if (c.dim == 2) {
-        sec.para(paragraph().w("In the plane each slide's conditions are linear in μ. With N = -(1 + e) u_n/D_s put into λ, and F, N, D_K "
+        sec.para(paragraph().t("In the plane each slide's conditions are linear in $μ$. With $N = -(1 + e) u_n/D_s$ put into $λ$, and $F$, $N$, $D_K$ "
                                "those of the stick impulse (section 5):"));
         std::vector<math_row> rows;
         for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
@@ -665,49 +785,63 @@ section regimes_section(const context& c)
             const std::string s = sc.sign > 0 ? "" : "-";
             const std::string sf = sc.sign > 0 ? "F" : "-F";
             rows.push_back(formula_row("λ·D_s = -D_K·(" + sf + " + μ·N)", "\\lambda D_s = -D_K\\,(" + sf + " + \\mu N)",
-                                       "slide along " + sign_word(sc.sign) + "e_t (F, N, D_K of the stick impulse)"));
+                                       sc.sign > 0 ? "slide along $+e_t$ ($F$, $N$, $D_K$ of the stick impulse)"
+                                                   : "slide along $-e_t$ ($F$, $N$, $D_K$ of the stick impulse)"));
             items.push_back(paragraph()
-                                .w("slide along " + sign_word(sc.sign) + "e_t: μN < " + (sc.sign > 0 ? "-F" : "F") +
-                                   " (F, N of the stick impulse) and D_s = ")
+                                .t(sc.sign > 0 ? "slide along $+e_t$: $μN < -F$" : "slide along $-e_t$: $μN < F$")
+                                .t(" ($F$, $N$ of the stick impulse) and $D_s$ = ")
                                 .m(Ds->value)
-                                .w(" > 0."));
+                                .t(" $> 0$."));
         }
         sec.rows(rows);
-        sec.para(paragraph().w("D_K > 0, so with D_s > 0 the slide holds exactly when μN < ∓F: when N > 0, that is μ < μ* on the side "
+        sec.para(paragraph().t("$D_K > 0$, so with $D_s > 0$ the slide holds exactly when $μN < ∓F$: when $N > 0$, that is $μ < μ*$ on the side "
                                "where the stick impulse's friction points. The regimes:"));
     } else if (c.f.isotropic) {
-        sec.para(paragraph().w("With K e_n along e_n the slide has the same N as the stick impulse, D_s = K_nn·(e_n, e_n) > 0, and "
-                               "λ = |u_t| - μ N k_t with k_t the tangential entry of K; the stick impulse has |F| = |u_t|/k_t, so "
-                               "λ > 0 exactly when μ < μ*. The regimes:"));
-        items.push_back(paragraph().w("slide along u_t: μ < μ*."));
+        sec.para(paragraph().t("With $K e_n$ along $e_n$ the slide has the same $N$ as the stick impulse, $D_s = K_nn·(e_n$, $e_n) > 0$, and "
+                               "$λ = |u_t| - μ N k_t$ with $k_t$ the tangential entry of $K$; the stick impulse has $|F| = |u_t|/k_t$, so "
+                               "$λ > 0$ exactly when $μ < μ*$. The regimes:"));
+        items.push_back(paragraph().t("slide along $u_t$: $μ < μ*$."));
     } else {
-        sec.para(paragraph().w("In 3-D with coupling the slide's conditions depend on μ through the sliding angle too: no interval in "
+        sec.para(paragraph().t("In 3-D with coupling the slide's conditions depend on $μ$ through the sliding angle too: no interval in "
                                "closed form. The regimes:"));
-        items.push_back(paragraph().w("slide: at a root θ of the sliding equation, D_s > 0 and λ > 0."));
+        items.push_back(paragraph().t("slide: at a root $θ$ of the sliding equation, $D_s > 0$ and $λ > 0$."));
     }
     sec.list(items);
     if (c.dim == 2 || c.f.isotropic)
-        sec.para(paragraph().w("At μ = μ* the stick impulse lies on the edge of the cone: there λ = 0 and the slide's impulse equals "
-                               "the stick impulse, so the answer changes continuously with μ."));
+        sec.para(paragraph().t("At $μ = μ*$ the stick impulse lies on the edge of the cone: there $λ = 0$ and the slide's impulse equals "
+                               "the stick impulse, so the answer changes continuously with $μ$."));
 
     // Energy.
-    sec.para(paragraph().w("Energy: as K is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
+    sec.para(paragraph().t("Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
                            "mean relative velocity of the contact points:"));
     sec.rows({formula_row("T_lost = T - T′ = -P·(u + u′)/2", "T_{\\text{lost}} = T - T' = -\\underline{P}\\cdot(\\underline{u} + \\underline{u}')/2"),
               formula_row("stick (u′ = -e u_n e_n):   T_lost = -(F·u + (1 - e) N u_n)/2", "\\text{stick: } T_{\\text{lost}} = -(\\underline{F}\\cdot\\underline{u} + (1 - e)\\,N u_n)/2",
-                          "(1 - e) N u_n ≤ 0 is the loss of restitution; F·u, the work of friction on the sliding before impact"),
+                          "$(1 - e) N u_n ≤ 0$ is the loss of restitution; $~F·~u$, the work of friction on the sliding before impact"),
               formula_row("slide (u′ = λ d - e u_n e_n):   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2", "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + \\lambda) - (1 - e)\\,u_n)/2",
-                          "both terms are losses when the sliding keeps its direction (d·u > 0)")});
+                          "both terms are losses when the sliding keeps its direction ($~d·~u > 0$)")});
     std::vector<math_row> energy;
     const ex T = symbol("T", "T");
     ex before = tidy(st.sol.energy_before);
     if (printable(before, 200))
-        energy.push_back(row(T, before, "", "kinetic energy before impact (bodies of finite mass); T′ = T - T_lost"));
+    {
+        math_row r = row(T, before);
+        r.note.t("kinetic energy before impact (bodies of finite mass); $T′ = T - T_lost$");
+        energy.push_back(r);
+    }
     for (const regime_case& rc : c.f.cases) {
         const ex lost = energy_lost_formula(c, rc);
         if (!rc.needs_angle && !identically_zero(rc.sol, lost - rc.sol.energy_lost))
             continue;
-        energy.push_back(srow(symbol("T_lost", "T_{\\text{lost}}"), lost, rc.name + (rc.needs_angle ? " (at a root θ)" : "")));
+        math_row r = srow(symbol("T_lost", "T_{\\text{lost}}"), lost);
+        paragraph note = regime_words(rc);
+        if (!r.note.spans.empty()) {
+            note.w(" (");
+            for (const span& x : r.note.spans)
+                note.spans.push_back(x);
+            note.w(")");
+        }
+        r.note = note;
+        energy.push_back(r);
     }
     sec.rows(energy);
     return sec;
@@ -719,21 +853,21 @@ section existence_section(const context& c)
 {
     section sec{"8. One regime, none, or several?", {}};
     if (c.dim == 2) {
-        sec.para(paragraph().w("In the plane, with K positive definite and u_n < 0, the law has exactly one solution for every μ ≥ 0. "
-                               "If the stick impulse has N > 0, sticking holds for μ ≥ μ*, and for μ < μ* exactly the slide opposite "
-                               "to the stick impulse's friction: its D_s could only be ≤ 0 for μ ≥ K_nn/|K_tn|, which is larger than μ*. "
+        sec.para(paragraph().t("In the plane, with $K$ positive definite and $u_n < 0$, the law has exactly one solution for every $μ ≥ 0$. "
+                               "If the stick impulse has $N > 0$, sticking holds for $μ ≥ μ*$, and for $μ < μ*$ exactly the slide opposite "
+                               "to the stick impulse's friction: its $D_s$ could only be $≤ 0$ for $μ ≥ K_nn/|K_tn|$, which is larger than $μ*$. "
                                "If strong coupling of the normal and tangential directions makes the stick impulse pull "
-                               "(N < 0, i.e. K_tn·u_t < (1 + e)·K_tt·u_n), sticking is impossible and exactly the slide along u_t holds. "
-                               "D_s ≤ 0 -- friction that would drive the contact points together faster than the normal impulse "
+                               "$(N < 0$, i.e. $K_tn·u_t < (1 + e)·K_tt·u_n)$, sticking is impossible and exactly the slide along $u_t$ holds. "
+                               "$D_s ≤ 0$ -- friction that would drive the contact points together faster than the normal impulse "
                                "separates them, the jam of Painleve's paradox -- only ever rules out a slide that fails anyway."));
     } else if (c.f.isotropic) {
-        sec.para(paragraph().w("With this K (isotropic, not coupling the normal to the tangent plane) exactly one regime holds for every "
-                               "μ ≥ 0: stick for μ ≥ μ*, slide along u_t for μ < μ*."));
+        sec.para(paragraph().t("With this $K$ (isotropic, not coupling the normal to the tangent plane) exactly one regime holds for every "
+                               "$μ ≥ 0$: stick for $μ ≥ μ*$, slide along $u_t$ for $μ < μ*$."));
     } else {
-        sec.para(paragraph().w("In 3-D with coupling the sliding direction is itself unknown, and the algebraic law can have several "
-                               "solutions: with strong coupling between the normal and the tangential directions (K_tn, K_nb large "
-                               "against K_nn) and a large μ, sticking and one or more sliding directions can all satisfy their "
-                               "conditions at once; a sliding direction with D_s ≤ 0 (friction wedging the contact shut) is excluded, "
+        sec.para(paragraph().t("In 3-D with coupling the sliding direction is itself unknown, and the algebraic law can have several "
+                               "solutions: with strong coupling between the normal and the tangential directions $(K_tn$, $K_nb$ large "
+                               "against $K_nn)$ and a large $μ$, sticking and one or more sliding directions can all satisfy their "
+                               "conditions at once; a sliding direction with $D_s ≤ 0$ (friction wedging the contact shut) is excluded, "
                                "and in principle none might remain. Then the law of impulses does not decide the outcome: impactgen "
                                "refuses such a numeric problem, naming the regimes, and the impact has to be followed through its "
                                "duration (Routh's method, or integrating the contact in the normal impulse, Darboux-Keller)."));
@@ -899,7 +1033,9 @@ void numbers_section(context& c, document& doc)
     std::vector<math_row> conds;
     for (std::size_t k = 0; k < st.conditions.size() && k < nums[0].verdicts.size(); ++k) {
         const ex v = tidy(st.conditions[k].value.subs(nums[0].values));
-        math_row r = row(st.conditions[k].value, v, "", st.conditions[k].meaning + ": " + verdict_word(nums[0].verdicts[k], st.conditions[k].strict));
+        math_row r = row(st.conditions[k].value, v);
+        r.note = condition_note(st.conditions[k]);
+        r.note.w(": " + verdict_word(nums[0].verdicts[k], st.conditions[k].strict));
         r.has_then = false;
         conds.push_back(r);
     }
@@ -911,10 +1047,10 @@ void numbers_section(context& c, document& doc)
         mu_star = tidy(stick_threshold_value(c).subs(nums[0].values));
         sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
         paragraph q;
-        q.w("μ = ").m(c.mu).w(nums[0].holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
+        q.t("$μ =$ ").m(c.mu).w(nums[0].holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
         sec.para(q);
     } else {
-        sec.para(paragraph().w("The stick impulse has N ≤ 0: it would pull the bodies together, so the contact cannot stick for any μ."));
+        sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact cannot stick for any $μ$."));
     }
 
     // Slides.
@@ -922,34 +1058,41 @@ void numbers_section(context& c, document& doc)
         const regime_case& sc = c.f.cases[ci];
         const case_numbers& cn = nums[ci];
         if (sc.needs_angle) {
-            sec.para(paragraph().w("Slide: with the numbers, the equation for the sliding direction d = c_d e_t + s_d e_b is"));
+            sec.para(paragraph().t("Slide: with the numbers, the equation for the sliding direction $d = c_d e_t + s_d e_b$ is"));
             lst shared_vals;
             for (std::size_t k = 0; k < c.shared && k < nums[0].values.nops(); ++k)
                 shared_vals.append(nums[0].values.op(k));
             ex g = tidy_expand(sc.angle_equation.subs(shared_vals));
             if (printable(g, 150))
-                sec.rows({row(0, g, "", "with c_d² + s_d² = 1")});
+            {
+                math_row r = row(0, g);
+                r.note.t("with $c_d² + s_d² = 1$");
+                sec.rows({r});
+            }
             if (const auto trig = trig_form(g, sc.dir_c, sc.dir_s); !trig.text.empty())
-                sec.rows({formula_row(trig.text, trig.tex, "c_d = cos θ, s_d = sin θ; the coefficients to 15 digits")});
-            sec.para(paragraph().w("impactgen finds its roots θ on the unit circle at 50 significant digits, isolated with bounds on "
-                                   "the derivatives, and checks D_s > 0 and λ > 0 at each."));
+                sec.rows({formula_row(trig.text, trig.tex, "$c_d = cos θ$, $s_d = sin θ$; the coefficients to 15 digits")});
+            sec.para(paragraph().t("impactgen finds its roots $θ$ on the unit circle at 50 significant digits, isolated with bounds on "
+                                   "the derivatives, and checks $D_s > 0$ and $λ > 0$ at each."));
             continue;
         }
         paragraph head;
         if (c.dim == 2)
-            head.w("Slide along " + sign_word(sc.sign) + "e_t:");
+            head.t(sc.sign > 0 ? "Slide along $+e_t$:" : "Slide along $-e_t$:");
         else
-            head.w("Slide along u_t:");
+            head.t("Slide along $u_t$:");
         sec.para(head);
         sec.rows(step_rows(sc, cn, c.shared, sc.sol.steps.size()));
         if (cn.stopped) {
-            sec.para(paragraph().w("D_s ≤ 0: the normal impulse would not be positive, so this slide cannot hold."));
+            sec.para(paragraph().t("$D_s ≤ 0$: the normal impulse would not be positive, so this slide cannot hold."));
             continue;
         }
         std::vector<math_row> sconds;
-        for (std::size_t k = 0; k < sc.conditions.size() && k < cn.verdicts.size(); ++k)
-            sconds.push_back(row(sc.conditions[k].value, tidy(sc.conditions[k].value.subs(cn.values)), "",
-                                 sc.conditions[k].meaning + ": " + verdict_word(cn.verdicts[k], sc.conditions[k].strict)));
+        for (std::size_t k = 0; k < sc.conditions.size() && k < cn.verdicts.size(); ++k) {
+            math_row r = row(sc.conditions[k].value, tidy(sc.conditions[k].value.subs(cn.values)));
+            r.note = condition_note(sc.conditions[k]);
+            r.note.w(": " + verdict_word(cn.verdicts[k], sc.conditions[k].strict));
+            sconds.push_back(r);
+        }
         sec.rows(sconds);
     }
 
@@ -972,9 +1115,9 @@ void numbers_section(context& c, document& doc)
                 mu_interval iv;
                 restrict_interval(iv, -numeric(s) * nF, nN, true);       // -(sF + mu N) > 0
                 restrict_interval(iv, nK, numeric(s) * nT, true);        // K_nn - mu s K_tn > 0
-                items.push_back(paragraph().w("slide along " + sign_word(s) + "e_t " + interval_text(iv)));
+                items.push_back(paragraph().t(s > 0 ? "slide along $+e_t$ " : "slide along $-e_t$ ").w(interval_text(iv)));
             }
-            sec.para(paragraph().w("Along the μ axis, for this problem (section 7):"));
+            sec.para(paragraph().t("Along the $μ$ axis, for this problem (section 7):"));
             sec.list(items);
         }
     }
@@ -992,17 +1135,20 @@ void numbers_section(context& c, document& doc)
     if (!selected) {
         sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
         sec.para(paragraph().w("\"" + why + "\""));
-        sec.para(paragraph().w("That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
-                               "outcome here, and no answer is given. A smaller μ, or weaker coupling between the normal and the "
+        sec.para(paragraph().t("That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
+                               "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
                                "tangential directions, typically leaves a single regime."));
         doc.sections.push_back(sec);
         return;
     }
     {
         paragraph q;
-        q.w("The regime that holds: " + sel.name + ".");
+        q.w("The regime that holds: ");
+        for (const span& x : regime_words(sel).spans)
+            q.spans.push_back(x);
+        q.w(".");
         if (sel.kind == regime::slide && c.dim == 3) {
-            q.w(" The sliding direction d = (");
+            q.t(" The sliding direction $d = ($");
             for (int a = 0; a < 3; ++a) {
                 const ex x = settle(sel.direction[a]);
                 if (a)
@@ -1031,7 +1177,12 @@ void numbers_section(context& c, document& doc)
     for (std::size_t k = 0; k < c.F.size(); ++k) {
         const ex Fk = settle(c.dim == 2 ? sel.tangential_scalar : ex(tidy(dot(sel.tangential_impulse, c.tangents[k]))));
         impulse_values.append(c.F[k] == Fk);
-        answers.push_back(value_row(c.F[k], Fk, "the friction impulse on body 2 along e_" + c.tnames[k]));
+        {
+            math_row r = value_row(c.F[k], Fk);
+            r.note.w(r.note.spans.empty() ? "" : ", ").w("the friction impulse on body 2 along ")
+                .n("e_" + c.tnames[k], "\\hat{\\underline{e}}_" + c.tnames[k]);
+            answers.push_back(r);
+        }
     }
     ans.rows(answers);
     // Substituted back.
@@ -1075,9 +1226,9 @@ void numbers_section(context& c, document& doc)
               value_row(symbol("T_lost", "T_{\\text{lost}}"), Tl, "lost")});
     const decision loss = decide(is_float(Tl) ? Tl : tidy(Tl));
     if (loss == decision::negative)
-        ans.para(paragraph().w("The kinetic energy rises in this impact: T_lost < 0. Newton's restitution law with friction can do that in "
+        ans.para(paragraph().t("The kinetic energy rises in this impact: $T_lost < 0$. Newton's restitution law with friction can do that in "
                                "an eccentric impact, where the friction impulse changes the normal velocity of the contact points "
-                               "(K_tn ≠ 0) and restitution then acts on a normal velocity that friction has made. Stronge's energetic "
+                               "$(K_tn ≠ 0)$ and restitution then acts on a normal velocity that friction has made. Stronge's energetic "
                                "coefficient of restitution, with the impact followed through its duration, avoids it. The answer is "
                                "the one the law gives."));
     else if (loss == decision::zero)
@@ -1155,9 +1306,12 @@ document explain_friction(const derivation& d, const friction_solution& f)
     fs.mu = f.mu;
     const std::string body2 = display_name(p.bodies[c.i2]), body1 = display_name(p.bodies[c.i1]);
     if (!d.impulse_form)
-        fs.impulses.push_back({c.N, "normal impulse (integral of N dt), on " + body2 + " along +e_n and on " + body1 + " along -e_n"});
+        fs.impulses.push_back({c.N, paragraph().t("normal impulse $∫N dt$, on ").w(body2).t(" along $+e_n$ and on ").w(body1).t(" along $-e_n$")});
     for (std::size_t k = 0; k < c.F.size(); ++k)
-        fs.impulses.push_back({c.F[k], "friction impulse on " + body2 + " along e_" + c.tnames[k] + " (on " + body1 + " the opposite)"});
+        fs.impulses.push_back({c.F[k], paragraph()
+                                           .w("friction impulse on " + body2 + " along ")
+                                           .n("e_" + c.tnames[k], "\\hat{\\underline{e}}_" + c.tnames[k])
+                                           .w(" (on " + body1 + " the opposite)")});
 
     document doc;
     doc.title = "Impact with Coulomb friction: " + p.source;

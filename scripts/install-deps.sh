@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Installs what impactgen needs from Debian's packages, only what is missing.
 #   install-deps.sh          build and run dependencies
-#   install-deps.sh --tests  also GoogleTest, Google Benchmark and pdflatex for the test suite
+#   install-deps.sh --tests  also GoogleTest, Google Benchmark, pdflatex, TikZ and Chromium for the test suite
 set -euo pipefail
 packages=(cmake make g++ pkg-config libginac-dev libcln-dev libeigen3-dev nlohmann-json3-dev libcli11-dev)
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base clang)
+  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang chromium zlib1g-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -223,10 +223,10 @@ derivation derive(const problem& p, const derive_options& options)
                 "the impulse N n is internal to the system of both bodies, so their linear momentum along n is conserved", {i1, i2});
         } else {
             std::size_t inf = p.bodies[i1].infinite_mass ? i1 : i2;
-            d.remarks.push_back("Linear momentum of the system along n is not useful: " + display_name(p.bodies[inf]) +
-                                " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero).");
-            d.remarks.push_back("The velocities of " + display_name(p.bodies[inf]) +
-                                " are unchanged: a finite impulse cannot change the motion of an infinite mass, so it gives no angular momentum equation either.");
+            d.remarks.push_back({remark_kind::momentum_infinite_mass, inf, "Linear momentum of the system along n is not useful: " + display_name(p.bodies[inf]) +
+                                " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero)."});
+            d.remarks.push_back({remark_kind::infinite_mass_unchanged, inf, "The velocities of " + display_name(p.bodies[inf]) +
+                                " are unchanged: a finite impulse cannot change the motion of an infinite mass, so it gives no angular momentum equation either."});
         }
         // (c) Angular momentum about O, each body separately.
         for (std::size_t i : contact_bodies) {
@@ -234,7 +234,7 @@ derivation derive(const problem& p, const derive_options& options)
             if (p.immovable(i))
                 continue;
             if (b.particle) {
-                d.remarks.push_back(display_name(b) + " is a particle (no rotational inertia): it has no angular velocity unknowns and its angular momentum about O gives no new equation.");
+                d.remarks.push_back({remark_kind::particle_no_rotation, i, display_name(b) + " is a particle (no rotational inertia): it has no angular velocity unknowns and its angular momentum about O gives no new equation."});
                 continue;
             }
             vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
@@ -277,11 +277,11 @@ derivation derive(const problem& p, const derive_options& options)
                                  "the pivot E of " + display_name(b) + " is fixed: v'_C + w' x r_{E C} = 0", {i}, false);
             }
             if (pv && b.particle)
-                d.remarks.push_back(display_name(b) + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot takes the whole contact impulse.");
+                d.remarks.push_back({remark_kind::pinned_particle, i, display_name(b) + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot takes the whole contact impulse."});
         }
         for (std::size_t i : contact_bodies)
             if (p.bodies[i].infinite_mass)
-                d.remarks.push_back("The velocities of " + display_name(p.bodies[i]) + " (infinite mass) are unchanged by the finite impulse.");
+                d.remarks.push_back({remark_kind::infinite_mass_unchanged, i, "The velocities of " + display_name(p.bodies[i]) + " (infinite mass) are unchanged by the finite impulse."});
     }
     // (d) Newton's restitution law on the contact points.
     add(dot(d.vB_after - d.vA_after, d.n_hat), -p.restitution * dot(d.vB - d.vA, d.n_hat), principle::restitution,
@@ -289,7 +289,7 @@ derivation derive(const problem& p, const derive_options& options)
 
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         if (i != i1 && i != i2)
-            d.remarks.push_back(display_name(p.bodies[i]) + " takes no part in the contact: its velocities are unchanged.");
+            d.remarks.push_back({remark_kind::uninvolved, i, display_name(p.bodies[i]) + " takes no part in the contact: its velocities are unchanged."});
     return d;
 }
 

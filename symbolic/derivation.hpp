@@ -50,12 +50,27 @@ struct unknown {
     std::string meaning;
 };
 
+/// Why a principle gives no usable equation, or a body takes no part.
+enum class remark_kind {
+    momentum_infinite_mass, ///< system momentum along n: m (v'_n - v_n) is infinity times zero
+    infinite_mass_unchanged,///< an infinite mass keeps its velocities (no angular momentum equation)
+    particle_no_rotation,   ///< a particle has no angular velocity unknowns
+    pinned_particle,        ///< a particle pinned at a fixed point cannot move
+    uninvolved              ///< a body not in the contact
+};
+
+struct remark {
+    remark_kind kind;
+    std::size_t body;                  ///< the body it is about
+    std::string text;                  ///< one sentence in ASCII (for logs and tests)
+};
+
 struct derivation {
     problem prob;
     bool impulse_form = false;         ///< true when a pivot makes the impulses unknowns
     std::vector<unknown> unknowns;
     std::vector<equation> equations;
-    std::vector<std::string> remarks;  ///< principles that give no usable equation, and why
+    std::vector<remark> remarks;       ///< principles that give no usable equation, and why
 
     vec3 n_hat;                        ///< unit normal n / |n| (n itself when normal_assumed_unit)
     ex normal_length;                  ///< |n| (1 when normal_assumed_unit)

@@ -267,14 +267,14 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
         c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", dot(P, d.t_dir),
                                      "tangential (friction) impulse P.e_t on body 2", true);
         add_tangential(d, c, sb, Pn);
-        c.conditions.push_back({mu * Pn - c.tangential_scalar, false, "mu N - F >= 0 (the impulse inside the friction cone)"});
-        c.conditions.push_back({mu * Pn + c.tangential_scalar, false, "mu N + F >= 0 (the impulse inside the friction cone)"});
+        c.conditions.push_back({mu * Pn - c.tangential_scalar, false, "mu N - F >= 0 (the impulse inside the friction cone)", condition_kind::cone_below});
+        c.conditions.push_back({mu * Pn + c.tangential_scalar, false, "mu N + F >= 0 (the impulse inside the friction cone)", condition_kind::cone_above});
     } else {
         c.tangential_scalar = 0;
         add_tangential(d, c, sb, Pn);
-        c.conditions.push_back({Pn, false, "N >= 0 (the contact pushes)"});
+        c.conditions.push_back({Pn, false, "N >= 0 (the contact pushes)", condition_kind::pushes});
         c.conditions.push_back({mu * mu * Pn * Pn - dot(c.tangential_impulse, c.tangential_impulse), false,
-                                "mu^2 N^2 - |F|^2 >= 0 (the impulse inside the friction cone)"});
+                                "mu^2 N^2 - |F|^2 >= 0 (the impulse inside the friction cone)", condition_kind::cone});
     }
     c.direction = zero_vec();
     c.sliding_speed = 0;
@@ -333,8 +333,8 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
         after[a] = sh.u[a] + Pn * Q[a];
     c.sliding_speed = sb.add(step_role::separation_velocity, no_body, -1, -1, "lambda", "\\lambda", dot(after, dir),
                              "sliding speed u'.d after impact (must be > 0)", true);
-    c.conditions.push_back({D, true, "D_s > 0 (the normal impulse N is positive)"});
-    c.conditions.push_back({c.sliding_speed, true, "lambda = u'_t.d > 0 (the contact slides along d after impact)"});
+    c.conditions.push_back({D, true, "D_s > 0 (the normal impulse N is positive)", condition_kind::slide_denominator});
+    c.conditions.push_back({c.sliding_speed, true, "lambda = u'_t.d > 0 (the contact slides along d after impact)", condition_kind::slides});
     if (needs_angle) {
         // g = n.(h x d), h = D u + a K (n - mu d): u'_t parallel to d.
         const ex Dv = dot(n, Q);
@@ -694,6 +694,8 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
                     angle.precision(6);
                     angle << t.to_double();
                     r.name = "slide at the angle " + angle.str() + " rad from e_t towards e_b";
+                    r.has_angle = true;
+                    r.angle = t.to_double();
                     holding.push_back(r);
                 }
             }

@@ -39,10 +39,21 @@ enum class regime { smooth, stick, slide };
 const char* regime_name(regime r);
 
 /// value > 0 (strict) or value >= 0, in the case's steps and the inputs.
+/// What a regime's inequality says (printers word it from this, never from `meaning`).
+enum class condition_kind {
+    cone_below,       ///< mu N - F >= 0: planar stick, inside the cone
+    cone_above,       ///< mu N + F >= 0: planar stick, inside the cone
+    pushes,           ///< N >= 0: the contact pushes
+    cone,             ///< mu^2 N^2 - |F|^2 >= 0: 3-D stick, inside the cone
+    slide_denominator,///< D_s > 0
+    slides            ///< lambda > 0: the contact slides along d after impact
+};
+
 struct regime_condition {
     ex value;
     bool strict = true;
     std::string meaning;  ///< plain text, e.g. "mu P_n - P_t >= 0 (inside the cone)"
+    condition_kind kind = condition_kind::pushes;
 };
 
 /// One candidate solution of the law: a regime with its closed form (in steps)
@@ -51,6 +62,8 @@ struct regime_case {
     regime kind = regime::stick;
     int sign = 0;                 ///< planar slide: +1 when u'_t points along +e_t, -1 along -e_t
     std::string name;             ///< "stick", "slide along +e_t", "slide along u_t", "slide"
+    bool has_angle = false;       ///< a 3-D slide whose angle was found (numeric problems)
+    double angle = 0;             ///< then: the sliding angle from e_t towards e_b, radians
     solution sol;                 ///< steps (the shared ones first), bodies after, P_n, pivot impulses, energies
     vec3 impulse;                 ///< P in world axes, on body 2
     vec3 tangential_impulse;      ///< P_t = P - P_n n, world axes, on body 2

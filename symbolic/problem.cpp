@@ -521,8 +521,16 @@ problem read_problem(const std::string& text, const std::string& source)
         throw input_error(std::string("problem: expected a JSON object, got ") + json_value::kind_name(root.type()));
     problem p;
     p.source = source;
-    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description"}, "",
+    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description", "units"}, "",
                       p.warnings);
+    if (const json_value* u = root.find("units")) {
+        // Optional: the unit system of every number, for the prose of explain
+        // (kg, m, s, N·s, J). Only "SI" is known; the values are not converted.
+        if (!u->is_string() || u->text() != "SI")
+            throw input_error("units: the only unit system known is \"SI\" (kg, m, s), got " +
+                              (u->is_string() ? "\"" + names::display_text(u->text()) + "\"" : json_value::kind_name(u->type())));
+        p.units = "SI";
+    }
 
     const json_value& dim = require(root, "dimension", "problem");
     if (!dim.is_number() || (dim.text() != "2" && dim.text() != "3"))

@@ -62,6 +62,7 @@ struct problem {
     contact_spec contact;
     std::vector<pivot> pivots;
     std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
+    std::string units;                ///< "" (none given) or "SI": the unit system of every number (prose only)
     std::vector<std::string> warnings; ///< e.g. keys that were ignored
 
     /// Every symbol the problem's values contain, sorted by name.

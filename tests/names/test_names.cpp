@@ -476,6 +476,24 @@ TEST(HtmlText, EntitiesAndDroppedBytes)
     EXPECT_EQ(html_text("&amp;"), "&amp;amp;");
 }
 
+TEST(XmlText, HtmlRulesAndNonCharacters)
+{
+    // Everything html_text escapes, escaped the same way.
+    EXPECT_EQ(xml_text("</svg><script>alert('x')&\"</script>"),
+              "&lt;/svg&gt;&lt;script&gt;alert(&#39;x&#39;)&amp;&quot;&lt;/script&gt;");
+    EXPECT_EQ(xml_text(with_nul), "ab");
+    EXPECT_EQ(xml_text("a\rb\x1B"), "ab");
+    EXPECT_EQ(xml_text(umlaut), umlaut);
+    EXPECT_EQ(xml_text(ball_cjk), ball_cjk);
+    EXPECT_EQ(xml_text("\xFF"), "&#xFFFD;");
+    EXPECT_EQ(xml_text("\xC2\x85x"), "x");
+    // U+FFFE and U+FFFF are valid UTF-8 but not XML characters.
+    EXPECT_EQ(xml_text("a\xEF\xBF\xBE" "b\xEF\xBF\xBF"), "a&#xFFFD;b&#xFFFD;");
+    // U+FFFD itself and the last plane's characters are kept.
+    EXPECT_EQ(xml_text("\xEF\xBF\xBD"), "\xEF\xBF\xBD");
+    EXPECT_EQ(xml_text("\xF4\x8F\xBF\xBD"), "\xF4\x8F\xBF\xBD");
+}
+
 TEST(DisplayText, OneLineAndVisibleBytes)
 {
     EXPECT_EQ(display_text(injection), "ball\\x0a#define private public\\x0a//");

@@ -1,0 +1,236 @@
+// The teaching prose of explain: symbols in math mode (prose_notation), user text never
+// read as notation, and what the hand-out adds to the notes' reasoning -- a numeric problem
+// taught in symbols first, units, the energy before and after, the centre of percussion,
+// contact-frame components, a figure in every document.
+#include "print/explain.hpp"
+#include "print/explain_detail.hpp"
+#include "symbolic/named_classes.hpp"
+
+#include "latex_tools.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+using namespace impactgen;
+using namespace impactgen::print;
+using namespace GiNaC;
+namespace fs = std::filesystem;
+
+namespace {
+
+document explain_of(const problem& p)
+{
+    derivation d = derive(p);
+    if (p.has_friction())
+        return explain_friction(d, solve_friction(d));
+    solution s = solve(d);
+    worked_example example;
+    const bool has = notes_example(p.source, example);
+    return explain(d, s, has ? &example : nullptr);
+}
+
+std::vector<std::pair<std::string, problem>> every_problem()
+{
+    std::vector<std::pair<std::string, problem>> out;
+    for (const auto& c : named_classes())
+        out.push_back({c.name, c.build()});
+    for (const auto& c : friction_classes())
+        out.push_back({c.name, c.build()});
+    for (const char* dir : {"examples/problems", "examples/friction", "tests/explain"})
+        for (const auto& f : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
+            if (f.path().extension() == ".json")
+                out.push_back({f.path().filename().string(), read_problem(latex_tools::read_file(f.path()), f.path().filename().string())});
+    return out;
+}
+
+// The LaTeX outside math: displays, inline $...$, figures and \text{...} of rows removed.
+std::string prose_outside_math(std::string tex)
+{
+    auto drop_between = [&](const std::string& open, const std::string& close) {
+        for (std::size_t at = tex.find(open); at != std::string::npos; at = tex.find(open, at)) {
+            std::size_t end = tex.find(close, at + open.size());
+            if (end == std::string::npos)
+                break;
+            tex.erase(at, end + close.size() - at);
+        }
+    };
+    for (const char* env : {"equation*", "multline*", "align*", "gather*", "tikzpicture", "aligned", "split"})
+        drop_between(std::string("\\begin{") + env + "}", std::string("\\end{") + env + "}");
+    // A quoted program message (the refusal of a problem) is quoted verbatim: not prose.
+    for (std::size_t at = tex.find("\n\""); at != std::string::npos; at = tex.find("\n\"", at)) {
+        std::size_t end = tex.find('\n', at + 1);
+        tex.erase(at + 1, (end == std::string::npos ? tex.size() : end) - at - 1);
+        ++at;
+    }
+    std::string out;
+    bool math = false;
+    for (std::size_t i = 0; i < tex.size(); ++i) {
+        if (tex[i] == '\\' && i + 1 < tex.size() && tex[i + 1] == '$') {
+            if (!math)
+                out += "\\$";
+            ++i;
+            continue;
+        }
+        if (tex[i] == '$') {
+            math = !math;
+            continue;
+        }
+        if (!math)
+            out += tex[i];
+    }
+    return out;
+}
+
+const math_row* find_row(const document& doc, const std::function<bool(const math_row&)>& pred)
+{
+    for (const section& sec : doc.sections)
+        for (const block& b : sec.blocks)
+            for (const math_row& r : b.math)
+                if (pred(r))
+                    return &r;
+    return nullptr;
+}
+
+bool is_symbol_named(const ex& e, const std::string& name) { return is_a<symbol>(e) && ex_to<symbol>(e).get_name() == name; }
+
+} // namespace
+
+TEST(ProseNotation, SymbolsGoToMathByRule)
+{
+    EXPECT_EQ(prose_notation("e_n").tex, "\\hat{\\underline{e}}_n");
+    EXPECT_EQ(prose_notation("e_n").text, "e_n");
+    EXPECT_EQ(prose_notation("C1").tex, "C_1");
+    EXPECT_EQ(prose_notation("~v′_C").tex, "\\underline{v}'_C");
+    EXPECT_EQ(prose_notation("~v′_C").text, "v′_C");
+    EXPECT_EQ(prose_notation("~~I_E").tex, "\\underline{\\underline{I}}_E");
+    EXPECT_EQ(prose_notation("∫N dt").tex, "\\int N\\,dt");
+    EXPECT_EQ(prose_notation("T_lost").tex, "T_{\\mathrm{lost}}");
+    EXPECT_EQ(prose_notation("v_Bn").tex, "v_{Bn}");
+    EXPECT_EQ(prose_notation("μ ≥ μ*").tex, "\\mu\\ge \\mu^{*}");
+    EXPECT_EQ(prose_notation("m2 → ∞").tex, "m_2\\to \\infty");
+}
+
+TEST(ProseNotation, WhatItDoesNotKnowIsAnError)
+{
+    EXPECT_THROW(prose_notation("EC"), std::logic_error);       // two points: words, not one name
+    EXPECT_THROW(prose_notation("x # y"), std::logic_error);    // a character it has no rule for
+    EXPECT_THROW(prose_notation("~~~v"), std::logic_error);     // three marks
+    EXPECT_THROW(prose_notation("v_"), std::logic_error);       // an empty subscript
+    EXPECT_THROW(paragraph().t("the $e_n"), std::logic_error);  // an unpaired dollar
+}
+
+TEST(ProseNotation, UserTextIsNeverNotation)
+{
+    // w() keeps a user's text as words, dollars and all; LaTeX escapes them.
+    paragraph p;
+    p.w("$e_n$ \\input{x}");
+    ASSERT_EQ(p.spans.size(), 1u);
+    EXPECT_EQ(p.spans[0].k, span::words);
+    document doc{"t", {section{"s", {block{block::text, p, {}, {}, {}}}}}};
+    const std::string tex = explain_latex(doc);
+    EXPECT_NE(tex.find("\\$e\\_n\\$"), std::string::npos);
+    EXPECT_EQ(tex.find("\\input{x}"), std::string::npos);
+}
+
+// Every class and example: no symbol left in text mode (no "\_" outside math: an e_n or v_C
+// set as text), none of the ASCII the notes would not write, and one figure.
+TEST(Prose, EverySymbolInMathModeAndOneFigure)
+{
+    for (const auto& [name, p] : every_problem()) {
+        if (name == "hostile-names.json")
+            continue; // its names are escaped text by design: tested in UserTextIsNeverNotation
+        const document doc = explain_of(p);
+        const std::string tex = explain_latex(doc);
+        const std::string prose = prose_outside_math(tex);
+        for (const char* leak : {"\\_", "normal()", " x r", "r x n", ").n", "v'_C", "w' x"})
+            EXPECT_EQ(prose.find(leak), std::string::npos) << name << ": \"" << leak << "\" in the prose near \""
+                                                             << prose.substr(prose.find(leak) > 60 ? prose.find(leak) - 60 : 0, 120) << "\"";
+        int figures = 0;
+        for (const section& sec : doc.sections)
+            for (const block& b : sec.blocks)
+                if (b.k == block::figure) {
+                    ++figures;
+                    EXPECT_NE(b.art.tikz.find("\\begin{tikzpicture}"), std::string::npos) << name;
+                    EXPECT_NE(b.art.svg.find("<svg"), std::string::npos) << name;
+                    EXPECT_FALSE(b.art.alt.empty()) << name;
+                }
+        EXPECT_EQ(figures, 1) << name;
+    }
+}
+
+// A numeric problem is taught in symbols first: its steps are formulas, then the numbers.
+TEST(Prose, NumericProblemInSymbolsFirst)
+{
+    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
+    const document doc = explain_of(p);
+    const std::string text = explain_text(doc);
+    EXPECT_NE(text.find("The problem's numbers: substitute"), std::string::npos);
+    // N as a formula in the steps (not a number), and its value 18/7 at the end
+    const math_row* formula = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "N") && !is_a<numeric>(r.rhs) && !r.has_then; });
+    ASSERT_NE(formula, nullptr);
+    EXPECT_TRUE(formula->rhs.has(symbol_named("e")) || !formula->rhs.info(info_flags::numeric));
+    const math_row* value = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "N") && r.has_then; });
+    ASSERT_NE(value, nullptr);
+    EXPECT_EQ(value->then, numeric(18, 7));
+}
+
+TEST(Prose, UnitsFollowNumbersOnly)
+{
+    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
+    ASSERT_EQ(p.units, "SI");
+    const std::string text = explain_text(explain_of(p));
+    EXPECT_NE(text.find("≈ 3.85714 rad/s"), std::string::npos);  // ω′ = 27/7
+    EXPECT_NE(text.find("≈ 2.57143 N·s"), std::string::npos);    // N = 18/7
+    EXPECT_NE(text.find("≈ 1.28571 J -- lost"), std::string::npos);
+    EXPECT_EQ(text.find("m_ball kg"), std::string::npos);         // never after a symbol
+    // Without the key, no units.
+    const std::string plain = explain_text(explain_of(find_named_class("pinned-planar")->build()));
+    EXPECT_EQ(plain.find("rad/s"), std::string::npos); // (its caption quotes the notes: "5 m/s")
+    // Another unit system is refused, naming the key.
+    std::string json = latex_tools::read_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
+    json.replace(json.find("\"SI\""), 4, "\"imperial\"");
+    try {
+        read_problem(json, "x.json");
+        FAIL() << "units imperial read";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("units"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Prose, EnergyBeforeAndAfter)
+{
+    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
+    const document doc = explain_of(p);
+    const math_row* before = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "T"); });
+    const math_row* after = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "T'"); });
+    ASSERT_TRUE(before && after);
+    EXPECT_EQ(before->rhs, numeric(25, 4));   // 1/2 * 0.5 * 5^2
+    EXPECT_EQ(after->rhs, numeric(139, 28));  // 25/4 - 9/7
+}
+
+// The rod hung from its end: the centre of percussion is at 2l/3 from the pivot.
+TEST(Prose, CentreOfPercussionOfTheHangingRod)
+{
+    const document doc = explain_of(find_named_class("pinned-planar")->build());
+    const math_row* star = find_row(doc, [](const math_row& r) { return r.lhs_note.text == "s*"; });
+    ASSERT_NE(star, nullptr);
+    const ex l = symbol_named("l");
+    EXPECT_TRUE((star->rhs - 2 * l / 3).expand().is_zero()) << star->rhs;
+}
+
+// A normal (3, 4): the smooth-contact equations say v′_t = v_t in the contact frame.
+TEST(Prose, ContactFrameComponents)
+{
+    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/puck-block-34.json");
+    const document doc = explain_of(p);
+    const math_row* vt = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "v_t,puck"); });
+    const math_row* vt_after = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "v'_t,puck"); });
+    ASSERT_TRUE(vt && vt_after);
+    EXPECT_EQ(vt->rhs, numeric(7, 10)); // (2, 3/2)·(4/5, -3/5)
+    EXPECT_EQ(vt_after->rhs, vt->rhs);
+}
