@@ -157,9 +157,43 @@ std::size_t mins(const emitted& em)
 
 // Every check of a branchless form in one flag: signs through a min (which may drop a
 // NaN: every value in a min is also in the sum), finiteness through one sum.
-std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<sum_term>& finite_terms)
+// The finiteness terms of a flag with positive terms: those ready well before the last
+// values (early: summed and folded into the min while the impulse is computed) and the
+// last values (late: within an add or two of each other as the estimate goes, summed as
+// a balanced tree; the optional term with them).
+std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term>& finite_terms)
+{
+    int last = 0;
+    for (const sum_term& t : finite_terms)
+        if (!t.optional)
+            last = std::max(last, t.ready);
+    std::vector<sum_term> early, late;
+    for (const sum_term& t : finite_terms)
+        if (t.optional || t.ready + 7 > last)
+            late.push_back({t.text, last, t.optional});
+        else
+            early.push_back(t);
+    return {early, late};
+}
+
+// The multiply-adds (x * 0 folded into the min) and the comparisons of a flag.
+std::pair<std::size_t, std::size_t> flag_counts(const emitted& form, const std::vector<sum_term>& finite_terms)
+{
+    std::size_t fmas = 0, tests = 0;
+    if (!form.positive_terms.empty()) {
+        const auto [early, late] = split_by_time(finite_terms);
+        fmas = (early.empty() ? 0 : 1) + (late.empty() ? 0 : 1);
+    }
+    tests += !form.positive_terms.empty() || !finite_terms.empty();
+    tests += !form.nonneg_terms.empty();
+    tests += !form.normal_terms.empty();
+    return {fmas, tests};
+}
+
+std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<sum_term>& finite_terms, bool scalar)
 {
     std::vector<std::string> parts;
+    std::string last_part; // the part that waits for the last values: tested last
     // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
     // that would not deduce.
     auto min_of = [](const std::vector<std::string>& v) {
@@ -170,16 +204,34 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
             args.push_back("T(" + x + ")");
         return "detail::min_of(" + join(args, ", ") + ")";
     };
-    if (!form.positive_terms.empty())
-        parts.push_back("(" + min_of(form.positive_terms) + " > T(0))");
+    // The sums converted to T too: with an autodiff T a sum of values is an expression
+    // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
+    if (!form.positive_terms.empty()) {
+        const std::string m = form.positive_terms.size() == 1 ? "T(" + form.positive_terms[0] + ")" : min_of(form.positive_terms);
+        // With the finiteness in the same comparison: x * 0 is +-0 when x is finite
+        // (min + 0 = min) and NaN when not (NaN > 0 fails). The terms ready before the
+        // last ones (inputs, values before the impulse) are summed and folded into the
+        // min while the impulse is computed; after the last values the flag waits for
+        // their sum and one multiply-add, instead of the whole sum, a subtraction, a
+        // comparison and a flag of its own. (Written min + x * 0: g++ 12 contracts it
+        // into one fma, x * 0 + min not.)
+        const auto [early, late] = split_by_time(finite_terms);
+        auto wrapped = [](const std::string& x) { return x.find('?') != std::string::npos ? "T(" + x + ")" : x; };
+        std::string folded = m;
+        if (!early.empty())
+            folded = "T(" + folded + " + " + wrapped(timed_sum(early)) + " * T(0))";
+        if (!late.empty())
+            folded = "T(" + folded + " + " + wrapped(timed_sum(late)) + " * T(0))";
+        last_part = "(" + folded + " > T(0))";
+    }
     if (!form.nonneg_terms.empty())
         parts.push_back("(" + min_of(form.nonneg_terms) + " >= T(0))");
     if (!form.normal_terms.empty())
         parts.push_back("(" + min_of(form.normal_terms) + " >= std::numeric_limits<T>::min())");
-    // The sum converted to T too: with an autodiff T a sum of values is an expression
-    // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
-    if (!finite_terms.empty())
-        parts.push_back("detail::finite(" + timed_sum(finite_terms) + ")");
+    if (!finite_terms.empty() && form.positive_terms.empty())
+        last_part = "detail::finite(" + timed_sum(finite_terms) + ")";
+    if (!last_part.empty())
+        parts.push_back(last_part);
     std::string text;
     if (!form.check_comments.empty() || form.shares_reciprocals) {
         std::string what = names::comment_text(join(form.check_comments, "; "));
@@ -187,8 +239,15 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
             what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
         text += ind + "// checks: " + what + "; every value finite\n";
     }
-    // Folded as unsigned so that no branch is implied and clang's
-    // -Wbitwise-instead-of-logical has nothing to say.
+    if (scalar) {
+        // The scalar forms: the parts joined by &&, which the compiler may test with a
+        // branch each (the earlier parts decided before the last values are there;
+        // predicted, they cost less than folding the comparisons into one flag).
+        text += ind + "const bool ok = " + (parts.empty() ? std::string("true") : join(parts, " &&\n" + ind + "                ")) + ";\n";
+        return text;
+    }
+    // The batch loop: folded as unsigned so that no branch is implied (the loop
+    // vectorises) and clang's -Wbitwise-instead-of-logical has nothing to say.
     for (std::string& part : parts)
         part = "static_cast<unsigned>" + (part.front() == '(' ? part : "(" + part + ")");
     text += ind + "const bool ok = " +
@@ -750,9 +809,10 @@ private:
         h_ << "//   validity checks: " << counts_text(em_.checks) << " + " << (sum_terms_.empty() ? 0 : sum_terms_.size() - 1)
            << " add (finiteness of the result), and comparisons;\n";
         h_ << "//   fast path (inputs that pass every check): " << counts_text(fast_.formula) << " + "
-           << (fast_terms_.empty() ? 0 : fast_terms_.size() - 1) << " add, " << mins(fast_) << " min (checks), 1 branch;\n";
+           << (fast_terms_.empty() ? 0 : fast_terms_.size() - 1) << " add, " << flag_counts(fast_, fast_terms_).first << " fma, "
+           << mins(fast_) << " min (checks), " << flag_counts(fast_, fast_terms_).second << " tests;\n";
         h_ << "//   batch loop: " << counts_text(batch_.formula) << " + " << (batch_terms_.empty() ? 0 : batch_terms_.size() - 1)
-           << " add, " << mins(batch_) << " min (checks) per impact, no branch.\n";
+           << " add, " << flag_counts(batch_, batch_terms_).first << " fma, " << mins(batch_) << " min (checks) per impact, no branch.\n";
         h_ << "#pragma once\n\n";
         if (em_.uses_sqrt)
             h_ << "#include <cmath>\n";
@@ -879,14 +939,15 @@ private:
         h_ << "    return impact_status::ok;\n}\n} // namespace detail\n\n";
     }
 
-    // The function: every check folded into one flag, one branch.
+    // The function: every check folded into a few tests, then one slow path.
     void fast_function()
     {
         h_ << "/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
         h_ << "/// (then out holds the state unchanged: velocities as before, impulses zero).\n";
         h_ << "/// T: float, double, long double or alike (an autodiff scalar).\n";
-        h_ << "/// The checks do not branch one by one: they are folded into one flag, and only\n";
-        h_ << "/// inputs that fail one of them take the slow path (detail::" << checked() << ") that\n";
+        h_ << "/// The checks do not branch one by one: they are folded into a few tests (signs\n";
+        h_ << "/// through a min, the finiteness of every value through sums times 0 added to\n";
+        h_ << "/// it), and only inputs that fail one of them take the slow path (detail::" << checked() << ") that\n";
         h_ << "/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,\n";
         h_ << "/// neither computed nor checked (the rest is the same).\n";
         for (std::size_t i = 0; i < input_names_.size(); ++i)
@@ -895,7 +956,7 @@ private:
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << energy_optional(fast_.code, "    const T " + local_of_.at("energy_lost") + " = ");
-        h_ << ok_flag("    ", fast_, fast_terms_);
+        h_ << ok_flag("    ", fast_, fast_terms_, true);
         h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
         h_ << "        return detail::" << checked() << "<T, with_energy_lost>(";
         for (const std::string& nm : input_names_)
@@ -961,7 +1022,7 @@ private:
         if (jac_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << jac_.code;
-        h_ << ok_flag("    ", jac_, jac_terms_);
+        h_ << ok_flag("    ", jac_, jac_terms_, true);
         h_ << "    if (!ok) {\n";
         h_ << "        out = " << jr << "<T>{}; // every derivative zero\n";
         h_ << "        const impact_status why = detail::" << checked() << "<T, true>(" << params_call() << "out.value);\n";
@@ -1032,7 +1093,7 @@ private:
         for (const std::string& nm : input_names_)
             h_ << "        const T " << nm << " = " << in_ptr_.at(nm) << "[i];\n";
         std::istringstream lines(energy_optional(batch_.code, "    const T " + local_of_.at("energy_lost") + " = ") +
-                                 ok_flag("    ", batch_, batch_terms_));
+                                 ok_flag("    ", batch_, batch_terms_, false));
         for (std::string line; std::getline(lines, line);)
             h_ << "    " << line << "\n";
         // Stored unconditionally: the second pass overwrites the outputs of failed impacts.

@@ -547,11 +547,75 @@ private:
         }
     }
 
+    // Branchless: values the flag already proves > 0 (their positivity is among its terms).
+    // x >= 0 (or NaN) whenever those are > 0: a product whose factors of odd multiplicity
+    // are (rounding keeps the sign of a product: r * g * r >= 0 for g >= 0), a sum or a
+    // quotient of such, a constant >= 0. Depth-bounded: a value it cannot decide is not.
+    bool nonnegative(int id, int depth) const
+    {
+        if (depth > 32)
+            return false;
+        if (proves_positive(id, depth + 1))
+            return true;
+        const op& o = prog_.at(id);
+        switch (o.kind) {
+        case op::constant: return o.value.is_real() && !o.value.is_negative();
+        case op::add: return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
+        case op::div: return nonnegative(o.a, depth + 1) && proves_positive(o.b, depth + 1);
+        case op::mul: {
+            std::map<int, int> factors; // product tree flattened: factor -> multiplicity
+            std::vector<int> stack{id};
+            while (!stack.empty()) {
+                const int f = stack.back();
+                stack.pop_back();
+                if (prog_.at(f).kind == op::mul && factors.size() < 64) {
+                    stack.push_back(prog_.at(f).a);
+                    stack.push_back(prog_.at(f).b);
+                } else {
+                    ++factors[f];
+                }
+            }
+            for (const auto& [f, count] : factors)
+                if (count % 2 && !nonnegative(f, depth + 1))
+                    return false;
+            return true;
+        }
+        default: return false;
+        }
+    }
+
+    // x > 0 (or NaN) whenever the flag's positive terms are > 0: one of them, a positive
+    // constant, or a sum of such a value and a value >= 0 (the rounded sum of a >= 0 and
+    // b > 0 is >= b). Not a product or quotient: they may underflow to 0.
+    bool proves_positive(int id, int depth) const
+    {
+        if (depth > 32)
+            return false;
+        if (positive_ids_.count(id))
+            return true;
+        const op& o = prog_.at(id);
+        if (o.kind == op::constant)
+            return o.value.is_real() && o.value.is_positive();
+        if (o.kind == op::add)
+            return (proves_positive(o.a, depth + 1) && nonnegative(o.b, depth + 1)) ||
+                   (proves_positive(o.b, depth + 1) && nonnegative(o.a, depth + 1));
+        return false;
+    }
+
     // Branchless: the checks of value id folded into the lists the one flag is made of
     // (signs through a min, finiteness through one sum).
     void fold_check(const check& c, int id, const std::string& x, int p)
     {
+        if (c.kind == check::positive && proves_positive(id, 0)) {
+            // x > 0 follows from the positive terms before it (k = w_1 + w_2 of
+            // reciprocals > 0 and squares): no term of the min; its finiteness as any other.
+            if (!covered_[static_cast<std::size_t>(id)])
+                add_unique(out_.finite_terms, x);
+            out_.check_comments.push_back(c.comment);
+            return;
+        }
         if (c.kind == check::positive) {
+            positive_ids_.insert(id);
             // x > 0 and finite <=> 1/x > 0 and finite x: when 1/x is computed anyway,
             // test 1/x > 0 (1/inf = 0 fails it; 1/NaN is NaN) and let x go.
             int rid = -1;
@@ -561,6 +625,7 @@ private:
                     rid = static_cast<int>(k);
             }
             if (rid >= 0) {
+                positive_ids_.insert(rid);
                 add_unique(out_.positive_terms, var_.at(rid));
                 if (!covered_[static_cast<std::size_t>(rid)])
                     add_unique(out_.finite_terms, var_.at(rid));
@@ -771,6 +836,7 @@ private:
     std::map<int, std::string> var_;
     std::map<int, std::vector<int>> group_at_; // first member -> members
     std::set<int> grouped_;
+    std::set<int> positive_ids_; // branchless: values the flag proves > 0 (fold_check)
     std::vector<int> pending_; // values only checks use, not yet emitted, in program order
     emitted out_;
     op_counts uncounted_;

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 25 add/sub, 37 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 13 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 25 add/sub, 37 mul, 3 div, 0 sqrt + 12 add, 6 min (checks), 1 branch;
-//   batch loop: 25 add/sub, 37 mul, 3 div, 0 sqrt + 12 add, 6 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 25 add/sub, 37 mul, 3 div, 0 sqrt + 12 add, 2 fma, 6 min (checks), 2 tests;
+//   batch loop: 25 add/sub, 37 mul, 3 div, 0 sqrt + 12 add, 2 fma, 6 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -312,8 +312,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status massive_3d_checked(T e, T m1, T I1_t
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into one flag, and only
-/// inputs that fail one of them take the slow path (detail::massive_3d_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (signs
+/// through a min, the finiteness of every value through sums times 0 added to
+/// it), and only inputs that fail one of them take the slow path (detail::massive_3d_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -371,9 +372,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(T e, T m1, T I1_tt, T I1_t
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(with_energy_lost ? T(((o_w_t1 + o_w_n1) + (o_w_b1 + ((((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) + o_v_n1))) + o_energy_lost) : T((o_w_t1 + o_w_n1) + (o_w_b1 + ((((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) + o_v_n1)))))) != 0u;
+    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
+                    (T(T(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::massive_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -471,9 +471,8 @@ IMPACTGEN_FUNC unsigned massive_3d_batch_pass(long n, const T* IMPACTGEN_RESTRIC
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::finite(with_energy_lost ? T(((o_w_t1 + o_w_n1) + (o_w_b1 + ((((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) + o_v_n1))) + o_energy_lost) : T((o_w_t1 + o_w_n1) + (o_w_b1 + ((((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) + o_v_n1)))))) != 0u;
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
+                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 65 mul, 5 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 15 add, 10 min (checks), 1 branch;
-//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 16 add, 10 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 40 add/sub, 65 mul, 5 div, 0 sqrt + 15 add, 2 fma, 10 min (checks), 2 tests;
+//   batch loop: 40 add/sub, 68 mul, 4 div, 0 sqrt + 16 add, 2 fma, 10 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
@@ -382,8 +382,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into one flag, and only
-/// inputs that fail one of them take the slow path (detail::noncentral_3d_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (signs
+/// through a min, the finiteness of every value through sums times 0 added to
+/// it), and only inputs that fail one of them take the slow path (detail::noncentral_3d_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -464,9 +465,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) + o_v_n1))))))) != 0u;
+    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
+                    (T(T(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) + T(((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::noncentral_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -596,10 +596,9 @@ IMPACTGEN_FUNC unsigned noncentral_3d_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= std::numeric_limits<T>::min()) &
-                         static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) + o_v_n1)))) + o_energy_lost) : T(((o_w_t1 + o_w_n1) + (o_w_b1 + o_v_n2)) + ((o_w_t2 + o_w_n2) + (o_w_b2 + ((((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) + o_v_n1))))))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) + T(((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 5 add/sub, 19 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 5 min (checks), 1 branch;
-//   batch loop: 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 5 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 2 fma, 5 min (checks), 2 tests;
+//   batch loop: 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 2 fma, 5 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -272,8 +272,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into one flag, and only
-/// inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (signs
+/// through a min, the finiteness of every value through sums times 0 added to
+/// it), and only inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -308,9 +309,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
-                     static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                     static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) + o_R_x2) + o_energy_lost) : T(((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) + o_R_x2)))) != 0u;
+    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
+                    (T(T(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) + T((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -386,9 +386,8 @@ IMPACTGEN_FUNC unsigned pinned_planar_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) > T(0)) &
-                         static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::finite(with_energy_lost ? T((((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) + o_R_x2) + o_energy_lost) : T(((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) + o_R_x2)))) != 0u;
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
+                         static_cast<unsigned>(T(T(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) + T((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

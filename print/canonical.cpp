@@ -396,6 +396,27 @@ int sum_sign(const ex& s)
     return !lead || !lead->negative ? 1 : -1;
 }
 
+// The printed terms of a sum in the order they print, each with its sign.
+std::vector<std::pair<bool, std::string>> print_terms(const ex& e, syntax sx)
+{
+    std::vector<term> terms = sorted_terms(e);
+    std::stable_partition(terms.begin(), terms.end(), [](const term& t) { return !t.negative; });
+    std::vector<std::pair<bool, std::string>> out;
+    for (const term& t : terms) {
+        bool neg = t.coeff.is_negative();
+        printed p = print_product(t.rest * abs(t.coeff), sx);
+        if (p.negative && starts_with_minus(p.s, sx)) {
+            neg = !neg;
+            p.s = without_minus(p.s, sx);
+            p.negative = false;
+            if (p.level == p_sum)
+                p.level = p_product;
+        }
+        out.push_back({neg, p.level == p_sum ? wrap(p, p_product, sx) : p.s});
+    }
+    return out;
+}
+
 printed print_sum(const ex& e, syntax sx)
 {
     std::vector<term> terms = sorted_terms(e);
@@ -549,6 +570,16 @@ std::string symbol_latex(const symbol& s)
 }
 
 std::string symbol_mathml(const symbol& s) { return one(tex_to_mathml(symbol_latex(s))); }
+
+std::vector<std::pair<bool, std::string>> canonical_terms(const ex& e, syntax s)
+{
+    if (!is_a<add>(e))
+        return {{false, canonical(e, s)}};
+    auto out = print_terms(e, s);
+    if (text_cache().size() > 100000)
+        text_cache().clear();
+    return out;
+}
 
 std::string canonical(const ex& e, syntax s)
 {

@@ -34,6 +34,8 @@
 #include <ginac/ginac.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace impactgen::print {
 
@@ -44,6 +46,11 @@ inline std::string canonical_text(const GiNaC::ex& e) { return canonical(e, synt
 inline std::string canonical_latex(const GiNaC::ex& e) { return canonical(e, syntax::latex); }
 inline std::string canonical_parser(const GiNaC::ex& e) { return canonical(e, syntax::parser); }
 inline std::string canonical_mathml(const GiNaC::ex& e) { return canonical(e, syntax::mathml); }
+
+/// The terms of a sum as they print, in the same order and with the same signs as
+/// canonical(e, s) gives them: (negative, term without its sign). Not a sum: one
+/// term, its whole text (sign included). For breaking a long sum over lines.
+std::vector<std::pair<bool, std::string>> canonical_terms(const GiNaC::ex& e, syntax s);
 
 /// A symbol's name for a terminal: w -> ω, tau -> τ, eps -> ε, ' -> ′.
 std::string symbol_text(const std::string& name);

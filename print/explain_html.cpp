@@ -49,6 +49,7 @@ const char* const style = R"css(
   .eq { display: grid; grid-template-columns: 4em minmax(0, 1fr) 4em; align-items: center; margin: 0.7em 0; }
   .eq > math { grid-column: 2; overflow-x: auto; overflow-y: hidden; padding: 0.1em 0; }
   .eq > .tag { grid-column: 3; text-align: right; }
+  .eq mtd { text-align: left; } /* a broken row: its lines start at the left, continuations indented */
   .eq:target { background: #fff6d5; }
   .note { margin: -0.35em 0 0.9em 4em; font-size: 0.88em; color: #555; }
   figure { margin: 1.5em 0; text-align: center; }
@@ -63,6 +64,14 @@ const char* const style = R"css(
     h2 { break-after: avoid; }
   }
 )css";
+
+} // namespace
+
+namespace layout {
+double estimated_width_em(const std::string& tex); // print/explain_print.cpp: the LaTeX layout's glyph model
+} // namespace layout
+
+namespace {
 
 std::string inline_math(const std::string& mathml) { return "<math display=\"inline\">" + mathml + "</math>"; }
 
@@ -116,6 +125,62 @@ std::string row_math(const math_row& r)
     if (r.has_then)
         out += "<mo>=</mo>" + canonical_mathml(r.then);
     return out;
+}
+
+// What a displayed row may fill before it is broken: the page's column is 50em of the
+// body font; MathML has no line breaking of its own, so a wider row would run off the
+// page (and be cut in print).
+constexpr double html_row_em = 34;
+
+struct piece {
+    std::string mathml;
+    double width; ///< em, from the LaTeX layout's glyph model
+};
+
+// A side of a row as pieces to break between: a sum's terms with their signs (as the
+// canonical printer orders them), anything else whole.
+void add_pieces(std::vector<piece>& out, const ex& e, const std::string& lead)
+{
+    const auto ml = canonical_terms(e, syntax::mathml);
+    const auto tx = canonical_terms(e, syntax::latex);
+    for (std::size_t k = 0; k < ml.size() && k < tx.size(); ++k) {
+        std::string sign = (k == 0 && !ml[k].first) ? "" : (ml[k].first ? "<mo>−</mo>" : "<mo>+</mo>");
+        out.push_back({(k == 0 ? lead : "") + sign + ml[k].second, layout::estimated_width_em(tx[k].second) + 1.2});
+    }
+}
+
+// The row, broken at the terms of its sides when it is wider than the column: the
+// first line holds the left side and the relation, the next lines the rest, indented.
+std::string row_block(const math_row& r)
+{
+    std::vector<piece> pieces;
+    if (r.lhs_note.text.empty())
+        add_pieces(pieces, r.lhs, "");
+    else
+        pieces.push_back({tex_to_mathml(r.lhs_note.tex), layout::estimated_width_em(r.lhs_note.tex)});
+    if (!r.rel.empty())
+        add_pieces(pieces, r.rhs, relation(r.rel));
+    if (r.has_then)
+        add_pieces(pieces, r.then, "<mo>=</mo>");
+    double total = 0;
+    for (const piece& p : pieces)
+        total += p.width;
+    if (total <= html_row_em || pieces.size() < 2)
+        return "<math display=\"block\">" + row_math(r) + "</math>";
+    std::vector<std::string> lines(1);
+    double used = 0;
+    for (const piece& p : pieces) {
+        if (used > 0 && used + p.width > html_row_em) {
+            lines.push_back("<mspace width=\"2em\"></mspace>");
+            used = 2;
+        }
+        lines.back() += p.mathml;
+        used += p.width;
+    }
+    std::string out = "<math display=\"block\"><mtable columnalign=\"left\">";
+    for (const std::string& l : lines)
+        out += "<mtr><mtd><mrow>" + l + "</mrow></mtd></mtr>";
+    return out + "</mtable></math>";
 }
 
 } // namespace
@@ -175,7 +240,7 @@ std::string explain_html(const document& doc)
                     os << "<div class=\"eq\"";
                     if (!r.tag.empty() && ids.insert(eq_id(r.tag)).second)
                         os << " id=\"" << names::html_text(eq_id(r.tag)) << "\"";
-                    os << "><math display=\"block\">" << row_math(r) << "</math>";
+                    os << ">" << row_block(r);
                     if (!r.tag.empty())
                         os << "<span class=\"tag\">(" << names::html_text(r.tag) << ")</span>";
                     os << "</div>\n";
