@@ -227,6 +227,14 @@ std::string explain_html(const document& doc)
                 bool plain = true;
                 for (const math_row& r : b.math)
                     plain = plain && r.rel.empty() && r.tag.empty();
+                bool bare = plain; // formulas without notes: displayed, one per line
+                for (const math_row& r : b.math)
+                    bare = bare && r.note.spans.empty();
+                if (bare) {
+                    for (const math_row& r : b.math)
+                        os << "<div class=\"eq\">" << row_block(r) << "</div>\n";
+                    break;
+                }
                 if (plain) { // definitions: symbol: meaning
                     os << "<ul>\n";
                     for (const math_row& r : b.math) {

@@ -1027,7 +1027,8 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
         l.note = tex_spans(r.note, false);
         l.left = tex_width(l.parts.left);
         l.right = tex_width(one_line(l.parts)) - l.left;
-        if (short_lhs(l.left))
+        // a row that fits on one line joins the lhs column, however long its lhs
+        if (l.left + l.right + l.tag_width <= row_budget_em)
             column = std::max(column, l.left);
         tags = std::max(tags, l.tag_width);
         if (!l.note.empty())
@@ -1037,7 +1038,7 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
     // one line each: a short lhs and its right side beside the lhs column, with the tag
     bool one_line_each = true;
     for (const laid& l : all) {
-        one_line_each = one_line_each && short_lhs(l.left) && column + l.right + l.tag_width <= row_budget_em;
+        one_line_each = one_line_each && column + l.right + l.tag_width <= row_budget_em;
         right = std::max(right, l.right);
     }
     const bool beside = one_line_each && notes > 0 && column + right + 2 + notes + tags <= row_budget_em;
@@ -1045,7 +1046,7 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
     for (std::size_t k = 0; k < all.size(); ++k) {
         const laid& l = all[k];
         std::vector<std::string> lines;
-        if (short_lhs(l.left) && column + l.right + l.tag_width <= row_budget_em) {
+        if (l.left <= column && column + l.right + l.tag_width <= row_budget_em) {
             std::string line = l.parts.left + " &";
             for (std::size_t j = 0; j < l.parts.rights.size(); ++j)
                 line += (j ? " " : "") + l.parts.rights[j].first + " " + l.parts.rights[j].second;
@@ -1220,6 +1221,16 @@ std::string explain_latex(const document& doc)
                 bool plain = true;
                 for (const math_row& r : b.math)
                     plain = plain && r.rel.empty() && r.tag.empty();
+                bool bare = plain; // formulas without notes: displayed, one per line
+                for (const math_row& r : b.math)
+                    bare = bare && r.note.spans.empty();
+                if (bare) {
+                    os << "\\begin{gather*}\n";
+                    for (std::size_t k = 0; k < b.math.size(); ++k)
+                        os << "  " << one_line(tex_row_parts(b.math[k])) << (k + 1 < b.math.size() ? " \\\\\n" : "\n");
+                    os << "\\end{gather*}\n";
+                    break;
+                }
                 if (plain) {
                     os << "\n\\begin{itemize}\n";
                     for (const math_row& r : b.math) {
