@@ -356,6 +356,14 @@ TEST(FrictionGolden, EveryClassAndExampleEveryFormat)
         docs.push_back({c.name, explain_class(c.name).doc});
     for (const char* file : friction_files)
         docs.push_back({fs::path(file).stem().string(), explain_file(file).doc});
+    // the example problems with friction, named by file name alone
+    std::vector<fs::path> examples;
+    for (const auto& f : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/friction"))
+        if (f.path().extension() == ".json")
+            examples.push_back(f.path());
+    std::sort(examples.begin(), examples.end());
+    for (const fs::path& f : examples)
+        docs.push_back({f.stem().string(), explain_problem(read_problem(read_file(f), f.filename().string())).doc});
     for (const auto& [name, doc] : docs)
         for (const std::string format : {"text", "markdown", "latex", "html"}) {
             fs::path file = dir / (name + "." + extension(format));
