@@ -628,7 +628,8 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
             const vec3 r = cross(p.contact.point - p.bodies[i].position, d.n_hat);
             if (p.pivot_of(i) || p.bodies[i].infinite_mass)
                 continue;
-            if (r[0].expand().normal().is_zero() && r[1].expand().normal().is_zero() && r[2].expand().normal().is_zero())
+            // tidy(), not expand(): a point like (a + b + ...)^12 must not be expanded
+            if (impactgen::tidy(r[0]).is_zero() && impactgen::tidy(r[1]).is_zero() && impactgen::tidy(r[2]).is_zero())
                 central.push_back(i);
         }
         if (central.size() == 2)
