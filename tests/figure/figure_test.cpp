@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +20,6 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -90,10 +90,24 @@ struct xml_report {
     std::set<std::string> elements;
 };
 
+// "&amp;", "&lt;", "&gt;", "&quot;", "&apos;", "&#123;" (1-7 digits), "&#x1F;" (1-6 hex
+// digits) at i. (Plain code, not <regex>: std::regex costs minutes to compile under ASan.)
 bool entity_at(const std::string& s, std::size_t i)
 {
-    static const std::regex entity("^&(amp|lt|gt|quot|apos|#[0-9]{1,7}|#x[0-9A-Fa-f]{1,6});");
-    return std::regex_search(s.substr(i, 12), entity);
+    if (i >= s.size() || s[i] != '&')
+        return false;
+    for (const char* name : {"amp;", "lt;", "gt;", "quot;", "apos;"})
+        if (s.compare(i + 1, std::char_traits<char>::length(name), name) == 0)
+            return true;
+    if (i + 1 >= s.size() || s[i + 1] != '#')
+        return false;
+    const bool hex = i + 2 < s.size() && s[i + 2] == 'x';
+    std::size_t k = i + (hex ? 3 : 2), n = 0;
+    while (k < s.size() && (hex ? std::isxdigit(static_cast<unsigned char>(s[k])) : std::isdigit(static_cast<unsigned char>(s[k])))) {
+        ++k;
+        ++n;
+    }
+    return n >= 1 && n <= (hex ? 6u : 7u) && k < s.size() && s[k] == ';';
 }
 
 xml_report check_xml(const std::string& s)
@@ -216,14 +230,38 @@ bool numbers_finite(const xml_report& r)
 /// Every number in a TikZ picture's coordinates is finite and within a page.
 bool tikz_numbers_sane(const std::string& t)
 {
-    // Names may spell "nan" or "inf"; coordinates are "(x,y)" with three decimals.
-    static const std::regex coord("\\((-?[0-9]+\\.[0-9]+),(-?[0-9]+\\.[0-9]+)\\)");
-    for (auto it = std::sregex_iterator(t.begin(), t.end(), coord); it != std::sregex_iterator(); ++it)
-        for (int g = 1; g <= 2; ++g) {
-            const double v = std::stod((*it)[g].str());
+    // Names may spell "nan" or "inf"; coordinates are "(x,y)" with decimals: read every
+    // "(" followed by two decimal numbers "-?d+.d+" separated by a comma and closed by ")".
+    auto decimal_at = [&](std::size_t& k, double& v) {
+        const std::size_t start = k;
+        if (k < t.size() && t[k] == '-')
+            ++k;
+        std::size_t digits = 0;
+        while (k < t.size() && std::isdigit(static_cast<unsigned char>(t[k])))
+            ++k, ++digits;
+        if (!digits || k >= t.size() || t[k] != '.')
+            return false;
+        ++k;
+        std::size_t decimals = 0;
+        while (k < t.size() && std::isdigit(static_cast<unsigned char>(t[k])))
+            ++k, ++decimals;
+        if (!decimals)
+            return false;
+        v = std::stod(t.substr(start, k - start));
+        return true;
+    };
+    for (std::size_t at = t.find('('); at != std::string::npos; at = t.find('(', at + 1)) {
+        std::size_t k = at + 1;
+        double x = 0, y = 0;
+        if (!decimal_at(k, x) || k >= t.size() || t[k] != ',')
+            continue;
+        ++k;
+        if (!decimal_at(k, y) || k >= t.size() || t[k] != ')')
+            continue;
+        for (double v : {x, y})
             if (!std::isfinite(v) || v < -0.5 || v > 9.0)
                 return false;
-        }
+    }
     return true;
 }
 
