@@ -44,8 +44,10 @@ if [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" != "1" ]]; then
     # release pass: the generated-code verification suites (tests/codegen: the headers'
     # numbers against CLN), the installed package and the adapters, whose sanitized
     # part is the same library code.
+    # (explain_browser_tests is built too, though its tests do not run here: a test program
+    # that is not built leaves a placeholder test without its labels.)
     cmake --build build-sanitize -j"$jobs" --target impactgen test_core test_friction_reference test_names \
-          explain_tests figure_tests fuzz_cli
+          explain_tests explain_browser_tests figure_tests fuzz_cli
     (cd build-sanitize && IMPACTGEN_SAMPLES=200 ctest --output-on-failure -j"$jobs" -L sanitize -LE "headers|browser")
   fi
   echo "impactgen: sanitizer build and tests took $(( $(date +%s) - start )) s"
