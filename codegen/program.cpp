@@ -393,6 +393,8 @@ public:
         mark_needed();
         name_materialised();
         mark_covered();
+        if (branchless_)
+            prefold_scaled_checks();
         if (branchless_ && share_divisions_)
             group_reciprocals();
         std::set<int> input_checked;
@@ -548,7 +550,7 @@ private:
     }
 
     // Branchless: values the flag already proves > 0 (their positivity is among its terms).
-    // x >= 0 (or NaN) whenever those are > 0: a product whose factors of odd multiplicity
+    // x >= 0 (or NaN, or +inf) whenever those are > 0: a product whose factors of odd multiplicity
     // are (rounding keeps the sign of a product: r * g * r >= 0 for g >= 0), a sum or a
     // quotient of such, a constant >= 0. Depth-bounded: a value it cannot decide is not.
     bool nonnegative(int id, int depth) const
@@ -561,7 +563,9 @@ private:
         switch (o.kind) {
         case op::constant: return o.value.is_real() && !o.value.is_negative();
         case op::add: return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
-        case op::div: return nonnegative(o.a, depth + 1) && proves_positive(o.b, depth + 1);
+        // a / b for a, b >= 0: >= 0, +inf (b = 0) or NaN (0 / 0); never -0, as no rule
+        // here gives -0 (a product's sign is that of its factors, +0 + +0 = +0).
+        case op::div: return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
         case op::mul: {
             std::map<int, int> factors; // product tree flattened: factor -> multiplicity
             std::vector<int> stack{id};
@@ -584,7 +588,7 @@ private:
         }
     }
 
-    // x > 0 (or NaN) whenever the flag's positive terms are > 0: one of them, a positive
+    // x > 0 (or NaN, or +inf) whenever the flag's positive terms are > 0: one of them, a positive
     // constant, or a sum of such a value and a value >= 0 (the rounded sum of a >= 0 and
     // b > 0 is >= b). Not a product or quotient: they may underflow to 0.
     bool proves_positive(int id, int depth) const
@@ -600,6 +604,24 @@ private:
             return (proves_positive(o.a, depth + 1) && nonnegative(o.b, depth + 1)) ||
                    (proves_positive(o.b, depth + 1) && nonnegative(o.a, depth + 1));
         return false;
+    }
+
+    // (y, c) for a value id = c y of a value y and a positive constant c (a product of
+    // two operands, one a constant), (id, 1) for any other; (-1, 0) for a constant.
+    std::pair<int, numeric> scaled(int id) const
+    {
+        const op& o = prog_.at(id);
+        if (o.kind == op::constant)
+            return {-1, numeric(0)};
+        if (o.kind == op::mul) {
+            const op& a = prog_.at(o.a);
+            const op& b = prog_.at(o.b);
+            if (b.kind == op::constant && a.kind != op::constant && b.value.is_real() && b.value.is_positive())
+                return {o.a, b.value};
+            if (a.kind == op::constant && b.kind != op::constant && a.value.is_real() && a.value.is_positive())
+                return {o.b, a.value};
+        }
+        return {id, numeric(1)};
     }
 
     // Branchless: the checks of value id folded into the lists the one flag is made of
@@ -652,8 +674,55 @@ private:
         out_.check_comments.push_back(c.comment);
     }
 
+    // Branchless: a check x > 0 of a value only that check uses, x = c_x y, where z = c_z y
+    // (constants with 2^-20 <= c_x / c_z <= 1) has its reciprocal computed anyway (a
+    // centroidal inertia m l^2/12 beside the pivot's m l^2/3): 1/z > 0 and finite (z
+    // finite) imply z >= 1/max, so x ~ (c_x / c_z) z > 0 without underflow (2^-20/max is
+    // above the smallest denormal of float, double and long double) and x <= z finite.
+    // The flag tests 1/z and x is not computed at all; its comment comes with 1/z.
+    void prefold_scaled_checks()
+    {
+        for (const check& c : checks_) {
+            const int x = c.op_id;
+            const auto xi = static_cast<std::size_t>(x);
+            if (c.kind != check::positive || prog_.at(x).kind == op::input || !check_only(x) || refs_[xi] != 1)
+                continue;
+            const auto [y, cx] = scaled(x);
+            if (y < 0 || y == x)
+                continue;
+            int rid = -1;
+            for (std::size_t k = 0; k < n_; ++k) {
+                const op& o = prog_.at(static_cast<int>(k));
+                if (!materialised_[k] || !is_reciprocal(prog_, o))
+                    continue;
+                if (o.b == x) { // 1/x itself: fold_check's own rule
+                    rid = -1;
+                    break;
+                }
+                const auto [yz, cz] = scaled(o.b);
+                if (rid < 0 && yz == y && cz.is_positive() && cx / cz <= 1 && cx / cz >= numeric(1, 1 << 20))
+                    rid = static_cast<int>(k);
+            }
+            if (rid < 0)
+                continue;
+            positive_ids_.insert(x);
+            positive_ids_.insert(prog_.at(rid).b);
+            positive_ids_.insert(rid);
+            add_unique(out_.positive_terms, var_.at(rid));
+            if (!covered_[static_cast<std::size_t>(rid)])
+                add_unique(out_.finite_terms, var_.at(rid));
+            prefolded_comments_[rid].push_back(c.comment);
+            reach_[xi] = false;
+            materialised_[xi] = false;
+        }
+    }
+
     void emit_checks(int id)
     {
+        auto pre = prefolded_comments_.find(id);
+        if (pre != prefolded_comments_.end())
+            for (const std::string& comment : pre->second)
+                out_.check_comments.push_back(comment);
         for (const check& c : checks_) {
             if (c.op_id != id)
                 continue;
@@ -832,6 +901,7 @@ private:
     const std::size_t n_;
     std::vector<bool> reach_, materialised_, covered_, needed_, emitted_;
     std::vector<int> refs_;
+    std::map<int, std::vector<std::string>> prefolded_comments_; ///< 1/z -> the checks it stands for
     std::set<std::string> used_names_;
     std::map<int, std::string> var_;
     std::map<int, std::vector<int>> group_at_; // first member -> members

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 5 add/sub, 19 mul, 3 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 6 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 2 fma, 5 min (checks), 2 tests;
-//   batch loop: 5 add/sub, 19 mul, 3 div, 0 sqrt + 6 add, 2 fma, 5 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 5 add/sub, 18 mul, 3 div, 0 sqrt + 5 add, 2 fma, 4 min (checks), 2 tests;
+//   batch loop: 5 add/sub, 18 mul, 3 div, 0 sqrt + 5 add, 2 fma, 4 min (checks) per impact, no branch.
 #pragma once
 
 namespace impactgen::generated {
@@ -288,7 +288,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
     const T I_E2_p2 = I_E2_p1 * m2;
-    const T check_p1 = I_E2_p2 * (T(1) / T(12));
     const T I_E2 = I_E2_p2 * (T(1) / T(3));
     const T inv_I_E2 = T(1) / I_E2;
     const T w_2 = I_E2_p1 * inv_I_E2;
@@ -310,7 +309,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) + T((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0));
+                    (T(T(detail::min_of(T(inv_I_E2), T(w_1), T(m2), T(-u)) + T((o_w_z2 + (k + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
     out.v_x1 = o_v_x1;
@@ -365,7 +364,6 @@ IMPACTGEN_FUNC unsigned pinned_planar_batch_pass(long n, const T* IMPACTGEN_REST
         const T w_1 = T(1) / m1;
         const T I_E2_p1 = l * l;
         const T I_E2_p2 = I_E2_p1 * m2;
-        const T check_p1 = I_E2_p2 * (T(1) / T(12));
         const T I_E2 = I_E2_p2 * (T(1) / T(3));
         const T inv_I_E2 = T(1) / I_E2;
         const T w_2 = I_E2_p1 * inv_I_E2;
@@ -387,7 +385,7 @@ IMPACTGEN_FUNC unsigned pinned_planar_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(w_1), T(m2), T(check_p1), T(-u), T(k)) + T((o_w_z2 + ((check_p1 + k) + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(T(inv_I_E2), T(w_1), T(m2), T(-u)) + T((o_w_z2 + (k + o_v_x1)) + o_v_x2) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

@@ -5,7 +5,9 @@
 set -euo pipefail
 packages=(cmake make g++ pkg-config libginac-dev libcln-dev libeigen3-dev nlohmann-json3-dev libcli11-dev)
 if [[ "${1:-}" == "--tests" ]]; then
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang chromium zlib1g-dev)
+  # clang: the second compiler of the header tests and the compiler of the sanitizer pass
+  # (libclang-rt-14-dev has its ASan and UBSan runtimes, only recommended by clang).
+  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev chromium zlib1g-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -10,19 +10,19 @@
 //    cases -- conditions, angle equation, outputs -- compiled once into a flat program and
 //    run per sample on 256-bit floats with error bounds; the sliding angles of a 3-D slide
 //    from a quartic in tan, by Aberth's method and Newton's at 256 bits, not the header's
-//    root finder): regime and every output on 100,000 samples per class, the first 2,000 /
+//    root finder): regime and every output on 30,000 samples per class, the first 2,000 /
 //    400 of them the samples above (IMPACTGEN_FRICTION_CLN overrides; IMPACTGEN_DEEP=1:
-//    400,000; Release build: planar 2 s, ball-floor 1 s, 3-D 16 s, of which 0.5 s and 4 s
-//    are the self-check below). A sample with a condition within 1e20 times its error
+//    400,000; Release build, 100,000 samples: planar 2 s, ball-floor 1 s, 3-D 16 s, of
+//    which 0.5 s and 4 s are the self-check below). A sample with a condition within 1e20 times its error
 //    bound of 0 goes to select_regime instead (none with the default seed); the first 300
 //    are decided by select_regime as well: the same regime, and outputs to 1e-30 and
 //    within the error bounds the evaluation gives them (IMPACTGEN_FRICTION_CLN_SELF;
 //    IMPACTGEN_DEEP=1: 2,000). Where the header finds none or two regimes but the closed
 //    form exactly one, a slide with D = n.K(n - mu d) within 1e-7 of 0 must be the reason
-//    (counted: about 30 of the 3-D class's 100,000);
+//    (counted: about 30 in 100,000 samples of the 3-D class);
 //  - the independent Eigen reference numeric/friction_solver.hpp (complementarity
 //    problem, enumeration and semismooth Newton, no closed form): status, regime away
-//    from the regime boundaries, every output, on 100,000 samples per class
+//    from the regime boundaries, every output, on 30,000 samples per class
 //    (IMPACTGEN_FRICTION_SAMPLES overrides; IMPACTGEN_DEEP=1: 400,000);
 //  - the law itself, from the header's outputs alone (restitution, cone, stick or
 //    slide against the sliding velocity), on every sample it answers ok;
@@ -937,7 +937,7 @@ TEST_P(friction_class, agrees_with_the_closed_form_in_cln)
 {
     const class_model& m = model(GetParam());
     const fclass& c = *m.fc;
-    const long n = count_for(c.name, "IMPACTGEN_FRICTION_CLN", 100000, 400000);
+    const long n = count_for(c.name, "IMPACTGEN_FRICTION_CLN", 30000, 400000);
     const long n_self = std::min(n, count_for(c.name, "IMPACTGEN_FRICTION_CLN_SELF", 300, 2000));
     sampler s(seed(1 + static_cast<unsigned>(c.n_in))); // agrees_with_select_regime_exactly's samples
     const int mu_i = index_of(c.in_names, c.n_in, "mu");
@@ -1067,7 +1067,7 @@ TEST_P(friction_class, agrees_with_the_eigen_reference)
 {
     const class_model& m = model(GetParam());
     const fclass& c = *m.fc;
-    const long n = count_for(c.name, "IMPACTGEN_FRICTION_SAMPLES", 100000, 400000);
+    const long n = count_for(c.name, "IMPACTGEN_FRICTION_SAMPLES", 30000, 400000);
     sampler s(seed(2 + static_cast<unsigned>(c.n_in)));
     const int mu_i = index_of(c.in_names, c.n_in, "mu");
     long compared = 0, regime_checked = 0, ref_other = 0, status_same = 0, our_other = 0, law_checked = 0, ill_conditioned = 0;
