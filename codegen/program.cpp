@@ -3,6 +3,7 @@
 #include "names/escape.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <set>
 #include <stdexcept>
 
@@ -199,13 +200,41 @@ int program::lower(const canonical_pool& pool, int cid)
     case cnode::add: r = lower_add(pool, cid, false); break;
     case cnode::mul: {
         int num = -1, den = -1;
+        numeric a = abs(n.value);
+        std::vector<std::pair<int, int>> factors = n.factors;
+        std::sort(factors.begin(), factors.end());
+        // A product lowered before with the same coefficient whose factors (exponents
+        // included) are among these, the largest: this one is that times the rest
+        // (m v'_x - N beside v'_x = (1/2) l^2 N / I_E: one multiplication, not three).
+        const lowered_product* base = nullptr;
+        for (const lowered_product& lp : products_)
+            if (lp.coefficient == a && lp.factors.size() < factors.size() &&
+                (!base || lp.factors.size() > base->factors.size()) &&
+                std::includes(factors.begin(), factors.end(), lp.factors.begin(), lp.factors.end()))
+                base = &lp;
+        if (base) {
+            std::vector<std::pair<int, int>> rest;
+            std::set_difference(factors.begin(), factors.end(), base->factors.begin(), base->factors.end(),
+                                std::back_inserter(rest));
+            num = base->op_id;
+            for (auto& [f, x] : rest) {
+                int v = lower(pool, f);
+                int& acc = x > 0 ? num : den;
+                for (int k = 0; k < (x > 0 ? x : -x); ++k)
+                    acc = acc < 0 ? v : binary(op::mul, acc, v);
+            }
+            r = den >= 0 ? binary(op::mul, num, reciprocal(den)) : num;
+            products_.push_back({factors, a, r});
+            if (n.value < 0)
+                r = negate(r);
+            break;
+        }
         for (auto& [f, x] : n.factors) {
             int v = lower(pool, f);
             int& acc = x > 0 ? num : den;
             for (int k = 0; k < (x > 0 ? x : -x); ++k)
                 acc = acc < 0 ? v : binary(op::mul, acc, v);
         }
-        numeric a = abs(n.value);
         if (a.numer() != 1)
             num = num < 0 ? constant(a.numer()) : binary(op::mul, num, constant(a.numer()));
         if (a.denom() != 1) {
@@ -219,6 +248,12 @@ int program::lower(const canonical_pool& pool, int cid)
             r = num < 0 ? reciprocal(den) : binary(op::mul, num, reciprocal(den));
         else
             r = num < 0 ? constant(1) : num;
+        // worth reusing when it took a multiplication (or a division) of its own
+        int multiplicity = a == 1 ? 0 : 1;
+        for (auto& [f, x] : factors)
+            multiplicity += x > 0 ? x : -x;
+        if (multiplicity >= 2 && at(r).kind != op::constant)
+            products_.push_back({factors, a, r});
         if (n.value < 0)
             r = negate(r);
         break;

@@ -60,6 +60,14 @@ private:
     std::map<int, int> lowered_;
     std::map<int, int> step_op_;
     std::string owner_;
+    /// Products lowered so far: their factors (node, exponent; sorted), |coefficient|
+    /// and op (before any sign), for a later product whose factors include them.
+    struct lowered_product {
+        std::vector<std::pair<int, int>> factors;
+        GiNaC::numeric coefficient;
+        int op_id;
+    };
+    std::vector<lowered_product> products_;
 };
 
 /// What the emitted code checks and which status it returns when the check fails.

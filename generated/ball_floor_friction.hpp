@@ -3,7 +3,7 @@
 // Closed forms of the impact with Coulomb friction (planar), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
 // Arithmetic of the straight-line parts: 9 add/sub, 17 mul, 4 div, 0 sqrt (shared steps, checks, candidates);
-//   9 add/sub, 17 mul, 0 div, 0 sqrt (post-impact state).
+//   9 add/sub, 16 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
 
 #include <cmath>
@@ -884,7 +884,7 @@ template <typename T> struct ball_floor_friction_input {
 // The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:
 //   v_t_ball_p1 = lk_2 * sel_P_t
 //   v_n_ball_p1 = lk_2 * sel_P_n
-//   w_b_ball_p1 = sel_P_t * lk_2 * lk_1
+//   w_b_ball_p1 = v_t_ball_p1 * lk_1
 //   out.v_t_ball = v_t_ball_p1 + v_t
 //   out.v_n_ball = v_n_ball_p1 + v_n
 //   out.w_b_ball = w_b_ball_p1 * (5/2) + w
@@ -1041,7 +1041,7 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     // The post-impact state.
     const T v_t_ball_p1 = lk_2 * sel_P_t;
     const T v_n_ball_p1 = lk_2 * sel_P_n;
-    const T w_b_ball_p1 = sel_P_t * lk_2 * lk_1;
+    const T w_b_ball_p1 = v_t_ball_p1 * lk_1;
     out.v_t_ball = v_t_ball_p1 + v_t;
     out.v_n_ball = v_n_ball_p1 + v_n;
     out.w_b_ball = w_b_ball_p1 * (T(5) / T(2)) + w;

@@ -632,10 +632,17 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
             if (impactgen::tidy(r[0]).is_zero() && impactgen::tidy(r[1]).is_zero() && impactgen::tidy(r[2]).is_zero())
                 central.push_back(i);
         }
-        if (central.size() == 2)
+        const bool both_particles = central.size() == 2 && p.bodies[i1].particle && p.bodies[i2].particle;
+        const bool both_rigid = central.size() == 2 && !p.bodies[i1].particle && !p.bodies[i2].particle;
+        if (both_particles)
             sec.para(paragraph().t("A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
                                    "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$, and the spin of a sphere "
                                    "would be unchanged by it. The bodies are therefore taken as particles, without angular velocity unknowns."));
+        else if (both_rigid)
+            sec.para(paragraph().t("A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
+                                   "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$. The angular momentum "
+                                   "equations below keep the angular velocities as unknowns, and the solution finds each spin "
+                                   "unchanged, $~ω′ = ~ω$: the impact changes only the velocities of the centres along $e_n$."));
         else
             for (std::size_t i : central)
                 if (!p.bodies[i].particle)

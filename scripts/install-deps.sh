@@ -6,8 +6,9 @@ set -euo pipefail
 packages=(cmake make g++ pkg-config libginac-dev libcln-dev libeigen3-dev nlohmann-json3-dev libcli11-dev)
 if [[ "${1:-}" == "--tests" ]]; then
   # clang: the second compiler of the header tests and the compiler of the sanitizer pass
-  # (libclang-rt-14-dev has its ASan and UBSan runtimes, only recommended by clang).
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev chromium zlib1g-dev)
+  # (libclang-rt-14-dev has its ASan and UBSan runtimes, only recommended by clang; llvm-14
+  # its llvm-symbolizer: without it every sanitized program warns on stderr at exit).
+  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev llvm-14 chromium zlib1g-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do
