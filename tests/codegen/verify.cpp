@@ -38,6 +38,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <random>
 
 using namespace GiNaC;
@@ -737,6 +738,81 @@ template <std::size_t N, std::size_t... I> auto to_tuple_impl(const double* x, s
     return std::make_tuple(x[I]...);
 }
 template <std::size_t N> auto to_tuple(const double* x) { return to_tuple_impl<N>(x, std::make_index_sequence<N>{}); }
+
+// The fast path (every check folded into a few tests, some checks replaced by values
+// that imply them, such as 1/I_E for the centroidal inertia of pinned-planar) and the
+// checked path (each check as written, naming the one that fails) over the whole range
+// of each scalar type: every input log-uniform in magnitude between the smallest
+// denormal and the largest finite value, of either sign, one in four set so that a
+// product of two inputs lands near the underflow threshold. Same status, and the same
+// outputs bit for bit (both compute them with the same expressions), on every draw.
+template <typename T, typename Result, typename Fast, typename Checked, typename ToArray>
+void whole_range_agrees(const char* what, int n_in, int n_out, Fast fast, Checked checked, ToArray to_array, long n)
+{
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<long double> U(0, 1);
+    const long double lo = std::log10(static_cast<long double>(std::numeric_limits<T>::denorm_min()));
+    const long double hi = std::log10(static_cast<long double>(std::numeric_limits<T>::max()));
+    auto magnitude = [&] { return static_cast<T>(std::pow(10.0L, lo + (hi - lo) * U(rng))); };
+    std::vector<T> x(static_cast<std::size_t>(n_in)), a(static_cast<std::size_t>(n_out)), b(a);
+    long ok = 0, statuses[16] = {};
+    for (long i = 0; i < n; ++i) {
+        for (int j = 0; j < n_in; ++j) {
+            T v = j == 0 ? static_cast<T>(U(rng)) : magnitude(); // e in [0, 1]
+            if (j > 0 && U(rng) < 0.2)
+                v = -v;
+            x[static_cast<std::size_t>(j)] = v;
+        }
+        if (n_in > 2 && U(rng) < 0.25) { // x_j^2 x_k about the smallest denormal
+            const std::size_t j = 1 + static_cast<std::size_t>(U(rng) * (n_in - 1)) % static_cast<std::size_t>(n_in - 1);
+            const std::size_t k = 1 + static_cast<std::size_t>(U(rng) * (n_in - 1)) % static_cast<std::size_t>(n_in - 1);
+            x[k] = std::fabs(x[k]);
+            x[j] = static_cast<T>(std::sqrt(static_cast<long double>(std::numeric_limits<T>::denorm_min()) * (1 + 100 * U(rng)) /
+                                            static_cast<long double>(x[k])));
+        }
+        Result ra{}, rb{};
+        const gen::impact_status sa = fast(x.data(), ra), sb = checked(x.data(), rb);
+        ASSERT_EQ(int(sa), int(sb)) << what << " draw " << i;
+        ++statuses[int(sa) & 15];
+        if (sa != gen::impact_status::ok)
+            continue;
+        ++ok;
+        to_array(ra, a.data());
+        to_array(rb, b.data());
+        for (int j = 0; j < n_out; ++j)
+            ASSERT_TRUE(a[static_cast<std::size_t>(j)] == b[static_cast<std::size_t>(j)]) << what << " draw " << i << " output " << j;
+    }
+    std::printf("[whole range] %-22s %-12s %ld draws: %ld ok, %ld not approaching, %ld singular, %ld overflow\n", what,
+                sizeof(T) == 4 ? "float" : sizeof(T) == 8 ? "double" : "long double", n, ok,
+                statuses[int(gen::impact_status::not_approaching)], statuses[int(gen::impact_status::singular)],
+                statuses[int(gen::impact_status::overflow)]);
+    EXPECT_GE(ok, n / 100) << what << ": too few impacts among the draws";
+}
+
+#define WHOLE_RANGE_AGREES(FN, T, N)                                                                                  \
+    whole_range_agrees<T, gen::FN##_result<T>>(                                                                       \
+        #FN, gen::FN##_input_count, gen::FN##_output_count,                                                           \
+        [](const T* x, gen::FN##_result<T>& r) { return gen::FN(x, r); },                                             \
+        [](const T* x, gen::FN##_result<T>& r) {                                                                      \
+            return std::apply([&](auto... v) { return gen::detail::FN##_checked(v..., r); }, to_tuple_t<T, gen::FN##_input_count>(x)); \
+        },                                                                                                            \
+        [](const gen::FN##_result<T>& r, T* a) { gen::FN##_to_array(r, a); }, N)
+
+template <typename T, std::size_t... I> auto to_tuple_t_impl(const T* x, std::index_sequence<I...>) { return std::make_tuple(x[I]...); }
+template <typename T, std::size_t N> auto to_tuple_t(const T* x) { return to_tuple_t_impl<T>(x, std::make_index_sequence<N>{}); }
+
+TEST(CodegenBatch, FastAndCheckedAgreeOverTheWholeRange)
+{
+    WHOLE_RANGE_AGREES(pinned_planar, float, 200000);
+    WHOLE_RANGE_AGREES(pinned_planar, double, 200000);
+    WHOLE_RANGE_AGREES(pinned_planar, long double, 100000);
+    WHOLE_RANGE_AGREES(central_direct, float, 100000);
+    WHOLE_RANGE_AGREES(central_direct, double, 100000);
+    WHOLE_RANGE_AGREES(central_oblique, double, 100000);
+    WHOLE_RANGE_AGREES(planar, float, 100000);
+    WHOLE_RANGE_AGREES(planar, double, 100000);
+    WHOLE_RANGE_AGREES(planar_engine, double, 100000);
+}
 
 TEST(CodegenBatch, FastCheckedAndBatchAgree)
 {
