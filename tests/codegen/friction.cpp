@@ -32,7 +32,7 @@
 // noncentral_3d.hpp on the same inputs); float and long double against double;
 // statuses and the unchanged state for bad inputs; the run-time root finder
 // detail::trig2_roots against the whole-circle method in long double.
-// IMPACTGEN_SAMPLES (200 in the sanitizer pass) caps every count; IMPACTGEN_SEED moves
+// IMPACTGEN_SAMPLES (200 in the full sanitizer pass, IMPACTGEN_SANITIZE_ALL=1) caps every count; IMPACTGEN_SEED moves
 // the seed; FRICTION_DEBUG=1 prints the inputs and outputs of a disagreement. Three
 // problem files (tests/codegen/friction: a 3-D sphere on the floor, a ball against a
 // hinged rod, a box on a floor with a symbolic normal) run the same tests on a quarter

@@ -14,7 +14,7 @@
 //      derivatives and the state unchanged.
 // Counts: IMPACTGEN_JACOBIAN_CASES samples per class for (a) (default 1000) and
 // IMPACTGEN_JACOBIAN_EXACT_CASES for (b) (default 300); without them IMPACTGEN_SAMPLES
-// caps (a) at IMPACTGEN_SAMPLES and (b) at a quarter of it (the sanitizer pass sets 200),
+// caps (a) at IMPACTGEN_SAMPLES and (b) at a quarter of it (the full sanitizer pass, IMPACTGEN_SANITIZE_ALL=1, sets 200),
 // and IMPACTGEN_DEEP=1 runs 10,000 of each (about 3 minutes on one core).
 // IMPACTGEN_SEED overrides the seed.
 //

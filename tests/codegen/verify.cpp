@@ -733,11 +733,12 @@ void batch_agrees(const char* what, int n_in, int n_out, const char* const* name
         [](long n, const double* const* in, double* const* out, gen::impact_status* s) { gen::FN##_batch(n, in, out, s); }, \
         [](const gen::FN##_result<double>& r, double* a) { gen::FN##_to_array(r, a); }, MIN_OK)
 
-template <std::size_t N, std::size_t... I> auto to_tuple_impl(const double* x, std::index_sequence<I...>)
+/// The first N entries of x as a tuple (the positional form's arguments).
+template <typename T, std::size_t... I> auto to_tuple_impl(const T* x, std::index_sequence<I...>)
 {
     return std::make_tuple(x[I]...);
 }
-template <std::size_t N> auto to_tuple(const double* x) { return to_tuple_impl<N>(x, std::make_index_sequence<N>{}); }
+template <std::size_t N, typename T> auto to_tuple(const T* x) { return to_tuple_impl(x, std::make_index_sequence<N>{}); }
 
 // The fast path (every check folded into a few tests, some checks replaced by values
 // that imply them, such as 1/I_E for the centroidal inertia of pinned-planar) and the
@@ -794,12 +795,9 @@ void whole_range_agrees(const char* what, int n_in, int n_out, Fast fast, Checke
         #FN, gen::FN##_input_count, gen::FN##_output_count,                                                           \
         [](const T* x, gen::FN##_result<T>& r) { return gen::FN(x, r); },                                             \
         [](const T* x, gen::FN##_result<T>& r) {                                                                      \
-            return std::apply([&](auto... v) { return gen::detail::FN##_checked(v..., r); }, to_tuple_t<T, gen::FN##_input_count>(x)); \
+            return std::apply([&](auto... v) { return gen::detail::FN##_checked(v..., r); }, to_tuple<gen::FN##_input_count>(x)); \
         },                                                                                                            \
         [](const gen::FN##_result<T>& r, T* a) { gen::FN##_to_array(r, a); }, N)
-
-template <typename T, std::size_t... I> auto to_tuple_t_impl(const T* x, std::index_sequence<I...>) { return std::make_tuple(x[I]...); }
-template <typename T, std::size_t N> auto to_tuple_t(const T* x) { return to_tuple_t_impl<T>(x, std::make_index_sequence<N>{}); }
 
 TEST(CodegenBatch, FastAndCheckedAgreeOverTheWholeRange)
 {

@@ -31,7 +31,7 @@ namespace {
 using numeric = GiNaC::numeric; // not impactgen::numeric, the Eigen reference's namespace
 
 // The default count, ten times that under IMPACTGEN_DEEP=1; IMPACTGEN_SAMPLES caps it
-// (the sanitizer pass sets 200).
+// (scripts/test.sh runs this file under the sanitizers with the default counts).
 int samples(int fallback)
 {
     if (std::getenv("IMPACTGEN_DEEP"))
