@@ -4,6 +4,7 @@
 #include "explain_detail.hpp"
 
 #include "canonical.hpp"
+#include "contact_frame.hpp"
 #include "figure/figure.hpp"
 #include "expression.hpp"
 #include "names/escape.hpp"
@@ -398,12 +399,18 @@ math_row formula_row(const std::string& text, const std::string& tex, const char
 
 std::string decimal_note(const ex& v)
 {
+    // A number, or a constant such as 16·√5/35 (no symbol in it), that is not an integer.
+    if (is_a<numeric>(v) ? ex_to<numeric>(v).is_integer() : !is_a<GiNaC::mul>(v) && !is_a<GiNaC::add>(v) && !is_a<GiNaC::power>(v))
+        return "";
+    for (const_preorder_iterator it = v.preorder_begin(); it != v.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            return "";
     ex x = v.evalf();
-    if (!is_a<numeric>(v) || ex_to<numeric>(v).is_integer() || !is_a<numeric>(x))
+    if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
         return "";
     // six significant digits: enough to read, the exact value is beside it
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", to_double(v));
+    std::snprintf(buf, sizeof buf, "%.6g", ex_to<numeric>(x).to_double());
     return std::string("≈ ") + buf;
 }
 
@@ -439,6 +446,8 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
     const int dim = p.dimension;
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     section sec{"1. Set-up", {}};
+    // With friction the equations stay in world components (explain_friction.cpp).
+    const contact_frame_view view = fr ? world_components_view(d) : contact_frame_view_of(d);
 
     const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
                                 : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
@@ -524,12 +533,41 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
         frame.t(" The world axes are named $t$, $n$, $b$: a component with subscript $t$, $n$ or $b$ is along $e_t$, $e_n$ or $e_b$.");
     else if (d.frame_is_world)
         frame.w(" These are world axes (up to sign), so components can be read off directly.");
+    else if (view.active)
+        frame.t(p.dimension == 3 ? " The equations below are written in contact-frame components, as in the notes: a vector $~a$ has "
+                                   "$a_t = ~a·e_t$, $a_n = ~a·e_n$ and $a_b = ~a·e_b$, so that $~a = a_t e_t + a_n e_n + a_b e_b$ "
+                                   "(the answer at the end is in world components)."
+                                 : " The equations below are written in contact-frame components, as in the notes: a velocity $~v$ has "
+                                   "$v_t = ~v·e_t$ and $v_n = ~v·e_n$, so that $~v = v_t e_t + v_n e_n$; spins are along $e_b$ "
+                                   "(the answer at the end is in world components).");
     else
         frame.t(" The equations below are written in world components; the contact-frame components "
                 "of a velocity are $v_t = ~v·e_t$ and $v_n = ~v·e_n$; the numbers at the end give "
                 "them for both bodies.");
     sec.para(frame);
     sec.picture(figure_of(d));
+    if (view.active && !view.inputs.empty()) {
+        std::vector<math_row> input_rows;
+        for (const frame_component& c : view.inputs) {
+            math_row r = row(c.sym, impactgen::tidy(c.world));
+            r.note.w(c.meaning);
+            input_rows.push_back(r);
+        }
+        sec.para(paragraph().w(p.dimension == 3 ? "The velocities and spins before impact in the contact frame:"
+                                                : "The velocities before impact in the contact frame:"));
+        sec.rows(input_rows);
+    }
+    if (view.active && !view.inertia.empty()) {
+        std::vector<math_row> inertia_rows;
+        for (const frame_component& c : view.inertia) {
+            math_row r = row(c.sym, c.world);
+            r.note.w(c.meaning);
+            inertia_rows.push_back(r);
+        }
+        sec.para(paragraph().t("The inertia tensors in the contact frame, $I_tn = e_t·~~I e_n$ and so on (the angular momentum "
+                               "equations below use them; the tensor is symmetric, $I_nt = I_tn$):"));
+        sec.rows(inertia_rows);
+    }
 
     // Known and unknown.
     paragraph known;
@@ -537,7 +575,7 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
             "To be found after impact:");
     sec.para(known);
     std::vector<math_row> unknown_rows;
-    for (const unknown& u : d.unknowns) {
+    for (const frame_component& u : view.unknowns) {
         math_row r;
         r.lhs_note = {"", ""};
         r.lhs = u.sym;
@@ -726,19 +764,27 @@ section equations_section(const derivation& d)
                                "angular momentum of each body about $O$, and restitution."));
 
     // Equations are grouped by principle and bodies; the words come from those (typed), never from the
-    // derivation's ASCII sentence.
+    // derivation's ASCII sentence. In contact-frame components where the normal is not a world axis.
+    const contact_frame_view view = contact_frame_view_of(d);
     std::size_t k = 0;
-    while (k < d.equations.size()) {
-        const equation& first = d.equations[k];
+    while (k < view.equations.size()) {
+        const equation& first = *view.equations[k].source;
         std::vector<math_row> rows;
         std::size_t j = k;
-        for (; j < d.equations.size(); ++j) {
-            const equation& eq = d.equations[j];
+        for (; j < view.equations.size(); ++j) {
+            const framed_equation& f = view.equations[j];
+            const equation& eq = *f.source;
             if (eq.why != first.why || eq.bodies != first.bodies)
                 break;
-            math_row r = row(eq.lhs, eq.rhs, eq.label);
-            if (eq.component >= 0)
-                r.note.t("component along ").w(p.axes[static_cast<std::size_t>(eq.component)]);
+            math_row r = row(f.lhs, f.rhs, eq.label);
+            if (f.axis == "t")
+                r.note.t("component along $e_t$");
+            else if (f.axis == "n")
+                r.note.t("component along $e_n$");
+            else if (f.axis == "b")
+                r.note.t("component along $e_b$");
+            else if (!f.axis.empty())
+                r.note.t("component along ").w(f.axis);
             rows.push_back(r);
         }
         const std::size_t i = first.bodies.empty() ? no_body : first.bodies[0];
@@ -807,13 +853,13 @@ section equations_section(const derivation& d)
             const vec3& n = d.n_hat;
             std::vector<math_row> pv_rows;
             pv_rows.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n", "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                       tidy_expand(dot(d.vA, n))));
+                                       view.apply(tidy_expand(dot(d.vA, n)))));
             pv_rows.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n", "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times \\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                       tidy_expand(dot(d.vA_after, n))));
+                                       view.apply(tidy_expand(dot(d.vA_after, n)))));
             pv_rows.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n", "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                       tidy_expand(dot(d.vB, n))));
+                                       view.apply(tidy_expand(dot(d.vB, n)))));
             math_row last = note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n", "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times \\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                     tidy_expand(dot(d.vB_after, n)));
+                                     view.apply(tidy_expand(dot(d.vB_after, n))));
             if (p.bodies[i2].infinite_mass || p.immovable(i2))
                 last.note.t("$B$ is on a body the impulse cannot move: $v′_Bn = v_Bn$");
             pv_rows.push_back(last);
@@ -878,16 +924,17 @@ section solution_section(const derivation& d, const solution& s)
         r.rel = "";
 
     std::vector<math_row> steps;
+    const contact_frame_view view = contact_frame_view_of(d);
     for (const step& st : s.steps) {
-        math_row r = row(st.sym, st.value);
+        math_row r = row(st.sym, view.apply(st.value));
         r.note = step_note(d.prob, st);
         steps.push_back(r);
     }
     sec.para(paragraph().w("The steps, in order:"));
     sec.rows(steps);
     std::vector<math_row> unknowns;
-    for (std::size_t i = 0; i < d.unknowns.size(); ++i)
-        unknowns.push_back(row(d.unknowns[i].sym, s.unknown_values.op(i).rhs(), "", d.unknowns[i].meaning));
+    for (const frame_component& u : view.unknowns)
+        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", u.meaning));
     sec.para(paragraph().w("Each unknown:"));
     sec.rows(unknowns);
     return sec;
@@ -898,8 +945,10 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
 {
     lst steps = s.step_values(values);
     std::vector<math_row> eqs;
-    for (const equation& eq : d.equations)
-        eqs.push_back(row(tidy_expand(eq.lhs.subs(values)), tidy_expand(eq.rhs.subs(values)), eq.label));
+    const contact_frame_view view = contact_frame_view_of(d);
+    const lst frame_values = view.with_inputs(values);
+    for (const framed_equation& f : view.equations)
+        eqs.push_back(row(tidy_expand(f.lhs.subs(frame_values)), tidy_expand(f.rhs.subs(frame_values)), f.source->label));
     sec.para(paragraph().w("The equations with these numbers:"));
     sec.rows(eqs);
     std::vector<math_row> rows;
@@ -937,14 +986,10 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     if (!d.frame_is_world && d.prob.axes[0] != "t") {
         const problem& p = d.prob;
         std::vector<std::pair<std::string, vec3>> dirs;
-        auto unit_of = [](const vec3& v) {
-            const ex len = sqrt(dot(v, v));
-            return vec3{v[0] / len, v[1] / len, v[2] / len};
-        };
-        dirs.push_back({"t", unit_of(d.t_dir)});
+        dirs.push_back({"t", unit_vector(d.t_dir)});
         dirs.push_back({"n", d.n_hat});
         if (p.dimension == 3)
-            dirs.push_back({"b", unit_of(d.b_dir)});
+            dirs.push_back({"b", unit_vector(d.b_dir)});
         std::vector<math_row> frame_rows;
         for (std::size_t i = 0; i < p.bodies.size(); ++i) {
             if (i != p.contact.body1 && i != p.contact.body2)
@@ -958,8 +1003,14 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
                 const std::string& L = p.bodies[i].label;
                 math_row r = row(show(quantity_name("v", axis, L, false), quantity_tex("v", axis, L, false)), before);
                 math_row ra = row(show(quantity_name("v", axis, L, true), quantity_tex("v", axis, L, true)), after);
-                r.note.w(body_ref(p, i) + ", before").w(unit(p, quantity::velocity));
-                ra.note.w(body_ref(p, i) + ", after").w(unit(p, quantity::velocity));
+                // "≈ 0.914 m/s -- body 1 (ball), before", as the energies below
+                const std::string u = unit(p, quantity::velocity);
+                auto note = [&](const ex& value, const char* when) {
+                    const std::string dec = decimal_note(value);
+                    return (dec.empty() ? "" : dec + u + " -- ") + body_ref(p, i) + when + (dec.empty() && !u.empty() ? " (in" + u + ")" : "");
+                };
+                r.note.w(note(before, ", before"));
+                ra.note.w(note(after, ", after"));
                 if (axis == "t" || axis == "b")
                     ra.note.t(vanishes_identically(s, after - before, "a tangential velocity") ? ": unchanged, no impulse along it" : "");
                 frame_rows.push_back(r);
