@@ -2,6 +2,7 @@
 
 #include "symbolic/decide.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -30,6 +31,34 @@ int nodes(const ex& x)
 }
 
 ex simplified(const ex& x) { return tidy_expand(x); }
+
+// How many terms x.expand() would have, at most (capped): the view expands the derivation's
+// equations, and a hostile input such as a contact point (a + b + ... + q)^12 must not make
+// that take minutes.
+double expanded_terms(const ex& x)
+{
+    constexpr double cap = 1e9;
+    if (is_a<add>(x)) {
+        double n = 0;
+        for (std::size_t k = 0; k < x.nops(); ++k)
+            n = std::min(cap, n + expanded_terms(x.op(k)));
+        return n;
+    }
+    if (is_a<GiNaC::mul>(x)) {
+        double n = 1;
+        for (std::size_t k = 0; k < x.nops(); ++k)
+            n = std::min(cap, n * expanded_terms(x.op(k)));
+        return n;
+    }
+    if (is_a<power>(x) && is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_pos_integer()) {
+        const double t = expanded_terms(x.op(0)), e = ex_to<numeric>(x.op(1)).to_double();
+        double n = 1; // C(t + e - 1, e), the monomials of degree e in t terms
+        for (double k = 1; k <= e && n < cap; ++k)
+            n = n * (t + e - k) / k;
+        return std::min(cap, n);
+    }
+    return 1;
+}
 
 // 1/sqrt(q) for a rational q > 0 with the square taken out and no root in a
 // denominator (9/8 -> 3*sqrt(2)/4), so that unit vectors print as the notes write
@@ -249,7 +278,11 @@ contact_frame_view contact_frame_view_of(const derivation& d)
         }
     }
 
-    // The equations: scalar ones rewritten, vector ones projected on the frame.
+    // The equations: scalar ones rewritten, vector ones projected on the frame -- if that
+    // is cheap (each equation, written through the frame, at most a few thousand terms).
+    for (const equation& eq : d.equations)
+        if (expanded_terms(eq.lhs.subs(v.to_frame)) + expanded_terms(eq.rhs.subs(v.to_frame)) > 4000)
+            return world_only();
     int before = 0, after = 0;
     for (std::size_t k = 0; k < d.equations.size();) {
         const equation& first = d.equations[k];

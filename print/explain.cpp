@@ -1239,13 +1239,12 @@ bool notes_example(const std::string& class_name, worked_example& out)
     return true;
 }
 
-namespace {
-
 // A numeric problem's twin for teaching: a symbol for every non-zero mass, moment
-// of inertia entry, velocity and angular velocity component and for e, named as the
-// unknowns are (v_x1, ω_z,puck); the geometry (positions, contact, normal, pivots)
-// keeps its numbers, so the formulas stay short. `values` gets symbol == number.
-problem symbolized(const problem& p, lst& values, std::vector<std::string>& units)
+// of inertia entry, velocity and angular velocity component, for e and for a non-zero
+// friction coefficient μ, named as the unknowns are (v_x1, ω_z,puck); the geometry
+// (positions, contact, normal, pivots) keeps its numbers, so the formulas stay short.
+// `values` gets symbol == number.
+problem detail::symbolized(const problem& p, lst& values, std::vector<std::string>& units)
 {
     problem q = p;
     auto name = [&](const std::string& base, const std::string& base_tex, const std::string& axis, const body& b, ex& slot, quantity what) {
@@ -1292,8 +1291,16 @@ problem symbolized(const problem& p, lst& values, std::vector<std::string>& unit
         units.push_back("");
         q.restitution = e;
     }
+    if (!q.contact.friction.is_zero()) {
+        symbol mu("mu", "\\mu"); // printed μ (explain_friction renames a symbol named mu)
+        values.append(mu == q.contact.friction);
+        units.push_back("");
+        q.contact.friction = mu;
+    }
     return q;
 }
+
+namespace {
 
 document explain_document(const derivation& d, const solution& s, const worked_example* example)
 {

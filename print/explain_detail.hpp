@@ -46,6 +46,11 @@ struct friction_setup {
     std::vector<std::pair<GiNaC::ex, paragraph>> impulses; ///< unknown symbol, meaning
 };
 
+/// A numeric problem's twin with symbols for its masses, inertias, velocities, e and μ
+/// (geometry kept), for teaching in symbols first; values gets symbol == number and
+/// units the unit of each (" kg", or "").
+problem symbolized(const problem& p, GiNaC::lst& values, std::vector<std::string>& units);
+
 /// Section 1: bodies, contact frame, unknowns and their count.
 section setup_section(const derivation& d, const friction_setup* friction = nullptr);
 

@@ -212,6 +212,11 @@ math_row srow(const problem& p, const step& st)
     return r;
 }
 
+// A line can be broken in a sum, not in the denominator of a fraction: a formula whose
+// denominator is a long sum does not fit a printed page's column (LaTeX, HTML), so the
+// optional forms of a formula are shown only when their denominator is short.
+bool short_denominator(const ex& x) { return printable(x.denom(), 24); }
+
 struct context {
     const derivation& d;
     const friction_solution& f;
@@ -229,8 +234,18 @@ struct context {
     std::vector<equation> stick_law, slide_law; // Coulomb's law, one per tangent
     std::vector<ex> slide_d;      // print symbols of d's components (3-D)
     bool numeric = false;
+    // A numeric problem taught in symbols first: d and f are its symbolic twin's, these
+    // are the problem's own (the numbers, the regime that holds, the answer).
+    const derivation* numeric_d = nullptr;
+    const friction_solution* numeric_f = nullptr;
+    lst inputs;                       // symbol == number for the twin's symbols
+    std::vector<std::string> units;   // the unit of each
 
     context(const derivation& dd, const friction_solution& ff) : d(dd), f(ff), p(dd.prob) {}
+    // Whether the stick impulse can push (N > 0 for some μ): decided on the problem's numbers
+    bool can_stick() const { return numeric_d ? stick_can_hold(*numeric_d, *numeric_f) : stick_can_hold(d, f); }
+    // x with the problem's numbers for the twin's symbols
+    ex at_inputs(const ex& x) const { return inputs.nops() ? x.subs(inputs) : x; }
 
     const regime_case& stick() const { return f.cases.front(); }
     ex un() const
@@ -597,7 +612,7 @@ section stick_section(const context& c)
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     thr.push_back(row(mu_star, stick_threshold_value(c), "", c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
-    if (!stick_can_hold(c.d, c.f))
+    if (!c.can_stick())
         sec.para(paragraph().t("Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
                                "not a threshold."));
     if (c.dim == 2) {
@@ -623,7 +638,7 @@ section stick_section(const context& c)
             ex r = (kvals[2] * k.ut - one_e * kvals[1] * k.un) / (kvals[1] * k.ut - one_e * kvals[0] * k.un);
             r = factor(normal(r));
             const ex shown = abs_split(r, c.e);
-            if (printable(shown, 60) && !(shown - abs(num) / den).is_zero())
+            if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero())
             {
                 math_row mr = row(mu_star, shown);
                 mr.note.t("with this problem's $K$: $K_tt$ = ").m(kvals[0]).t(", $K_tn$ = ").m(kvals[1]).t(", $K_nn$ = ").m(kvals[2]);
@@ -633,12 +648,12 @@ section stick_section(const context& c)
         ex ratio = tidy(st.sol.expand_steps(st.tangential_scalar / st.sol.normal_impulse));
         if (!is_constant(ratio) && printable(ratio, 60)) { // factor() is slow on large rational functions
             const ex shown = abs_split(factor(normal(ratio)), c.e);
-            if (printable(shown, 80))
+            if (printable(shown, 80) && short_denominator(shown))
                 thr.push_back(row(mu_star, shown, "", "in the inputs"));
         }
     }
     sec.rows(thr);
-    if (stick_can_hold(c.d, c.f))
+    if (c.can_stick())
         sec.para(paragraph().t("If $μ ≥ μ*$ the contact sticks and the answer is above. If $μ < μ*$ the friction the contact would "
                                "need exceeds $μN$: it cannot stick, and it slides."));
     else
@@ -928,11 +943,11 @@ struct case_numbers {
     bool holds = false;
 };
 
-case_numbers evaluate(const regime_case& rc)
+case_numbers evaluate(const context& c, const regime_case& rc)
 {
     case_numbers out;
     for (const step& st : rc.sol.steps) {
-        ex v = tidy(st.value.subs(out.values));
+        ex v = tidy(c.at_inputs(st.value).subs(out.values));
         out.values.append(st.sym == v);
         if (st.role == step_role::slide_denominator && decide(v) != decision::positive) {
             out.stopped = true;
@@ -941,7 +956,7 @@ case_numbers evaluate(const regime_case& rc)
     }
     out.holds = true;
     for (const regime_condition& cond : rc.conditions) {
-        const decision dd = decide(tidy(cond.value.subs(out.values)));
+        const decision dd = decide(tidy(c.at_inputs(cond.value).subs(out.values)));
         out.verdicts.push_back(dd);
         const bool ok = dd == decision::positive || (!cond.strict && dd == decision::zero);
         out.holds = out.holds && ok;
@@ -1005,16 +1020,29 @@ void numbers_section(context& c, document& doc)
 {
     section sec{"9. The numbers", {}};
     const regime_case& st = c.stick();
-    sec.para(paragraph().w("The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
+    if (c.inputs.nops()) {
+        std::vector<math_row> given;
+        for (std::size_t k = 0; k < c.inputs.nops(); ++k) {
+            math_row r = value_row(c.inputs.op(k).lhs(), c.inputs.op(k).rhs());
+            if (k < c.units.size() && !c.units[k].empty())
+                r.note.w(r.note.spans.empty() ? "in" + c.units[k] : "," + c.units[k]);
+            given.push_back(r);
+        }
+        sec.para(paragraph().w("The problem's numbers: substitute"));
+        sec.rows(given);
+        sec.para(paragraph().w("Every step above is then a number, exact where the closed form is. The shared steps:"));
+    } else {
+        sec.para(paragraph().w("The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
+    }
     std::vector<case_numbers> nums;
     for (const regime_case& rc : c.f.cases)
-        nums.push_back(rc.needs_angle ? case_numbers{} : evaluate(rc));
+        nums.push_back(rc.needs_angle ? case_numbers{} : evaluate(c, rc));
     auto step_rows = [&](const regime_case& rc, const case_numbers& cn, std::size_t from, std::size_t to) {
         std::vector<math_row> rows;
         for (std::size_t k = from; k < to && k < cn.values.nops(); ++k) {
             const step& s = rc.sol.steps[k];
             const ex v = cn.values.op(k).rhs();
-            const ex formula = s.value; // in the earlier steps, whose numbers are above
+            const ex formula = c.at_inputs(s.value); // in the earlier steps, whose numbers are above
             math_row r = value_row(s.sym, v);
             if (!is_constant(formula) && printable(formula, 120) && !is_float(v)) {
                 r.rhs = formula;
@@ -1032,7 +1060,7 @@ void numbers_section(context& c, document& doc)
     sec.rows(step_rows(st, nums[0], c.shared, st.sol.steps.size()));
     std::vector<math_row> conds;
     for (std::size_t k = 0; k < st.conditions.size() && k < nums[0].verdicts.size(); ++k) {
-        const ex v = tidy(st.conditions[k].value.subs(nums[0].values));
+        const ex v = tidy(c.at_inputs(st.conditions[k].value).subs(nums[0].values));
         math_row r = row(st.conditions[k].value, v);
         r.note = condition_note(st.conditions[k]);
         r.note.w(": " + verdict_word(nums[0].verdicts[k], st.conditions[k].strict));
@@ -1041,13 +1069,13 @@ void numbers_section(context& c, document& doc)
     }
     sec.rows(conds);
     const ex mu_star_sym = symbol("μ*", "\\mu^{*}");
-    const ex Nst = tidy(st.sol.normal_impulse.subs(nums[0].values));
+    const ex Nst = tidy(c.at_inputs(st.sol.normal_impulse).subs(nums[0].values));
     ex mu_star;
     if (decide(Nst) == decision::positive) {
-        mu_star = tidy(stick_threshold_value(c).subs(nums[0].values));
+        mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(nums[0].values));
         sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
         paragraph q;
-        q.t("$μ =$ ").m(c.mu).w(nums[0].holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
+        q.t("$μ =$ ").m(c.at_inputs(c.mu)).w(nums[0].holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
         sec.para(q);
     } else {
         sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact cannot stick for any $μ$."));
@@ -1062,7 +1090,7 @@ void numbers_section(context& c, document& doc)
             lst shared_vals;
             for (std::size_t k = 0; k < c.shared && k < nums[0].values.nops(); ++k)
                 shared_vals.append(nums[0].values.op(k));
-            ex g = tidy_expand(sc.angle_equation.subs(shared_vals));
+            ex g = tidy_expand(c.at_inputs(sc.angle_equation).subs(shared_vals));
             if (printable(g, 150))
             {
                 math_row r = row(0, g);
@@ -1088,7 +1116,7 @@ void numbers_section(context& c, document& doc)
         }
         std::vector<math_row> sconds;
         for (std::size_t k = 0; k < sc.conditions.size() && k < cn.verdicts.size(); ++k) {
-            math_row r = row(sc.conditions[k].value, tidy(sc.conditions[k].value.subs(cn.values)));
+            math_row r = row(sc.conditions[k].value, tidy(c.at_inputs(sc.conditions[k].value).subs(cn.values)));
             r.note = condition_note(sc.conditions[k]);
             r.note.w(": " + verdict_word(cn.verdicts[k], sc.conditions[k].strict));
             sconds.push_back(r);
@@ -1101,8 +1129,9 @@ void numbers_section(context& c, document& doc)
         const step* DK = st.sol.find(step_role::response_determinant);
         std::vector<ex> vals;
         const vec3& et = c.d.t_dir;
-        const ex F = tidy(st.tangential_scalar.subs(nums[0].values)), Kn = tidy(c.kform(c.n, c.n).subs(nums[0].values)),
-                 Ktn = tidy(c.kform(et, c.n).subs(nums[0].values));
+        const ex F = tidy(c.at_inputs(st.tangential_scalar).subs(nums[0].values)),
+                 Kn = tidy(c.at_inputs(c.kform(c.n, c.n)).subs(nums[0].values)),
+                 Ktn = tidy(c.at_inputs(c.kform(et, c.n)).subs(nums[0].values));
         if (DK && is_a<numeric>(F) && is_a<numeric>(Nst) && is_a<numeric>(Kn) && is_a<numeric>(Ktn) &&
             ex_to<numeric>(F).is_rational() && ex_to<numeric>(Nst).is_rational()) {
             std::vector<paragraph> items;
@@ -1127,7 +1156,7 @@ void numbers_section(context& c, document& doc)
     regime_case sel;
     bool selected = false;
     try {
-        sel = select_regime(c.d, c.f);
+        sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
         selected = true;
     } catch (const input_error& err) {
         why = err.what();
@@ -1204,14 +1233,14 @@ void numbers_section(context& c, document& doc)
         law_tags = c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
     }
     for (const equation& eq : all) {
-        ex r = (eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values);
+        ex r = c.at_inputs(eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values);
         r = tidy(r);
         if (r.is_zero())
             continue;
         exact = false;
         const long saved = Digits;
         Digits = 50; // the sliding angle's floats carry 50 digits
-        ex x = ((eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values)).evalf();
+        ex x = (c.at_inputs(eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values)).evalf();
         Digits = saved;
         small = small && is_a<numeric>(x) && abs(ex_to<numeric>(x)) < numeric(1, 10).power(25);
     }
@@ -1262,9 +1291,14 @@ void rename(document& doc, const exmap& m)
         }
 }
 
-} // namespace
+struct problem_numbers {
+    const derivation* d;
+    const friction_solution* f;
+    lst values;
+    std::vector<std::string> units;
+};
 
-document explain_friction(const derivation& d, const friction_solution& f)
+document friction_document(const derivation& d, const friction_solution& f, const problem_numbers* numbers)
 {
     context c(d, f);
     const problem& p = d.prob;
@@ -1274,7 +1308,13 @@ document explain_friction(const derivation& d, const friction_solution& f)
     c.e = p.restitution;
     c.mu = f.mu;
     c.n = d.n_hat;
-    c.numeric = p.is_numeric();
+    c.numeric = p.is_numeric() || numbers;
+    if (numbers) {
+        c.numeric_d = numbers->d;
+        c.numeric_f = numbers->f;
+        c.inputs = numbers->values;
+        c.units = numbers->units;
+    }
     if (c.dim == 2) {
         c.tangents = {d.t_dir};
         c.tnames = {"t"};
@@ -1335,6 +1375,43 @@ document explain_friction(const derivation& d, const friction_solution& f)
             m[rc.sliding_speed] = lambda;
     rename(doc, m);
     return doc;
+}
+
+} // namespace
+
+document explain_friction(const derivation& d, const friction_solution& f)
+{
+    // A numeric problem is taught as the notes teach: the equations, the regimes and their
+    // conditions in symbols first (μ among them, so that the boundaries are conditions on
+    // μ), then the numbers. When the symbolic twin cannot be solved (a decision that needs
+    // the numbers), the numbers are used throughout.
+    // The contact frame must be rational for the symbols to read well: with a normal such
+    // as (0.2, 1, 0.1), of length sqrt(21/20), every step of the twin would carry products
+    // of unlike roots; the numbers are clearer there.
+    bool rational_frame = true;
+    for (const vec3* v : {&d.n_hat, &f.e_t, &f.e_b})
+        for (const ex& x : *v)
+            rational_frame = rational_frame && is_a<numeric>(x) && ex_to<numeric>(x).is_rational();
+    if (d.prob.is_numeric() && rational_frame) {
+        problem_numbers numbers{&d, &f, {}, {}};
+        const problem twin = symbolized(d.prob, numbers.values, numbers.units);
+        if (numbers.values.nops() > 0) {
+            try {
+                derive_options opt;
+                opt.unit_normal = d.normal_assumed_unit;
+                const derivation d2 = derive(twin, opt);
+                const friction_solution f2 = solve_friction(d2);
+                document doc = friction_document(d2, f2, &numbers);
+                for (block& b : doc.sections.front().blocks) // the figure from the numbers
+                    if (b.k == block::figure)
+                        b.art = figure_of(d);
+                return doc;
+            } catch (const std::exception&) {
+                // fall through to the numbers
+            }
+        }
+    }
+    return friction_document(d, f, nullptr);
 }
 
 } // namespace impactgen::print

@@ -164,6 +164,10 @@ TEST(ContactFrame, WorldAxisNormalsAndNamedClassesKeepWorldComponents)
         "contact": {"bodies": ["a", "b"], "point": [0, 0.5], "normal": ["c", "d"]}})",
                                           "symbolic-normal");
     EXPECT_FALSE(contact_frame_view_of(derive(symbolic)).active);
+    // A contact point (a + ... + q)^12: expanding the equations in the frame would take
+    // minutes; the view keeps the world components (and returns at once).
+    const problem hostile = load_problem_file(IMPACTGEN_SOURCE_DIR "/tests/core/edges/power-of-sum-in-point.json");
+    EXPECT_FALSE(contact_frame_view_of(derive(hostile)).active);
 }
 
 TEST(ContactFrame, ExplainPrintsTheSmoothContactEquationAsTheNotesDo)
