@@ -1,17 +1,56 @@
-# Compiles MAIN with the generated HEADER under strict warnings with compiler
-# CXX and standard STD, then runs it. -D: CXX STD HEADER MAIN DEFINE WORK.
-set(flags -std=${STD} -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Werror -O1)
-get_filename_component(stem ${HEADER} NAME_WE)
+# Compiles a test program under strict warnings with compiler CXX and standard STD,
+# then runs it. -D: CXX STD WORK and either
+#   HEADER MAIN DEFINE  MAIN with one generated header (GEN_HEADER=HEADER) and -DDEFINE; or
+#   DRIVER              a translation unit written by tests/codegen/CMakeLists.txt that
+#                       includes every header of a family and the family's checks
+#                       (header_checks.hpp); a failure names the headers concerned.
+include(${CMAKE_CURRENT_LIST_DIR}/strict_flags.cmake)
+set(flags -std=${STD} ${IMPACTGEN_STRICT_FLAGS} -O1)
 get_filename_component(cxx_name ${CXX} NAME)
-set(exe ${WORK}/${stem}_${cxx_name}_${STD})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${CXX} ${flags} "-DGEN_HEADER=\"${HEADER}\"" -D${DEFINE} ${MAIN} -o ${exe}
+if(DEFINED DRIVER)
+  get_filename_component(stem ${DRIVER} NAME_WE)
+  set(sources ${DRIVER})
+  # The driver's headers: its #include lines.
+  file(STRINGS ${DRIVER} header_lines REGEX "^#include \".*\\.hpp\"$")
+  list(TRANSFORM header_lines REPLACE "^#include \"(.*)\"$" "\\1" OUTPUT_VARIABLE headers)
+  list(LENGTH headers count)
+  set(what "${DRIVER} (${count} headers folded into one translation unit)")
+else()
+  get_filename_component(stem ${HEADER} NAME_WE)
+  set(sources "-DGEN_HEADER=\"${HEADER}\"" -D${DEFINE} ${MAIN})
+  set(headers ${HEADER})
+  set(what ${HEADER})
+endif()
+set(exe ${WORK}/${stem}_${cxx_name}_${STD})
+execute_process(COMMAND ${CXX} ${flags} ${sources} -o ${exe}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "${CXX} -std=${STD} does not compile ${HEADER}:\n${out}${err}")
+  # The headers the diagnostics mention, by path or by their check's instantiation.
+  set(named)
+  foreach(h IN LISTS headers)
+    get_filename_component(fn ${h} NAME_WE)
+    string(FIND "${err}" "${h}" at_path)
+    string(REGEX MATCH "header_checks::${fn}([^A-Za-z0-9_]|$)" at_check "${err}")
+    if(at_path GREATER -1 OR at_check)
+      list(APPEND named ${h})
+    endif()
+  endforeach()
+  if(NOT named)
+    set(named "none of them by name (see the diagnostics)")
+  endif()
+  list(JOIN named "\n  " named)
+  message(FATAL_ERROR "${CXX} -std=${STD} does not compile ${what}.\nHeaders in the diagnostics:\n  ${named}\n${out}${err}")
 endif()
 execute_process(COMMAND ${exe} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "${exe} failed:\n${out}${err}")
+  # The program prints "FAILED: <header>" for each header that failed (header_checks.hpp).
+  string(REGEX MATCHALL "FAILED: [^\n]*" failed "${out}")
+  list(TRANSFORM failed REPLACE "^FAILED: " "")
+  if(NOT failed)
+    set(failed "(none reported: exit code ${rc})")
+  endif()
+  list(JOIN failed "\n  " failed)
+  message(FATAL_ERROR "${exe} (${CXX} -std=${STD}) failed for:\n  ${failed}\n${out}${err}")
 endif()
 message(STATUS "${out}")
