@@ -60,25 +60,6 @@ double expanded_terms(const ex& x)
     return 1;
 }
 
-// 1/sqrt(q) for a rational q > 0 with the square taken out and no root in a
-// denominator (9/8 -> 3*sqrt(2)/4), so that unit vectors print as the notes write
-// them; other q as GiNaC writes it.
-ex inverse_root(const ex& q)
-{
-    if (!is_a<numeric>(q) || !ex_to<numeric>(q).is_rational() || !ex_to<numeric>(q).is_positive())
-        return 1 / sqrt(q);
-    const numeric r = ex_to<numeric>(q);
-    // 1/sqrt(a/b) = sqrt(a b)/a
-    numeric rest = r.numer() * r.denom(), outside = 1;
-    if (rest > numeric(1000000000000LL))
-        return 1 / sqrt(q);
-    for (numeric f = 2; f * f <= rest; f += 1)
-        while (mod(rest, f * f).is_zero()) {
-            rest = rest / (f * f);
-            outside *= f;
-        }
-    return outside * sqrt(ex(rest)) / r.numer();
-}
 
 // "..., x component" -> "..., t component": the derivation's meanings end with the world axis.
 std::string frame_meaning(const std::string& world_meaning, const std::string& axis)
@@ -133,8 +114,8 @@ void name_inertia(contact_frame_view& v, const derivation& d, std::size_t which,
 
 vec3 unit_vector(const vec3& a)
 {
-    const ex scale = inverse_root(tidy(dot(a, a)));
-    return {tidy_expand(a[0] * scale), tidy_expand(a[1] * scale), tidy_expand(a[2] * scale)};
+    const ex scale = inverse_root_of(tidy(dot(a, a)));
+    return {merge_roots(tidy_expand(a[0] * scale)), merge_roots(tidy_expand(a[1] * scale)), merge_roots(tidy_expand(a[2] * scale))};
 }
 
 ex contact_frame_view::apply(const ex& x) const
@@ -149,7 +130,7 @@ namespace {
 // An equation of the derivation is linear in the velocities, spins and impulses, with
 // coefficients of low degree in the masses, inertias and e: expanding it is cheap, and
 // it is what makes the radicals of the frame cancel (sqrt(2) sqrt(2) -> 2).
-ex rewritten(const contact_frame_view& v, const ex& x) { return x.subs(v.to_frame).expand(); }
+ex rewritten(const contact_frame_view& v, const ex& x) { return merge_roots(x.subs(v.to_frame).expand()).expand(); }
 // m1 v′_t - m1 v_t -> m1 (v′_t - v_t), as the derivation writes impulse-momentum.
 ex factored(const ex& x) { return is_a<add>(x) ? collect_common_factors(x) : x; }
 } // namespace
@@ -187,11 +168,11 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     // Unit e_t, e_n, e_b: fixed directions only.
     v.count = dim;
     // |e_b| = |e_t| (e_b = e_t × e_n with e_n of length 1, e_t normal to it).
-    const ex inv_t_len = inverse_root(tidy(dot(d.t_dir, d.t_dir)));
+    const ex inv_t_len = inverse_root_of(tidy(dot(d.t_dir, d.t_dir)));
     for (int c = 0; c < 3; ++c) {
         v.e[0][c] = tidy_expand(d.t_dir[c] * inv_t_len);
         v.e[1][c] = d.n_hat[c];
-        v.e[2][c] = dim == 3 ? tidy_expand(d.b_dir[c] * inv_t_len) : ex(c == 2 ? 1 : 0);
+        v.e[2][c] = dim == 3 ? merge_roots(tidy_expand(d.b_dir[c] * inv_t_len)) : ex(c == 2 ? 1 : 0);
     }
     for (const vec3& e : v.e)
         for (const ex& c : e)

@@ -16,7 +16,10 @@ start=$(date +%s)
 
 release_set=rest
 [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" == "1" ]] && release_set=all
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DIMPACTGEN_TEST_SET="$release_set" -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
+# -O2, not CMake's -O3 for Release: 10-20 % less compile time for the same tests (the
+# benchmarks are measured from scripts/bench builds, bench/run_ratios.sh).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DIMPACTGEN_TEST_SET="$release_set" \
+      -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
 cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure -j"$jobs")
 echo "impactgen: release build (g++) and tests ($release_set) took $(( $(date +%s) - start )) s"

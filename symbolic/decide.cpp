@@ -279,6 +279,79 @@ ex tidy(const ex& e) { return bounded(e, 80, true); }
 
 ex tidy_expand(const ex& e) { return bounded(e, 200, false); }
 
+namespace {
+// For a rational q > 0 with numerator and denominator under 10^12: sqrt(a/b) = s sqrt(f) / b
+// with a b = s^2 f, f square-free (trial division by squares up to 10^6).
+bool square_free_root(const ex& q, numeric& outside, numeric& inside, numeric& below)
+{
+    if (!is_a<numeric>(q) || !ex_to<numeric>(q).is_rational() || !ex_to<numeric>(q).is_positive())
+        return false;
+    const numeric r = ex_to<numeric>(q);
+    const numeric limit(1000000000000LL);
+    if (r.numer() > limit || r.denom() > limit)
+        return false;
+    inside = r.numer() * r.denom();
+    outside = 1;
+    for (numeric f = 2; f * f <= inside; f += 1)
+        while (mod(inside, f * f).is_zero()) {
+            inside = inside / (f * f);
+            outside *= f;
+        }
+    below = r.denom();
+    return true;
+}
+} // namespace
+
+ex root_of(const ex& q)
+{
+    numeric outside, inside, below;
+    if (!square_free_root(q, outside, inside, below))
+        return sqrt(q);
+    return outside * sqrt(ex(inside)) / below; // sqrt(a/b) = sqrt(a b)/b
+}
+
+ex merge_roots(const ex& e)
+{
+    struct merger : map_function {
+        ex operator()(const ex& x) override
+        {
+            const ex y = x.map(*this);
+            if (!is_a<GiNaC::mul>(y))
+                return y;
+            numeric radicand = 1;
+            int roots = 0;
+            exvector rest;
+            for (std::size_t k = 0; k < y.nops(); ++k) {
+                const ex& f = y.op(k);
+                if (is_a<power>(f) && is_a<numeric>(f.op(0)) && ex_to<numeric>(f.op(0)).is_pos_integer() &&
+                    f.op(1).is_equal(numeric(1, 2)) && ex_to<numeric>(f.op(0)) < numeric(1000000)) {
+                    radicand *= ex_to<numeric>(f.op(0));
+                    ++roots;
+                } else {
+                    rest.push_back(f);
+                }
+            }
+            if (roots < 2)
+                return y;
+            return GiNaC::mul(rest) * root_of(radicand);
+        }
+    } m;
+    try {
+        return m(e);
+    } catch (const std::exception&) {
+        return e;
+    }
+}
+
+ex inverse_root_of(const ex& q)
+{
+    numeric outside, inside, below;
+    if (!square_free_root(q, outside, inside, below))
+        return 1 / sqrt(q);
+    // 1/sqrt(a/b) = sqrt(a b)/a, and a = (outside^2 inside)/b
+    return outside * sqrt(ex(inside)) * below / (outside * outside * inside);
+}
+
 bool vanishes_at_random_points(const std::vector<symbol>& symbols, const std::function<ex(const lst&)>& value_at)
 {
     std::mt19937_64 rng(20261123);

@@ -66,6 +66,16 @@ GiNaC::ex tidy(const GiNaC::ex& e);
 /// e.expand() under the same rule as tidy(): only when it is cheap.
 GiNaC::ex tidy_expand(const GiNaC::ex& e);
 
+/// sqrt(q) and 1/sqrt(q) as the notes write them: for a rational q > 0, a rational times
+/// the root of a square-free integer (sqrt(21/20) -> sqrt(105)/10, 1/sqrt(8/9) ->
+/// 3 sqrt(2)/4); any other q as GiNaC writes it.
+GiNaC::ex root_of(const GiNaC::ex& q);
+GiNaC::ex inverse_root_of(const GiNaC::ex& q);
+/// e with the square roots of integers in each product merged into one, its square
+/// taken out: sqrt(105) sqrt(2730) -> 105 sqrt(26) (GiNaC keeps unlike roots apart).
+/// Cheap: one pass over e; other powers are left alone.
+GiNaC::ex merge_roots(const GiNaC::ex& e);
+
 /// Whether e (with symbols) is identically zero: exact evaluation at random
 /// positive rational points (fixed seed); a non-zero value proves it is not,
 /// and a rational function that vanishes at six random points drawn from 10^6

@@ -105,7 +105,7 @@ void contact_frame(derivation& d)
     d.t_dir = t;
     d.b_dir = cross(t, n);
     for (ex& c : d.b_dir)
-        c = tidy(c);
+        c = merge_roots(tidy(c));
 }
 
 symbol fresh(const std::string& name, const std::string& tex) { return symbol(name, tex); }
@@ -128,9 +128,11 @@ derivation derive(const problem& p, const derive_options& options)
         for (int i = 0; i < 3; ++i)
             d.n_hat[i] = tidy(p.contact.normal[i]);
     } else {
-        d.normal_length = sqrt(tidy(dot(p.contact.normal, p.contact.normal)));
+        const ex length2 = tidy(dot(p.contact.normal, p.contact.normal));
+        d.normal_length = root_of(length2);
+        const ex inverse = inverse_root_of(length2); // (1, 1) -> sqrt(2)/2, not 2^(-1/2)
         for (int i = 0; i < 3; ++i)
-            d.n_hat[i] = tidy(p.contact.normal[i] / d.normal_length);
+            d.n_hat[i] = tidy(p.contact.normal[i] * inverse);
     }
     contact_frame(d);
 
