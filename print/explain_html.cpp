@@ -23,6 +23,7 @@
 
 #include <cctype>
 #include <set>
+#include <stdexcept>
 #include <sstream>
 
 namespace impactgen::print {
@@ -69,6 +70,10 @@ const char* const style = R"css(
 
 namespace layout {
 double estimated_width_em(const std::string& tex); // print/explain_print.cpp: the LaTeX layout's glyph model
+// print/explain_print.cpp: a row wider than budget em as the LaTeX layout breaks it (a sum
+// at its terms, a long fraction as a factor times the broken sum, a parenthesised sum
+// inside its \left( ... \right.), one TeX line each with & alignment marks; {} if it fits.
+std::vector<std::string> broken_row_lines(const math_row& r, double budget);
 } // namespace layout
 
 namespace {
@@ -165,8 +170,32 @@ std::string row_block(const math_row& r)
     double total = 0;
     for (const piece& p : pieces)
         total += p.width;
-    if (total <= html_row_em || pieces.size() < 2)
+    if (total <= html_row_em)
         return "<math display=\"block\">" + row_math(r) + "</math>";
+    // A term wider than the column (a product such as (a + b + ...)·√105/105) cannot be
+    // broken between terms: take the LaTeX layout's lines, which break inside it.
+    bool wide_piece = pieces.size() < 2;
+    for (const piece& p : pieces)
+        wide_piece = wide_piece || p.width > html_row_em;
+    if (wide_piece) {
+        try {
+            std::string out = "<math display=\"block\"><mtable columnalign=\"left\">";
+            const std::vector<std::string> tex_lines = layout::broken_row_lines(r, html_row_em);
+            for (const std::string& line : tex_lines) {
+                std::string tex; // without the alignment marks (an escaped \& stays)
+                for (std::size_t k = 0; k < line.size(); ++k)
+                    if (line[k] != '&' || (k > 0 && line[k - 1] == '\\'))
+                        tex += line[k];
+                out += "<mtr><mtd><mrow>" + tex_to_mathml(tex) + "</mrow></mtd></mtr>";
+            }
+            if (tex_lines.size() > 1)
+                return out + "</mtable></math>";
+        } catch (const std::exception&) {
+            // the terms below
+        }
+        if (pieces.size() < 2)
+            return "<math display=\"block\">" + row_math(r) + "</math>";
+    }
     std::vector<std::string> lines(1);
     double used = 0;
     for (const piece& p : pieces) {

@@ -1254,8 +1254,15 @@ std::string explain_latex(const document& doc)
 } // namespace impactgen::print
 
 // The width model of the LaTeX layout, for its tests (tests/explain/latex_tools.hpp
-// declares these; no other code needs them).
+// declares the first two), and its row breaking for the HTML page (explain_html.cpp).
 namespace impactgen::print::layout {
 double estimated_width_em(const std::string& tex) { return tex_width(tex); }
 double row_budget_em() { return print::row_budget_em; }
+std::vector<std::string> broken_row_lines(const math_row& r, double budget)
+{
+    const row_tex parts = tex_row_parts(r);
+    if (tex_width(one_line(parts)) <= budget)
+        return {};
+    return break_row(parts, budget);
+}
 } // namespace impactgen::print::layout

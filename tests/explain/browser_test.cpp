@@ -1,9 +1,11 @@
 // explain --format html in a real browser: every named class and every example
-// problem of examples/problems is written by the command line, opened in
+// problem of examples/problems and examples/friction is written by the command line, opened in
 // headless Chromium, and
 //   - the DOM after parsing (--dump-dom) has <math> elements, one id="eq-N"
 //     per numbered equation, the figure's <svg> when the document has a figure
 //     block, no <merror> and no <parsererror>;
+//   - no displayed equation is wider than the page's column (measured by a script
+//     added to a copy of the page: the page itself has none);
 //   - the screenshot (--screenshot, 1000x1400) is not blank: larger than the
 //     screenshot of a blank page taken in the same test and, when zlib is
 //     there to decode the PNG, with many more non-white pixels than it.
@@ -154,7 +156,7 @@ struct page {
     std::string what; ///< the argument of `impactgen explain`, relative to the source tree
 };
 
-// The named classes (smooth and with friction) and examples/problems/*.json;
+// The named classes (smooth and with friction), examples/problems/*.json and examples/friction/*.json;
 // names only: the documents are built in the test that needs one.
 std::vector<page> pages()
 {
@@ -162,13 +164,15 @@ std::vector<page> pages()
     for (const auto* list : {&named_classes(), &friction_classes()})
         for (const named_class& c : *list)
             out.push_back({c.name, c.name});
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/problems"))
-        if (entry.path().extension() == ".json")
-            files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    for (const fs::path& f : files)
-        out.push_back({f.stem().string(), "examples/problems/" + f.filename().string()});
+    for (const char* dir : {"examples/problems", "examples/friction"}) {
+        std::vector<fs::path> files;
+        for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
+            if (entry.path().extension() == ".json")
+                files.push_back(entry.path());
+        std::sort(files.begin(), files.end());
+        for (const fs::path& f : files)
+            out.push_back({f.stem().string(), std::string(dir) + "/" + f.filename().string()});
+    }
     return out;
 }
 
@@ -249,7 +253,22 @@ TEST_P(Browser, ParsesAndRendersThePage)
         status);
     ASSERT_EQ(status, 0) << "impactgen explain " << pg.what << " --format html";
     std::ofstream(dir / "blank.html") << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>blank</title></head><body></body></html>\n";
-    const std::string url = "file://" + (dir / "page.html").string();
+    // The page has no script of its own; the browser opens a copy with one measuring script
+    // added at the end (it only writes an attribute): every displayed equation whose
+    // MathML is wider than its column (it would scroll on screen and be cut in print).
+    const std::string html = read_file(dir / "page.html");
+    EXPECT_EQ(count(html, "<script"), 0u);
+    const std::size_t body_end = html.rfind("</body>");
+    ASSERT_NE(body_end, std::string::npos);
+    std::ofstream(dir / "measured.html")
+        << html.substr(0, body_end)
+        << "<script>(function () { var bad = []; var all = document.querySelectorAll('.eq > math');"
+           " for (var i = 0; i < all.length; ++i) { var m = all[i];"
+           " if (m.scrollWidth > m.clientWidth + 2) bad.push((m.parentNode.id || 'row ' + i) + ' ' + m.scrollWidth + ' px in '"
+           " + m.clientWidth + ' px'); }"
+           " document.body.setAttribute('data-overflow', bad.length + (bad.length ? ': ' + bad.join('; ') : '')); })();</script>"
+        << html.substr(body_end);
+    const std::string url = "file://" + (dir / "measured.html").string();
 
     // The DOM after parsing, and the screenshot of the page, from one start of the browser.
     const std::string dom = run(browser_command(browser, dir,
@@ -263,7 +282,11 @@ TEST_P(Browser, ParsesAndRendersThePage)
     EXPECT_GT(count(dom, "<math display=\"block\">"), 3u);
     EXPECT_EQ(count(dom, "<merror"), 0u);
     EXPECT_EQ(count(dom, "<parsererror"), 0u);
-    EXPECT_EQ(count(dom, "<script"), 0u);
+    EXPECT_EQ(count(dom, "<script"), 1u); // the measuring one
+    const std::size_t overflow = dom.find("data-overflow=\"");
+    ASSERT_NE(overflow, std::string::npos) << "the measuring script did not run";
+    const std::string measured = dom.substr(overflow + 15, dom.find('"', overflow + 15) - overflow - 15);
+    EXPECT_EQ(measured, "0") << "displayed equations wider than the column (1000 px window): " << measured;
     std::set<std::string> tags;
     bool figure = false;
     for (const section& sec : doc.sections)

@@ -412,6 +412,36 @@ TEST(ExplainHtml, ReferencesFiguresAndEscaping)
     EXPECT_TRUE(contains(html, "<math display=\"block\"><mi>a</mi><mo>=</mo><mn>2</mn></math><span class=\"tag\">(3)</span>")) << html;
 }
 
+// A row wider than the column whose right side is one product, (sum of 24 terms)·x/7:
+// it cannot break between terms of the side, so it takes the LaTeX layout's lines, broken
+// inside the parenthesised sum; every line is MathML the browser can parse.
+TEST(ExplainHtml, AWideProductIsBrokenInsideItsSum)
+{
+    ex sum = 0;
+    for (int k = 0; k < 24; ++k)
+        sum += symbol("v_" + std::to_string(k), "v_{" + std::to_string(k) + "}") * symbol("w_" + std::to_string(k), "\\omega_{" + std::to_string(k) + "}");
+    const symbol x("x");
+    math_row r;
+    r.tag = "1";
+    r.lhs = symbol("T");
+    r.rhs = sum * x / 7;
+    ASSERT_TRUE(is_a<GiNaC::mul>(r.rhs));
+    document doc;
+    section sec{"1. Wide", {}};
+    sec.rows({r});
+    doc.sections.push_back(sec);
+    const std::string html = explain_html(doc);
+    const std::size_t at = html.find("<div class=\"eq\"");
+    ASSERT_NE(at, std::string::npos);
+    const std::string eq = html.substr(at, html.find("</div>", at) - at);
+    EXPECT_TRUE(contains(eq, "<mtable columnalign=\"left\">")) << eq;
+    EXPECT_GE(count(eq, "<mtr>"), 3u) << eq; // 24 terms of about 2.5 em in a 34 em column
+    EXPECT_EQ(count(eq, "<mo stretchy=\"false\">(</mo>"), 1u) << eq;
+    EXPECT_EQ(count(eq, "<mo stretchy=\"false\">)</mo>"), 1u) << eq;
+    for (int k = 0; k < 24; ++k)
+        EXPECT_TRUE(contains(eq, "<mn>" + std::to_string(k) + "</mn>")) << k;
+}
+
 TEST(ExplainHtml, CommandLine)
 {
     std::string out;
