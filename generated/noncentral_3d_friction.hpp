@@ -1031,11 +1031,11 @@ template <typename T> struct noncentral_3d_friction_input {
 //   lk_K_nb = K_nb
 //   lk_K_bb = K_bb
 //   lk_u_t = u_t
+//   lk_u_n = u_n
 //   lk_u_b = u_b
-//   lk_u_n_2 = u_n
 // The slide along d = c_d e_t + s_d e_b, at each root of g:
 //   slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d
-//   slide_N = -((e + 1) * lk_u_n_2 / slide_D_s)
+//   slide_N = -((e + 1) * lk_u_n / slide_D_s)
 //   slide_P_t = -(mu * c_d * slide_N)
 //   slide_P_b = -(s_d * mu * slide_N)
 //   slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d *
@@ -1050,7 +1050,7 @@ template <typename T> struct noncentral_3d_friction_input {
 //   c_slide_cond1 = slide_D_s
 //   c_slide_cond2 = slide_lambda
 // mu = 0:
-//   N_0 = -((e + 1) * lk_u_n_2 / lk_K_nn)
+//   N_0 = -((e + 1) * lk_u_n / lk_K_nn)
 //   sel_N = N_0
 //   sel_P_t = 0
 //   sel_F_t = 0
@@ -1102,7 +1102,7 @@ template <typename T> struct noncentral_3d_friction_input {
 //   out.tangential_impulse_t = sel_F_t
 //   out.tangential_impulse_n = sel_F_n
 //   out.tangential_impulse_b = sel_F_b
-//   out.approach_velocity = lk_u_n_2
+//   out.approach_velocity = lk_u_n
 //   out.energy_lost = sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * 2 - r_b1 * energy_lost_p2 -
 //       v_n1_p1 - r_t1 * w_b1) * (1/2) + (1/2) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 -
 //       v_n2_p1 - r_b2 * w_t2 - v_n2 * 2) - (1/2) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1
@@ -1334,8 +1334,8 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T lk_K_nb = K_nb;
     const T lk_K_bb = K_bb;
     const T lk_u_t = u_t;
+    const T lk_u_n = u_n;
     const T lk_u_b = u_b;
-    const T lk_u_n_2 = u_n;
     // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
     T sel_N = T(0);
     T sel_P_t = T(0);
@@ -1348,7 +1348,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     if (mu == T(0)) { // the smooth impact
         if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
             return fail(impact_status::singular);
-        const T N_0 = -((e + T(1)) * lk_u_n_2 / lk_K_nn);
+        const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
         sel_F_t = T(0);
@@ -1410,7 +1410,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
                 const T c_d = root_c[k];
                 const T s_d = root_s[k];
                 const T slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d;
-                const T slide_N = -((e + T(1)) * lk_u_n_2 / slide_D_s);
+                const T slide_N = -((e + T(1)) * lk_u_n / slide_D_s);
                 const T slide_P_t = -(mu * c_d * slide_N);
                 const T slide_P_b = -(s_d * mu * slide_N);
                 const T slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d * (slide_N * (mu * c_d * lk_K_tt + s_d * mu * lk_K_tb - lk_K_tn) - lk_u_t));
@@ -1514,7 +1514,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     out.tangential_impulse_t = sel_F_t;
     out.tangential_impulse_n = sel_F_n;
     out.tangential_impulse_b = sel_F_b;
-    out.approach_velocity = lk_u_n_2;
+    out.approach_velocity = lk_u_n;
     out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p4 - r_n2 * w_t2)) : T(0);
     out.regime = regime_now;
     const T check_sum = (((((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.v_t2 + out.v_n2))) + (((out.v_b2 + out.w_t2) + (out.w_n2 + out.w_b2)) + ((out.normal_impulse + out.tangential_impulse_t) + (out.tangential_impulse_n + out.tangential_impulse_b)))) + ((((out.approach_velocity + out.energy_lost) + (e + mu)) + ((m1 + I1_tt) + (I1_tn + I1_tb))) + (((I1_nn + I1_nb) + (I1_bb + r_t1)) + ((r_n1 + r_b1) + (v_t1 + v_n1))))) + (((((v_b1 + w_t1) + (w_n1 + w_b1)) + ((m2 + I2_tt) + (I2_tn + I2_tb))) + (((I2_nn + I2_nb) + (I2_bb + r_t2)) + ((r_n2 + r_b2) + (v_t2 + v_n2)))) + ((v_b2 + w_t2) + (w_n2 + w_b2)));

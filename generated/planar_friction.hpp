@@ -907,9 +907,9 @@ template <typename T> struct planar_friction_input {
 //   lk_3 = inv_m1
 //   lk_4 = inv_m2
 //   lk_K_nn = K_nn
-//   lk_u_n_2 = u_n
+//   lk_u_n = u_n
 // mu = 0:
-//   N_0 = -((e + 1) * lk_u_n_2 / lk_K_nn)
+//   N_0 = -((e + 1) * lk_u_n / lk_K_nn)
 //   sel_N = N_0
 //   sel_P_t = 0
 //   sel_F_t = 0
@@ -932,7 +932,7 @@ template <typename T> struct planar_friction_input {
 //   out.normal_impulse = sel_N
 //   out.tangential_impulse_t = sel_F_t
 //   out.tangential_impulse_n = sel_F_n
-//   out.approach_velocity = lk_u_n_2
+//   out.approach_velocity = lk_u_n
 //   out.energy_lost = sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * 2 - v_n1_p1 - w_b1 * r_t1) * (1/2) + (1/2) *
 //       sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * 2) - (1/2) * sel_P_t * (v_t1_p1 + r_n1 *
 //       energy_lost_p1 - w_b1 * r_n1 - v_t1 * 2) - (1/2) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2
@@ -1055,7 +1055,7 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     const T lk_3 = inv_m1;
     const T lk_4 = inv_m2;
     const T lk_K_nn = K_nn;
-    const T lk_u_n_2 = u_n;
+    const T lk_u_n = u_n;
     // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
     T sel_N = T(0);
     T sel_P_t = T(0);
@@ -1066,7 +1066,7 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     if (mu == T(0)) { // the smooth impact
         if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
             return fail(impact_status::singular);
-        const T N_0 = -((e + T(1)) * lk_u_n_2 / lk_K_nn);
+        const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
         sel_F_t = T(0);
@@ -1127,7 +1127,7 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     out.normal_impulse = sel_N;
     out.tangential_impulse_t = sel_F_t;
     out.tangential_impulse_n = sel_F_n;
-    out.approach_velocity = lk_u_n_2;
+    out.approach_velocity = lk_u_n;
     out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
     out.regime = regime_now;
     const T check_sum = ((((out.v_t1 + out.v_n1) + (out.w_b1 + out.v_t2)) + ((out.v_n2 + out.w_b2) + (out.normal_impulse + out.tangential_impulse_t))) + (((out.tangential_impulse_n + out.approach_velocity) + (out.energy_lost + e)) + ((mu + m1) + (I1 + r_t1)))) + ((((r_n1 + v_t1) + (v_n1 + w_b1)) + ((m2 + I2) + (r_t2 + r_n2))) + ((v_t2 + v_n2) + w_b2));

@@ -259,7 +259,8 @@ struct context {
         vec3 u = zero_vec();
         for (int a = 0; a < dim; ++a) {
             const step* s = stick().sol.find(step_role::relative_velocity, no_body, a);
-            u[a] = s ? ex(s->sym) : tidy(d.vB[a] - d.vA[a]);
+            // along a normal +e_a, u's component is the approach step u_n (symbolic/friction.cpp)
+            u[a] = s ? ex(s->sym) : n[a].is_equal(1) ? un() : tidy(d.vB[a] - d.vA[a]);
         }
         return u;
     }

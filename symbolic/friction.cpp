@@ -143,12 +143,23 @@ shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
             sh.K[b][a] = v;
         }
     }
+    // A normal along +e_a: u's component a is the normal velocity of approach itself, one
+    // step u_n (not u_n and an alias of it, u_n_ = u_n, where the world axes are t, n, b).
+    int normal_axis = -1;
     for (int a = 0; a < dim; ++a)
-        sh.u[a] = sb.add(step_role::relative_velocity, no_body, a, -1, "u_" + p.axes[a], "u_{" + p.axes[a] + "}",
-                         tidy(d.vB[a] - d.vA[a]),
-                         "relative velocity v_B - v_A of the contact points before impact, " + p.axes[a] + " component");
-    sh.un = sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(dot(sh.u, d.n_hat)),
-                   "normal velocity of approach u.n before impact (negative for an impact)", true);
+        if (d.n_hat[a].is_equal(1))
+            normal_axis = a;
+    for (int a = 0; a < dim; ++a)
+        if (a == normal_axis)
+            sh.u[a] = sh.un = sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(d.vB[a] - d.vA[a]),
+                                     "normal velocity of approach u.n before impact (negative for an impact)", true);
+        else
+            sh.u[a] = sb.add(step_role::relative_velocity, no_body, a, -1, "u_" + p.axes[a], "u_{" + p.axes[a] + "}",
+                             tidy(d.vB[a] - d.vA[a]),
+                             "relative velocity v_B - v_A of the contact points before impact, " + p.axes[a] + " component");
+    if (normal_axis < 0)
+        sh.un = sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(dot(sh.u, d.n_hat)),
+                       "normal velocity of approach u.n before impact (negative for an impact)", true);
     (void)s;
     return sh;
 }
