@@ -235,3 +235,27 @@ TEST(Prose, ContactFrameComponents)
     EXPECT_EQ(vt->rhs, numeric(7, 10)); // (2, 3/2)·(4/5, -3/5)
     EXPECT_EQ(vt_after->rhs, vt->rhs);
 }
+
+// Against a moving body of infinite mass the loss at e = 1 is shown through the named steps,
+// T_lost = -2 u v_Bn/w_1 with v_Bn defined beside it, not expanded into 17 terms (massive-3d);
+// and the form is the derivation's: put together, it equals the loss at e = 1.
+TEST(Prose, LossAtElasticImpactAgainstAMovingWallThroughNamedSteps)
+{
+    const named_class* c = find_named_class("massive-3d");
+    ASSERT_NE(c, nullptr);
+    const document doc = explain_of(c->build());
+    const math_row* vbn = find_row(doc, [](const math_row& r) { return is_symbol_named(r.lhs, "v_Bn"); });
+    ASSERT_NE(vbn, nullptr);
+    const math_row* lost = find_row(doc, [](const math_row& r) {
+        if (!is_symbol_named(r.lhs, "T_lost"))
+            return false;
+        for (const_preorder_iterator it = r.rhs.preorder_begin(); it != r.rhs.preorder_end(); ++it)
+            if (is_a<symbol>(*it) && ex_to<symbol>(*it).get_name() == "v_Bn")
+                return true;
+        return false;
+    });
+    ASSERT_NE(lost, nullptr);
+    EXPECT_TRUE(detail::printable(lost->rhs, 12)) << lost->rhs;
+    // v_Bn is B's normal velocity before impact: r_b2 w_t2 + v_n2 - r_t2 w_b2 in the class's symbols.
+    EXPECT_TRUE(detail::printable(vbn->rhs, 20)) << vbn->rhs;
+}
