@@ -132,7 +132,7 @@ derivation derive(const problem& p, const derive_options& options)
         d.normal_length = root_of(length2);
         const ex inverse = inverse_root_of(length2); // (1, 1) -> sqrt(2)/2, not 2^(-1/2)
         for (int i = 0; i < 3; ++i)
-            d.n_hat[i] = tidy(p.contact.normal[i] * inverse);
+            d.n_hat[i] = merge_roots(tidy(p.contact.normal[i] * inverse));
     }
     contact_frame(d);
 
