@@ -325,6 +325,21 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     if (2 * after > 3 * before)
         return world_only();
     for (framed_equation& f : v.equations) {
+        // "after = before" as the derivation writes it: where the projection left knowns
+        // beside the unknowns on the left of "= 0" (a pinned body's partner), they go right.
+        if (f.rhs.is_zero() && is_a<add>(f.lhs)) {
+            ex unknown_part = 0, known_part = 0;
+            for (const ex& term : f.lhs) {
+                bool has_unknown = false;
+                for (const frame_component& u : v.unknowns)
+                    has_unknown = has_unknown || term.has(u.sym);
+                (has_unknown ? unknown_part : known_part) += term;
+            }
+            if (!unknown_part.is_zero() && !known_part.is_zero()) {
+                f.lhs = unknown_part;
+                f.rhs = -known_part;
+            }
+        }
         f.lhs = factored(f.lhs);
         f.rhs = factored(f.rhs);
     }

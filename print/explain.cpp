@@ -736,8 +736,11 @@ section impulse_section(const derivation& d)
         std::string LT = short_label ? b.label : ",\\text{" + names::latex_text(b.label) + "}";
         std::string sign = i == i1 ? "-" : "";
         const pivot* pv = p.pivot_of(i);
+        // the mass as the symbols name it: m1, m_puck (not m,puck)
+        const std::string M = short_label ? "m" + b.label : "m_" + b.label;
+        const std::string MT = short_label ? "m_{" + b.label + "}" : "m_{\\text{" + names::latex_text(b.label) + "}}";
         math_row r;
-        r.lhs_note = {"m" + L + " (v′_C" + L + " - v_C" + L + ")", "m_{" + LT + "} (\\underline{v}'_{C" + LT + "} - \\underline{v}_{C" + LT + "})"};
+        r.lhs_note = {M + " (v′_C" + L + " - v_C" + L + ")", MT + " (\\underline{v}'_{C" + LT + "} - \\underline{v}_{C" + LT + "})"};
         r.rel = "=";
         r.rhs = 0;
         r.lhs_note.text += " = " + sign + "∫N dt e_n" + (pv ? " + R" : "");
@@ -999,7 +1002,9 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
             for (ex& c : v1)
                 c = c.subs(steps);
             for (const auto& [axis, e] : dirs) {
-                const ex before = impactgen::tidy(dot(v0, e)), after = impactgen::tidy(dot(v1, e));
+                // roots merged before and after normal(), which keeps sqrt(3) sqrt(6) apart
+                auto exact = [](const ex& x) { return merge_roots(impactgen::tidy(merge_roots(tidy_expand(x)))); };
+                const ex before = exact(dot(v0, e)), after = exact(dot(v1, e));
                 const std::string& L = p.bodies[i].label;
                 math_row r = row(show(quantity_name("v", axis, L, false), quantity_tex("v", axis, L, false)), before);
                 math_row ra = row(show(quantity_name("v", axis, L, true), quantity_tex("v", axis, L, true)), after);
@@ -1039,9 +1044,22 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
         sec.rows({t0, t1, tl});
     }
     bool all_zero = true, all_small = true;
-    for (const ex& r : residuals(d, s, values)) {
+    for (ex r : residuals(d, s, values)) {
         if (r.is_zero())
             continue;
+        bool constant = true;
+        for (const_preorder_iterator it = r.preorder_begin(); it != r.preorder_end() && constant; ++it)
+            constant = !is_a<symbol>(*it);
+        if (constant && !is_a<numeric>(r)) {
+            // unlike roots GiNaC keeps apart (sqrt(2) sqrt(3) - sqrt(6)): merged, then exact
+            r = impactgen::tidy(merge_roots(tidy_expand(r)));
+            if (r.is_zero())
+                continue;
+            const long saved = Digits;
+            Digits = 60;
+            r = r.evalf();
+            Digits = saved;
+        }
         all_zero = false;
         // a 60-digit float residual of an irrational problem: zero to 40 digits
         const bool small = is_a<numeric>(r) && abs(ex_to<numeric>(r)) < numeric(1, 10).power(40);

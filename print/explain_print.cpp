@@ -1248,7 +1248,22 @@ std::string explain_latex(const document& doc)
         }
     }
     os << "\n\\end{document}\n";
-    return os.str();
+    // Every character outside ASCII has been mapped (tex_words) or escaped; one that has not
+    // (a body named μ set in \\text{} or in the figure's labels) would stop pdflatex with an
+    // error: refuse it here, as tex_words does, naming it.
+    const std::string out = os.str();
+    for (std::size_t k = 0; k < out.size(); ++k)
+        if (static_cast<unsigned char>(out[k]) >= 0x80) {
+            std::size_t n = 1;
+            while (k + n < out.size() && (static_cast<unsigned char>(out[k + n]) & 0xC0) == 0x80)
+                ++n;
+            const std::size_t from = out.rfind('\n', k), to = out.find('\n', k);
+            const std::string line = out.substr(from == std::string::npos ? 0 : from + 1,
+                                                (to == std::string::npos ? out.size() : to) - (from == std::string::npos ? 0 : from + 1));
+            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" + names::display_text(out.substr(k, n)) +
+                                        "\" (in \"" + names::display_text(line, 60) + "\"); use ASCII names for --format latex");
+        }
+    return out;
 }
 
 } // namespace impactgen::print

@@ -130,9 +130,24 @@ derivation derive(const problem& p, const derive_options& options)
     } else {
         const ex length2 = tidy(dot(p.contact.normal, p.contact.normal));
         d.normal_length = root_of(length2);
-        const ex inverse = inverse_root_of(length2); // (1, 1) -> sqrt(2)/2, not 2^(-1/2)
+        // A rational normal scaled to its primitive integer direction first ((1e6, 1e6) ->
+        // (1, 1), (0.6, 0.8) -> (3, 4)), so that the root of its length stays small.
+        vec3 direction = p.contact.normal;
+        bool rational = true;
+        numeric denominators = 1, numerators = 0;
+        for (const ex& c : direction) {
+            rational = rational && is_a<numeric>(c) && ex_to<numeric>(c).is_rational();
+            if (rational && !c.is_zero()) {
+                denominators = lcm(denominators, ex_to<numeric>(c).denom());
+                numerators = gcd(numerators, ex_to<numeric>(c).numer());
+            }
+        }
+        if (rational && !numerators.is_zero())
+            for (ex& c : direction)
+                c = c * denominators / numerators;
+        const ex inverse = inverse_root_of(tidy(dot(direction, direction))); // (1, 1) -> sqrt(2)/2, not 2^(-1/2)
         for (int i = 0; i < 3; ++i)
-            d.n_hat[i] = merge_roots(tidy(p.contact.normal[i] * inverse));
+            d.n_hat[i] = merge_roots(tidy(direction[i] * inverse));
     }
     contact_frame(d);
 

@@ -286,6 +286,26 @@ TEST(Cli, BadInputIsOneLineAndExitOne)
     fs::remove(bad);
     err = run(std::string(IMPACTGEN_CLI) + " explain planar --format pdf 2>&1 >/dev/null", status);
     EXPECT_NE(WEXITSTATUS(status), 0);
+    // A body named with a character LaTeX cannot set (μ, ö): refused for --format latex,
+    // naming the character, and nothing written -- never a document pdflatex stops on
+    // (the name reached \text{} and the figure's labels unescaped).
+    for (const char* name : {"\u03bc", "K\u00f6rper", "x\u2032"}) {
+        fs::path greek = fs::temp_directory_path() / ("impactgen-greek-" + std::to_string(::getpid()) + ".json");
+        std::ofstream(greek) << R"({"dimension": 2, "restitution": 0.5, "bodies": [
+            {"name": "a", "mass": 1, "position": [0, 0], "velocity": [1, 0]},
+            {"name": ")" << name << R"(", "mass": 2, "position": [1, 0], "velocity": [0, 0]}],
+            "contact": {"bodies": ["a", ")" << name << R"("], "point": [0.5, 0], "normal": [3, 4]}})";
+        std::string out = run(std::string(IMPACTGEN_CLI) + " explain " + greek.string() + " --format latex 2>/dev/null", status);
+        EXPECT_EQ(WEXITSTATUS(status), 1) << name;
+        EXPECT_TRUE(out.empty()) << name << ": " << out.substr(0, 200);
+        err = run(std::string(IMPACTGEN_CLI) + " explain " + greek.string() + " --format latex 2>&1 >/dev/null", status);
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        EXPECT_NE(err.find("no rendering for the character"), std::string::npos) << err;
+        // the other formats take the name as it is
+        run(std::string(IMPACTGEN_CLI) + " explain " + greek.string() + " --format html >/dev/null 2>&1", status);
+        EXPECT_EQ(WEXITSTATUS(status), 0) << name;
+        fs::remove(greek);
+    }
 }
 
 TEST(Canonical, SignsAndForms)
