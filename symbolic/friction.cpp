@@ -614,15 +614,30 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
         ts.push_back(two_pi * numeric(k, pieces));
         gs.push_back(k == pieces ? gs[0] : g(ts.back()));
     }
-    for (int k = 0; k < pieces; ++k) {
-        if (gs[static_cast<std::size_t>(k)].is_zero()) {
-            roots.push_back(ts[static_cast<std::size_t>(k)]);
-            continue;
+    // A root on a grid point: g there is zero up to the rounding of cos and sin (pi/2 is
+    // a grid point, and a sliding direction along e_b has it: cos(pi/2) evaluates to
+    // 1e-50, not 0). Recorded there; the pieces on either side are then isolated from
+    // 1e-9 away from it, or the piece without the sign change would be halved toward the
+    // endpoint until it looked like a double root. A grid point where g' vanishes as well
+    // is a double root.
+    const numeric noise = scale * tiny;
+    auto on_grid = [&](std::size_t k) { return abs(gs[k]) <= noise; };
+    const numeric step = numeric(1, 1000000000);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(pieces); ++k) {
+        numeric lo = ts[k], hi = ts[k + 1], glo = gs[k], ghi = gs[k + 1];
+        if (on_grid(k)) {
+            if (abs(dg(ts[k])) <= noise)
+                throw input_error(where + ": the sliding equation has a double root (two sliding directions merge): "
+                                          "the problem lies on the boundary between regimes and cannot be decided");
+            roots.push_back(ts[k]);
+            lo = ts[k] + step;
+            glo = g(lo);
         }
-        isolate(ts[static_cast<std::size_t>(k)], ts[static_cast<std::size_t>(k) + 1], gs[static_cast<std::size_t>(k)],
-                gs[static_cast<std::size_t>(k) + 1].is_zero() ? g(ts[static_cast<std::size_t>(k) + 1] - numeric(1, 1000000000))
-                                                               : gs[static_cast<std::size_t>(k) + 1],
-                0);
+        if (on_grid(k + 1)) {
+            hi = ts[k + 1] - step;
+            ghi = g(hi);
+        }
+        isolate(lo, hi, glo, ghi, 0);
     }
     return roots;
 }
@@ -683,10 +698,37 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
                     scale = std::max(scale, std::abs(ex_to<numeric>(rel.rhs()).to_double()));
             const double margin = scale * 1e-30;
             for (const numeric& t : roots) {
-                const lst dirv{c.dir_c == cos(t), c.dir_s == sin(t)};
+                // A direction along +-e_t or +-e_b (a motion in one plane: e.g. F3 of the hostile
+                // pass, a ball sliding along e_b) is taken exactly when the sliding equation
+                // vanishes there exactly: the answer is then exact, not floats with 1e-60 in
+                // the components that are zero.
+                ex exact_c, exact_s;
+                bool exact = false;
+                if (p.is_numeric()) {
+                    const numeric ct = cos(t), sn = sin(t);
+                    for (const auto& [c0, s0] : {std::pair<int, int>{1, 0}, {0, 1}, {-1, 0}, {0, -1}}) {
+                        if (abs(ct - c0) + abs(sn - s0) > numeric(1, 1000000))
+                            continue;
+                        lst exact_fixed;
+                        for (const step& st : c.sol.steps) {
+                            if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
+                                break;
+                            exact_fixed.append(st.sym == tidy(st.value.subs(exact_fixed)));
+                        }
+                        const ex g0 = tidy(c.angle_equation.subs(exact_fixed).subs(lst{c.dir_c == c0, c.dir_s == s0}));
+                        if (is_a<numeric>(g0) && g0.is_zero()) {
+                            exact = true;
+                            exact_c = c0;
+                            exact_s = s0;
+                        }
+                    }
+                }
+                const lst dirv = exact ? lst{c.dir_c == exact_c, c.dir_s == exact_s} : lst{c.dir_c == cos(t), c.dir_s == sin(t)};
                 lst vals;
-                for (const step& st : c.sol.steps)
-                    vals.append(st.sym == st.value.subs(dirv).subs(vals).evalf());
+                for (const step& st : c.sol.steps) {
+                    const ex v = st.value.subs(dirv).subs(vals);
+                    vals.append(st.sym == (exact ? tidy(v) : v.evalf()));
+                }
                 bool ok = true;
                 for (const regime_condition& rc : c.conditions) {
                     ex v = rc.value.subs(dirv).subs(vals).evalf();
@@ -699,12 +741,17 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
                     ok = ok && x > 0;
                 }
                 if (ok) {
-                    regime_case r = substituted(c, dirv, vals, true);
+                    regime_case r = substituted(c, dirv, vals, !exact);
                     r.needs_angle = false;
                     std::ostringstream angle;
                     angle.precision(6);
                     angle << t.to_double();
                     r.name = "slide at the angle " + angle.str() + " rad from e_t towards e_b";
+                    if (exact)
+                        r.name = exact_c.is_equal(1)    ? "slide along +e_t"
+                                 : exact_c.is_equal(-1) ? "slide along -e_t"
+                                 : exact_s.is_equal(1)  ? "slide along +e_b"
+                                                        : "slide along -e_b";
                     r.has_angle = true;
                     r.angle = t.to_double();
                     holding.push_back(r);

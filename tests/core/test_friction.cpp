@@ -735,3 +735,50 @@ TEST(Continuity, StickAndSlideMeetAtTheThreshold)
 }
 
 } // namespace
+
+// A 3-D slide whose direction is along +-e_t or +-e_b (motion in one plane): the sliding
+// equation's root sits on a grid point of the angle search (pi/2, pi), where cos and sin
+// evaluate to 1e-50 rather than 0. It was refused as a 'double root' (along e_b) or answered
+// in floats with 1e-41 in the components that are zero (along -e_t). Now: the slide, exactly,
+// and the same numbers as the problem's planar twin.
+TEST(Regression, PlanarMotionIn3DSlidesExactlyAsItsPlanarTwin)
+{
+    struct twin {
+        const char* three_d;
+        const char* planar;
+    };
+    const twin cases[] = {
+        // ball of mass 1, inertia 0.4, on the floor (normal +y), sliding along z (= e_b here)
+        {R"({"dimension":3,"restitution":0.5,"bodies":[{"name":"floor","mass":"inf","position":[0,-1,0],"velocity":[0,0,0]},
+             {"name":"ball","mass":1,"inertia":[0.4,0.4,0.4],"position":[0,1,0.5],"velocity":[0,-2,1]}],
+             "contact":{"bodies":["floor","ball"],"point":[0,0,0],"normal":[0,1,0],"friction":0.1}})",
+         nullptr},
+        // the same kind of impact in the xy plane (sliding along -e_t), against its planar twin
+        {R"({"dimension":3,"restitution":0.5,"bodies":[{"name":"floor","mass":"inf","position":[0,-1,0],"velocity":[0,0,0]},
+             {"name":"ball","mass":1,"inertia":[0.4,0.4,0.4],"position":[0.5,1,0],"velocity":[1,-2,0]}],
+             "contact":{"bodies":["floor","ball"],"point":[0,0,0],"normal":[0,1,0],"friction":0.2}})",
+         R"({"dimension":2,"restitution":0.5,"bodies":[{"name":"floor","mass":"inf","position":[0,-1],"velocity":[0,0]},
+             {"name":"ball","mass":1,"inertia":0.4,"position":[0.5,1],"velocity":[1,-2],"angular_velocity":0}],
+             "contact":{"bodies":["floor","ball"],"point":[0,0],"normal":[0,1],"friction":0.2}})"},
+    };
+    for (const twin& c : cases) {
+        const derivation d = derive(from_json(c.three_d));
+        const friction_solution f = solve_friction(d);
+        regime_case r;
+        ASSERT_NO_THROW(r = select_regime(d, f)) << c.three_d;
+        EXPECT_EQ(r.kind, regime::slide);
+        for (const body_state& b : r.sol.after)
+            for (const vec3* v : {&b.velocity, &b.angular_velocity})
+                for (const ex& x : *v)
+                    EXPECT_TRUE(GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_rational()) << "not exact: " << x;
+        if (!c.planar)
+            continue;
+        const derivation d2 = derive(from_json(c.planar));
+        const regime_case r2 = select_regime(d2, solve_friction(d2));
+        EXPECT_EQ(r2.kind, regime::slide);
+        EXPECT_TRUE((r.sol.normal_impulse - r2.sol.normal_impulse).is_zero()) << r.sol.normal_impulse << " vs " << r2.sol.normal_impulse;
+        for (int a = 0; a < 2; ++a)
+            EXPECT_TRUE((r.sol.after[1].velocity[a] - r2.sol.after[1].velocity[a]).is_zero()) << a;
+        EXPECT_TRUE((r.sol.after[1].angular_velocity[2] - r2.sol.after[1].angular_velocity[2]).is_zero());
+    }
+}
