@@ -295,6 +295,8 @@ bool vanishes_identically(const solution& s, const ex& value, const std::string&
     if (free.empty()) {
         ex v = value.subs(s.step_values(lst{}));
         decision d = decide(v);
+        if (d == decision::undecided) // unlike roots GiNaC keeps apart: sqrt(2) sqrt(3) - sqrt(6)
+            d = decide(tidy(merge_roots(tidy_expand(merge_roots(v)))));
         if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
             throw input_error(what + " " + decision_text(d));
         return d == decision::zero;

@@ -782,3 +782,20 @@ TEST(Regression, PlanarMotionIn3DSlidesExactlyAsItsPlanarTwin)
         EXPECT_TRUE((r.sol.after[1].angular_velocity[2] - r2.sol.after[1].angular_velocity[2]).is_zero());
     }
 }
+
+// A normal (sqrt(2), 1, 0) and a centre at (sqrt(2), 1, 0): the isotropy test of the contact
+// response meets sqrt(2) sqrt(3) - sqrt(6) and the like, which decide() alone leaves undecided;
+// it was refused ('cannot be decided exactly'). A ball struck through its centre: stick.
+TEST(Regression, RadicalNormalIsotropyIsDecided)
+{
+    const derivation d = derive(from_json(R"json({"dimension": 3, "restitution": 0.5,
+        "bodies": [{"name": "wall", "mass": "inf", "position": [-1, 0, 0], "velocity": [0, 0, 0]},
+                   {"name": "ball", "mass": 1, "inertia": [0.4, 0.4, 0.4], "position": ["sqrt(2)", 1, 0], "velocity": [-1, -1, 0.5]}],
+        "contact": {"bodies": ["wall", "ball"], "point": [0, 0, 0], "normal": ["sqrt(2)", 1, 0], "friction": 0.3}})json"));
+    friction_solution f;
+    ASSERT_NO_THROW(f = solve_friction(d));
+    EXPECT_TRUE(f.isotropic);
+    regime_case r;
+    ASSERT_NO_THROW(r = select_regime(d, f));
+    EXPECT_EQ(r.kind, regime::stick);
+}
