@@ -3,6 +3,7 @@
 // length. The closed form is compared with GiNaC's exact lsolve of the
 // derivation's own equations, with both Eigen solvers, and with the laws.
 #include "checks.hpp"
+#include "symbolic/decide.hpp"
 #include "sampling.hpp"
 
 #include <filesystem>
@@ -197,6 +198,44 @@ TEST(ProblemFiles, IrrationalUnitNormal)
     exact_state exact = state_of(s, GiNaC::lst{});
     auto lu = numeric::solve_momentum_system(numeric::from_problem<double>(p));
     EXPECT_LT(state_error(exact, state_of(lu)), 1e-12); // a 6x6 well-conditioned system: near round-off
+}
+
+// Roots as the notes write them: a rational under the root becomes a rational times the
+// root of a square-free integer, and integer roots in a product merge. Exact comparisons.
+TEST(Roots, SquareFreeAndMerged)
+{
+    using GiNaC::numeric;
+    using GiNaC::sqrt;
+    EXPECT_TRUE((root_of(numeric(21, 20)) - sqrt(ex(105)) / 10).is_zero()) << root_of(numeric(21, 20));
+    EXPECT_TRUE((inverse_root_of(numeric(8, 9)) - 3 * sqrt(ex(2)) / 4).is_zero()) << inverse_root_of(numeric(8, 9));
+    EXPECT_TRUE(root_of(numeric(49, 4)).is_equal(numeric(7, 2)));
+    EXPECT_TRUE((merge_roots(sqrt(ex(105)) * sqrt(ex(2730))) - 105 * sqrt(ex(26))).is_zero());
+    EXPECT_TRUE(merge_roots(sqrt(ex(2)) * sqrt(ex(3)) - sqrt(ex(6))).expand().is_zero());
+    const GiNaC::symbol x("x");
+    EXPECT_TRUE(merge_roots(x * sqrt(ex(2)) * sqrt(ex(2))).is_equal(2 * x));
+    EXPECT_TRUE(root_of(x).is_equal(sqrt(x))); // not a rational: as GiNaC writes it
+}
+
+// The unit normal of a rational normal comes from its primitive integer direction:
+// (1e6, 1e6) gives sqrt(2)/2 (it gave sqrt(2000000000000)/2000000), (0.2, 1, 0.1)
+// gives 2 sqrt(105)/105, ...; every component's square sums to 1 exactly.
+TEST(Roots, UnitNormalOfAScaledDirection)
+{
+    auto unit_normal = [](const std::string& normal, int dim) {
+        const std::string pos = dim == 2 ? "[0, 0]" : "[0, 0, 0]", far = dim == 2 ? "[1, 1]" : "[1, 1, 1]";
+        const std::string vel = dim == 2 ? "[1, 1]" : "[1, 1, 1]", rest = dim == 2 ? "[0, 0]" : "[0, 0, 0]";
+        return derive(read_problem("{\"dimension\": " + std::to_string(dim) + R"(, "restitution": 0.5, "bodies": [
+            {"name": "a", "mass": 1, "position": )" + pos + R"(, "velocity": )" + vel + R"(},
+            {"name": "b", "mass": 1, "position": )" + far + R"(, "velocity": )" + rest + R"(}],
+            "contact": {"bodies": ["a", "b"], "point": )" + pos + R"(, "normal": )" + normal + "}}", "inline")).n_hat;
+    };
+    const vec3 a = unit_normal("[1000000, 1000000]", 2);
+    EXPECT_TRUE(a[0].is_equal(GiNaC::sqrt(ex(2)) / 2)) << a[0];
+    const vec3 b = unit_normal("[0.2, 1, 0.1]", 3);
+    EXPECT_TRUE(b[0].is_equal(2 * GiNaC::sqrt(ex(105)) / 105)) << b[0];
+    EXPECT_TRUE(b[1].is_equal(2 * GiNaC::sqrt(ex(105)) / 21)) << b[1];
+    for (const vec3& n : {a, b})
+        EXPECT_TRUE((n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1).expand().is_zero());
 }
 
 TEST(ProblemFiles, SymbolicFileGivesFormulas)

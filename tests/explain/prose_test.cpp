@@ -259,3 +259,27 @@ TEST(Prose, LossAtElasticImpactAgainstAMovingWallThroughNamedSteps)
     // v_Bn is B's normal velocity before impact: r_b2 w_t2 + v_n2 - r_t2 w_b2 in the class's symbols.
     EXPECT_TRUE(detail::printable(vbn->rhs, 20)) << vbn->rhs;
 }
+
+// A numeric problem with the normal (sqrt(2), 1): substituted back, a residual came out as
+// sqrt(2) sqrt(3) - sqrt(6) and the document said "SOME EQUATION DOES NOT HOLD: this is a
+// bug" of a right answer. residuals() now merges the roots (else evaluates at 60 digits).
+TEST(Prose, RadicalNormalAnswerHoldsWhenSubstitutedBack)
+{
+    for (const char* normal : {R"n(["sqrt(2)", 1])n", R"n(["sqrt(2)", 1, 0])n"}) {
+        const bool planar = std::string(normal).find(", 0]") == std::string::npos;
+        const std::string json = std::string(R"json({"dimension": )json") + (planar ? "2" : "3") +
+                                 R"json(, "restitution": 0.5, "bodies": [
+            {"name": "a", "mass": 1, "inertia": )json" + (planar ? "0.1" : "[0.1, 0.1, 0.1]") +
+                                 R"json(, "position": )json" + (planar ? "[-1, -0.5]" : "[-1, -0.5, 0]") +
+                                 R"json(, "velocity": )json" + (planar ? "[2, 1]" : "[2, 1, 0]") + R"json(},
+            {"name": "b", "mass": 2, "inertia": )json" + (planar ? "0.3" : "[0.3, 0.3, 0.3]") +
+                                 R"json(, "position": )json" + (planar ? "[1, 0.3]" : "[1, 0.3, 0]") +
+                                 R"json(, "velocity": )json" + (planar ? "[0, 0]" : "[0, 0, 0]") + R"json(}],
+            "contact": {"bodies": ["a", "b"], "point": )json" + (planar ? "[0, 0]" : "[0, 0, 0]") +
+                                 R"json(, "normal": )json" + normal + "}}";
+        const document doc = explain_of(read_problem(json, "radical-normal"));
+        const std::string text = explain_text(doc);
+        EXPECT_EQ(text.find("DOES NOT HOLD"), std::string::npos) << normal;
+        EXPECT_NE(text.find("Substituted back, every equation"), std::string::npos) << normal;
+    }
+}
