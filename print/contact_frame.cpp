@@ -14,14 +14,6 @@ namespace {
 
 const char* const frame_axes[3] = {"t", "n", "b"};
 
-bool has_symbol(const ex& x)
-{
-    for (const_preorder_iterator it = x.preorder_begin(); it != x.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            return true;
-    return false;
-}
-
 int nodes(const ex& x)
 {
     int n = 0;
@@ -112,12 +104,6 @@ void name_inertia(contact_frame_view& v, const derivation& d, std::size_t which,
 
 } // namespace
 
-vec3 unit_vector(const vec3& a)
-{
-    const ex scale = inverse_root_of(tidy(dot(a, a)));
-    return {merge_roots(tidy_expand(a[0] * scale)), merge_roots(tidy_expand(a[1] * scale)), merge_roots(tidy_expand(a[2] * scale))};
-}
-
 ex contact_frame_view::apply(const ex& x) const
 {
     for (const auto& [world, frame] : to_frame)
@@ -167,16 +153,15 @@ contact_frame_view contact_frame_view_of(const derivation& d)
 
     // Unit e_t, e_n, e_b: fixed directions only.
     v.count = dim;
-    // |e_b| = |e_t| (e_b = e_t × e_n with e_n of length 1, e_t normal to it).
+    // The smooth-contact equations are dotted with t_dir and b_dir, of length |t_dir| each
+    // (b_dir = t_dir × e_n): 1/|t_dir| makes them the unit frame's.
     const ex inv_t_len = inverse_root_of(tidy(dot(d.t_dir, d.t_dir)));
-    for (int c = 0; c < 3; ++c) {
-        v.e[0][c] = tidy_expand(d.t_dir[c] * inv_t_len);
-        v.e[1][c] = d.n_hat[c];
-        v.e[2][c] = dim == 3 ? merge_roots(tidy_expand(d.b_dir[c] * inv_t_len)) : ex(c == 2 ? 1 : 0);
-    }
+    v.e[0] = d.e_t;
+    v.e[1] = d.n_hat;
+    v.e[2] = dim == 3 ? d.e_b : vec3{0, 0, 1};
     for (const vec3& e : v.e)
         for (const ex& c : e)
-            if (has_symbol(c))
+            if (!is_constant(c))
                 return world_only();
 
     // The world symbols to write through frame components: a vector of dim unknown

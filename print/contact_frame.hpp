@@ -60,9 +60,6 @@ struct contact_frame_view {
 /// equations longer (a normal with unlike radicals may not simplify); inactive
 /// otherwise, with `equations` then the derivation's own.
 contact_frame_view contact_frame_view_of(const derivation& d);
-/// a/|a| with the root written as the notes write it: (8/9, -2/9, -2/9) -> (2√2/3, -√2/6, -√2/6).
-vec3 unit_vector(const vec3& a);
-
 /// The inactive view: the derivation's unknowns and equations in world components.
 contact_frame_view world_components_view(const derivation& d);
 

@@ -402,9 +402,8 @@ std::string decimal_note(const ex& v)
     // A number, or a constant such as 16·√5/35 (no symbol in it), that is not an integer.
     if (is_a<numeric>(v) ? ex_to<numeric>(v).is_integer() : !is_a<GiNaC::mul>(v) && !is_a<GiNaC::add>(v) && !is_a<GiNaC::power>(v))
         return "";
-    for (const_preorder_iterator it = v.preorder_begin(); it != v.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            return "";
+    if (!is_constant(v))
+        return "";
     ex x = v.evalf();
     if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
         return "";
@@ -989,10 +988,10 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     if (!d.frame_is_world && d.prob.axes[0] != "t") {
         const problem& p = d.prob;
         std::vector<std::pair<std::string, vec3>> dirs;
-        dirs.push_back({"t", unit_vector(d.t_dir)});
+        dirs.push_back({"t", d.e_t});
         dirs.push_back({"n", d.n_hat});
         if (p.dimension == 3)
-            dirs.push_back({"b", unit_vector(d.b_dir)});
+            dirs.push_back({"b", d.e_b});
         std::vector<math_row> frame_rows;
         for (std::size_t i = 0; i < p.bodies.size(); ++i) {
             if (i != p.contact.body1 && i != p.contact.body2)
@@ -1044,22 +1043,9 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
         sec.rows({t0, t1, tl});
     }
     bool all_zero = true, all_small = true;
-    for (ex r : residuals(d, s, values)) {
+    for (const ex& r : residuals(d, s, values)) {
         if (r.is_zero())
             continue;
-        bool constant = true;
-        for (const_preorder_iterator it = r.preorder_begin(); it != r.preorder_end() && constant; ++it)
-            constant = !is_a<symbol>(*it);
-        if (constant && !is_a<numeric>(r)) {
-            // unlike roots GiNaC keeps apart (sqrt(2) sqrt(3) - sqrt(6)): merged, then exact
-            r = impactgen::tidy(merge_roots(tidy_expand(r)));
-            if (r.is_zero())
-                continue;
-            const long saved = Digits;
-            Digits = 60;
-            r = r.evalf();
-            Digits = saved;
-        }
         all_zero = false;
         // a 60-digit float residual of an irrational problem: zero to 40 digits
         const bool small = is_a<numeric>(r) && abs(ex_to<numeric>(r)) < numeric(1, 10).power(40);

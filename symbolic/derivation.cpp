@@ -150,6 +150,12 @@ derivation derive(const problem& p, const derive_options& options)
             d.n_hat[i] = merge_roots(tidy(direction[i] * inverse));
     }
     contact_frame(d);
+    const ex inverse_t = inverse_root_of(tidy(dot(d.t_dir, d.t_dir)));
+    for (int i = 0; i < 3; ++i)
+        d.e_t[i] = merge_roots(tidy(d.t_dir[i] * inverse_t));
+    d.e_b = dim == 3 ? cross(d.e_t, d.n_hat) : zero_vec();
+    for (ex& c : d.e_b)
+        c = merge_roots(tidy(c));
 
     // Unknowns and post-impact velocities.
     d.velocity_after.resize(p.bodies.size());

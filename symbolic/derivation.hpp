@@ -76,6 +76,10 @@ struct derivation {
     ex normal_length;                  ///< |n| (1 when normal_assumed_unit)
     bool normal_assumed_unit = false;  ///< derived with the normal taken as a unit vector (derive_options::unit_normal)
     vec3 t_dir, b_dir;                 ///< tangent directions (b_dir zero in 2-D); not unit in general
+    /// The unit tangents, e_t = t_dir/|t_dir| and e_b = e_t × n_hat (zero in 2-D), with their
+    /// roots as root_of writes them: the frame friction, explain's contact-frame view and its
+    /// tables use.
+    vec3 e_t, e_b;
     bool frame_is_world = false;       ///< e_t, e_n, e_b are world axes (up to sign)
 
     /// Velocity, angular velocity after impact: unknown symbols, or the

@@ -490,12 +490,8 @@ friction_solution solve_friction(const derivation& d)
         return f;
     }
     // The unit tangent frame.
-    const ex inverse_tl = inverse_root_of(tidy(dot(d.t_dir, d.t_dir)));
-    for (int a = 0; a < 3; ++a)
-        f.e_t[a] = tidy(d.t_dir[a] * inverse_tl);
-    f.e_b = cross(f.e_t, d.n_hat);
-    for (ex& x : f.e_b)
-        x = merge_roots(tidy(x));
+    f.e_t = d.e_t;
+    f.e_b = d.e_b;
     // Isotropic and uncoupled: t.K n = b.K n = t.K b = 0 and t.K t |b|^2 = b.K b |t|^2.
     const vec3 Kn = mul(sh.K, d.n_hat), Kt = mul(sh.K, d.t_dir), Kb = mul(sh.K, d.b_dir);
     const ex tests[4] = {dot(d.t_dir, Kn), dot(d.b_dir, Kn), dot(d.t_dir, Kb),
