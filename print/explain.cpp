@@ -1335,6 +1335,28 @@ problem detail::symbolized(const problem& p, lst& values, std::vector<std::strin
     return q;
 }
 
+std::optional<document> detail::taught_in_symbols(
+    const derivation& d, const std::function<document(const derivation&, const lst&, const std::vector<std::string>&)>& teach)
+{
+    lst values;
+    std::vector<std::string> units;
+    const problem twin = symbolized(d.prob, values, units);
+    if (values.nops() == 0)
+        return std::nullopt;
+    try {
+        derive_options opt;
+        opt.unit_normal = d.normal_assumed_unit;
+        document doc = teach(derive(twin, opt), values, units);
+        // the figure from the numbers, not from the symbols
+        for (block& b : doc.sections.front().blocks)
+            if (b.k == block::figure)
+                b.art = figure_of(d);
+        return doc;
+    } catch (const std::exception&) {
+        return std::nullopt; // the twin needs a decision only the numbers allow: taught with the numbers
+    }
+}
+
 namespace {
 
 document explain_document(const derivation& d, const solution& s, const worked_example* example)

@@ -4,6 +4,8 @@
 
 #include "explain.hpp"
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,6 +52,14 @@ struct friction_setup {
 /// (geometry kept), for teaching in symbols first; values gets symbol == number and
 /// units the unit of each (" kg", or "").
 problem symbolized(const problem& p, GiNaC::lst& values, std::vector<std::string>& units);
+
+/// A numeric problem taught in symbols first: its symbolized twin derived as d was (the
+/// same normal convention), teach(twin, values, units) builds the document, and the
+/// figure is drawn from the numbers. Empty when there is no number to name, or when the
+/// twin cannot be derived or taught (a decision that needs the numbers).
+std::optional<document> taught_in_symbols(
+    const derivation& d,
+    const std::function<document(const derivation& twin, const GiNaC::lst& values, const std::vector<std::string>& units)>& teach);
 
 /// Section 1: bodies, contact frame, unknowns and their count.
 section setup_section(const derivation& d, const friction_setup* friction = nullptr);

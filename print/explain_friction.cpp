@@ -1393,25 +1393,13 @@ document explain_friction(const derivation& d, const friction_solution& f)
     for (const vec3* v : {&d.n_hat, &f.e_t, &f.e_b})
         for (const ex& x : *v)
             rational_frame = rational_frame && is_a<numeric>(x) && ex_to<numeric>(x).is_rational();
-    if (d.prob.is_numeric() && rational_frame) {
-        problem_numbers numbers{&d, &f, {}, {}};
-        const problem twin = symbolized(d.prob, numbers.values, numbers.units);
-        if (numbers.values.nops() > 0) {
-            try {
-                derive_options opt;
-                opt.unit_normal = d.normal_assumed_unit;
-                const derivation d2 = derive(twin, opt);
-                const friction_solution f2 = solve_friction(d2);
-                document doc = friction_document(d2, f2, &numbers);
-                for (block& b : doc.sections.front().blocks) // the figure from the numbers
-                    if (b.k == block::figure)
-                        b.art = figure_of(d);
-                return doc;
-            } catch (const std::exception&) {
-                // fall through to the numbers
-            }
-        }
-    }
+    if (d.prob.is_numeric() && rational_frame)
+        if (std::optional<document> doc = taught_in_symbols(
+                d, [&](const derivation& twin, const lst& values, const std::vector<std::string>& units) {
+                    const problem_numbers numbers{&d, &f, values, units};
+                    return friction_document(twin, solve_friction(twin), &numbers);
+                }))
+            return *doc;
     return friction_document(d, f, nullptr);
 }
 
