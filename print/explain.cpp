@@ -675,6 +675,11 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
             sec.para(paragraph().t("A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
                                    "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$, and the spin of a sphere "
                                    "would be unchanged by it. The bodies are therefore taken as particles, without angular velocity unknowns."));
+        // In 3-D, the example that keeps the spins (its solution is checked by Prose.SpinningSpheres...).
+        if (both_particles && dim == 3)
+            sec.para(paragraph().t("Kept as spinning spheres instead (inertia $2 m R²/5$ about every diameter, 12 unknowns: "
+                                   "the example spinning-spheres.json in examples/problems of impactgen's sources), the same "
+                                   "equations find every spin unchanged, $~ω′ = ~ω$, and the same velocities $~v′_C$."));
         else if (both_rigid)
             sec.para(paragraph().t("A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
                                    "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$. The angular momentum "

@@ -30,6 +30,7 @@
 #include "planar.hpp"
 #include "puck_block_34.hpp"
 #include "puck_block_34_const.hpp"
+#include "spinning_spheres.hpp"
 #include "wall_oblique_3d.hpp"
 
 #include <gtest/gtest.h>
@@ -584,6 +585,7 @@ TEST(CodegenVerify, WallOblique3d) { verify({"wall-oblique-3d.json", opts(), GEN
 TEST(CodegenVerify, Pinned3d) { verify({"pinned-3d.json", opts(), GEN_FUNCS(pinned_3d)}); }
 TEST(CodegenVerify, PuckBlock34) { verify({"puck-block-34.json", opts("v_x_puck,v_y_puck,w_z_puck,m_puck"), GEN_FUNCS(puck_block_34)}); }
 TEST(CodegenVerify, PuckBlock34Constant) { verify({"puck-block-34.json", opts(), GEN_FUNCS(puck_block_34_const)}); }
+TEST(CodegenVerify, SpinningSpheres) { verify({"spinning-spheres.json", opts(), GEN_FUNCS(spinning_spheres)}); }
 TEST(CodegenVerify, HingedRod) { verify({"hinged-rod.json", opts("v_x_ball,m_ball,e"), GEN_FUNCS(hinged_rod)}); }
 
 // Bad inputs get a status and the state unchanged: velocities as given (a NaN

@@ -283,3 +283,41 @@ TEST(Prose, RadicalNormalAnswerHoldsWhenSubstitutedBack)
         EXPECT_NE(text.find("Substituted back, every equation"), std::string::npos) << normal;
     }
 }
+
+// central-oblique is two particles; explain says why and names the example that keeps the
+// spins: two solid spheres (I = 2 m R²/5), 12 unknowns. The example's solution must find
+// every spin unchanged and the centres' velocities of the particle class.
+TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
+{
+    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/spinning-spheres.json");
+    const derivation d = derive(p);
+    EXPECT_EQ(d.count_unknowns(), 12u);
+    const solution s = solve(d);
+    ASSERT_EQ(s.after.size(), 2u);
+    auto sym = [&](const char* name) {
+        for (const symbol& x : p.parameters())
+            if (x.get_name() == name)
+                return ex(x);
+        ADD_FAILURE() << "no symbol " << name;
+        return ex(0);
+    };
+    const ex mA = sym("mA"), mB = sym("mB"), e = sym("e"), vA = sym("vyA"), vB = sym("vyB");
+    const char* spins[2][3] = {{"wxA", "wyA", "wzA"}, {"wxB", "wyB", "wzB"}};
+    for (std::size_t i = 0; i < 2; ++i)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_TRUE(normal(s.expand_steps(s.after[i].angular_velocity[c]) - sym(spins[i][c])).is_zero())
+                << "body " << i << " spin " << c << ": " << s.expand_steps(s.after[i].angular_velocity[c]);
+    // The particles' answer: v'_A = v_A + (1 + e) mB (v_B - v_A)/(mA + mB) along e_n, and so on.
+    const ex P = (1 + e) * mA * mB * (vA - vB) / (mA + mB);
+    EXPECT_TRUE(normal(s.expand_steps(s.after[0].velocity[1]) - (vA - P / mA)).is_zero());
+    EXPECT_TRUE(normal(s.expand_steps(s.after[1].velocity[1]) - (vB + P / mB)).is_zero());
+    EXPECT_TRUE(normal(s.expand_steps(s.after[0].velocity[0]) - sym("vxA")).is_zero());
+    EXPECT_TRUE(normal(s.expand_steps(s.after[1].velocity[2]) - sym("vzB")).is_zero());
+    // Every equation holds with the solution substituted.
+    for (const ex& r : residuals(d, s))
+        EXPECT_TRUE(r.is_zero()) << r;
+    // The class's own document names the example.
+    const std::string text = explain_text(explain_of(find_named_class("central-oblique")->build()));
+    EXPECT_NE(text.find("spinning-spheres.json"), std::string::npos);
+    EXPECT_TRUE(fs::exists(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/problems/spinning-spheres.json"));
+}

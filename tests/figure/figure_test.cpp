@@ -511,6 +511,7 @@ TEST(FigureGeometry, ShapesFollowTheProblem)
         {"examples/problems/hinged-rod.json", {shape::disc, shape::rod}},
         {"examples/problems/pinned-3d.json", {shape::disc, shape::plate}},
         {"examples/problems/puck-block-34.json", {shape::disc, shape::box}},
+        {"examples/problems/spinning-spheres.json", {shape::disc, shape::disc}},
         // The box's centre lies a little on the wall's side of the tangent plane: a marker.
         {"examples/problems/wall-oblique-3d.json", {shape::marker, shape::wall}},
         {"tests/explain/rod-energy-gain.json", {shape::wall, shape::rod}},
