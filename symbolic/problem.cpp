@@ -78,9 +78,19 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
     }
     if (digits.empty())
         throw input_error(where + ": \"" + names::display_text(lit) + "\" is not a number");
+    // A number below 10^-400 in magnitude underflows (it is not infinite): said so, apart.
+    auto too_small = [&]() {
+        return input_error(where + ": " + names::display_text(lit) +
+                           " is too small: its magnitude is below 10^-400, the smallest non-zero number read (write 0 for zero)");
+    };
     if (!expo.empty()) {
-        if (expo.size() > 6)
+        if (expo.size() > 6) {
+            if (digits.find_first_not_of('0') == std::string::npos)
+                return numeric(0); // 0e-9999999 is 0
+            if (expo[0] == '-')
+                throw too_small();
             throw input_error(where + ": the exponent of " + names::display_text(lit) + " is out of range (non-finite number)");
+        }
         scale += std::stol(expo);
     }
     if (digits.size() > limits::expression_length)
@@ -89,7 +99,9 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
     // The magnitude is about 10^(scale + significant digits): 0.47 with 420 digits is fine.
     const std::size_t first = digits.find_first_not_of('0');
     const long magnitude = first == std::string::npos ? 0 : scale + static_cast<long>(digits.size() - first);
-    if (magnitude > 400 || magnitude < -400)
+    if (magnitude < -400)
+        throw too_small();
+    if (magnitude > 400)
         throw input_error(where + ": " + names::display_text(lit) + " is out of the range of double (non-finite number)");
     numeric value(digits.c_str());
     value *= pow(numeric(10), numeric(scale));

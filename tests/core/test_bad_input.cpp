@@ -387,6 +387,34 @@ TEST(Reader, ZeroFactorsAreNumbers)
     }
 }
 
+// A number below 10^-400 underflows: it is refused as too small, not as "out of the range
+// of double (non-finite number)", which it is not; a zero with any exponent is 0.
+TEST(Reader, UnderflowIsTooSmallNotNonFinite)
+{
+    // The literal is put in the text as written (nlohmann's json would read it as the double 0).
+    auto with_literal = [](const char* key_path, const char* literal) {
+        std::string text = with(valid(), [&](json& j) { j[json::json_pointer(key_path)] = "PLACEHOLDER"; });
+        text.replace(text.find("\"PLACEHOLDER\""), 13, literal);
+        return text;
+    };
+    for (const char* tiny : {"1e-1000", "-2.5e-9999999", "0.001e-399"}) {
+        try {
+            read_problem(with_literal("/contact/normal/1", tiny), "case.json");
+            ADD_FAILURE() << tiny << " accepted";
+        } catch (const input_error& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find("too small"), std::string::npos) << tiny << ": " << msg;
+            EXPECT_NE(msg.find("contact.normal[1]"), std::string::npos) << tiny << ": " << msg;
+            EXPECT_EQ(msg.find("non-finite"), std::string::npos) << tiny << ": " << msg;
+        }
+    }
+    for (const char* zero : {"0e-9999999", "0.0e-1000"})
+        EXPECT_TRUE(read_problem(with_literal("/bodies/0/position/0", zero), "case.json").bodies[0].position[0].is_zero()) << zero;
+    // 1e-400 itself is read exactly.
+    const GiNaC::ex x = read_problem(with_literal("/bodies/0/position/0", "1e-400"), "case.json").bodies[0].position[0];
+    EXPECT_TRUE((x - GiNaC::pow(GiNaC::numeric(10), -400)).is_zero()) << x;
+}
+
 TEST(Reader, TinyTimesHugeIsOne)
 {
     // The reader's magnitude bound counts a small factor as shrinking a product: 1e-300*1e300
