@@ -566,6 +566,25 @@ ex stick_threshold_value(const context& c)
     return sqrt(pow(Ft, 2) + pow(Fb, 2)) / st.sol.normal_impulse;
 }
 
+// The notes write -(u + e u_n e_n) along e_n as -(1 + e) u_n: every sum that equals (1 + e) u_n
+// printed so (the value is the same; the step is not changed, nor the generated code).
+ex with_one_plus_e(const ex& x, const ex& e, const ex& un)
+{
+    if (un.is_zero() || !is_a<symbol>(e))
+        return x;
+    struct fold : map_function {
+        ex e, un;
+        fold(const ex& ee, const ex& uu) : e(ee), un(uu) {}
+        ex operator()(const ex& y) override
+        {
+            if (is_a<add>(y) && y.nops() == 2 && (y - (1 + e) * un).expand().is_zero())
+                return (1 + e) * un;
+            return y.map(*this);
+        }
+    } f(e, un);
+    return f(x);
+}
+
 section stick_section(const context& c)
 {
     const regime_case& st = c.stick();
@@ -575,8 +594,11 @@ section stick_section(const context& c)
     sec.rows({formula_row("K P = -(u + e u_n e_n)", "\\underline{\\underline{K}}\\,\\underline{P} = -(\\underline{u} + e\\,u_n\\,\\hat{\\underline{e}}_n)",
                           "$~P = -K⁻¹(~u + e u_n e_n)$: $K$ is positive definite, so $D_K = det K > 0$")});
     std::vector<math_row> steps;
-    for (std::size_t k = c.shared; k < st.sol.steps.size(); ++k)
-        steps.push_back(srow(c.p, st.sol.steps[k]));
+    for (std::size_t k = c.shared; k < st.sol.steps.size(); ++k) {
+        step shown = st.sol.steps[k];
+        shown.value = with_one_plus_e(shown.value, c.p.restitution, c.un());
+        steps.push_back(srow(c.p, shown));
+    }
     sec.rows(steps);
     sec.para(paragraph().t("$μ$ does not appear: the stick impulse does not depend on $μ$. If it sticks, the bodies leave with"));
     std::vector<math_row> unknowns;

@@ -417,3 +417,37 @@ TEST(FrictionExplain, SingularResponseIsRefusedInOneLine)
     EXPECT_NE(err.find("singular"), std::string::npos) << err;
     fs::remove(file);
 }
+
+// The stick impulse is printed as the notes write it, with (1 + e) u_n, never e·u_n + u_n;
+// the printed value is the step's own (the form changes, the value does not).
+TEST(FrictionExplain, StickImpulseWritesOnePlusE)
+{
+    for (const char* name : {"planar-friction", "noncentral-3d-friction"}) {
+        const explained x = explain_class(name);
+        const regime_case& stick = x.f.cases.front();
+        std::size_t seen = 0;
+        for (const math_row& r : rows_of(x.doc, "5.")) {
+            if (!is_a<symbol>(r.lhs) || ex_to<symbol>(r.lhs).get_name().rfind("P_", 0) != 0)
+                continue;
+            const impactgen::step* st = nullptr;
+            for (const impactgen::step& s : stick.sol.steps)
+                if (ex(s.sym).is_equal(r.lhs))
+                    st = &s;
+            ASSERT_NE(st, nullptr) << name << ": " << r.lhs;
+            EXPECT_TRUE((r.rhs - st->value).expand().is_zero()) << name << ": " << r.lhs;
+            bool one_plus_e = false, split = false;
+            for (const_preorder_iterator it = r.rhs.preorder_begin(); it != r.rhs.preorder_end(); ++it) {
+                if (!is_a<add>(*it) || it->nops() != 2)
+                    continue;
+                one_plus_e = one_plus_e || (*it - 1 - x.d.prob.restitution).is_zero();
+                // an add of two terms, both with u_n and one with e: e·u_n + u_n
+                split = split || (it->op(0).has(x.d.prob.restitution) != it->op(1).has(x.d.prob.restitution) &&
+                                  (*it - it->op(0) - it->op(1)).is_zero() && it->op(0).subs(x.d.prob.restitution == 0).is_equal(it->op(1).subs(x.d.prob.restitution == 0)));
+            }
+            EXPECT_TRUE(one_plus_e) << name << ": " << r.lhs << " = " << r.rhs;
+            EXPECT_FALSE(split) << name << ": " << r.lhs << " = " << r.rhs;
+            ++seen;
+        }
+        EXPECT_GE(seen, 2u) << name;
+    }
+}
