@@ -450,9 +450,14 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
 
     const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
                                 : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
-    sec.para(paragraph()
-                 .w(kind + ": ").t("point $A$ of ").w(body_ref(p, i1)).t(" strikes point $B$ of ").w(body_ref(p, i2))
-                 .t(". The impulsive forces change the velocities instantly without changing the positions."));
+    // The movable body strikes the immovable one (as the figure's caption says it).
+    paragraph strikes;
+    strikes.w(kind + ": ");
+    if (p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass)
+        strikes.t("point $B$ of ").w(body_ref(p, i2)).t(" strikes point $A$ of ").w(body_ref(p, i1));
+    else
+        strikes.t("point $A$ of ").w(body_ref(p, i1)).t(" strikes point $B$ of ").w(body_ref(p, i2));
+    sec.para(strikes.t(". The impulsive forces change the velocities instantly without changing the positions."));
     if (is_a<symbol>(p.restitution))
         sec.para(paragraph().t("Newton's coefficient of restitution is ").m(p.restitution).t(" ($0 ≤ e ≤ 1$)."));
     else

@@ -321,3 +321,21 @@ TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
     EXPECT_NE(text.find("spinning-spheres.json"), std::string::npos);
     EXPECT_TRUE(fs::exists(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/problems/spinning-spheres.json"));
 }
+
+// Against an immovable body (infinite mass) as body 1, the set-up says that the movable body
+// strikes it, as the figure's caption does; otherwise body 1 strikes body 2.
+TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
+{
+    auto flat = [](std::string s) {
+        std::string out;
+        for (char ch : s)
+            if (!(ch == '\n' || ch == ' ') || (!out.empty() && out.back() != ' '))
+                out += (ch == '\n' ? ' ' : ch);
+        return out;
+    };
+    const std::string floor = flat(explain_text(explain_of(find_named_class("ball-floor-friction")->build())));
+    EXPECT_NE(floor.find("point B of body 2 (ball) strikes point A of body 1 (floor)"), std::string::npos) << floor.substr(0, 400);
+    EXPECT_NE(floor.find("ball (disc) strikes floor (wall)"), std::string::npos);
+    const std::string planar = flat(explain_text(explain_of(find_named_class("planar")->build())));
+    EXPECT_NE(planar.find("point A of body 1 strikes point B of body 2"), std::string::npos) << planar.substr(0, 400);
+}
