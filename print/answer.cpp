@@ -3,6 +3,8 @@
 #include "expression.hpp"
 #include "names/escape.hpp"
 
+#include "symbolic/decide.hpp"
+
 #include <sstream>
 #include <stdexcept>
 
@@ -19,11 +21,22 @@ struct valuer {
         ex v = tidy(s.expand_steps(e));
         if (symbolic)
             return parser_syntax(v);
+        double x = 0;
         try {
-            return to_double(v);
+            x = to_double(v);
         } catch (const std::invalid_argument&) {
             throw input_error("answer: " + key + ": the exact value is out of the range of double (the inputs' scales overflow it)");
         }
+        // A non-zero value below the smallest subnormal double (4.9e-324) would be written as 0:
+        // refused as the overflow is (a subnormal is written, with the digits it has).
+        if (x == 0 && !v.is_zero()) {
+            const decision sign = decide(v);
+            if (sign == decision::positive || sign == decision::negative)
+                throw input_error("answer: " + key +
+                                  ": the exact value is not 0 but below the range of double (it would be written as 0: the "
+                                  "inputs' scales underflow it)");
+        }
+        return x;
     }
 };
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -29,8 +30,25 @@ double to_double(const ex& e)
 
 std::string decimal(const ex& e)
 {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.15g", to_double(e));
+    char buf[96];
+    const double d = to_double(e);
+    if (std::fabs(d) < std::numeric_limits<double>::min()) {
+        // Below the normal range of double (a subnormal, or 0 for a value that is not): the
+        // mantissa and the exponent apart, from the exact value's float, never "0" for x != 0.
+        const ex v = e.evalf();
+        if (is_a<numeric>(v) && !ex_to<numeric>(v).is_zero()) {
+            const numeric x = ex_to<numeric>(v);
+            long k = std::lround(std::floor(ex_to<numeric>(log(abs(x)) / log(numeric(10))).to_double()));
+            double m = ex_to<numeric>(x / numeric(10).power(k)).to_double();
+            if (std::fabs(m) >= 10 - 5e-15) { // rounded up to 10
+                m /= 10;
+                ++k;
+            }
+            std::snprintf(buf, sizeof buf, "%.15ge%ld", m, k);
+            return buf;
+        }
+    }
+    std::snprintf(buf, sizeof buf, "%.15g", d);
     return buf;
 }
 

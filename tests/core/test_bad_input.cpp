@@ -439,6 +439,35 @@ TEST(Cli, OverflowingAnswerNamesTheKey)
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+// The symmetric case: an answer whose exact value is not 0 but below the smallest subnormal
+// double would be written as 0: refused in one line naming the key (a subnormal is written:
+// Friction.SubnormalValuesAreNotPrintedAsZero).
+TEST(Cli, UnderflowingAnswerNamesTheKey)
+{
+    std::string file = ::testing::TempDir() + "impactgen_underflow_" + std::to_string(getpid()) + ".json";
+    std::ofstream(file) << with(valid(), [](json& j) {
+        j["pivots"] = json::array();
+        j["bodies"][0]["mass"] = "1e-300";
+        j["bodies"][0]["velocity"] = {"1e-300", 0};
+    });
+    run_result r = run_cli("solve --json " + file);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("answer: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("below the range of double"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    // The text answer prints the exact value and its decimal, never "= 0" for it.
+    run_result t = run_cli("solve " + file);
+    EXPECT_EQ(t.code, 0) << t.err;
+    const std::size_t at = t.out.find("normal impulse");
+    ASSERT_NE(at, std::string::npos) << t.out;
+    const std::string line = t.out.substr(at, t.out.find('\n', at) - at);
+    EXPECT_NE(line.find("e-60"), std::string::npos) << line; // about 1.5e-600
+    EXPECT_EQ(line.find("= 0"), std::string::npos) << line;
+    // An exact 0 stays 0 (a body at rest that the impulse does not reach).
+    std::ofstream(file) << with(valid(), [](json& j) { j["pivots"] = json::array(); });
+    EXPECT_EQ(run_cli("solve --json " + file).code, 0);
+}
+
 TEST(Cli, DefaultFunctionNameFromAnyFileName)
 {
     // A stem that is one of the header's own names (n, out, ok) or starts with a digit.
