@@ -18,7 +18,7 @@ struct valuer {
     bool symbolic;
     nlohmann::ordered_json operator()(const ex& e, const std::string& key) const
     {
-        ex v = tidy(s.expand_steps(e));
+        ex v = surd_form(tidy(s.expand_steps(e)));
         if (symbolic)
             return parser_syntax(v);
         double x = 0;
@@ -105,7 +105,7 @@ std::string answer_text(const derivation& d, const solution& s, const regime_cas
     const problem& p = d.prob;
     std::ostringstream os;
     auto show = [&](const ex& e) {
-        ex v = tidy(s.expand_steps(e));
+        ex v = surd_form(tidy(s.expand_steps(e)));
         if (is_a<numeric>(v) && !ex_to<numeric>(v).is_rational()) // a float: a root found numerically
             return decimal(v);
         std::string exact = parser_syntax(v);

@@ -967,7 +967,7 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     for (std::size_t i = 0; i < s.steps.size(); ++i) {
         // The step's formula with the inputs substituted, then its number.
         ex formula = s.steps[i].value.subs(values);
-        ex v = impactgen::tidy(steps.op(i).rhs());
+        ex v = surd_form(impactgen::tidy(steps.op(i).rhs()));
         math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
         if (!is_a<numeric>(formula) && printable(formula)) {
             out.rhs = formula;
@@ -981,7 +981,7 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
     lst unknown_numbers;
     std::vector<math_row> answers;
     for (std::size_t i = 0; i < d.unknowns.size(); ++i) {
-        ex v = impactgen::tidy(s.unknown_values.op(i).rhs().subs(values).subs(steps));
+        ex v = surd_form(impactgen::tidy(s.unknown_values.op(i).rhs().subs(values).subs(steps)));
         unknown_numbers.append(d.unknowns[i].sym == v);
         math_row r = row(d.unknowns[i].sym, v, "", decimal_note(v));
         const unknown_kind kind = d.unknowns[i].kind;
@@ -1012,7 +1012,7 @@ void numbers_walk(section& sec, const derivation& d, const solution& s, const ex
                 c = c.subs(steps);
             for (const auto& [axis, e] : dirs) {
                 // roots merged before and after normal(), which keeps sqrt(3) sqrt(6) apart
-                auto exact = [](const ex& x) { return merge_roots(impactgen::tidy(merge_roots(tidy_expand(x)))); };
+                auto exact = [](const ex& x) { return surd_form(impactgen::tidy(merge_roots(tidy_expand(x)))); };
                 const ex before = exact(dot(v0, e)), after = exact(dot(v1, e));
                 const std::string& L = p.bodies[i].label;
                 math_row r = row(show(quantity_name("v", axis, L, false), quantity_tex("v", axis, L, false)), before);

@@ -1,9 +1,12 @@
 #include "decide.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <random>
+
+#include <sstream>
 
 namespace impactgen {
 using namespace GiNaC;
@@ -340,6 +343,82 @@ ex merge_roots(const ex& e)
         return m(e);
     } catch (const std::exception&) {
         return e;
+    }
+}
+
+namespace {
+// sqrt(k) of a positive integer k (below the bound merge_roots takes).
+bool is_integer_root(const ex& f)
+{
+    return is_a<power>(f) && is_a<numeric>(f.op(0)) && ex_to<numeric>(f.op(0)).is_pos_integer() &&
+           f.op(1).is_equal(numeric(1, 2)) && ex_to<numeric>(f.op(0)) < numeric(1000000);
+}
+
+// Only rationals, + - * /, integer powers and square roots of positive integers.
+bool is_surd_constant(const ex& e)
+{
+    if (is_a<numeric>(e))
+        return ex_to<numeric>(e).is_rational();
+    if (is_a<power>(e))
+        return is_integer_root(e) ||
+               (is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_integer() && is_surd_constant(e.op(0)));
+    if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) {
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            if (!is_surd_constant(e.op(k)))
+                return false;
+        return true;
+    }
+    return false;
+}
+
+ex merged_expanded(const ex& e) { return merge_roots(merge_roots(e.expand()).expand()).expand(); }
+} // namespace
+
+ex surd_form(const ex& x)
+{
+    if (!is_surd_constant(x))
+        return x;
+    try {
+        const ex nd = merge_roots(x).normal().numer_denom();
+        ex n = nd.op(0), d = merged_expanded(nd.op(1));
+        // numerator and denominator each a sum of distinct roots
+        const ex expanded = merged_expanded(n) / d;
+        // One root of the denominator at a time: d = A + B sqrt(k) times A - B sqrt(k) is
+        // A^2 - B^2 k, free of sqrt(k) (after merging, no term holds two roots).
+        for (int step = 0; step < 4; ++step) {
+            ex root;
+            for (const_preorder_iterator it = d.preorder_begin(); it != d.preorder_end(); ++it)
+                if (is_integer_root(*it)) {
+                    root = *it;
+                    break;
+                }
+            if (root.is_zero())
+                break;
+            const symbol t;
+            const ex dt = d.subs(root == t);
+            if (dt.degree(t) > 1 || dt.ldegree(t) < 0)
+                return x;
+            const ex A = dt.coeff(t, 0), B = dt.coeff(t, 1);
+            n = merged_expanded(n * (A - B * root));
+            d = merged_expanded(A * A - B * B * root.op(0));
+        }
+        // The merged form as it was, or the rationalised one when it has no more digits (its
+        // integers grow with each conjugate: 1936 sqrt(3)(sqrt(3) + 2 sqrt(6))/(15 (179507 +
+        // 8316 sqrt(2))) stays, 1/(1 + sqrt(2)) becomes sqrt(2) - 1).
+        auto digits = [](const ex& e) {
+            std::ostringstream os;
+            os << e;
+            const std::string t = os.str();
+            return std::count_if(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+        };
+        const ex merged = merge_roots(x);
+        const ex best = digits(expanded) < digits(merged) ? expanded : merged;
+        if (!is_a<numeric>(d) || d.is_zero())
+            return best;
+        const ex rationalised = (merged_expanded(n) / d).expand();
+        return digits(rationalised) <= digits(best) ? rationalised : best;
+    } catch (const std::exception&) {
+        return x;
     }
 }
 

@@ -75,6 +75,11 @@ GiNaC::ex inverse_root_of(const GiNaC::ex& q);
 /// taken out: sqrt(105) sqrt(2730) -> 105 sqrt(26) (GiNaC keeps unlike roots apart).
 /// Cheap: one pass over e; other powers are left alone.
 GiNaC::ex merge_roots(const GiNaC::ex& e);
+/// A constant made of rationals and square roots of integers as a textbook writes it: the
+/// roots in each product merged, and the denominator rationalised (one root at a time, times
+/// its conjugate: 1/(1 + sqrt(2)) -> sqrt(2) - 1) when that prints no longer. The same value.
+/// Anything else (symbols, other functions, more than 4 roots in a denominator) unchanged.
+GiNaC::ex surd_form(const GiNaC::ex& x);
 
 /// Whether e (with symbols) is identically zero: exact evaluation at random
 /// positive rational points (fixed seed); a non-zero value proves it is not,

@@ -468,6 +468,24 @@ TEST(Cli, UnderflowingAnswerNamesTheKey)
     EXPECT_EQ(run_cli("solve --json " + file).code, 0);
 }
 
+// An answer with roots prints them merged (sqrt(3)*sqrt(6) is 3*sqrt(2)), in solve's text and
+// in the JSON with exact values, and explain's numbers the same.
+TEST(Cli, RadicalAnswersMergeTheirRoots)
+{
+    std::string file = ::testing::TempDir() + "impactgen_radical_" + std::to_string(getpid()) + ".json";
+    std::ifstream in(IMPACTGEN_SOURCE_DIR "/examples/problems/plate-struck-obliquely.json");
+    json j = json::parse(in);
+    j["contact"]["normal"] = {"sqrt(2)", 1, 0};
+    std::ofstream(file) << j.dump();
+    for (const char* cmd : {"solve ", "explain "}) {
+        run_result r = run_cli(cmd + file);
+        ASSERT_EQ(r.code, 0) << cmd << r.err;
+        EXPECT_EQ(r.out.find("sqrt(3)*sqrt(6)"), std::string::npos) << cmd;
+        EXPECT_EQ(r.out.find("√3·√6"), std::string::npos) << cmd;
+        EXPECT_NE(r.out.find("8316"), std::string::npos) << cmd; // 179507 + 8316 sqrt(2) in the denominators
+    }
+}
+
 TEST(Cli, DefaultFunctionNameFromAnyFileName)
 {
     // A stem that is one of the header's own names (n, out, ok) or starts with a digit.

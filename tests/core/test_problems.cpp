@@ -219,6 +219,30 @@ TEST(Roots, SquareFreeAndMerged)
 // The unit normal of a rational normal comes from its primitive integer direction:
 // (1e6, 1e6) gives sqrt(2)/2 (it gave sqrt(2000000000000)/2000000), (0.2, 1, 0.1)
 // gives 2 sqrt(105)/105, ...; every component's square sums to 1 exactly.
+// surd_form: the same value, roots merged, the denominator rationalised when that has no more
+// digits; symbols and other functions left alone.
+TEST(Roots, SurdFormMergesAndRationalises)
+{
+    using GiNaC::sqrt;
+    const ex r2 = sqrt(ex(2)), r3 = sqrt(ex(3)), r6 = sqrt(ex(6));
+    EXPECT_TRUE(surd_form(1 / (1 + r2)).is_equal(r2 - 1)) << surd_form(1 / (1 + r2));
+    EXPECT_TRUE(surd_form(2 / r2).is_equal(r2)) << surd_form(2 / r2);
+    // sqrt(3) sqrt(6) merged to 3 sqrt(2), the big denominator kept (its conjugate has more digits)
+    const ex n = 418176 * (r3 + 2 * r6) / (25 * (179507 + 2772 * r3 * r6));
+    const ex f = surd_form(n);
+    EXPECT_FALSE(f.has(r6 * r3)) << f;
+    std::ostringstream os;
+    os << f;
+    EXPECT_EQ(os.str().find("sqrt(3)*sqrt(6)"), std::string::npos) << f;
+    EXPECT_NE(os.str().find("8316"), std::string::npos) << f; // 2772 * 3
+    // the same value exactly: (f - n) times the conjugate pair is 0 after merging
+    EXPECT_TRUE(surd_form(f - n).is_zero()) << surd_form(f - n);
+    const GiNaC::symbol m("m");
+    EXPECT_TRUE(surd_form(1 / (m + r2)).is_equal(1 / (m + r2)));
+    EXPECT_TRUE(surd_form(GiNaC::sin(ex(1)) / (1 + r2)).is_equal(GiNaC::sin(ex(1)) / (1 + r2)));
+    EXPECT_TRUE(surd_form(ex(GiNaC::numeric(3, 4))).is_equal(GiNaC::numeric(3, 4)));
+}
+
 TEST(Roots, UnitNormalOfAScaledDirection)
 {
     auto unit_normal = [](const std::string& normal, int dim) {
