@@ -14,9 +14,48 @@ using namespace GiNaC;
 
 std::string parser_syntax(const ex& e) { return canonical_parser(e); }
 
+namespace {
+// GiNaC's Digits for one evaluation, restored however it ends.
+struct digits_scope {
+    long saved;
+    explicit digits_scope(long d) : saved(Digits) { Digits = d; }
+    ~digits_scope() { Digits = saved; }
+};
+
+// The value of a constant to double precision: exact for a rational; otherwise evaluated at
+// 40, 80, ... digits until two evaluations agree to 1e-18 relative, as a difference of near
+// values (10^8 - sqrt(10^16 + 1) = -5e-9) cancels the leading digits of a short evaluation.
+ex evaluated(const ex& e)
+{
+    if (is_a<numeric>(e))
+        return e.evalf();
+    ex last;
+    bool have = false;
+    for (long digits = 40; digits <= 1280; digits *= 2) {
+        digits_scope scope(digits);
+        const ex v = e.evalf();
+        if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
+            return v;
+        const numeric a = ex_to<numeric>(v);
+        if (have) {
+            const numeric b = ex_to<numeric>(last);
+            if ((a.is_zero() && b.is_zero()) || (!a.is_zero() && abs(a - b) <= abs(a) * numeric(1, 10).power(18)))
+                return v;
+        }
+        last = v;
+        have = true;
+    }
+    // No two evaluations agree: a value that is 0 (sqrt(2) sqrt(8) - 4), or a cancellation
+    // deeper than 1280 digits; 0 only where decided.
+    if (decide(e) == decision::zero)
+        return numeric(0);
+    return last;
+}
+} // namespace
+
 double to_double(const ex& e)
 {
-    ex v = e.evalf();
+    ex v = evaluated(e);
     if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
         throw std::invalid_argument("not a real number: " + parser_syntax(e));
     const numeric& x = ex_to<numeric>(v);

@@ -1025,3 +1025,25 @@ TEST(Friction, MalformedDecimalsAreRefused)
 }
 
 } // namespace
+
+// Values whose exact form cancels in its leading digits (a root of 10^40 + 1 minus 10^20) are
+// evaluated to double precision, not at GiNaC's default 17 digits: e = sqrt(10^40 + 1) - 10^20
+// is 5e-21, so a mass of 2 at -1 striking a mass of 1 at rest leaves both at -2/3 (the text
+// printed -4 and 0, and --json refused a value as "below the range of double").
+TEST(Cli, CancellingRootsGiveRightDecimals)
+{
+    const std::string text = R"J({"dimension": 2, "restitution": "sqrt(10^40+1)-10^20", "bodies": [
+        {"name": "a", "mass": 1, "position": [0, 0], "velocity": ["10^8 - sqrt(10^16+1)", 0]},
+        {"name": "b", "mass": 2, "position": [1, 0], "velocity": [-1, 0]}],
+      "contact": {"bodies": ["a", "b"], "point": [0.5, 0], "normal": [1, 0]}})J";
+    const run_result r = run_on(text, "solve --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    // m_a v_a + m_b v_b = -2 - 5e-9 shared at a common velocity (e ~ 5e-21): -(2 + 5e-9)/3
+    const double common = -(2 + 5e-9) / 3;
+    EXPECT_NEAR(number_at(a, {"bodies", "a", "velocity"}, 0), common, 1e-15);
+    EXPECT_NEAR(number_at(a, {"bodies", "b", "velocity"}, 0), common, 1e-15);
+    const run_result t = run_on(text, "solve", "_text");
+    ASSERT_EQ(t.code, 0) << t.err;
+    EXPECT_NE(t.out.find("= -0.666666668333333"), std::string::npos) << t.out;
+}
