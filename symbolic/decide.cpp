@@ -208,14 +208,17 @@ std::string constant_parts_problem(const ex& e)
         const numeric& x = ex_to<numeric>(e);
         if (!x.is_real())
             return "it is not real";
-        return bound(e) > 308.25 ? "it is out of the range of double (non-finite number)" : "";
+        if (bound(e) <= 308.25)
+            return "";
+        return abs(x) < 1 ? "it is below the range of double (its magnitude is under 1e-308; write 0 for zero)"
+                          : "it is out of the range of double (non-finite number)";
     }
     if (is_a<symbol>(e) || is_a<constant>(e))
         return "";
     if (is_constant(e)) {
         switch (decide(e)) {
         case decision::not_real: return "it is not real";
-        case decision::out_of_range: return "it is out of the range of double (non-finite number)";
+        case decision::out_of_range: return "it is beyond the range of double: its magnitude, or a part's, is above about 1e308 or below 1e-308";
         case decision::undecided: return "its value cannot be decided exactly (write it as a plain number or a simpler expression)";
         default: return "";
         }
@@ -475,7 +478,7 @@ const char* decision_text(decision d)
     case decision::positive: return "is positive";
     case decision::symbolic: return "is symbolic";
     case decision::not_real: return "is not real";
-    case decision::out_of_range: return "is out of the range of double (non-finite number)";
+    case decision::out_of_range: return "is beyond the range of double (its magnitude, or a part's, is above about 1e308 or below 1e-308)";
     case decision::undecided: return "cannot be decided exactly (its sign or whether it is zero is beyond what can be proven; write it as a plain number or a simpler expression)";
     }
     return "?";

@@ -84,6 +84,16 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
                            " is too small: its magnitude is below 10^-400, the smallest non-zero number read (write 0 for zero)");
     };
     if (!expo.empty()) {
+        // The exponent's sign, then its digits without leading zeros (1e-000003 is 1e-3).
+        std::string sign, body = expo;
+        if (body[0] == '-' || body[0] == '+') {
+            sign = body.substr(0, 1);
+            body.erase(0, 1);
+        }
+        if (body.empty() || body.find_first_not_of("0123456789") != std::string::npos)
+            throw input_error(where + ": \"" + names::display_text(lit) + "\" is not a number");
+        body.erase(0, std::min(body.find_first_not_of('0'), body.size() - 1));
+        expo = (sign == "-" ? "-" : "") + body;
         if (expo.size() > 6) {
             if (digits.find_first_not_of('0') == std::string::npos)
                 return numeric(0); // 0e-9999999 is 0
@@ -99,7 +109,8 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
     // The magnitude is about 10^(scale + significant digits): 0.47 with 420 digits is fine.
     const std::size_t first = digits.find_first_not_of('0');
     const long magnitude = first == std::string::npos ? 0 : scale + static_cast<long>(digits.size() - first);
-    if (magnitude < -400)
+    // The value lies in [10^(magnitude - 1), 10^magnitude): below 10^-400 when magnitude <= -400.
+    if (magnitude <= -400)
         throw too_small();
     if (magnitude > 400)
         throw input_error(where + ": " + names::display_text(lit) + " is out of the range of double (non-finite number)");
@@ -336,7 +347,8 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
             for (const ex& rel : numbers)
                 values[rel.lhs()] = rel.rhs();
             if (log10_magnitude_bound(shape, values) > 400)
-                throw input_error(where + ": \"" + names::display_text(text) + "\" is out of the range of double (non-finite number)");
+                throw input_error(where + ": \"" + names::display_text(text) +
+                                  "\" is beyond what is read: its magnitude, or a part's, is above 10^400 or below 10^-400");
             value = shape.subs(values);
         } catch (const input_error&) {
             throw;
