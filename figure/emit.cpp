@@ -415,8 +415,9 @@ std::string describe(const drawing& g)
             s += " pinned at E";
         return s + ")";
     };
+    // The movable body strikes an immovable one at rest; a moving body of infinite mass strikes.
     const bool swap = g.body1 < g.bodies.size() && g.body2 < g.bodies.size() && g.bodies[g.body1].infinite_mass &&
-                      !g.bodies[g.body2].infinite_mass;
+                      g.bodies[g.body1].at_rest && !g.bodies[g.body2].infinite_mass;
     std::string s = swap ? who(g.body2) + " strikes " + who(g.body1) : who(g.body1) + " strikes " + who(g.body2);
     s += " at O; normal e_n along " + g.normal_text;
     if (g.dimension == 3)

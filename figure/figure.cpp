@@ -501,6 +501,7 @@ drawing builder::build()
         body_summary s;
         s.name = display_name(p_.bodies[i]);
         s.infinite_mass = p_.bodies[i].infinite_mass;
+        s.at_rest = p_.bodies[i].at_rest();
         s.pinned = p_.pivot_of(i) != nullptr;
         g_.bodies.push_back(s);
     }

@@ -101,6 +101,7 @@ struct body_summary {
     std::string name;        ///< display_name(): "body 1" or the problem's name, raw
     shape form = shape::marker;
     bool infinite_mass = false;
+    bool at_rest = false;    ///< velocity and angular velocity exactly zero before impact
     bool pinned = false;
 };
 

@@ -450,10 +450,11 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
 
     const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
                                 : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
-    // The movable body strikes the immovable one (as the figure's caption says it).
+    // The movable body strikes an immovable one at rest (as the figure's caption says it); a
+    // moving body of infinite mass (a bat) strikes.
     paragraph strikes;
     strikes.w(kind + ": ");
-    if (p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass)
+    if (p.bodies[i1].infinite_mass && p.bodies[i1].at_rest() && !p.bodies[i2].infinite_mass)
         strikes.t("point $B$ of ").w(body_ref(p, i2)).t(" strikes point $A$ of ").w(body_ref(p, i1));
     else
         strikes.t("point $A$ of ").w(body_ref(p, i1)).t(" strikes point $B$ of ").w(body_ref(p, i2));
@@ -611,7 +612,10 @@ section detail::setup_section(const derivation& d, const friction_setup* fr)
         paragraph q;
         q.w(body_ref(p, i) + ": " + number_word(nv + nw) + " unknowns");
         if (b.infinite_mass)
-            q.t(" -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and $~ω′ = ~ω$ (the notes' $m2 → ∞$ case)");
+            q.t(i == p.contact.body2
+                    ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and $~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
+                    : " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and $~ω′ = ~ω$ (the notes' $m2 → ∞$ "
+                      "case, with the bodies' roles exchanged)");
         else if (p.immovable(i))
             q.w(" -- a particle pinned at a fixed point cannot move");
         else if (b.particle)
@@ -1216,6 +1220,11 @@ section checks_section(const derivation& d, const solution& s, const worked_exam
         sec.para(paragraph().t("$m2 → ∞$: body 2 already has infinite mass; the notes' massive case, $w_2 = 0$ and $N = -(1 + e) u/w_1$."));
     } else if (p.immovable(i2)) {
         sec.para(paragraph().t("$m2 → ∞$: body 2 cannot move under the impulse already ($w_2 = 0$)."));
+    } else if (p.immovable(p.contact.body1)) {
+        // Body 1 already cannot move: making body 2 heavy too would leave nothing to move.
+        sec.para(paragraph().t("$m2 → ∞$ is not taken here: body 1 cannot move under the impulse already ($w_1 = 0$), so this is "
+                               "the notes' massive case with the bodies' roles exchanged, $N = -(1 + e) u/w_2$; were body 2 "
+                               "infinitely heavy as well, nothing could move."));
     } else {
         // Body 2 grows heavy with its shape kept: m2 -> m2/eps, I_2 -> I_2/eps. Its
         // effective inverse mass scales exactly: w_2(eps) = eps w_2 (1/m and I^-1

@@ -610,10 +610,7 @@ section stick_section(const context& c)
     for (std::size_t i : {c.i1, c.i2}) {
         const std::size_t other = i == c.i1 ? c.i2 : c.i1;
         const body& b = c.p.bodies[i];
-        bool at_rest = true;
-        for (int a = 0; a < 3; ++a)
-            at_rest = at_rest && b.velocity[a].is_zero() && b.angular_velocity[a].is_zero();
-        if (b.infinite_mass && at_rest && !c.p.bodies[other].particle) {
+        if (b.infinite_mass && b.at_rest() && !c.p.bodies[other].particle) {
             paragraph q;
             q.w("Here " + body_ref(c.p, i)).t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
                 .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ").ref(c.stick_law[0].label).w(": ");

@@ -40,6 +40,14 @@ struct body {
     vec3 position = zero_vec();  ///< centre of mass C
     vec3 velocity = zero_vec();  ///< of C, just before impact
     vec3 angular_velocity = zero_vec(); ///< planar: only [2]
+    /// Velocity and angular velocity exactly zero before impact.
+    bool at_rest() const
+    {
+        for (int a = 0; a < 3; ++a)
+            if (!velocity[a].is_zero() || !angular_velocity[a].is_zero())
+                return false;
+        return true;
+    }
 };
 
 struct pivot {

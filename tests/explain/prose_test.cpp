@@ -338,4 +338,17 @@ TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
     EXPECT_NE(floor.find("ball (disc) strikes floor (wall)"), std::string::npos);
     const std::string planar = flat(explain_text(explain_of(find_named_class("planar")->build())));
     EXPECT_NE(planar.find("point A of body 1 strikes point B of body 2"), std::string::npos) << planar.substr(0, 400);
+    // A moving bat of infinite mass (body 1) strikes a ball at rest: the bat strikes; and the
+    // m2 -> infinity limit is not taken (body 2 heavy too would leave nothing to move).
+    // (Found by a hostile pass: it said the ball strikes, and let the ball grow heavy.)
+    const problem bat = read_problem(R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "bat", "mass": "inf", "position": [-1, 0], "velocity": [5, 0]},
+        {"name": "ball", "mass": 0.2, "position": [0.1, 0], "velocity": [0, 0]}],
+      "contact": {"bodies": ["bat", "ball"], "point": [0, 0], "normal": [1, 0]}})",
+                                     "bat.json");
+    const std::string b = flat(explain_text(explain_of(bat)));
+    EXPECT_NE(b.find("point A of body 1 (bat) strikes point B of body 2 (ball)"), std::string::npos) << b.substr(0, 400);
+    EXPECT_NE(b.find("bat (wall) strikes ball"), std::string::npos) << b.substr(0, 1200);
+    EXPECT_EQ(b.find("let body 2 grow heavy"), std::string::npos);
+    EXPECT_NE(b.find("roles exchanged"), std::string::npos);
 }
