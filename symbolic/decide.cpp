@@ -174,6 +174,9 @@ decision decide(const ex& e)
     ex x = tidy_expand(e); // exact only where expansion is cheap; evaluation decides the rest
     if (is_a<numeric>(x))
         return sign_of(ex_to<numeric>(x));
+    // Roots of integers merged: sqrt(2) sqrt(8) - 4 is 0, which no evaluation can show.
+    if (const ex merged = merge_roots(x).expand(); is_a<numeric>(merged))
+        return sign_of(ex_to<numeric>(merged));
     numeric re0, im0;
     long p0 = 40;
     if (!evaluate(x, p0, re0, im0))
@@ -322,6 +325,10 @@ ex merge_roots(const ex& e)
         ex operator()(const ex& x) override
         {
             const ex y = x.map(*this);
+            // a root on its own, its square taken out: sqrt(8) -> 2 sqrt(2)
+            if (is_a<power>(y) && is_a<numeric>(y.op(0)) && ex_to<numeric>(y.op(0)).is_pos_integer() &&
+                y.op(1).is_equal(numeric(1, 2)) && ex_to<numeric>(y.op(0)) < numeric(1000000))
+                return root_of(y.op(0));
             if (!is_a<GiNaC::mul>(y))
                 return y;
             numeric radicand = 1;

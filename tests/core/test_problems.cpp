@@ -214,6 +214,11 @@ TEST(Roots, SquareFreeAndMerged)
     const GiNaC::symbol x("x");
     EXPECT_TRUE(merge_roots(x * sqrt(ex(2)) * sqrt(ex(2))).is_equal(2 * x));
     EXPECT_TRUE(root_of(x).is_equal(sqrt(x))); // not a rational: as GiNaC writes it
+    // a root on its own loses its square factor, so exact zeros of roots are decided
+    // (found by a hostile pass: sqrt(2) - sqrt(8)/2 as a normal's entry "cannot be decided")
+    EXPECT_TRUE(merge_roots(sqrt(ex(8))).is_equal(2 * sqrt(ex(2)))) << merge_roots(sqrt(ex(8)));
+    EXPECT_EQ(decide(sqrt(ex(2)) - sqrt(ex(8)) / 2), decision::zero);
+    EXPECT_EQ(decide(sqrt(ex(2)) * sqrt(ex(8)) - 4), decision::zero);
 }
 
 // The unit normal of a rational normal comes from its primitive integer direction:
