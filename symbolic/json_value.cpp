@@ -65,7 +65,7 @@ public:
         std::string what = ex.what();
         if (what.find("number overflow") != std::string::npos)
             throw input_error((pending_key_.empty() ? std::string("value") : pending_key_) +
-                              ": non-finite number (out of the range of double) at byte " + std::to_string(pos));
+                              ": a number out of the range of double (above about 1e308) at byte " + std::to_string(pos));
         // nlohmann's text is "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
         auto colon = what.find("] ");
         throw input_error("malformed JSON (byte " + std::to_string(pos) + "): " +

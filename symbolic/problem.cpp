@@ -4,6 +4,7 @@
 #include "names/escape.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <cctype>
 #include <cfloat>
@@ -258,6 +259,20 @@ std::string show(const ex& e)
 {
     std::ostringstream os;
     os << e;
+    // A rational too long to read (-1/10^400) as its sign, leading digits and power of ten.
+    if (is_a<numeric>(e) && ex_to<numeric>(e).is_rational() && !e.is_zero() && os.str().size() > 40) {
+        const numeric x = ex_to<numeric>(e);
+        const numeric ax = abs(x);
+        long k = static_cast<long>(std::floor(ex_to<numeric>((log(ex(ax)) / log(ex(numeric(10)))).evalf()).to_double()));
+        double m = ex_to<numeric>(ax / numeric(10).power(k)).to_double();
+        if (m >= 10) {
+            m /= 10;
+            ++k;
+        }
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%.6ge%ld", x.is_negative() ? "-" : "", m, k);
+        return std::string("about ") + buf;
+    }
     return names::display_text(os.str(), 120);
 }
 
@@ -355,6 +370,9 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
         } catch (const std::exception& e) {
             std::string why = e.what();
             why = why.substr(0, why.find('\n'));
+            // GiNaC quotes the rewritten text (decimals as exact symbols): not the user's, so not shown
+            if (why.find("Illegal number syntax") != std::string::npos)
+                why = "a number is malformed";
             throw input_error(where + ": cannot read the expression \"" + names::display_text(text) + "\" (" + names::display_text(why) + ")");
         }
     }
