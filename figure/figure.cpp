@@ -889,8 +889,10 @@ std::string normal_text(const derivation& d)
     for (int c = 0; c < dim; ++c) {
         if (!is_a<numeric>(d.n_hat[c])) {
             rational = false;
-            if (!is_a<numeric>(d.n_hat[c].evalf()) || !symbols_in(d.n_hat[c]).empty())
+            if (!symbols_in(d.n_hat[c]).empty())
                 numeric_all = false;
+            // a constant whose float evaluation divides by a cancelled 0 is still a number
+            // (number() below then evaluates it, or falls back)
         } else if (!ex_to<numeric>(d.n_hat[c]).is_rational()) {
             rational = false;
         }

@@ -404,12 +404,16 @@ std::string decimal_note(const ex& v)
         return "";
     if (!is_constant(v))
         return "";
-    ex x = v.evalf();
-    if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
+    // evaluated until two precisions agree (a value that cancels in its leading digits)
+    double d = 0;
+    try {
+        d = to_double(v);
+    } catch (const std::invalid_argument&) {
         return "";
+    }
     // six significant digits: enough to read, the exact value is beside it
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", ex_to<numeric>(x).to_double());
+    std::snprintf(buf, sizeof buf, "%.6g", d);
     return std::string("≈ ") + buf;
 }
 

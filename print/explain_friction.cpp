@@ -108,10 +108,14 @@ std::string approx_note(const ex& v)
         return "";
     if (is_a<numeric>(v) && ex_to<numeric>(v).is_integer())
         return "";
-    ex x = v.evalf();
-    if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
+    try {
+        const ex x = evaluated_constant(v); // until two precisions agree
+        if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
+            return "";
+        return "≈ " + short_decimal(x);
+    } catch (const std::invalid_argument&) {
         return "";
-    return "≈ " + short_decimal(x);
+    }
 }
 
 bool is_float(const ex& v) { return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational(); }

@@ -33,25 +33,29 @@ ex evaluated(const ex& e)
     bool have = false;
     for (long digits = 40; digits <= 1280; digits *= 2) {
         digits_scope scope(digits);
-        const ex v = e.evalf();
+        ex v;
+        try {
+            v = e.evalf();
+        } catch (const std::exception&) {
+            continue; // a part that cancels to a float 0 and divides (1/(sqrt(10^100 + 1) - 10^50)): more digits
+        }
         if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
             return v;
         const numeric a = ex_to<numeric>(v);
-        if (have) {
-            const numeric b = ex_to<numeric>(last);
-            if ((a.is_zero() && b.is_zero()) || (!a.is_zero() && abs(a - b) <= abs(a) * numeric(1, 10).power(18)))
-                return v;
-        }
+        // Two non-zero evaluations that agree; a float 0 is no evidence (10^50 - sqrt(10^100 + 1)
+        // is 0.0 at 40 and 80 digits), only decide() says a value is 0.
+        if (have && !a.is_zero() && abs(a - ex_to<numeric>(last)) <= abs(a) * numeric(1, 10).power(18))
+            return v;
         last = v;
         have = true;
     }
-    // No two evaluations agree: a value that is 0 (sqrt(2) sqrt(8) - 4), or a cancellation
-    // deeper than 1280 digits; 0 only where decided.
     if (decide(e) == decision::zero)
         return numeric(0);
-    return last;
+    throw std::invalid_argument("no decimal: its exact form cancels beyond 1280 digits");
 }
 } // namespace
+
+ex evaluated_constant(const ex& e) { return evaluated(e); }
 
 double to_double(const ex& e)
 {
@@ -74,7 +78,7 @@ std::string decimal(const ex& e)
     if (std::fabs(d) < std::numeric_limits<double>::min()) {
         // Below the normal range of double (a subnormal, or 0 for a value that is not): the
         // mantissa and the exponent apart, from the exact value's float, never "0" for x != 0.
-        const ex v = e.evalf();
+        const ex v = evaluated(e);
         if (is_a<numeric>(v) && !ex_to<numeric>(v).is_zero()) {
             const numeric x = ex_to<numeric>(v);
             long k = std::lround(std::floor(ex_to<numeric>(log(abs(x)) / log(numeric(10))).to_double()));

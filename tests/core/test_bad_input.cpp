@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -688,7 +689,7 @@ TEST(Friction, HostileValuesOfMuAreRefusedNamingTheKey)
     for (const std::string& mu : values)
         expect_refusal(run_on(floor_particle(mu), "solve --json"), "friction " + mu, "contact.friction");
     // A number token beyond double is refused by the JSON reader, which names the last key only.
-    expect_refusal(run_on(floor_particle("1e999"), "solve --json"), "friction 1e999", "friction: non-finite");
+    expect_refusal(run_on(floor_particle("1e999"), "solve --json"), "friction 1e999", "friction: a number out of the range of double");
     // A symbol: formulas answers, solve needs numbers.
     expect_refusal(run_on(floor_particle("\"mu\""), "solve --json"), "friction mu", "needs numbers");
     EXPECT_EQ(run_on(floor_particle("\"mu\""), "formulas --format json").code, 0);
@@ -1069,4 +1070,19 @@ TEST(Cli, CancellingRootsGiveRightDecimals)
     const run_result t = run_on(text, "solve", "_text");
     ASSERT_EQ(t.code, 0) << t.err;
     EXPECT_NE(t.out.find("= -0.666666668333333"), std::string::npos) << t.out;
+    // explain's decimals the same (its notes had the old 17-digit evaluation)
+    const run_result x = run_on(text, "explain", "_explain");
+    ASSERT_EQ(x.code, 0) << x.err;
+    EXPECT_NE(x.out.find("≈ -0.666667"), std::string::npos);
+    // Deeper: 10^50 - sqrt(10^100 + 1) is a float 0 at 40 and 80 digits (no evidence of 0:
+    // it printed 1.01e31, then 0), and a normal with it divided by a float 0 inside GiNaC.
+    const std::string deep = R"J({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "a", "mass": 1, "position": [0, 0], "velocity": [1, 0]},
+        {"name": "b", "mass": 2, "position": [1, 0], "velocity": ["10^50 - sqrt(10^100+1)", 0]}],
+      "contact": {"bodies": ["a", "b"], "point": [0.5, 0], "normal": [1, "sqrt(10^100+1)-10^50"]}})J";
+    for (const char* cmd : {"solve", "solve --json", "explain", "explain --format latex"}) {
+        const run_result d = run_on(deep, cmd, std::string("_deep") + std::to_string(std::strlen(cmd)));
+        EXPECT_EQ(d.code, 0) << cmd << ": " << d.err;
+    }
+    EXPECT_NE(run_on(deep, "solve", "_deep_text").out.find("= -5e-51"), std::string::npos);
 }
