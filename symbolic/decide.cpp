@@ -171,6 +171,27 @@ decision decide(const ex& e)
         return decision::symbolic;
     if (bound(e) > 400)
         return decision::out_of_range;
+    // A product's sign from its factors' (sqrt(2)·10^-100 stands within 10^-20 of 0 at 40
+    // digits, which the evaluation below cannot tell from a cancelled 0); its magnitude
+    // still checked against double's range.
+    if (is_a<GiNaC::mul>(e)) {
+        bool negative = false, settled = true;
+        for (std::size_t k = 0; k < e.nops() && settled; ++k) {
+            const decision f = decide(e.op(k));
+            if (f == decision::zero)
+                return decision::zero;
+            if (f == decision::negative)
+                negative = !negative;
+            else if (f != decision::positive)
+                settled = false;
+        }
+        numeric re, im;
+        if (settled && evaluate(e, 40, re, im) && im.is_zero() && !re.is_zero()) {
+            if (std::abs(log10_abs(re)) > 308.25)
+                return decision::out_of_range;
+            return negative ? decision::negative : decision::positive;
+        }
+    }
     ex x = tidy_expand(e); // exact only where expansion is cheap; evaluation decides the rest
     if (is_a<numeric>(x))
         return sign_of(ex_to<numeric>(x));

@@ -219,6 +219,12 @@ TEST(Roots, SquareFreeAndMerged)
     EXPECT_TRUE(merge_roots(sqrt(ex(8))).is_equal(2 * sqrt(ex(2)))) << merge_roots(sqrt(ex(8)));
     EXPECT_EQ(decide(sqrt(ex(2)) - sqrt(ex(8)) / 2), decision::zero);
     EXPECT_EQ(decide(sqrt(ex(2)) * sqrt(ex(8)) - 4), decision::zero);
+    // a product's sign from its factors: sqrt(2)·10^-100 is within 10^-20 of 0 at 40 digits,
+    // yet plainly positive (it was "cannot be decided"; found by a hostile pass); its range kept
+    EXPECT_EQ(decide(sqrt(ex(2)) * GiNaC::pow(ex(10), -100)), decision::positive);
+    EXPECT_EQ(decide(-sqrt(ex(3)) * GiNaC::pow(ex(10), -200) * sqrt(ex(5))), decision::negative);
+    EXPECT_EQ(decide(sqrt(ex(2)) * GiNaC::pow(ex(10), 350)), decision::out_of_range);
+    EXPECT_EQ(decide(sqrt(ex(2)) * GiNaC::pow(ex(10), -350)), decision::out_of_range);
 }
 
 // The unit normal of a rational normal comes from its primitive integer direction:
