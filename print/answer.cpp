@@ -24,9 +24,9 @@ struct valuer {
         double x = 0;
         try {
             x = to_double(v);
-        } catch (const std::invalid_argument& err) {
-            if (std::string(err.what()).rfind("no decimal", 0) == 0)
-                throw input_error("answer: " + key + ": " + err.what());
+        } catch (const no_decimal& err) {
+            throw input_error("answer: " + key + ": " + err.what());
+        } catch (const std::invalid_argument&) {
             throw input_error("answer: " + key + ": the exact value is out of the range of double (the inputs' scales overflow it)");
         }
         // A non-zero value below the smallest subnormal double (4.9e-324) would be written as 0:
@@ -114,9 +114,9 @@ std::string answer_text(const derivation& d, const solution& s, const regime_cas
         try {
             std::string dec = decimal(v);
             return exact == dec ? exact : exact + " = " + dec;
-        } catch (const std::invalid_argument& err) {
-            if (std::string(err.what()).rfind("no decimal", 0) == 0)
-                return exact + " (" + err.what() + ")";
+        } catch (const no_decimal& err) {
+            return exact + " (" + err.what() + ")";
+        } catch (const std::invalid_argument&) {
             return exact + " (beyond the range of double)";
         }
     };

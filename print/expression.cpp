@@ -15,16 +15,6 @@ using namespace GiNaC;
 std::string parser_syntax(const ex& e) { return canonical_parser(e); }
 
 namespace {
-// GiNaC's Digits for one evaluation, restored however it ends.
-struct digits_scope {
-    long saved;
-    explicit digits_scope(long d) : saved(Digits) { Digits = d; }
-    ~digits_scope() { Digits = saved; }
-};
-
-// The value of a constant to double precision: exact for a rational; otherwise evaluated at
-// 40, 80, ... digits until two evaluations agree to 1e-18 relative, as a difference of near
-// values (10^8 - sqrt(10^16 + 1) = -5e-9) cancels the leading digits of a short evaluation.
 ex evaluated(const ex& e)
 {
     if (is_a<numeric>(e))
@@ -51,7 +41,7 @@ ex evaluated(const ex& e)
     }
     if (decide(e) == decision::zero)
         return numeric(0);
-    throw std::invalid_argument("no decimal: its exact form cancels beyond 1280 digits");
+    throw no_decimal();
 }
 } // namespace
 
@@ -73,24 +63,13 @@ double to_double(const ex& e)
 
 std::string decimal(const ex& e)
 {
-    char buf[96];
-    const double d = to_double(e);
-    if (std::fabs(d) < std::numeric_limits<double>::min()) {
-        // Below the normal range of double (a subnormal, or 0 for a value that is not): the
-        // mantissa and the exponent apart, from the exact value's float, never "0" for x != 0.
-        const ex v = evaluated(e);
-        if (is_a<numeric>(v) && !ex_to<numeric>(v).is_zero()) {
-            const numeric x = ex_to<numeric>(v);
-            long k = std::lround(std::floor(ex_to<numeric>(log(abs(x)) / log(numeric(10))).to_double()));
-            double m = ex_to<numeric>(x / numeric(10).power(k)).to_double();
-            if (std::fabs(m) >= 10 - 5e-15) { // rounded up to 10
-                m /= 10;
-                ++k;
-            }
-            std::snprintf(buf, sizeof buf, "%.15ge%ld", m, k);
-            return buf;
-        }
-    }
+    const ex v = evaluated(e);
+    const double d = to_double(v);
+    // Below the normal range of double (a subnormal, or 0 for a value that is not): the
+    // mantissa and the exponent from the evaluated value itself, never "0" for x != 0.
+    if (std::fabs(d) < std::numeric_limits<double>::min() && is_a<numeric>(v) && !ex_to<numeric>(v).is_zero())
+        return scientific_text(ex_to<numeric>(v), 15);
+    char buf[64];
     std::snprintf(buf, sizeof buf, "%.15g", d);
     return buf;
 }

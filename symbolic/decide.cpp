@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
@@ -16,17 +17,6 @@ namespace {
 constexpr double unbounded = std::numeric_limits<double>::infinity();
 constexpr double log10_e = 0.43429448190325182765;
 
-// Restores GiNaC's global precision however the evaluation ends.
-class digits_guard {
-public:
-    explicit digits_guard(long d) : saved_(Digits) { Digits = d; }
-    ~digits_guard() { Digits = saved_; }
-    digits_guard(const digits_guard&) = delete;
-    digits_guard& operator=(const digits_guard&) = delete;
-
-private:
-    long saved_;
-};
 
 double log10_abs(const numeric& x)
 {
@@ -123,7 +113,7 @@ decision sign_of(const numeric& x)
 bool evaluate(const ex& e, long digits, numeric& re, numeric& im)
 {
     try {
-        digits_guard guard(digits);
+        digits_scope guard(digits);
         ex v = e.evalf();
         if (!is_a<numeric>(v))
             return false;
@@ -338,6 +328,20 @@ ex root_of(const ex& q)
     if (!square_free_root(q, outside, inside, below))
         return sqrt(q);
     return outside * sqrt(ex(inside)) / below; // sqrt(a/b) = sqrt(a b)/b
+}
+
+std::string scientific_text(const numeric& x, int significant)
+{
+    const numeric ax = abs(x);
+    long k = std::lround(std::floor(ex_to<numeric>((log(ex(ax)) / log(ex(numeric(10)))).evalf()).to_double()));
+    double m = ex_to<numeric>((ax / numeric(10).power(k)).evalf()).to_double();
+    if (m >= 10 - 5 * std::pow(10.0, -significant)) { // the mantissa rounds up to 10
+        m /= 10;
+        ++k;
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%.*ge%ld", x.is_negative() ? "-" : "", significant, m, k);
+    return buf;
 }
 
 ex merge_roots(const ex& e)

@@ -74,6 +74,23 @@ GiNaC::ex inverse_root_of(const GiNaC::ex& q);
 /// e with the square roots of integers in each product merged into one, its square
 /// taken out: sqrt(105) sqrt(2730) -> 105 sqrt(26) (GiNaC keeps unlike roots apart).
 /// Cheap: one pass over e; other powers are left alone.
+/// GiNaC's global precision (Digits) set for a scope and restored however it ends.
+class digits_scope {
+public:
+    explicit digits_scope(long digits) : saved_(GiNaC::Digits) { GiNaC::Digits = digits; }
+    ~digits_scope() { GiNaC::Digits = saved_; }
+    digits_scope(const digits_scope&) = delete;
+    digits_scope& operator=(const digits_scope&) = delete;
+
+private:
+    long saved_;
+};
+
+/// A non-zero real number as "m" "e" "k" with `significant` digits of mantissa
+/// (-1e-400, 4.148e-800), at any magnitude, from the number itself (exact or a float
+/// of enough digits), never through a double that would flush it to 0.
+std::string scientific_text(const GiNaC::numeric& x, int significant);
+
 GiNaC::ex merge_roots(const GiNaC::ex& e);
 /// A constant made of rationals and square roots of integers as a textbook writes it: the
 /// roots in each product merged, and the denominator rationalised (one root at a time, times

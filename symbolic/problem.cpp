@@ -260,19 +260,8 @@ std::string show(const ex& e)
     std::ostringstream os;
     os << e;
     // A rational too long to read (-1/10^400) as its sign, leading digits and power of ten.
-    if (is_a<numeric>(e) && ex_to<numeric>(e).is_rational() && !e.is_zero() && os.str().size() > 40) {
-        const numeric x = ex_to<numeric>(e);
-        const numeric ax = abs(x);
-        long k = static_cast<long>(std::floor(ex_to<numeric>((log(ex(ax)) / log(ex(numeric(10)))).evalf()).to_double()));
-        double m = ex_to<numeric>(ax / numeric(10).power(k)).to_double();
-        if (m >= 10) {
-            m /= 10;
-            ++k;
-        }
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%s%.6ge%ld", x.is_negative() ? "-" : "", m, k);
-        return std::string("about ") + buf;
-    }
+    if (is_a<numeric>(e) && ex_to<numeric>(e).is_rational() && !e.is_zero() && os.str().size() > 40)
+        return "about " + scientific_text(ex_to<numeric>(e), 6);
     return names::display_text(os.str(), 120);
 }
 

@@ -309,17 +309,6 @@ bool vanishes_identically(const solution& s, const ex& value, const std::string&
 
 namespace {
 
-// GiNaC's precision for a scope, restored however the scope ends.
-class digits_for_scope {
-public:
-    explicit digits_for_scope(long digits) : saved_(Digits) { Digits = digits; }
-    ~digits_for_scope() { Digits = saved_; }
-    digits_for_scope(const digits_for_scope&) = delete;
-    digits_for_scope& operator=(const digits_for_scope&) = delete;
-
-private:
-    long saved_;
-};
 
 // A constant residual that normal() left non-zero because GiNaC keeps unlike roots apart
 // (sqrt(2) sqrt(3) - sqrt(6) with a normal (sqrt(2), 1)): its roots merged; if it is still
@@ -331,7 +320,7 @@ ex settled_constant(const ex& r)
     const ex merged = tidy(merge_roots(tidy_expand(r)));
     if (merged.is_zero())
         return merged;
-    digits_for_scope digits(60);
+    digits_scope digits(60);
     return merged.evalf();
 }
 
@@ -366,7 +355,7 @@ std::vector<ex> residuals(const derivation& d, const solution& s, const ex& inpu
         }
         // Irrational inputs: the steps in 60-digit floats, one after the other (the
         // exact values nest every earlier step; evaluating them as trees is exponential).
-        digits_for_scope digits(60);
+        digits_scope digits(60);
         lst floats;
         for (const step& st : s.steps)
             floats.append(st.sym == st.value.subs(floats).evalf());

@@ -1064,6 +1064,7 @@ TEST(Cli, CancellingRootsGiveRightDecimals)
     ASSERT_EQ(r.code, 0) << r.err;
     const json a = json::parse(r.out);
     // m_a v_a + m_b v_b = -2 - 5e-9 shared at a common velocity (e ~ 5e-21): -(2 + 5e-9)/3
+    // (1e-15: the answer is -(2 + 5e-9)/3 to 1e-20, e moves it by 5e-21; double rounding 1e-16)
     const double common = -(2 + 5e-9) / 3;
     EXPECT_NEAR(number_at(a, {"bodies", "a", "velocity"}, 0), common, 1e-15);
     EXPECT_NEAR(number_at(a, {"bodies", "b", "velocity"}, 0), common, 1e-15);
