@@ -264,8 +264,9 @@ const char* const preamble_body = R"(// Hooks the user may define before includi
 //                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
-//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
-//                   infinity checks may then pass a NaN input as ok)
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math or -ffinite-math-only
+//                   anyway (its NaN and infinity checks may then pass a NaN
+//                   input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
 #endif
@@ -293,8 +294,8 @@ const char* const preamble_body = R"(// Hooks the user may define before includi
 #define IMPACTGEN_HOT
 #endif
 #endif
-#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
-#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#if (defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math and -ffinite-math-only remove the NaN and infinity checks of this header (a NaN input would return ok); compile it without them (or with -fno-finite-math-only), or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
 /// Why a call computed no post-impact state. On any status but ok the result

@@ -129,6 +129,39 @@ template <typename T> IMPACTGEN_FUNC T boundary_tolerance() noexcept
     return ldexp(T(1), -(2 * std::numeric_limits<T>::digits / 3));
 }
 
+/// A unit tangent basis (t, b) of the plane normal to n (any length; n = 0 or not finite
+/// gives zeros, which the caller's normal check refuses), with b = t x n/|n|, computed at
+/// run time for a normal given as inputs: every direction works, the axes included. It is
+/// the branch-free basis of the unit normal (x, y, z) with s = +1 for z >= 0, -1 below:
+/// t = (1 + s x^2 a, s x y a, -s x), b = -(x y a, s + y^2 a, -y), a = -1/(s + z); it is
+/// continuous in n except across the plane z = 0, where s changes sign (no tangent basis
+/// is continuous over every direction). The answer does not depend on the basis: it only
+/// parametrises the sliding direction.
+template <typename T> IMPACTGEN_FUNC void tangent_basis(T nx, T ny, T nz, T* t, T* b) noexcept
+{
+    using std::sqrt;
+    const T ax = nx < T(0) ? -nx : nx, ay = ny < T(0) ? -ny : ny, az = nz < T(0) ? -nz : nz;
+    const T big = ax < ay ? (ay < az ? az : ay) : (ax < az ? az : ax);
+    if (!(big > T(0)) || !finite(big)) {
+        for (int k = 0; k < 3; ++k)
+            t[k] = b[k] = T(0);
+        return;
+    }
+    nx = nx / big; // scaled first: no overflow or underflow in the squares
+    ny = ny / big;
+    nz = nz / big;
+    const T length = sqrt(nx * nx + ny * ny + nz * nz);
+    const T x = nx / length, y = ny / length, z = nz / length;
+    const T s = z < T(0) ? T(-1) : T(1);
+    const T a = T(-1) / (s + z), xya = x * y * a;
+    t[0] = T(1) + s * x * x * a;
+    t[1] = s * xya;
+    t[2] = -s * x;
+    b[0] = -xya;
+    b[1] = -(s + y * y * a);
+    b[2] = y;
+}
+
 )IMPACTGEN";
 
 const char* const friction_preamble_tail = R"IMPACTGEN(} // namespace detail
@@ -1021,6 +1054,7 @@ private:
         pl_ = make_plan(sq, so);
         derive_options how;
         how.unit_normal = o_.unit_normal;
+        how.runtime_tangent_basis = true;
         d_ = derive(q_, how);
         f_ = solve_friction(d_);
 
@@ -1115,6 +1149,19 @@ private:
         for (const symbol& x : inputs_) {
             input_names_.push_back(scope_.claim(x.get_name()));
             input_ident_[x] = input_names_.back();
+        }
+        // The tangent basis computed at run time (a normal given as inputs): locals that the
+        // stages read as they read inputs.
+        for (const symbol& x : d_.tangent_basis_symbols) {
+            basis_names_.push_back(scope_.claim(x.get_name()));
+            input_ident_[x] = basis_names_.back();
+        }
+        if (!basis_names_.empty()) {
+            basis_t_name_ = scope_.claim("basis_t");
+            basis_b_name_ = scope_.claim("basis_b");
+            nb_.pool.set_input_names(input_ident_);
+            for (int a = 0; a < 3; ++a)
+                nb_.output(scope_.claim("basis_n_" + q_.axes[static_cast<std::size_t>(a)]), q_.contact.normal[static_cast<std::size_t>(a)]);
         }
         for (out_field& of : outs_)
             of.field = members_.claim(of.field);
@@ -1727,6 +1774,8 @@ private:
 
     void emit_stages()
     {
+        if (!basis_names_.empty())
+            nb_.em = emit_cpp(nb_.prog, nb_.outs, {}, {}, scope_.names());
         emit_one(a_);
         if (angle_ >= 0)
             emit_one(b_);
@@ -1898,7 +1947,11 @@ private:
             h_ << "//   d = cos(theta) e_t + sin(theta) e_b with theta a root of g(theta) = n.(h x d),\n";
             h_ << "//       h = D u + a K (n - mu d), a = -(1 + e) u_n: a trigonometric polynomial of degree 2,\n";
             h_ << "//       a0 + a1 cos + b1 sin + a2 cos 2 + b2 sin 2 (trig_* below; detail::trig2_roots);\n";
-            h_ << "//   e_t = (" << frame_text(f_.e_t) << "), e_b = (" << frame_text(f_.e_b) << ").\n";
+            if (basis_names_.empty())
+                h_ << "//   e_t = (" << frame_text(f_.e_t) << "), e_b = (" << frame_text(f_.e_b) << ").\n";
+            else
+                h_ << "//   e_t, e_b: a unit tangent basis with e_b = e_t x n, computed for the normal at run time\n"
+                   << "//       (detail::tangent_basis: any direction, the axes included).\n";
         } else if (dim == 2) {
             h_ << "//   d = +e_t or -e_t, e_t = (" << frame_text(d_.t_dir) << ").\n";
         } else {
@@ -2016,6 +2069,15 @@ private:
                                      "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
         if (mu_input)
             h_ << mu_check;
+        if (!basis_names_.empty()) {
+            h_ << "    // The unit tangent basis e_t, e_b of the contact plane for this normal (any direction).\n";
+            h_ << place_outputs(nb_.em.code, output_as::locals);
+            h_ << "    T " << basis_t_name_ << "[3], " << basis_b_name_ << "[3];\n";
+            h_ << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", " << nb_.outs[2].first
+               << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
+            for (std::size_t k = 0; k < basis_names_.size(); ++k)
+                h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3 << "];\n";
+        }
         h_ << "    // Shared steps, checks, the candidates and their conditions.\n";
         h_ << place_outputs(a_.em.code, output_as::locals);
         if (!mu_input && !mu_name_.empty())
@@ -2296,6 +2358,10 @@ private:
     std::vector<out_field> outs_;
     std::map<std::size_t, std::size_t> smooth_index_;
     std::vector<std::size_t> tangential_index_;
+    // A normal given as inputs (3-D): the tangent basis computed at run time.
+    stage nb_;
+    std::vector<std::string> basis_names_;
+    std::string basis_t_name_, basis_b_name_;
     names::identifier_scope scope_, members_, in_members_;
     std::vector<std::string> in_views_, out_views_;
     std::string tangential_view_;

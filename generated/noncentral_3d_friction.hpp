@@ -12,8 +12,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_B1A1758A_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_B1A1758A_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
@@ -23,8 +23,9 @@ namespace impactgen::generated {
 //                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
 //                   path that classifies failures
-//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math anyway (its NaN and
-//                   infinity checks may then pass a NaN input as ok)
+//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math or -ffinite-math-only
+//                   anyway (its NaN and infinity checks may then pass a NaN
+//                   input as ok)
 #ifndef IMPACTGEN_FUNC
 #define IMPACTGEN_FUNC inline
 #endif
@@ -52,8 +53,8 @@ namespace impactgen::generated {
 #define IMPACTGEN_HOT
 #endif
 #endif
-#if defined(__FAST_MATH__) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
-#error "impactgen: -ffast-math removes the NaN and infinity checks of this header (a NaN input would return ok); compile it without -ffast-math, or define IMPACTGEN_ALLOW_FAST_MATH"
+#if (defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
+#error "impactgen: -ffast-math and -ffinite-math-only remove the NaN and infinity checks of this header (a NaN input would return ok); compile it without them (or with -fno-finite-math-only), or define IMPACTGEN_ALLOW_FAST_MATH"
 #endif
 
 /// Why a call computed no post-impact state. On any status but ok the result
@@ -135,8 +136,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_E3EA21C9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_D18FFB24_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_D18FFB24_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -207,6 +208,39 @@ template <typename T> IMPACTGEN_FUNC T boundary_tolerance() noexcept
 {
     using std::ldexp;
     return ldexp(T(1), -(2 * std::numeric_limits<T>::digits / 3));
+}
+
+/// A unit tangent basis (t, b) of the plane normal to n (any length; n = 0 or not finite
+/// gives zeros, which the caller's normal check refuses), with b = t x n/|n|, computed at
+/// run time for a normal given as inputs: every direction works, the axes included. It is
+/// the branch-free basis of the unit normal (x, y, z) with s = +1 for z >= 0, -1 below:
+/// t = (1 + s x^2 a, s x y a, -s x), b = -(x y a, s + y^2 a, -y), a = -1/(s + z); it is
+/// continuous in n except across the plane z = 0, where s changes sign (no tangent basis
+/// is continuous over every direction). The answer does not depend on the basis: it only
+/// parametrises the sliding direction.
+template <typename T> IMPACTGEN_FUNC void tangent_basis(T nx, T ny, T nz, T* t, T* b) noexcept
+{
+    using std::sqrt;
+    const T ax = nx < T(0) ? -nx : nx, ay = ny < T(0) ? -ny : ny, az = nz < T(0) ? -nz : nz;
+    const T big = ax < ay ? (ay < az ? az : ay) : (ax < az ? az : ax);
+    if (!(big > T(0)) || !finite(big)) {
+        for (int k = 0; k < 3; ++k)
+            t[k] = b[k] = T(0);
+        return;
+    }
+    nx = nx / big; // scaled first: no overflow or underflow in the squares
+    ny = ny / big;
+    nz = nz / big;
+    const T length = sqrt(nx * nx + ny * ny + nz * nz);
+    const T x = nx / length, y = ny / length, z = nz / length;
+    const T s = z < T(0) ? T(-1) : T(1);
+    const T a = T(-1) / (s + z), xya = x * y * a;
+    t[0] = T(1) + s * x * x * a;
+    t[1] = s * xya;
+    t[2] = -s * x;
+    b[0] = -xya;
+    b[1] = -(s + y * y * a);
+    b[2] = y;
 }
 
 /// How many iterations the slow paths of detail::trig2_roots took (tests and benchmarks

@@ -81,6 +81,10 @@ struct derivation {
     /// tables use.
     vec3 e_t, e_b;
     bool frame_is_world = false;       ///< e_t, e_n, e_b are world axes (up to sign)
+    /// derive_options::runtime_tangent_basis took effect: e_t and e_b are these symbols
+    /// (e_t's three components, then e_b's), computed at run time from the normal by the
+    /// generated code, not formulas in it (t_dir and b_dir stay the formulas).
+    std::vector<GiNaC::symbol> tangent_basis_symbols;
 
     /// Velocity, angular velocity after impact: unknown symbols, or the
     /// values before for bodies the impact does not change.
@@ -101,6 +105,12 @@ struct derive_options {
     /// then promised to have length 1); a constant normal of another length is the
     /// caller's to refuse (codegen's --unit-normal does).
     bool unit_normal = false;
+    /// 3-D, a normal with symbols and no zero entry: e_t and e_b become symbols
+    /// (derivation::tangent_basis_symbols) for generated code that computes them at run
+    /// time. The formulas e_t = t_dir/|t_dir| divide by zero where the normal lies along
+    /// the world axis t_dir is made from (n = (0, 0, 1) for a symbolic normal): no single
+    /// formula serves every direction.
+    bool runtime_tangent_basis = false;
 };
 
 derivation derive(const problem& p, const derive_options& options = {});

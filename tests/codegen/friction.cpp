@@ -53,6 +53,7 @@
 #include "rod_hinge_friction.hpp"
 #include "sphere_floor_3d.hpp"
 #include "tilted_box_friction.hpp"
+#include "tilted_box_friction_unit.hpp"
 
 #include "cln_closed_form.hpp"
 #include "numeric/friction_solver.hpp"
@@ -1200,6 +1201,118 @@ TEST_P(friction_class, agrees_with_the_eigen_reference)
             total_mismatch += k;
     EXPECT_EQ(total_mismatch, 0) << c.name;
     EXPECT_GT(compared, n / 2);
+}
+
+// A normal given as inputs takes every direction: the world axes and their negatives (a box
+// on a z-up floor: the formula basis e_t = (z - n_z n)/|...| divided by 0 there and the
+// header returned overflow), directions within 1e-300 of an axis, lengths other than 1, and
+// random directions; the unit-normal header the same with unit normals. Each answer is
+// checked against the law from the header's own outputs and against the Eigen reference.
+TEST(friction_normals, every_direction_of_a_normal_given_as_inputs)
+{
+    const class_model& m = model("tilted-box-friction.json");
+    const fclass& c = *m.fc;
+    const int nx = index_of(c.in_names, c.n_in, "nx"), ny = index_of(c.in_names, c.n_in, "ny"),
+              nz = index_of(c.in_names, c.n_in, "nz");
+    ASSERT_GE(nx, 0);
+    ASSERT_GE(ny, 0);
+    ASSERT_GE(nz, 0);
+    std::vector<std::array<double, 3>> directions;
+    for (int a = 0; a < 3; ++a)
+        for (double sgn : {1.0, -1.0}) {
+            std::array<double, 3> n{0, 0, 0};
+            n[static_cast<std::size_t>(a)] = sgn;
+            directions.push_back(n);
+            for (double tiny : {1e-300, -1e-300, 1e-12}) {
+                std::array<double, 3> t = n;
+                t[static_cast<std::size_t>((a + 1) % 3)] = tiny;
+                directions.push_back(t);
+            }
+            std::array<double, 3> longer = n;
+            longer[static_cast<std::size_t>(a)] *= 2.5;
+            directions.push_back(longer);
+            std::array<double, 3> shorter = n;
+            shorter[static_cast<std::size_t>(a)] *= 1e-3;
+            directions.push_back(shorter);
+        }
+    sampler s(seed(77));
+    for (int k = 0; k < 40; ++k)
+        directions.push_back({s.uniform(-1, 1), s.uniform(-1, 1), s.uniform(-1, 1)});
+    long compared = 0;
+    for (std::size_t k = 0; k < directions.size(); ++k) {
+        for (int trial = 0; trial < 20; ++trial) {
+            std::vector<double> x = s.draw(c);
+            for (int a = 0; a < 3; ++a)
+                x[static_cast<std::size_t>((a == 0 ? nx : a == 1 ? ny : nz))] = directions[k][static_cast<std::size_t>(a)];
+            run_result r = call(c, x);
+            if (r.status == int(gen::friction_status::not_approaching)) {
+                for (int i = 0; i < c.n_in; ++i)
+                    if (c.in_names[i][0] == 'v' || c.in_names[i][0] == 'w')
+                        x[static_cast<std::size_t>(i)] = -x[static_cast<std::size_t>(i)];
+                r = call(c, x);
+            }
+            if (r.status == int(gen::friction_status::not_approaching))
+                continue;
+            const std::string where = "n = (" + std::to_string(directions[k][0]) + ", " + std::to_string(directions[k][1]) +
+                                      ", " + std::to_string(directions[k][2]) + ") trial " + std::to_string(trial);
+            // no_solution and ambiguous are answers of the law (strong coupling of the normal and
+            // tangential motion: a random box can have them); overflow, singular or
+            // invalid_normal are not.
+            if (r.status == no_solution || r.status == ambiguous)
+                continue;
+            ASSERT_EQ(r.status, ok) << where << ": " << gen::to_string(gen::friction_status(r.status));
+            const double kappa = conditioning(m, x, r);
+            std::string what;
+            EXPECT_LE(check_law(m, x, r, kappa, what), std::max(law_tol, 1e3 * eps * kappa)) << where << ": " << what;
+            const nm::problem<double> p = m.numeric_problem(x.data());
+            const nm::friction_answer<double> ref = nm::solve_friction(p);
+            if (ref.status != nm::friction_status::ok || eps * kappa > 1e-6)
+                continue;
+            const nm::vec<double> n_hat = p.normal.normalized();
+            std::vector<double> expect(r.out.size());
+            for (std::size_t o = 0; o < r.out.size(); ++o) {
+                const auto& ref_out = m.outs[o];
+                switch (ref_out.kind) {
+                case class_model::out_ref::velocity: expect[o] = ref.velocity[ref_out.body][ref_out.axis]; break;
+                case class_model::out_ref::angular: expect[o] = ref.angular_velocity[ref_out.body][ref_out.axis]; break;
+                case class_model::out_ref::normal: expect[o] = ref.normal_impulse; break;
+                case class_model::out_ref::tangential: expect[o] = ref.tangential_impulse[ref_out.axis]; break;
+                case class_model::out_ref::approach: expect[o] = ref.relative_velocity_before.dot(n_hat); break;
+                case class_model::out_ref::energy:
+                    expect[o] = nm::kinetic_energy(p) - nm::kinetic_energy(p, ref.velocity, ref.angular_velocity);
+                    break;
+                case class_model::out_ref::pivot: expect[o] = ref.pivot_impulses[ref_out.body][ref_out.axis]; break;
+                }
+            }
+            std::string which;
+            EXPECT_LE(worst_difference(m, x, r.out, expect, which), std::max(reference_tol, 1e3 * eps * kappa)) << where << ": " << which;
+            ++compared;
+            break;
+        }
+    }
+    // Every direction found an approaching sample within 20 draws, and nearly every one a
+    // well-conditioned reference answer to compare with.
+    EXPECT_GE(compared, static_cast<long>(directions.size()) * 9 / 10);
+    // The unit-normal header: the unit axes (and their negatives) as given, no normalisation.
+    for (int a = 0; a < 3; ++a)
+        for (double sgn : {1.0, -1.0}) {
+            double in[gen::tilted_box_friction_unit_input_count];
+            for (int i = 0; i < gen::tilted_box_friction_unit_input_count; ++i) {
+                const std::string name = gen::tilted_box_friction_unit_input_names[i];
+                in[i] = name == "e" ? 0.5 : name == "mu" ? 0.6 : name == "m" ? 2 : name[0] == 'I' ? 0.3 : 0.1 * (i % 5) - 0.2;
+                if (name == std::string("n") + "xyz"[a])
+                    in[i] = sgn;
+                else if (name.size() == 2 && name[0] == 'n')
+                    in[i] = 0;
+                if (name == std::string("v") + "xyz"[a])
+                    in[i] = -sgn; // approaching: body 2 moves against n
+                if (name == std::string("") + "xyz"[a])
+                    in[i] = sgn * 0.4; // the centre of mass on body 2's side of the contact
+            }
+            gen::tilted_box_friction_unit_result<double> r;
+            EXPECT_EQ(gen::tilted_box_friction_unit(in, r), gen::friction_status::ok) << "unit normal along axis " << a << " sign " << sgn;
+            EXPECT_GT(r.normal_impulse, 0.0);
+        }
 }
 
 TEST_P(friction_class, continuous_across_the_stick_slide_boundary)
