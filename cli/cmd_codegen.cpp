@@ -9,9 +9,10 @@
 #include <iostream>
 #include <sstream>
 
-namespace {
+namespace
+{
 
-std::vector<std::string> split(const std::string& s, char sep)
+std::vector<std::string> split(const std::string &s, char sep)
 {
     std::vector<std::string> r;
     std::string item;
@@ -27,7 +28,7 @@ struct codegen_args {
     bool inverse_inertia = false, inverse_mass = false, unit_normal = false, jacobian = false;
 };
 
-int run(const codegen_args& a, CLI::Option* params_opt, CLI::Option* wrt_opt)
+int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
 {
     using namespace impactgen;
     problem p = cli::load(a.what);
@@ -43,7 +44,7 @@ int run(const codegen_args& a, CLI::Option* params_opt, CLI::Option* wrt_opt)
     }
     o.params_given = params_opt->count() > 0;
     o.params = split(a.params, ',');
-    for (const std::string& kv : split(a.set, ',')) {
+    for (const std::string &kv : split(a.set, ',')) {
         auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
             throw input_error("--set " + kv + ": expected SYMBOL=VALUE");
@@ -60,7 +61,7 @@ int run(const codegen_args& a, CLI::Option* params_opt, CLI::Option* wrt_opt)
     try {
         // With Coulomb friction (mu not 0 once --set is folded in): the regime-selecting header.
         h = codegen::has_friction(p, o) ? codegen::generate_friction(p, o) : codegen::generate(p, o);
-    } catch (const codegen::option_error& e) {
+    } catch (const codegen::option_error &e) {
         // The library names the option by kind; here it becomes its flag.
         std::string message = std::string("--") + codegen::option_error::option_name(e.which) + ": " + e.what();
         if (e.which == codegen::option_error::params && !e.symbol.empty())
@@ -88,16 +89,20 @@ int run(const codegen_args& a, CLI::Option* params_opt, CLI::Option* wrt_opt)
 
 } // namespace
 
-void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& action)
+void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &action)
 {
     auto args = std::make_shared<codegen_args>();
-    auto* cmd = app.add_subcommand("codegen", "Generate a dependency-free C++17 header with the specialised closed form");
+    auto *cmd =
+        app.add_subcommand("codegen", "Generate a dependency-free C++17 header with the specialised closed form");
     cmd->add_option("problem", args->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     cmd->add_option("--out", args->out_dir, "write DIR/NAME.hpp (only when its content changes)");
-    cmd->add_option("-o,--output", args->output, "write exactly this file (only when its content changes); overrides --out");
-    cmd->add_option("--name", args->name, "function name, a C++ identifier (default: the class or file stem made one: '-' -> '_', x_ before a digit)");
+    cmd->add_option("-o,--output", args->output,
+                    "write exactly this file (only when its content changes); overrides --out");
+    cmd->add_option(
+        "--name", args->name,
+        "function name, a C++ identifier (default: the class or file stem made one: '-' -> '_', x_ before a digit)");
     cmd->add_option("--namespace", args->ns, "namespace of the generated code (default impactgen::generated)");
-    auto* params = cmd->add_option("--params", args->params,
+    auto *params = cmd->add_option("--params", args->params,
                                    "comma-separated symbols (or quantity names such as m1, v_x_ball, I1_tt) that stay "
                                    "function parameters, in this order; every other value is folded in as a constant");
     cmd->add_option("--set", args->set, "values of symbols that are not parameters, e.g. m1=2,l=1/2 (exact)");
@@ -108,7 +113,9 @@ void impactgen::cli::register_codegen(CLI::App& app, std::function<int()>& actio
                   "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly");
-    auto* wrt = cmd->add_option("--wrt", args->wrt,
-                    "comma-separated inputs the Jacobian differentiates by, in this order (default: every input); implies --jacobian");
-    cmd->parse_complete_callback([args, params, wrt, &action] { action = [args, params, wrt] { return run(*args, params, wrt); }; });
+    auto *wrt = cmd->add_option("--wrt", args->wrt,
+                                "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
+                                "input); implies --jacobian");
+    cmd->parse_complete_callback(
+        [args, params, wrt, &action] { action = [args, params, wrt] { return run(*args, params, wrt); }; });
 }

@@ -10,16 +10,17 @@
 #include <iostream>
 #include <memory>
 
-namespace impactgen::cli {
+namespace impactgen::cli
+{
 
-void register_explain(CLI::App& app, std::function<int()>& action)
+void register_explain(CLI::App &app, std::function<int()> &action)
 {
     struct options {
         std::string what;
         std::string format = "text";
     };
     auto opt = std::make_shared<options>();
-    auto* cmd = app.add_subcommand("explain", "Walk through the derivation and solution the way the lecture notes do");
+    auto *cmd = app.add_subcommand("explain", "Walk through the derivation and solution the way the lecture notes do");
     cmd->add_option("problem", opt->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     cmd->add_option("--format", opt->format,
                     "text (default), markdown, latex (a complete document) or html (one self-contained page, MathML)")

@@ -3,21 +3,23 @@
 // <name>_jacobian computes: codegen's plan, chain rule through the steps.
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
-#include "print/canonical.hpp"
 #include "names/escape.hpp"
+#include "print/canonical.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <sstream>
 
-namespace impactgen::cli {
+namespace impactgen::cli
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 } // namespace
 
-void split_wrt(const std::string& s, std::vector<std::string>& out)
+void split_wrt(const std::string &s, std::vector<std::string> &out)
 {
     if (s.empty())
         return;
@@ -25,34 +27,40 @@ void split_wrt(const std::string& s, std::vector<std::string>& out)
     std::istringstream is(s + ",");
     while (std::getline(is, item, ',')) {
         if (item.empty())
-            throw input_error("--wrt: \"" + names::display_text(s) + "\" has an empty item (expected input names separated by commas)");
+            throw input_error("--wrt: \"" + names::display_text(s) +
+                              "\" has an empty item (expected input names separated by commas)");
         out.push_back(item);
     }
 }
 
-namespace {
+namespace
+{
 
 // d(output)/d(input) in the notation of the format.
 // The closed form's own step for an output (N, u, T_lost: named clear of the problem's symbols).
-const step* step_of(const codegen::plan& pl, const codegen::output_value& ov)
+const step *step_of(const codegen::plan &pl, const codegen::output_value &ov)
 {
     switch (ov.kind) {
-    case codegen::output_value::normal_impulse: return pl.sol.find(step_role::normal_impulse);
-    case codegen::output_value::approach_velocity: return pl.sol.find(step_role::approach_velocity);
-    case codegen::output_value::energy_lost: return pl.sol.find(step_role::energy_lost);
-    default: return nullptr;
+    case codegen::output_value::normal_impulse:
+        return pl.sol.find(step_role::normal_impulse);
+    case codegen::output_value::approach_velocity:
+        return pl.sol.find(step_role::approach_velocity);
+    case codegen::output_value::energy_lost:
+        return pl.sol.find(step_role::energy_lost);
+    default:
+        return nullptr;
     }
 }
 
 // (a velocity after impact is primed, as in the closed form)
-std::string entry_name(const codegen::plan& pl, const codegen::output_value& ov, const symbol& x, bool latex)
+std::string entry_name(const codegen::plan &pl, const codegen::output_value &ov, const symbol &x, bool latex)
 {
     const bool after = ov.kind == codegen::output_value::velocity || ov.kind == codegen::output_value::angular_velocity;
     const std::string out = ov.field + (after ? "'" : "");
     if (!latex)
         return "d " + out + " / d " + print::symbol_text(x.get_name());
     std::string tex;
-    if (const step* st = step_of(pl, ov)) {
+    if (const step *st = step_of(pl, ov)) {
         tex = print::symbol_latex(st->sym);
     } else {
         tex = print::symbol_latex(symbol(ov.field));
@@ -65,7 +73,7 @@ std::string entry_name(const codegen::plan& pl, const codegen::output_value& ov,
 
 } // namespace
 
-codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt)
+codegen::plan jacobian_plan_for(const problem &p, const std::string &wrt)
 {
     codegen::options o;
     o.name = "formulas";
@@ -73,22 +81,23 @@ codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt)
     split_wrt(wrt, o.wrt);
     try {
         return codegen::make_plan(p, o);
-    } catch (const codegen::option_error& e) {
+    } catch (const codegen::option_error &e) {
         throw input_error(std::string("--") + codegen::option_error::option_name(e.which) + ": " + e.what());
     }
 }
 
-std::string jacobian_text(const codegen::plan& pl)
+std::string jacobian_text(const codegen::plan &pl)
 {
     std::ostringstream os;
-    const codegen::jacobian_plan& j = pl.jac;
+    const codegen::jacobian_plan &j = pl.jac;
     os << "\nJacobian of the impact map, d(output after impact)/d(input), by the chain rule through the steps above\n";
     os << "(inputs: ";
     for (std::size_t k = 0; k < j.wrt.size(); ++k)
         os << (k ? ", " : "") << print::symbol_text(j.wrt[k].get_name());
     os << ")\n\n";
-    for (const step& st : j.steps)
-        os << print::symbol_text(st.sym.get_name()) << " = " << print::canonical_text(st.value) << "\n    (" << st.meaning << ")\n";
+    for (const step &st : j.steps)
+        os << print::symbol_text(st.sym.get_name()) << " = " << print::canonical_text(st.value) << "\n    ("
+           << st.meaning << ")\n";
     std::size_t zeros = 0;
     for (std::size_t o = 0; o < pl.outputs.size(); ++o)
         for (std::size_t k = 0; k < j.wrt.size(); ++k) {
@@ -96,24 +105,26 @@ std::string jacobian_text(const codegen::plan& pl)
                 ++zeros;
                 continue;
             }
-            os << entry_name(pl, pl.outputs[o], j.wrt[k], false) << " = " << print::canonical_text(j.entries[o][k]) << "\n";
+            os << entry_name(pl, pl.outputs[o], j.wrt[k], false) << " = " << print::canonical_text(j.entries[o][k])
+               << "\n";
         }
     os << "(" << zeros << " of the " << pl.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
     return os.str();
 }
 
-std::string jacobian_latex(const codegen::plan& pl)
+std::string jacobian_latex(const codegen::plan &pl)
 {
     std::ostringstream os;
-    const codegen::jacobian_plan& j = pl.jac;
+    const codegen::jacobian_plan &j = pl.jac;
     os << "% Jacobian of the impact map (chain rule through the steps)\n\\begin{align*}\n";
     std::vector<std::string> lines;
-    for (const step& st : j.steps)
+    for (const step &st : j.steps)
         lines.push_back(print::symbol_latex(st.sym) + " &= " + print::canonical_latex(st.value));
     for (std::size_t o = 0; o < pl.outputs.size(); ++o)
         for (std::size_t k = 0; k < j.wrt.size(); ++k)
             if (!j.entries[o][k].is_zero()) {
-                const std::string lhs = entry_name(pl, pl.outputs[o], j.wrt[k], true), rhs = print::canonical_latex(j.entries[o][k]);
+                const std::string lhs = entry_name(pl, pl.outputs[o], j.wrt[k], true),
+                                  rhs = print::canonical_latex(j.entries[o][k]);
                 if (lhs != rhs) // dN/de is a step already
                     lines.push_back(lhs + " &= " + rhs);
             }
@@ -123,23 +134,25 @@ std::string jacobian_latex(const codegen::plan& pl)
     return os.str();
 }
 
-nlohmann::ordered_json jacobian_json(const codegen::plan& pl)
+nlohmann::ordered_json jacobian_json(const codegen::plan &pl)
 {
-    const codegen::jacobian_plan& j = pl.jac;
+    const codegen::jacobian_plan &j = pl.jac;
     nlohmann::ordered_json r;
     r["wrt"] = nlohmann::ordered_json::array();
-    for (const symbol& x : j.wrt)
+    for (const symbol &x : j.wrt)
         r["wrt"].push_back(x.get_name());
     r["outputs"] = nlohmann::ordered_json::array();
-    for (const codegen::output_value& ov : pl.outputs)
+    for (const codegen::output_value &ov : pl.outputs)
         r["outputs"].push_back(ov.field);
     // The closed form's own steps first: the derivatives are written in them.
     r["closed_form_steps"] = nlohmann::ordered_json::array();
-    for (const step& st : pl.sol.steps)
-        r["closed_form_steps"].push_back({{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
+    for (const step &st : pl.sol.steps)
+        r["closed_form_steps"].push_back(
+            {{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
     r["steps"] = nlohmann::ordered_json::array();
-    for (const step& st : j.steps)
-        r["steps"].push_back({{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
+    for (const step &st : j.steps)
+        r["steps"].push_back(
+            {{"name", st.sym.get_name()}, {"value", print::canonical_parser(st.value)}, {"meaning", st.meaning}});
     r["entries"] = nlohmann::ordered_json::array();
     for (std::size_t o = 0; o < pl.outputs.size(); ++o) {
         nlohmann::ordered_json row = nlohmann::ordered_json::array();

@@ -11,28 +11,30 @@
 #include <functional>
 #include <string>
 
-namespace impactgen::cli {
+namespace impactgen::cli
+{
 
 /// A named class or a problem file (warnings about ignored keys go to stderr).
-problem load(const std::string& class_or_file);
+problem load(const std::string &class_or_file);
 
-void register_explain(CLI::App& app, std::function<int()>& action);
+void register_explain(CLI::App &app, std::function<int()> &action);
 
 } // namespace impactgen::cli
 
 #include "codegen/codegen.hpp"
 #include <nlohmann/json.hpp>
 
-namespace impactgen::cli {
+namespace impactgen::cli
+{
 
 /// formulas --jacobian [--wrt a,b]: the codegen plan with its Jacobian, and its printers.
-codegen::plan jacobian_plan_for(const problem& p, const std::string& wrt);
+codegen::plan jacobian_plan_for(const problem &p, const std::string &wrt);
 /// The --wrt list "a,b,c" (throws input_error on an empty item: "a,,b", ",").
-void split_wrt(const std::string& s, std::vector<std::string>& out);
-std::string jacobian_text(const codegen::plan& pl);
-std::string jacobian_latex(const codegen::plan& pl);
-nlohmann::ordered_json jacobian_json(const codegen::plan& pl);
+void split_wrt(const std::string &s, std::vector<std::string> &out);
+std::string jacobian_text(const codegen::plan &pl);
+std::string jacobian_latex(const codegen::plan &pl);
+nlohmann::ordered_json jacobian_json(const codegen::plan &pl);
 
-void register_codegen(CLI::App& app, std::function<int()>& action);
+void register_codegen(CLI::App &app, std::function<int()> &action);
 
 } // namespace impactgen::cli

@@ -1,11 +1,11 @@
 // impactgen: the command-line face of the library. Each subcommand parses its
 // arguments, builds a problem, calls the library and chooses a printer.
+#include "cli/commands.hpp"
+#include "names/escape.hpp"
 #include "print/answer.hpp"
 #include "print/expression.hpp"
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
-#include "cli/commands.hpp"
-#include "names/escape.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -15,55 +15,55 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <thread>
 #include <iostream>
+#include <thread>
 
 using namespace impactgen;
 
-
-problem impactgen::cli::load(const std::string& what)
+problem impactgen::cli::load(const std::string &what)
 {
-    if (const named_class* c = find_named_class(what))
+    if (const named_class *c = find_named_class(what))
         return c->build();
     if (!std::filesystem::exists(what)) {
         std::string names;
-        for (const named_class& c : named_classes())
+        for (const named_class &c : named_classes())
             names += (names.empty() ? "" : ", ") + c.name;
-        for (const named_class& c : friction_classes())
+        for (const named_class &c : friction_classes())
             names += ", " + c.name;
         throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
     }
     problem p = load_problem_file(what);
-    for (const std::string& w : p.warnings)
+    for (const std::string &w : p.warnings)
         std::cerr << "impactgen: warning: " << what << ": " << w << "\n";
     return p;
 }
 
-namespace {
+namespace
+{
 using impactgen::cli::load;
 
 int cmd_list()
 {
-    for (const named_class& c : named_classes()) {
+    for (const named_class &c : named_classes()) {
         derivation d = derive(c.build());
         std::printf("%-16s %2zu unknowns  %s\n", c.name.c_str(), d.count_unknowns(), c.description.c_str());
     }
     std::printf("\nwith Coulomb friction (past the notes; regimes stick and slide):\n");
-    for (const named_class& c : friction_classes())
+    for (const named_class &c : friction_classes())
         std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
     return 0;
 }
 
-int cmd_solve(const std::string& what, bool json)
+int cmd_solve(const std::string &what, bool json)
 {
     problem p = load(what);
     auto params = p.parameters();
     if (!params.empty()) {
         std::string names;
-        for (const auto& s : params)
+        for (const auto &s : params)
             names += (names.empty() ? "" : ", ") + s.get_name();
-        throw input_error(what + ": solve needs numbers, but the problem has symbols (" + impactgen::names::display_text(names, 120) +
-                          "); use 'impactgen formulas' for closed forms");
+        throw input_error(what + ": solve needs numbers, but the problem has symbols (" +
+                          impactgen::names::display_text(names, 120) + "); use 'impactgen formulas' for closed forms");
     }
     derivation d = derive(p);
     if (p.has_friction()) {
@@ -83,11 +83,13 @@ int cmd_solve(const std::string& what, bool json)
     return 0;
 }
 
-int cmd_formulas(const std::string& what, const std::string& format, bool jacobian, const std::string& wrt)
+int cmd_formulas(const std::string &what, const std::string &format, bool jacobian, const std::string &wrt)
 {
     problem p = load(what);
     if (jacobian && p.has_friction())
-        throw input_error(what + ": --jacobian is not available with friction (the impact map is piecewise: one closed form per regime)");
+        throw input_error(
+            what +
+            ": --jacobian is not available with friction (the impact map is piecewise: one closed form per regime)");
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {
@@ -127,7 +129,7 @@ int cmd_bench(int repeats)
     using clock = std::chrono::steady_clock;
     double total = 0;
     std::printf("%-16s %12s %12s   (best of %d, derivation + closed-form solution)\n", "class", "ms", "steps", repeats);
-    for (const named_class& c : named_classes()) {
+    for (const named_class &c : named_classes()) {
         double best = 1e300;
         std::size_t steps = 0;
         for (int r = 0; r < repeats; ++r) {
@@ -147,17 +149,18 @@ int cmd_bench(int repeats)
 
 } // namespace
 
-namespace {
+namespace
+{
 struct formulas_args {
     bool jacobian = false;
     std::string wrt;
 };
-int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
-             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats,
-             const formulas_args& fa);
+int dispatch(const std::function<int()> &extra_action, CLI::App *list, CLI::App *solve_cmd, CLI::App *formulas,
+             CLI::App *bench, const std::string &what, bool json, const std::string &format, int repeats,
+             const formulas_args &fa);
 } // namespace
 
-int main(int argc, char** argv)
+int main(int argc, char **argv)
 {
     // A closed pipe (impactgen explain ... | head) is a failed write, reported
     // like any other, not a death by SIGPIPE.
@@ -166,26 +169,28 @@ int main(int argc, char** argv)
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("impactgen ") + IMPACTGEN_VERSION);
 
-    auto* list = app.add_subcommand("list", "List the named impact classes: name, unknowns, description");
+    auto *list = app.add_subcommand("list", "List the named impact classes: name, unknowns, description");
 
     std::string what;
     bool json = false;
-    auto* solve_cmd = app.add_subcommand("solve", "Solve a numeric problem file exactly (rational arithmetic)");
+    auto *solve_cmd = app.add_subcommand("solve", "Solve a numeric problem file exactly (rational arithmetic)");
     solve_cmd->add_option("problem", what, "PROBLEM.json in the impact problem format")->required();
     solve_cmd->add_flag("--json", json, "print the answer object of the problem format (decimals)");
 
     std::string format = "text";
-    auto* formulas = app.add_subcommand("formulas", "Closed-form formulas for a named class or a problem file");
+    auto *formulas = app.add_subcommand("formulas", "Closed-form formulas for a named class or a problem file");
     formulas->add_option("problem", what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     formulas->add_option("--format", format, "text, latex or json")->check(CLI::IsMember({"text", "latex", "json"}));
     bool jacobian = false;
     std::string wrt;
     formulas->add_flag("--jacobian", jacobian,
-                       "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen --jacobian computes them");
-    formulas->add_option("--wrt", wrt, "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
+                       "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen "
+                       "--jacobian computes them");
+    formulas->add_option("--wrt", wrt,
+                         "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 
     int repeats = 5;
-    auto* bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
+    auto *bench = app.add_subcommand("bench", "Time derivation + closed-form solution of every named class");
     bench->add_option("--repeats", repeats, "repetitions per class (best is reported)")->check(CLI::Range(1, 1000));
 
     double time_limit = 10;
@@ -202,7 +207,7 @@ int main(int argc, char** argv)
         app.parse(argc, argv);
         if (!std::isfinite(time_limit))
             throw CLI::ValidationError("--time-limit", "must be a finite number of seconds");
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::ParseError &e) {
         if (e.get_exit_code() == 0) { // --help, --version
             app.exit(e);
             std::cout.flush();
@@ -212,7 +217,7 @@ int main(int argc, char** argv)
         std::string what = e.what();
         if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
             std::string known;
-            for (const CLI::App* sub : app.get_subcommands({}))
+            for (const CLI::App *sub : app.get_subcommands({}))
                 known += (known.empty() ? "" : ", ") + sub->get_name();
             what = "unknown subcommand \"" + std::string(argv[1]) + "\" (one of " + known + ")";
         }
@@ -224,7 +229,8 @@ int main(int argc, char** argv)
         const bool wrt_given = formulas->get_option("--wrt")->count() > 0;
         if (wrt_given && wrt.empty())
             throw input_error("--wrt: no input named (expected input names separated by commas)");
-        return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats, {jacobian || wrt_given, wrt});
+        return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats,
+                        {jacobian || wrt_given, wrt});
     };
     // The time budget: every input the reader accepts is done in well under a
     // second; a run past the budget is stopped with a message, never left to hang.
@@ -232,7 +238,8 @@ int main(int argc, char** argv)
     if (limited)
         std::thread([time_limit] {
             std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));
-            std::fprintf(stderr, "impactgen: error: stopped after the time budget of %g s (--time-limit)\n", time_limit);
+            std::fprintf(stderr, "impactgen: error: stopped after the time budget of %g s (--time-limit)\n",
+                         time_limit);
             std::fflush(stderr);
             std::_Exit(1);
         }).detach();
@@ -242,19 +249,20 @@ int main(int argc, char** argv)
         if (!std::cout)
             throw input_error("cannot write to standard output");
         return rc;
-    } catch (const input_error& e) {
+    } catch (const input_error &e) {
         std::cerr << "impactgen: error: " << e.what() << "\n";
         return 1;
-    } catch (const std::exception& e) {
+    } catch (const std::exception &e) {
         std::cerr << "impactgen: error: " << impactgen::names::display_text(e.what()) << "\n";
         return 1;
     }
 }
 
-namespace {
-int dispatch(const std::function<int()>& extra_action, CLI::App* list, CLI::App* solve_cmd, CLI::App* formulas,
-             CLI::App* bench, const std::string& what, bool json, const std::string& format, int repeats,
-             const formulas_args& fa)
+namespace
+{
+int dispatch(const std::function<int()> &extra_action, CLI::App *list, CLI::App *solve_cmd, CLI::App *formulas,
+             CLI::App *bench, const std::string &what, bool json, const std::string &format, int repeats,
+             const formulas_args &fa)
 {
     {
         if (*list)

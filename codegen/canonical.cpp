@@ -7,17 +7,18 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using namespace GiNaC;
 
-std::string number_text(const numeric& x)
+std::string number_text(const numeric &x)
 {
     std::ostringstream os;
     os << x;
     return os.str();
 }
 
-void canonical_pool::bind_step(const symbol& sym, int index, const std::string& name)
+void canonical_pool::bind_step(const symbol &sym, int index, const std::string &name)
 {
     cnode n;
     n.kind = cnode::step;
@@ -38,7 +39,7 @@ int canonical_pool::intern(cnode n)
     return id;
 }
 
-int canonical_pool::node_of(const scaled& s)
+int canonical_pool::node_of(const scaled &s)
 {
     if (s.node < 0) {
         cnode n;
@@ -52,20 +53,20 @@ int canonical_pool::node_of(const scaled& s)
     cnode m;
     m.kind = cnode::mul;
     m.value = s.scale;
-    const cnode& inner = at(s.node);
+    const cnode &inner = at(s.node);
     if (inner.kind == cnode::mul) {
         m.value *= inner.value;
         m.factors = inner.factors;
     } else
         m.factors = {{s.node, 1}};
     m.key = "[" + number_text(m.value) + ":";
-    for (auto& f : m.factors)
+    for (auto &f : m.factors)
         m.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
     m.key += "]";
     return intern(std::move(m));
 }
 
-scaled canonical_pool::convert(const ex& e)
+scaled canonical_pool::convert(const ex &e)
 {
     // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
     // to 40 digits: a literal good for long double, exact to every digit of double.
@@ -84,7 +85,7 @@ scaled canonical_pool::convert(const ex& e)
             return {ex_to<numeric>(v), -1};
     }
     if (is_a<numeric>(e)) {
-        const numeric& x = ex_to<numeric>(e);
+        const numeric &x = ex_to<numeric>(e);
         if (!x.is_real())
             throw std::runtime_error("code generation: complex number " + number_text(x));
         return {x, -1};
@@ -111,9 +112,9 @@ scaled canonical_pool::convert(const ex& e)
                 constant += t.scale;
                 continue;
             }
-            const cnode& tn = at(t.node);
+            const cnode &tn = at(t.node);
             if (tn.kind == cnode::add) {
-                for (auto& [c, id] : tn.terms)
+                for (auto &[c, id] : tn.terms)
                     coeff[id] += t.scale * c;
                 constant += t.scale * tn.value;
             } else {
@@ -121,22 +122,23 @@ scaled canonical_pool::convert(const ex& e)
             }
         }
         std::vector<std::pair<numeric, int>> terms;
-        for (auto& [id, c] : coeff)
+        for (auto &[id, c] : coeff)
             if (!c.is_zero())
                 terms.push_back({c, id});
         if (terms.empty())
             return {constant, -1};
         if (terms.size() == 1 && constant.is_zero())
             return {terms[0].first, terms[0].second};
-        std::sort(terms.begin(), terms.end(), [&](const auto& a, const auto& b) { return at(a.second).key < at(b.second).key; });
+        std::sort(terms.begin(), terms.end(),
+                  [&](const auto &a, const auto &b) { return at(a.second).key < at(b.second).key; });
         numeric sign = terms[0].first < 0 ? -1 : 1;
         cnode n;
         n.kind = cnode::add;
         n.value = sign * constant;
-        for (auto& t : terms)
+        for (auto &t : terms)
             n.terms.push_back({sign * t.first, t.second});
         n.key = "(";
-        for (auto& [c, id] : n.terms)
+        for (auto &[c, id] : n.terms)
             n.key += number_text(c) + "*" + at(id).key + ";";
         n.key += "|" + number_text(n.value) + ")";
         return {sign, intern(std::move(n))};
@@ -144,25 +146,25 @@ scaled canonical_pool::convert(const ex& e)
     if (is_a<mul>(e) || is_a<power>(e)) {
         numeric coeff = 1;
         std::map<int, int> expo;
-        auto take = [&](const scaled& f, int k) {
+        auto take = [&](const scaled &f, int k) {
             if (f.scale.is_zero() && k < 0)
                 throw std::runtime_error("code generation: division by zero");
             coeff *= pow(f.scale, numeric(k)); // exact for integer k
             if (f.node < 0)
                 return;
-            const cnode& fn = at(f.node);
+            const cnode &fn = at(f.node);
             if (fn.kind == cnode::mul) {
                 coeff *= pow(fn.value, numeric(k));
-                for (auto& [id, x] : fn.factors)
+                for (auto &[id, x] : fn.factors)
                     expo[id] += x * k;
             } else {
                 expo[f.node] += k;
             }
         };
-        auto factor = [&](const ex& f) {
+        auto factor = [&](const ex &f) {
             if (is_a<power>(f)) {
-                const ex& b = f.op(0);
-                const ex& x = f.op(1);
+                const ex &b = f.op(0);
+                const ex &x = f.op(1);
                 if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_rational())
                     throw std::runtime_error("code generation: power with a non-rational exponent");
                 numeric q = ex_to<numeric>(x);
@@ -188,20 +190,21 @@ scaled canonical_pool::convert(const ex& e)
             for (std::size_t i = 0; i < e.nops(); ++i)
                 factor(e.op(i));
         std::vector<std::pair<int, int>> factors;
-        for (auto& [id, x] : expo)
+        for (auto &[id, x] : expo)
             if (x != 0)
                 factors.push_back({id, x});
         if (factors.empty() || coeff.is_zero())
             return {coeff, -1};
         if (factors.size() == 1 && factors[0].second == 1)
             return {coeff, factors[0].first};
-        std::sort(factors.begin(), factors.end(), [&](const auto& a, const auto& b) { return at(a.first).key < at(b.first).key; });
+        std::sort(factors.begin(), factors.end(),
+                  [&](const auto &a, const auto &b) { return at(a.first).key < at(b.first).key; });
         cnode n;
         n.kind = cnode::mul;
         n.value = 1;
         n.factors = std::move(factors);
         n.key = "[1:";
-        for (auto& f : n.factors)
+        for (auto &f : n.factors)
             n.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
         n.key += "]";
         return {coeff, intern(std::move(n))};
@@ -213,9 +216,10 @@ scaled canonical_pool::convert(const ex& e)
         if (is_a<function>(*it))
             functions.insert(ex_to<function>(*it).get_name());
     std::string list;
-    for (const std::string& f : functions)
+    for (const std::string &f : functions)
         list += (list.empty() ? "" : ", ") + f;
-    throw std::runtime_error("code generation: cannot express " + (list.empty() ? std::string("this expression") : list) +
+    throw std::runtime_error("code generation: cannot express " +
+                             (list.empty() ? std::string("this expression") : list) +
                              " of symbols in C++ arithmetic (only +, -, *, /, integer powers and sqrt)");
 }
 

@@ -17,17 +17,18 @@
 #include <utility>
 #include <vector>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 
 struct cnode {
     enum kind_t { constant, input, step, add, mul, sqrt_ } kind = constant;
-    GiNaC::numeric value;                               ///< constant; add: constant term; mul: coefficient
-    std::string name;                                   ///< input or step
-    int step_index = -1;                                ///< step
-    std::vector<std::pair<GiNaC::numeric, int>> terms;  ///< add: coefficient * node
-    std::vector<std::pair<int, int>> factors;           ///< mul: node ^ integer exponent
-    int arg = -1;                                       ///< sqrt
-    std::string key;                                    ///< canonical text, the sort and hash-consing key
+    GiNaC::numeric value;                              ///< constant; add: constant term; mul: coefficient
+    std::string name;                                  ///< input or step
+    int step_index = -1;                               ///< step
+    std::vector<std::pair<GiNaC::numeric, int>> terms; ///< add: coefficient * node
+    std::vector<std::pair<int, int>> factors;          ///< mul: node ^ integer exponent
+    int arg = -1;                                      ///< sqrt
+    std::string key;                                   ///< canonical text, the sort and hash-consing key
 };
 
 /// scale * node; node == -1 means the constant `scale` alone.
@@ -36,18 +37,19 @@ struct scaled {
     int node = -1;
 };
 
-class canonical_pool {
+class canonical_pool
+{
 public:
     /// The C++ name of each input symbol (by GiNaC name); a symbol not listed is an error.
     void set_input_names(std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> names) { input_names_ = std::move(names); }
     /// Occurrences of `sym` in later expressions refer to step `index`.
-    void bind_step(const GiNaC::symbol& sym, int index, const std::string& name);
+    void bind_step(const GiNaC::symbol &sym, int index, const std::string &name);
     /// Throws std::runtime_error for what C++ cannot express (functions, complex numbers, odd powers).
-    scaled convert(const GiNaC::ex& e);
+    scaled convert(const GiNaC::ex &e);
     /// scale * node as one node.
-    int node_of(const scaled& s);
+    int node_of(const scaled &s);
 
-    const cnode& at(int id) const { return nodes_[static_cast<std::size_t>(id)]; }
+    const cnode &at(int id) const { return nodes_[static_cast<std::size_t>(id)]; }
     std::size_t size() const { return nodes_.size(); }
 
 private:
@@ -60,6 +62,6 @@ private:
 };
 
 /// Text of an exact number, e.g. "4/5", "-3".
-std::string number_text(const GiNaC::numeric& x);
+std::string number_text(const GiNaC::numeric &x);
 
 } // namespace impactgen::codegen

@@ -15,28 +15,51 @@
 #include <set>
 #include <sstream>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // Names the emitted code itself uses inside the functions (keywords and
 // reserved C++ names never come out of names::mangle).
-const std::set<std::string>& reserved()
+const std::set<std::string> &reserved()
 {
-    static const std::set<std::string> r = {"out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed",
-                                            "with_energy_lost", "impact_status", "op_count", "to_string", "finite", "all_finite",
-                                            "min_of", "sqrt", "std", "i", "n", "r", "a", "view"};
+    static const std::set<std::string> r = {"out",
+                                            "fail",
+                                            "why",
+                                            "T",
+                                            "in",
+                                            "detail",
+                                            "check_sum",
+                                            "ok",
+                                            "status",
+                                            "failed",
+                                            "with_energy_lost",
+                                            "impact_status",
+                                            "op_count",
+                                            "to_string",
+                                            "finite",
+                                            "all_finite",
+                                            "min_of",
+                                            "sqrt",
+                                            "std",
+                                            "i",
+                                            "n",
+                                            "r",
+                                            "a",
+                                            "view"};
     return r;
 }
 
-std::string counts_text(const op_counts& c)
+std::string counts_text(const op_counts &c)
 {
     return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
            std::to_string(c.sqrt) + " sqrt";
 }
 
-std::string wrap_comment(const std::string& lhs, const std::string& rhs)
+std::string wrap_comment(const std::string &lhs, const std::string &rhs)
 {
     // One formula per line; long right-hand sides continue on indented lines.
     std::string out = "//   " + lhs + " = ";
@@ -60,7 +83,7 @@ std::string wrap_comment(const std::string& lhs, const std::string& rhs)
 }
 
 // True when the code names the identifier (not as part of a longer one).
-bool uses(const std::string& code, const std::string& name)
+bool uses(const std::string &code, const std::string &name)
 {
     auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
@@ -98,7 +121,7 @@ struct sum_term {
 // impulse) are summed while the impulse is computed, and the flag waits for as few
 // additions as possible after the last value. The optional term is added last, under
 // with_energy_lost. Each side of the conditional converted to T (autodiff expression types).
-std::string timed_sum(const std::vector<sum_term>& terms)
+std::string timed_sum(const std::vector<sum_term> &terms)
 {
     struct node {
         std::string text;
@@ -107,18 +130,21 @@ std::string timed_sum(const std::vector<sum_term>& terms)
     };
     std::vector<node> nodes;
     std::string optional;
-    for (const sum_term& t : terms) {
+    for (const sum_term &t : terms) {
         if (t.optional)
             optional = t.text;
         else
             nodes.push_back({t.text, t.ready, nodes.size()});
     }
-    auto wrap = [](const std::string& x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
+    auto wrap = [](const std::string &x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
     std::size_t next = nodes.size();
     while (nodes.size() > 1) {
-        auto earlier = [](const node& a, const node& b) { return a.ready != b.ready ? a.ready < b.ready : a.order < b.order; };
+        auto earlier = [](const node &a, const node &b) {
+            return a.ready != b.ready ? a.ready < b.ready : a.order < b.order;
+        };
         std::sort(nodes.begin(), nodes.end(), earlier);
-        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3, next++};
+        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3,
+                 next++};
         nodes.erase(nodes.begin(), nodes.begin() + 2);
         nodes.push_back(sum);
     }
@@ -130,7 +156,7 @@ std::string timed_sum(const std::vector<sum_term>& terms)
 }
 
 // energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
-std::string energy_optional(const std::string& code, const std::string& lhs)
+std::string energy_optional(const std::string &code, const std::string &lhs)
 {
     std::istringstream lines(code);
     std::string line, r;
@@ -147,10 +173,10 @@ std::string energy_optional(const std::string& code, const std::string& lhs)
 }
 
 // Minimums the flag of a branchless form takes (one per list of more than one term).
-std::size_t mins(const emitted& em)
+std::size_t mins(const emitted &em)
 {
     std::size_t n = 0;
-    for (const auto* v : {&em.positive_terms, &em.nonneg_terms, &em.normal_terms})
+    for (const auto *v : {&em.positive_terms, &em.nonneg_terms, &em.normal_terms})
         n += v->empty() ? 0 : v->size() - 1;
     return n;
 }
@@ -161,14 +187,14 @@ std::size_t mins(const emitted& em)
 // values (early: summed and folded into the min while the impulse is computed) and the
 // last values (late: within an add or two of each other as the estimate goes, summed as
 // a balanced tree; the optional term with them).
-std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term>& finite_terms)
+std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term> &finite_terms)
 {
     int last = 0;
-    for (const sum_term& t : finite_terms)
+    for (const sum_term &t : finite_terms)
         if (!t.optional)
             last = std::max(last, t.ready);
     std::vector<sum_term> early, late;
-    for (const sum_term& t : finite_terms)
+    for (const sum_term &t : finite_terms)
         if (t.optional || t.ready + 7 > last)
             late.push_back({t.text, last, t.optional});
         else
@@ -177,7 +203,7 @@ std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std:
 }
 
 // The multiply-adds (x * 0 folded into the min) and the comparisons of a flag.
-std::pair<std::size_t, std::size_t> flag_counts(const emitted& form, const std::vector<sum_term>& finite_terms)
+std::pair<std::size_t, std::size_t> flag_counts(const emitted &form, const std::vector<sum_term> &finite_terms)
 {
     std::size_t fmas = 0, tests = 0;
     if (!form.positive_terms.empty()) {
@@ -190,24 +216,25 @@ std::pair<std::size_t, std::size_t> flag_counts(const emitted& form, const std::
     return {fmas, tests};
 }
 
-std::string ok_flag(const std::string& ind, const emitted& form, const std::vector<sum_term>& finite_terms, bool scalar)
+std::string ok_flag(const std::string &ind, const emitted &form, const std::vector<sum_term> &finite_terms, bool scalar)
 {
     std::vector<std::string> parts;
     std::string last_part; // the part that waits for the last values: tested last
     // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
     // that would not deduce.
-    auto min_of = [](const std::vector<std::string>& v) {
+    auto min_of = [](const std::vector<std::string> &v) {
         if (v.size() == 1)
             return v[0];
         std::vector<std::string> args;
-        for (const std::string& x : v)
+        for (const std::string &x : v)
             args.push_back("T(" + x + ")");
         return "detail::min_of(" + join(args, ", ") + ")";
     };
     // The sums converted to T too: with an autodiff T a sum of values is an expression
     // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
     if (!form.positive_terms.empty()) {
-        const std::string m = form.positive_terms.size() == 1 ? "T(" + form.positive_terms[0] + ")" : min_of(form.positive_terms);
+        const std::string m =
+            form.positive_terms.size() == 1 ? "T(" + form.positive_terms[0] + ")" : min_of(form.positive_terms);
         // With the finiteness in the same comparison: x * 0 is +-0 when x is finite
         // (min + 0 = min) and NaN when not (NaN > 0 fails). The terms ready before the
         // last ones (inputs, values before the impulse) are summed and folded into the
@@ -216,7 +243,7 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
         // comparison and a flag of its own. (Written min + x * 0: g++ 12 contracts it
         // into one fma, x * 0 + min not.)
         const auto [early, late] = split_by_time(finite_terms);
-        auto wrapped = [](const std::string& x) { return x.find('?') != std::string::npos ? "T(" + x + ")" : x; };
+        auto wrapped = [](const std::string &x) { return x.find('?') != std::string::npos ? "T(" + x + ")" : x; };
         std::string folded = m;
         if (!early.empty())
             folded = "T(" + folded + " + " + wrapped(timed_sum(early)) + " * T(0))";
@@ -243,19 +270,21 @@ std::string ok_flag(const std::string& ind, const emitted& form, const std::vect
         // The scalar forms: the parts joined by &&, which the compiler may test with a
         // branch each (the earlier parts decided before the last values are there;
         // predicted, they cost less than folding the comparisons into one flag).
-        text += ind + "const bool ok = " + (parts.empty() ? std::string("true") : join(parts, " &&\n" + ind + "                ")) + ";\n";
+        text += ind + "const bool ok = " +
+                (parts.empty() ? std::string("true") : join(parts, " &&\n" + ind + "                ")) + ";\n";
         return text;
     }
     // The batch loop: folded as unsigned so that no branch is implied (the loop
     // vectorises) and clang's -Wbitwise-instead-of-logical has nothing to say.
-    for (std::string& part : parts)
+    for (std::string &part : parts)
         part = "static_cast<unsigned>" + (part.front() == '(' ? part : "(" + part + ")");
     text += ind + "const bool ok = " +
-            (parts.empty() ? std::string("true") : "(" + join(parts, " &\n" + ind + "                 ") + ") != 0u") + ";\n";
+            (parts.empty() ? std::string("true") : "(" + join(parts, " &\n" + ind + "                 ") + ") != 0u") +
+            ";\n";
     return text;
 }
 
-const char* const preamble_body = R"(// Hooks the user may define before including a generated header:
+const char *const preamble_body = R"(// Hooks the user may define before including a generated header:
 //   IMPACTGEN_FUNC  what every function is declared with (default inline;
 //                   e.g. __host__ __device__ inline for nvcc or hipcc)
 //   IMPACTGEN_MEMBER  what the structs' member functions are declared with
@@ -379,15 +408,15 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 
 )";
 
-const char* const tparams = "template <typename T, bool with_energy_lost = true>\n";
+const char *const tparams = "template <typename T, bool with_energy_lost = true>\n";
 
 // A body's 3-D inertia tensor as the closed form inverts it: about its centre of mass
 // (free) or about its pivot E (pinned: I_C + m (|d|^2 1 - d d^T), d = C - E), each
 // entry the solution's step where it has one (the very value the code computes).
-mat3 tensor_in_use(const problem& q, const solution& s, std::size_t i)
+mat3 tensor_in_use(const problem &q, const solution &s, std::size_t i)
 {
-    const body& b = q.bodies[i];
-    const pivot* pv = q.pivot_of(i);
+    const body &b = q.bodies[i];
+    const pivot *pv = q.pivot_of(i);
     if (!pv)
         return b.inertia;
     mat3 J = zero_mat();
@@ -395,8 +424,9 @@ mat3 tensor_in_use(const problem& q, const solution& s, std::size_t i)
     const ex dd = dot(d, d);
     for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c) {
-            const step* st = s.find(step_role::pivot_inertia, i, r, c);
-            J[r][c] = J[c][r] = st ? ex(st->sym) : tidy(b.inertia[r][c] + b.mass * ((r == c ? dd : ex(0)) - d[r] * d[c]));
+            const step *st = s.find(step_role::pivot_inertia, i, r, c);
+            J[r][c] = J[c][r] =
+                st ? ex(st->sym) : tidy(b.inertia[r][c] + b.mass * ((r == c ? dd : ex(0)) - d[r] * d[c]));
         }
     return J;
 }
@@ -408,7 +438,7 @@ mat3 tensor_in_use(const problem& q, const solution& s, std::size_t i)
 // when with_determinant (else the caller checks its determinant step). Minors of blocks,
 // not of the whole tensor: no product of entries of different blocks, whose range float
 // may not hold (a diagonal I = 1e13 would give 1e39).
-std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, const std::array<std::string, 3>& axes,
+std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
                                                                  bool with_determinant)
 {
     int block_of[3] = {0, 1, 2};
@@ -416,7 +446,7 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, 
         for (int c = r + 1; c < 3; ++c)
             if (!tidy(J[r][c]).is_zero()) {
                 const int from = block_of[c], to = block_of[r];
-                for (int& x : block_of)
+                for (int &x : block_of)
                     if (x == from)
                         x = to;
             }
@@ -443,9 +473,10 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, 
 
 // One header: the plan lowered to a program, three emitted forms of it
 // (checked, fast, batch), and the text, section by section.
-class writer {
+class writer
+{
 public:
-    writer(const problem& p, const options& o) : o_(o), pl_(make_plan(p, o)) {}
+    writer(const problem &p, const options &o) : o_(o), pl_(make_plan(p, o)) {}
 
     header run()
     {
@@ -469,7 +500,7 @@ public:
         out.formula = em_.formula;
         out.checks = em_.checks;
         out.inputs = input_names_;
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             out.outputs.push_back(ov.field);
         return out;
     }
@@ -480,41 +511,41 @@ private:
     // from outputs and inputs, so no user name can shadow or collide with another.
     void name_everything()
     {
-        for (const std::string& r : reserved())
+        for (const std::string &r : reserved())
             if (names::is_safe_identifier(r))
                 scope_.reserve(r);
-        for (names::identifier_scope* sc : {&in_members_, &members_})
-            for (const char* own : {"view", "T"})
+        for (names::identifier_scope *sc : {&in_members_, &members_})
+            for (const char *own : {"view", "T"})
                 sc->reserve(own); // a member so named would hide the template parameter or the view type
 
-        for (const char* suffix : {"", "_result", "_input", "_unchanged", "_jacobian", "_jacobian_result", "_wrt_count",
-                                   "_wrt_names", "_checked", "_batch", "_batch_pass", "_input_count", "_output_count", "_input_names",
-                                   "_output_names", "_ops", "_to_array"})
+        for (const char *suffix : {"", "_result", "_input", "_unchanged", "_jacobian", "_jacobian_result", "_wrt_count",
+                                   "_wrt_names", "_checked", "_batch", "_batch_pass", "_input_count", "_output_count",
+                                   "_input_names", "_output_names", "_ops", "_to_array"})
             scope_.reserve(o_.name + suffix);
         std::map<ex, std::string, ex_is_less> input_ident; // input symbol -> C++ parameter
-        for (const symbol& x : pl_.inputs) {
+        for (const symbol &x : pl_.inputs) {
             input_names_.push_back(scope_.claim(x.get_name()));
             input_ident[x] = input_names_.back();
         }
-        for (output_value& ov : pl_.outputs)
+        for (output_value &ov : pl_.outputs)
             ov.field = members_.claim(ov.field);
         pool_.set_input_names(input_ident);
-        for (const step& st : pl_.sol.steps)
+        for (const step &st : pl_.sol.steps)
             step_names_.push_back(scope_.claim(st.sym.get_name()));
-        for (const output_value& ov : pl_.outputs) {
+        for (const output_value &ov : pl_.outputs) {
             local_of_[ov.field] = scope_.claim("o_" + ov.field);
             out_ptr_[ov.field] = scope_.claim("out_" + ov.field);
         }
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             in_ptr_[nm] = scope_.claim("in_" + nm);
         if (pl_.has_jacobian) {
-            for (const step& st : pl_.jac.steps)
+            for (const step &st : pl_.jac.steps)
                 jac_step_names_.push_back(scope_.claim(st.sym.get_name()));
-            for (const symbol& x : pl_.jac.wrt)
+            for (const symbol &x : pl_.jac.wrt)
                 wrt_names_.push_back(input_ident.at(x));
-            for (const output_value& ov : pl_.outputs) {
+            for (const output_value &ov : pl_.outputs) {
                 std::vector<std::string> row;
-                for (const std::string& w : wrt_names_)
+                for (const std::string &w : wrt_names_)
                     row.push_back(scope_.claim("d_" + ov.field + "_d_" + w));
                 jac_local_.push_back(row);
             }
@@ -523,20 +554,20 @@ private:
         status_ptr_ = scope_.claim("status_out");
         // The input struct's members are the parameters' names; the views of both
         // structs are member functions, named clear of the members.
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             in_members_.claim(nm);
-        for (const group& g : pl_.input_groups)
+        for (const group &g : pl_.input_groups)
             in_views_.push_back(in_members_.claim(g.name));
-        for (const group& g : pl_.output_groups)
+        for (const group &g : pl_.output_groups)
             out_views_.push_back(members_.claim(g.name));
     }
 
     // Canonical trees of the steps and outputs, then the straight-line program.
     void lower_program()
     {
-        const solution& s = pl_.sol;
+        const solution &s = pl_.sol;
         for (std::size_t i = 0; i < s.steps.size(); ++i) {
-            const std::string& nm = step_names_[i];
+            const std::string &nm = step_names_[i];
             scaled v = pool_.convert(s.steps[i].value);
             pool_.bind_step(s.steps[i].sym, static_cast<int>(i), nm);
             prog_.set_owner(nm);
@@ -545,7 +576,7 @@ private:
             if (!prog_.is_leaf(id) && !var_names_.count(id))
                 var_names_[id] = nm;
         }
-        for (const output_value& ov : pl_.outputs) {
+        for (const output_value &ov : pl_.outputs) {
             scaled v = pool_.convert(ov.value);
             prog_.set_owner(ov.field);
             outs_.push_back({ov.field, prog_.lower(pool_, v)});
@@ -554,7 +585,7 @@ private:
         if (pl_.has_jacobian) {
             const std::size_t base = s.steps.size();
             for (std::size_t i = 0; i < pl_.jac.steps.size(); ++i) {
-                const std::string& nm = jac_step_names_[i];
+                const std::string &nm = jac_step_names_[i];
                 scaled v = pool_.convert(pl_.jac.steps[i].value);
                 pool_.bind_step(pl_.jac.steps[i].sym, static_cast<int>(base + i), nm);
                 prog_.set_owner(nm);
@@ -570,22 +601,23 @@ private:
                 }
         }
         lst inverses; // the engine convention: a mass m is 1/inv_m
-        for (const auto& [old, inv] : pl_.inverse_of)
+        for (const auto &[old, inv] : pl_.inverse_of)
             inverses.append(old == 1 / inv);
         for (std::size_t k = 0; k < pl_.outputs.size(); ++k) {
             prog_.set_owner("unchanged");
-            unchanged_outs_.push_back({pl_.outputs[k].field, prog_.lower(pool_, pool_.convert(pl_.unchanged[k].subs(inverses)))});
+            unchanged_outs_.push_back(
+                {pl_.outputs[k].field, prog_.lower(pool_, pool_.convert(pl_.unchanged[k].subs(inverses)))});
         }
     }
 
-    void add_check(const ex& value0, check::kind_t kind, const std::string& status, const std::string& comment)
+    void add_check(const ex &value0, check::kind_t kind, const std::string &status, const std::string &comment)
     {
         // In the engine convention the masses (and planar inertia) are inputs only as
         // inverses: a checked value that uses them (an inertia m L^2/12) uses 1/inv_m.
         ex value = value0;
         if (!is_a<symbol>(value0) || !pl_.meaning.count(value0)) {
             lst inverses;
-            for (const auto& [old, inv] : pl_.inverse_of)
+            for (const auto &[old, inv] : pl_.inverse_of)
                 inverses.append(old == 1 / inv);
             value = value0.subs(inverses);
         }
@@ -598,24 +630,25 @@ private:
     // Validity checks of the inputs and of the steps, by the steps' roles.
     void add_checks()
     {
-        const problem& q = pl_.prob;
-        const solution& s = pl_.sol;
+        const problem &q = pl_.prob;
+        const solution &s = pl_.sol;
         add_check(q.restitution, check::unit_interval, "invalid_restitution", "0 <= e <= 1");
-        auto inverse = [&](const ex& x) -> const symbol* {
+        auto inverse = [&](const ex &x) -> const symbol * {
             auto it = pl_.inverse_of.find(x);
             return it == pl_.inverse_of.end() ? nullptr : &it->second;
         };
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
+            const body &b = q.bodies[i];
             if (b.infinite_mass)
                 continue;
-            const symbol* inv_m = inverse(b.mass);
+            const symbol *inv_m = inverse(b.mass);
             add_check(inv_m ? ex(*inv_m) : b.mass, check::positive, "invalid_mass",
                       (inv_m ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
             if (!b.particle && q.dimension == 2) {
-                const symbol* inv_I = inverse(b.inertia[2][2]);
+                const symbol *inv_I = inverse(b.inertia[2][2]);
                 add_check(inv_I ? ex(*inv_I) : b.inertia[2][2], check::positive, "invalid_inertia",
-                          (inv_I ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
+                          (inv_I ? "inverse moment of inertia of " : "moment of inertia of ") + b.name +
+                              " > 0, finite");
             }
         }
         // Positive definiteness of each 3-D inertia tensor the closed form inverts (about C,
@@ -623,14 +656,15 @@ private:
         // leading principal minors, block by block. Entries or minors that are numbers
         // were validated when the problem was read; the determinant is its own step below.
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
+            const body &b = q.bodies[i];
             if (q.dimension != 3 || b.particle || b.infinite_mass)
                 continue;
             auto inv = pl_.inverse_tensor.find(i);
             const bool inverse_given = inv != pl_.inverse_tensor.end();
             const std::string what = (inverse_given ? "inverse inertia tensor of " : "inertia tensor of ") + b.name +
-                                     (q.pivot_of(i) && !inverse_given ? " about its pivot" : "") + " positive definite: ";
-            for (const auto& [minor, text] :
+                                     (q.pivot_of(i) && !inverse_given ? " about its pivot" : "") +
+                                     " positive definite: ";
+            for (const auto &[minor, text] :
                  positive_definite_minors(inverse_given ? inv->second : tensor_in_use(q, s, i), q.axes, inverse_given))
                 add_check(minor, check::positive, "invalid_inertia", what + text);
         }
@@ -645,7 +679,7 @@ private:
                           "n.n a normal number: the normal neither zero, denormal nor too long");
         }
         const bool has_k = s.find(step_role::contact_inverse_mass) != nullptr;
-        for (const step& st : s.steps) {
+        for (const step &st : s.steps) {
             switch (st.role) {
             case step_role::normal_impulse:
                 if (!has_k) // k = w_1 + w_2 too simple to be a step: N's denominator
@@ -660,7 +694,8 @@ private:
             case step_role::contact_inverse_mass:
                 add_check(st.sym, check::positive, "singular", "effective inverse mass k > 0, finite");
                 break;
-            default: break;
+            default:
+                break;
             }
         }
     }
@@ -687,15 +722,16 @@ private:
         // Every output but small exact constants (0, 1/2): a folded constant can be
         // beyond the range of float, or of double.
         auto needs_check = [&](int id) {
-            const op& o = prog_.at(id);
+            const op &o = prog_.at(id);
             const numeric small(16777216); // 2^24: exact in float
-            return o.kind != op::constant || !o.value.is_rational() || abs(o.value.numer()) > small || o.value.denom() > small;
+            return o.kind != op::constant || !o.value.is_rational() || abs(o.value.numer()) > small ||
+                   o.value.denom() > small;
         };
-        for (const auto& [field, id] : outs_)
+        for (const auto &[field, id] : outs_)
             if (needs_check(id))
                 sum_terms_.push_back("out." + field);
         std::vector<std::string> unused_inputs;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             if (!reached.count(nm)) {
                 sum_terms_.push_back(nm);
                 unused_inputs.push_back(nm);
@@ -704,14 +740,27 @@ private:
         // current x86 core), to add the terms of the finiteness sum in that order.
         std::vector<int> ready(prog_.size(), 0);
         for (std::size_t i = 0; i < prog_.size(); ++i) {
-            const op& o = prog_.at(static_cast<int>(i));
+            const op &o = prog_.at(static_cast<int>(i));
             int cost = 0;
             switch (o.kind) {
-            case op::input: case op::constant: cost = 0; break;
-            case op::add: case op::sub: case op::neg: cost = 3; break;
-            case op::mul: cost = 4; break;
-            case op::div: cost = 14; break;
-            case op::sqrt_: cost = 20; break;
+            case op::input:
+            case op::constant:
+                cost = 0;
+                break;
+            case op::add:
+            case op::sub:
+            case op::neg:
+                cost = 3;
+                break;
+            case op::mul:
+                cost = 4;
+                break;
+            case op::div:
+                cost = 14;
+                break;
+            case op::sqrt_:
+                cost = 20;
+                break;
             }
             int before = 0;
             for (int c : {o.a, o.b})
@@ -720,7 +769,7 @@ private:
             ready[i] = before + cost;
         }
         std::map<std::string, int> id_of_name;
-        for (const auto& [id, nm] : var_names_)
+        for (const auto &[id, nm] : var_names_)
             id_of_name[nm] = id;
         // An output is left out of the sum when the finiteness of another one implies it
         // (an operand of +, -, *, negation, sqrt or the numerator of / is finite when the
@@ -733,7 +782,7 @@ private:
             std::vector<bool> seen(prog_.size(), false);
             std::vector<int> stack;
             auto operands = [&](int id) {
-                const op& o = prog_.at(id);
+                const op &o = prog_.at(id);
                 if (o.a >= 0)
                     stack.push_back(o.a);
                 if (o.b >= 0 && o.kind != op::div)
@@ -749,24 +798,26 @@ private:
                 operands(id);
             }
             for (std::size_t k = 0; k < outs_.size(); ++k)
-                if (k != j && (seen[static_cast<std::size_t>(outs_[k].second)] || (outs_[k].second == outs_[j].second && k > j)))
+                if (k != j &&
+                    (seen[static_cast<std::size_t>(outs_[k].second)] || (outs_[k].second == outs_[j].second && k > j)))
                     implied[k] = true;
         }
         // The terms of the finiteness check in the branchless forms (local output values).
-        auto finite_terms = [&](const emitted& form, bool energy_optional) {
+        auto finite_terms = [&](const emitted &form, bool energy_optional) {
             std::vector<sum_term> t;
-            auto has = [&](const std::string& x) {
-                return std::any_of(t.begin(), t.end(), [&](const sum_term& y) { return y.text == x; });
+            auto has = [&](const std::string &x) {
+                return std::any_of(t.begin(), t.end(), [&](const sum_term &y) { return y.text == x; });
             };
             for (std::size_t k = 0; k < outs_.size(); ++k)
                 if (needs_check(outs_[k].second) && !implied[k])
                     t.push_back({local_of_.at(outs_[k].first), ready[static_cast<std::size_t>(outs_[k].second)],
                                  energy_optional && static_cast<int>(k) == energy});
-            for (const std::string& nm : unused_inputs)
+            for (const std::string &nm : unused_inputs)
                 t.push_back({nm, 0, false});
-            for (const std::string& x : form.finite_terms)
+            for (const std::string &x : form.finite_terms)
                 if (!has(x))
-                    t.push_back({x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
+                    t.push_back(
+                        {x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
             return t;
         };
         fast_terms_ = finite_terms(fast_, true);
@@ -776,7 +827,7 @@ private:
             all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
             jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, true);
             jac_terms_ = finite_terms(jac_, false);
-            for (const auto& [local, id] : jac_outs_)
+            for (const auto &[local, id] : jac_outs_)
                 if (needs_check(id))
                     jac_terms_.push_back({local, ready[static_cast<std::size_t>(id)], false});
         }
@@ -789,7 +840,7 @@ private:
             command += " --params " + join(o_.params, ",");
         if (!o_.set.empty()) {
             std::vector<std::string> kv;
-            for (auto& [k, v] : o_.set)
+            for (auto &[k, v] : o_.set)
                 kv.push_back(k + "=" + v);
             command += " --set " + join(kv, ",");
         }
@@ -803,17 +854,20 @@ private:
             command += " --wrt " + join(o_.wrt, ",");
         else if (o_.jacobian)
             command += " --jacobian";
-        h_ << "// Generated by impactgen " << o_.version << " from " << names::comment_text(o_.source) << ". Do not edit: regenerate.\n";
+        h_ << "// Generated by impactgen " << o_.version << " from " << names::comment_text(o_.source)
+           << ". Do not edit: regenerate.\n";
         h_ << "//   " << names::comment_text(command) << "\n";
         h_ << "// Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.\n";
         h_ << "// Arithmetic per call: " << counts_text(em_.formula) << " (closed form);\n";
-        h_ << "//   validity checks: " << counts_text(em_.checks) << " + " << (sum_terms_.empty() ? 0 : sum_terms_.size() - 1)
-           << " add (finiteness of the result), and comparisons;\n";
+        h_ << "//   validity checks: " << counts_text(em_.checks) << " + "
+           << (sum_terms_.empty() ? 0 : sum_terms_.size() - 1) << " add (finiteness of the result), and comparisons;\n";
         h_ << "//   fast path (inputs that pass every check): " << counts_text(fast_.formula) << " + "
-           << (fast_terms_.empty() ? 0 : fast_terms_.size() - 1) << " add, " << flag_counts(fast_, fast_terms_).first << " fma, "
-           << mins(fast_) << " min (checks), " << flag_counts(fast_, fast_terms_).second << " tests;\n";
-        h_ << "//   batch loop: " << counts_text(batch_.formula) << " + " << (batch_terms_.empty() ? 0 : batch_terms_.size() - 1)
-           << " add, " << flag_counts(batch_, batch_terms_).first << " fma, " << mins(batch_) << " min (checks) per impact, no branch.\n";
+           << (fast_terms_.empty() ? 0 : fast_terms_.size() - 1) << " add, " << flag_counts(fast_, fast_terms_).first
+           << " fma, " << mins(fast_) << " min (checks), " << flag_counts(fast_, fast_terms_).second << " tests;\n";
+        h_ << "//   batch loop: " << counts_text(batch_.formula) << " + "
+           << (batch_terms_.empty() ? 0 : batch_terms_.size() - 1) << " add, "
+           << flag_counts(batch_, batch_terms_).first << " fma, " << mins(batch_)
+           << " min (checks) per impact, no branch.\n";
         h_ << "#pragma once\n\n";
         if (em_.uses_sqrt)
             h_ << "#include <cmath>\n";
@@ -840,7 +894,7 @@ private:
     }
 
     // A view's two member functions (mutable and const) for one group.
-    void view_functions(const std::string& name, const group& g)
+    void view_functions(const std::string &name, const group &g)
     {
         std::vector<std::string> entries, fixed;
         if (!g.outputs.empty()) {
@@ -849,7 +903,7 @@ private:
                 fixed.push_back("0.0L");
             }
         } else {
-            for (const ex& x : g.inputs) {
+            for (const ex &x : g.inputs) {
                 if (is_a<numeric>(x)) {
                     entries.push_back("nullptr");
                     fixed.push_back(decimal_literal(ex_to<numeric>(x)));
@@ -861,16 +915,18 @@ private:
         }
         const std::string dims = std::to_string(g.rows) + ", " + std::to_string(g.cols);
         const std::string body = "{{" + join(entries, ", ") + "}, {" + join(fixed, ", ") + "}}";
-        h_ << "    /// " << names::comment_text(g.meaning) << (g.cols == 1 ? " (vector)" : " (matrix, row-major)") << "\n";
+        h_ << "    /// " << names::comment_text(g.meaning) << (g.cols == 1 ? " (vector)" : " (matrix, row-major)")
+           << "\n";
         h_ << "    IMPACTGEN_MEMBER view<T, " << dims << "> " << name << "() noexcept { return " << body << "; }\n";
-        h_ << "    IMPACTGEN_MEMBER view<const T, " << dims << "> " << name << "() const noexcept { return " << body << "; }\n";
+        h_ << "    IMPACTGEN_MEMBER view<const T, " << dims << "> " << name << "() const noexcept { return " << body
+           << "; }\n";
     }
 
     void result_struct()
     {
         h_ << "/// Post-impact state of " << o_.name << " (units as the inputs).\n";
         h_ << "template <typename T> struct " << result() << " {\n";
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             h_ << "    T " << ov.field << "; ///< " << names::comment_text(ov.meaning) << "\n";
         for (std::size_t g = 0; g < pl_.output_groups.size(); ++g)
             view_functions(out_views_[g], pl_.output_groups[g]);
@@ -888,20 +944,23 @@ private:
     {
         h_ << "// Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,\n";
         h_ << "// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):\n";
-        h_ << "//   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a particle;\n";
+        h_ << "//   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a "
+              "particle;\n";
         h_ << "//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)\n";
-        h_ << "//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points approach)\n";
+        h_ << "//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points "
+              "approach)\n";
         h_ << "//   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)\n";
         h_ << "//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i\n";
         h_ << "//   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n\n";
         if (o_.inverse_inertia && pl_.prob.dimension == 2)
             h_ << "// Input convention: inverse moments of inertia inv_I = 1/I (as physics engines store them).\n";
         else if (o_.inverse_inertia)
-            h_ << "// Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = inv_I_i (r_i x n).\n";
+            h_ << "// Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = "
+                  "inv_I_i (r_i x n).\n";
         if (o_.inverse_mass)
             h_ << "// Input convention: inverse masses inv_m = 1/m.\n";
         h_ << "// This problem, step by step, as the code below computes it:\n";
-        for (const auto& [lhs, rhs] : em_.assignments)
+        for (const auto &[lhs, rhs] : em_.assignments)
             h_ << wrap_comment(lhs, rhs);
     }
 
@@ -912,7 +971,7 @@ private:
         h_ << "/// What a failed call of " << o_.name << " returns: the state unchanged (velocities as\n";
         h_ << "/// before, impulses, approach velocity and energy lost zero).\n";
         h_ << "template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void " << unchanged() << "(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "T " << (uses(unchanged_.code, nm) ? nm : "/*" + nm + "*/") << ", ";
         h_ << result() << "<T>& out) noexcept\n{\n";
         if (unchanged_.uses_sqrt)
@@ -920,7 +979,8 @@ private:
         h_ << unchanged_.code << "}\n\n";
         h_ << "/// " << o_.name << " with each check right after the value it tests: the status of the\n";
         h_ << "/// inputs that fail the fast path of " << o_.name << " (out then holds the state unchanged).\n";
-        h_ << tparams << "IMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked() << "(" << params() << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked() << "(" << params() << result()
+           << "<T>& out) noexcept\n{\n";
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << "    auto fail = [&](impact_status why) noexcept {\n";
@@ -928,7 +988,8 @@ private:
         if (input_names_.empty())
             h_ << "        return why;\n";
         else
-            h_ << "        return detail::all_finite(" << join(input_names_, ", ") << ") ? why : impact_status::non_finite_input;\n";
+            h_ << "        return detail::all_finite(" << join(input_names_, ", ")
+               << ") ? why : impact_status::non_finite_input;\n";
         h_ << "    };\n";
         h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
         h_ << energy_optional(em_.code, "    out.energy_lost = ");
@@ -953,17 +1014,18 @@ private:
         h_ << "/// neither computed nor checked (the rest is the same).\n";
         for (std::size_t i = 0; i < input_names_.size(); ++i)
             h_ << "///   " << input_names_[i] << ": " << names::comment_text(pl_.input_meaning[i]) << "\n";
-        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result()
+           << "<T>& out) noexcept\n{\n";
         if (em_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << energy_optional(fast_.code, "    const T " + local_of_.at("energy_lost") + " = ");
         h_ << ok_flag("    ", fast_, fast_terms_, true);
         h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
         h_ << "        return detail::" << checked() << "<T, with_energy_lost>(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << nm << ", ";
         h_ << "out);\n";
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             h_ << "    out." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
         h_ << "    return impact_status::ok;\n}\n\n";
     }
@@ -971,7 +1033,8 @@ private:
     void array_form()
     {
         h_ << "/// The same with the inputs in an array, in the order of " << o_.name << "_input_names.\n";
-        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const T* in, " << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const T* in, " << result()
+           << "<T>& out) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    return " << o_.name << "<T, with_energy_lost>(";
@@ -983,12 +1046,12 @@ private:
     void struct_form()
     {
         h_ << "/// The same with the inputs by name: " << input_struct() << "<T> in{}; in.e = ...;\n";
-        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const " << input_struct() << "<T>& in, "
-           << result() << "<T>& out) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(const " << input_struct()
+           << "<T>& in, " << result() << "<T>& out) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    return " << o_.name << "<T, with_energy_lost>(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "in." << nm << ", ";
         h_ << "out);\n}\n\n";
     }
@@ -1003,7 +1066,7 @@ private:
         h_ << "inline constexpr int " << o_.name << "_wrt_count = " << nw << ";\n";
         h_ << "/// The inputs the Jacobian differentiates by, in the order of its columns.\n";
         h_ << "inline constexpr const char* " << o_.name << "_wrt_names[] = {";
-        for (const std::string& w : wrt_names_)
+        for (const std::string &w : wrt_names_)
             h_ << names::cpp_string_literal(w) << ", ";
         h_ << "nullptr};\n\n";
         h_ << "/// The post-impact state and its derivatives: d[i][j] = d(output i)/d(input j), outputs\n";
@@ -1019,21 +1082,23 @@ private:
         h_ << "/// out.value holds the state unchanged and every derivative is zero (the map is not\n";
         h_ << "/// differentiable there, or not defined); the status is overflow also when the values\n";
         h_ << "/// are finite and a derivative is not.\n";
-        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(" << params() << jr << "<T>& out) noexcept\n{\n";
+        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(" << params() << jr
+           << "<T>& out) noexcept\n{\n";
         if (jac_.uses_sqrt)
             h_ << "    using std::sqrt;\n";
         h_ << jac_.code;
         h_ << ok_flag("    ", jac_, jac_terms_, true);
         h_ << "    if (!ok) {\n";
         h_ << "        out = " << jr << "<T>{}; // every derivative zero\n";
-        h_ << "        const impact_status why = detail::" << checked() << "<T, true>(" << params_call() << "out.value);\n";
+        h_ << "        const impact_status why = detail::" << checked() << "<T, true>(" << params_call()
+           << "out.value);\n";
         h_ << "        if (why != impact_status::ok)\n";
         h_ << "            return why;\n";
         h_ << "        // The values are finite, a derivative is not (1/m^2 overflows where 1/m does not).\n";
         h_ << "        detail::" << unchanged() << "(" << params_call() << "out.value);\n";
         h_ << "        return impact_status::overflow;\n";
         h_ << "    }\n";
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             h_ << "    out.value." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
         for (std::size_t o = 0; o < no; ++o)
             for (std::size_t j = 0; j < nw; ++j)
@@ -1049,10 +1114,10 @@ private:
             h_ << "in[" << i << "], ";
         h_ << "out);\n}\n\n";
         h_ << "/// The same with the inputs by name.\n";
-        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(const " << input_struct() << "<T>& in, "
-           << jr << "<T>& out) noexcept\n{\n";
+        h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(const " << input_struct()
+           << "<T>& in, " << jr << "<T>& out) noexcept\n{\n";
         h_ << "    return " << o_.name << "_jacobian<T>(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "in." << nm << ", ";
         h_ << "out);\n}\n\n";
     }
@@ -1076,37 +1141,39 @@ private:
         // no-alias promise that both g++ and clang++ honour (clang ignores it on locals),
         // with no forcing pragma that would warn where a type does not vectorise.
         std::vector<std::string> pass_params;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             pass_params.push_back("const T* IMPACTGEN_RESTRICT " + in_ptr_.at(nm));
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             pass_params.push_back("T* IMPACTGEN_RESTRICT " + out_ptr_.at(ov.field));
         pass_params.push_back("impact_status* IMPACTGEN_RESTRICT " + status_ptr());
         h_ << "namespace detail {\n";
         h_ << "/// The first pass of " << o_.name << "_batch (every impact, no branch): 1 when some\n";
         h_ << "/// impact failed a check, else 0.\n";
-        h_ << "template <typename T, bool with_energy_lost>\nIMPACTGEN_FUNC unsigned " << o_.name << "_batch_pass(long n, "
-           << join(pass_params, ", ") << ") noexcept\n{\n";
+        h_ << "template <typename T, bool with_energy_lost>\nIMPACTGEN_FUNC unsigned " << o_.name
+           << "_batch_pass(long n, " << join(pass_params, ", ") << ") noexcept\n{\n";
         if (batch_.uses_sqrt) // (else a symbolic normal's sqrt is ::sqrt(double), for float and long double too)
             h_ << "    using std::sqrt;\n";
         h_ << "    unsigned failed = 0;\n";
         h_ << "#if defined(__GNUC__) && !defined(__clang__)\n#pragma GCC ivdep\n#endif\n";
         h_ << "    for (long i = 0; i < n; ++i) {\n";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "        const T " << nm << " = " << in_ptr_.at(nm) << "[i];\n";
         std::istringstream lines(energy_optional(batch_.code, "    const T " + local_of_.at("energy_lost") + " = ") +
                                  ok_flag("    ", batch_, batch_terms_, false));
         for (std::string line; std::getline(lines, line);)
             h_ << "    " << line << "\n";
         // Stored unconditionally: the second pass overwrites the outputs of failed impacts.
-        for (const output_value& ov : pl_.outputs)
-            h_ << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "") << "        "
-               << out_ptr_.at(ov.field) << "[i] = " << local_of_.at(ov.field) << ";\n";
-        h_ << "        " << status_ptr() << "[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
+        for (const output_value &ov : pl_.outputs)
+            h_ << (ov.kind == output_value::energy_lost ? "        if constexpr (with_energy_lost)\n    " : "")
+               << "        " << out_ptr_.at(ov.field) << "[i] = " << local_of_.at(ov.field) << ";\n";
+        h_ << "        " << status_ptr()
+           << "[i] = ok ? impact_status::ok : impact_status::overflow; // refined below\n";
         h_ << "        failed |= static_cast<unsigned>(!ok);\n";
         h_ << "    }\n";
         h_ << "    return failed;\n}\n} // namespace detail\n\n";
 
-        h_ << tparams << "IMPACTGEN_FUNC void " << o_.name << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
+        h_ << tparams << "IMPACTGEN_FUNC void " << o_.name
+           << "_batch(long n, const T* const* in, T* const* out, impact_status* status) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         for (std::size_t j = 0; j < input_names_.size(); ++j)
@@ -1114,25 +1181,25 @@ private:
         for (std::size_t j = 0; j < pl_.outputs.size(); ++j)
             h_ << "    T* const " << out_ptr_.at(pl_.outputs[j].field) << " = out[" << j << "];\n";
         std::vector<std::string> pass_args;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             pass_args.push_back(in_ptr_.at(nm));
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             pass_args.push_back(out_ptr_.at(ov.field));
         pass_args.push_back("status");
-        h_ << "    const unsigned failed = detail::" << o_.name << "_batch_pass<T, with_energy_lost>(n, " << join(pass_args, ", ")
-           << ");\n";
+        h_ << "    const unsigned failed = detail::" << o_.name << "_batch_pass<T, with_energy_lost>(n, "
+           << join(pass_args, ", ") << ");\n";
         h_ << "    if (failed == 0)\n";
         h_ << "        return;\n";
         h_ << "    for (long i = 0; i < n; ++i)\n";
         h_ << "        if (status[i] != impact_status::ok) {\n";
         h_ << "            " << result() << "<T> r;\n";
         h_ << "            status[i] = detail::" << checked() << "<T, with_energy_lost>(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << in_ptr_.at(nm) << "[i], ";
         h_ << "r);\n";
-        for (const output_value& ov : pl_.outputs)
-            h_ << (ov.kind == output_value::energy_lost ? "            if constexpr (with_energy_lost)\n    " : "") << "            "
-               << out_ptr_.at(ov.field) << "[i] = r." << ov.field << ";\n";
+        for (const output_value &ov : pl_.outputs)
+            h_ << (ov.kind == output_value::energy_lost ? "            if constexpr (with_energy_lost)\n    " : "")
+               << "            " << out_ptr_.at(ov.field) << "[i] = r." << ov.field << ";\n";
         h_ << "        }\n";
         h_ << "}\n\n";
     }
@@ -1143,18 +1210,19 @@ private:
         h_ << "inline constexpr int " << o_.name << "_input_count = " << input_names_.size() << ";\n";
         h_ << "inline constexpr int " << o_.name << "_output_count = " << pl_.outputs.size() << ";\n";
         h_ << "inline constexpr const char* " << o_.name << "_input_names[] = {";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << names::cpp_string_literal(nm) << ", ";
         h_ << "nullptr};\n";
         h_ << "inline constexpr const char* " << o_.name << "_output_names[] = {";
-        for (const output_value& ov : pl_.outputs)
+        for (const output_value &ov : pl_.outputs)
             h_ << names::cpp_string_literal(ov.field) << ", ";
         h_ << "nullptr};\n";
         h_ << "/// Arithmetic of the closed form per call (validity checks not included).\n";
         h_ << "inline constexpr op_count " << o_.name << "_ops{" << em_.formula.add << ", " << em_.formula.mul << ", "
            << em_.formula.div << ", " << em_.formula.sqrt << "};\n\n";
         h_ << "/// The members of r in the order of " << o_.name << "_output_names.\n";
-        h_ << "template <typename T> IMPACTGEN_FUNC void " << o_.name << "_to_array(const " << result() << "<T>& r, T* a) noexcept\n{\n";
+        h_ << "template <typename T> IMPACTGEN_FUNC void " << o_.name << "_to_array(const " << result()
+           << "<T>& r, T* a) noexcept\n{\n";
         for (std::size_t i = 0; i < pl_.outputs.size(); ++i)
             h_ << "    a[" << i << "] = r." << pl_.outputs[i].field << ";\n";
         h_ << "}\n\n} // namespace " << o_.ns << "\n";
@@ -1167,7 +1235,7 @@ private:
     std::string params_call() const
     {
         std::string r;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             r += nm + ", ";
         return r;
     }
@@ -1175,12 +1243,12 @@ private:
     std::string params() const
     {
         std::string r;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             r += "T " + nm + ", ";
         return r;
     }
 
-    const options& o_;
+    const options &o_;
     plan pl_;
     names::identifier_scope scope_, members_, in_members_;
     std::vector<std::string> in_views_, out_views_; // member functions of the input and result structs, per group
@@ -1194,7 +1262,8 @@ private:
     std::vector<sum_term> jac_terms_;
     emitted unchanged_;
     std::vector<std::string> input_names_, step_names_;
-    std::map<std::string, std::string> local_of_, out_ptr_, in_ptr_; // member -> local value / output pointer; input -> input pointer
+    std::map<std::string, std::string> local_of_, out_ptr_,
+        in_ptr_; // member -> local value / output pointer; input -> input pointer
     canonical_pool pool_;
     program prog_;
     std::map<int, std::string> var_names_;
@@ -1208,7 +1277,7 @@ private:
 
 } // namespace
 
-std::string default_function_name(const std::string& stem)
+std::string default_function_name(const std::string &stem)
 {
     std::string name = names::mangle(stem);
     while (name.size() > 1 && name.back() == '_') // "int" mangles to int_; int__result would be reserved
@@ -1216,24 +1285,26 @@ std::string default_function_name(const std::string& stem)
     return names::is_safe_identifier(name) && !reserved().count(name) ? name : name + "_impact";
 }
 
-header generate(const problem& p, const options& o)
+header generate(const problem &p, const options &o)
 {
     if (!names::is_safe_identifier(o.name) || reserved().count(o.name) || o.name.back() == '_')
-        throw option_error(option_error::function_name,
-                           "\"" + names::display_text(o.name) +
-                               "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
-                               "not a keyword or a reserved name)");
+        throw option_error(
+            option_error::function_name,
+            "\"" + names::display_text(o.name) +
+                "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
+                "not a keyword or a reserved name)");
     if (std::string why = names::namespace_problem(o.ns); !why.empty())
         throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
     return writer(p, o).run();
 }
 
-bool write_if_changed(const std::string& path, const std::string& text)
+bool write_if_changed(const std::string &path, const std::string &text)
 {
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-        throw input_error(names::display_text(path) + ": not a regular file (the header is written only to a regular file or "
+        throw input_error(names::display_text(path) +
+                          ": not a regular file (the header is written only to a regular file or "
                           "standard output)");
     if (std::filesystem::exists(status)) {
         std::ifstream in(path, std::ios::binary);

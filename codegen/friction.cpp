@@ -49,15 +49,18 @@
 #include <set>
 #include <sstream>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // ---------------------------------------------------------------------------
 // The friction preamble: once per namespace (its own guard), after the smooth one.
 
-const char* const friction_preamble_head = R"IMPACTGEN(/// Why a call of a generated function with friction computed no post-impact state; the
+const char *const friction_preamble_head =
+    R"IMPACTGEN(/// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
 /// the approach velocity and the energy lost zero, regime smooth.
@@ -164,12 +167,13 @@ template <typename T> IMPACTGEN_FUNC void tangent_basis(T nx, T ny, T nz, T* t, 
 
 )IMPACTGEN";
 
-const char* const friction_preamble_tail = R"IMPACTGEN(} // namespace detail
+const char *const friction_preamble_tail = R"IMPACTGEN(} // namespace detail
 #endif
 
 )IMPACTGEN";
 
-const char* const trig2_text = R"IMPACTGEN(/// How many iterations the slow paths of detail::trig2_roots took (tests and benchmarks
+const char *const trig2_text =
+    R"IMPACTGEN(/// How many iterations the slow paths of detail::trig2_roots took (tests and benchmarks
 /// read them; define IMPACTGEN_TRIG2_STATS before including to count).
 #ifdef IMPACTGEN_TRIG2_STATS
 struct trig2_stats {
@@ -742,22 +746,51 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
 // Helpers
 
 // Names the emitted code itself uses (never handed to an input, a step or a local).
-const std::set<std::string>& reserved()
+const std::set<std::string> &reserved()
 {
-    static const std::set<std::string> r = {
-        "out", "fail", "why", "T", "in", "detail", "check_sum", "ok", "status", "failed", "with_energy_lost", "impact_status",
-        "op_count", "to_string", "finite", "all_finite", "min_of", "max_of", "abs_of", "sqrt", "std", "i", "n", "r", "a", "view",
-        "friction_status", "impact_regime", "friction_status_of", "boundary_tolerance", "trig2_roots", "slide_direction", "constant"};
+    static const std::set<std::string> r = {"out",
+                                            "fail",
+                                            "why",
+                                            "T",
+                                            "in",
+                                            "detail",
+                                            "check_sum",
+                                            "ok",
+                                            "status",
+                                            "failed",
+                                            "with_energy_lost",
+                                            "impact_status",
+                                            "op_count",
+                                            "to_string",
+                                            "finite",
+                                            "all_finite",
+                                            "min_of",
+                                            "max_of",
+                                            "abs_of",
+                                            "sqrt",
+                                            "std",
+                                            "i",
+                                            "n",
+                                            "r",
+                                            "a",
+                                            "view",
+                                            "friction_status",
+                                            "impact_regime",
+                                            "friction_status_of",
+                                            "boundary_tolerance",
+                                            "trig2_roots",
+                                            "slide_direction",
+                                            "constant"};
     return r;
 }
 
-std::string counts_text(const op_counts& c)
+std::string counts_text(const op_counts &c)
 {
     return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
            std::to_string(c.sqrt) + " sqrt";
 }
 
-void add_counts(op_counts& a, const op_counts& b)
+void add_counts(op_counts &a, const op_counts &b)
 {
     a.add += b.add;
     a.mul += b.mul;
@@ -765,7 +798,7 @@ void add_counts(op_counts& a, const op_counts& b)
     a.sqrt += b.sqrt;
 }
 
-std::string wrap_comment(const std::string& lhs, const std::string& rhs)
+std::string wrap_comment(const std::string &lhs, const std::string &rhs)
 {
     std::string out = "//   " + lhs + " = ";
     std::size_t col = out.size();
@@ -788,7 +821,7 @@ std::string wrap_comment(const std::string& lhs, const std::string& rhs)
 }
 
 // True when the code names the identifier (not as part of a longer one).
-bool uses(const std::string& code, const std::string& name)
+bool uses(const std::string &code, const std::string &name)
 {
     auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
@@ -811,7 +844,7 @@ std::string balanced_sum(std::vector<std::string> level)
     return level.empty() ? std::string() : level[0];
 }
 
-std::string indent(const std::string& code, const std::string& by)
+std::string indent(const std::string &code, const std::string &by)
 {
     std::istringstream lines(code);
     std::string line, r;
@@ -826,7 +859,7 @@ enum class output_as { locals, assign, result };
 // The emitted code with its output lines rewritten: `const T X = value;` (locals),
 // `X = value;` (assign: X declared before), or as written (result). energy: the output
 // field that is left 0 under with_energy_lost = false ("" for none).
-std::string place_outputs(const std::string& code, output_as how, const std::string& energy = "")
+std::string place_outputs(const std::string &code, output_as how, const std::string &energy = "")
 {
     std::istringstream lines(code);
     std::string line, r;
@@ -837,12 +870,19 @@ std::string place_outputs(const std::string& code, output_as how, const std::str
             const std::string field = line.substr(prefix.size(), eq - prefix.size());
             std::string rhs = line.substr(eq + 3, line.size() - eq - 4);
             if (!energy.empty() && field == energy)
-                rhs = (rhs.find(' ') != std::string::npos ? "with_energy_lost ? (" + rhs + ")" : "with_energy_lost ? " + rhs) +
+                rhs = (rhs.find(' ') != std::string::npos ? "with_energy_lost ? (" + rhs + ")"
+                                                          : "with_energy_lost ? " + rhs) +
                       " : T(0)";
             switch (how) {
-            case output_as::locals: line = "    const T " + field + " = " + rhs + ";"; break;
-            case output_as::assign: line = "    " + field + " = " + rhs + ";"; break;
-            case output_as::result: line = prefix + field + " = " + rhs + ";"; break;
+            case output_as::locals:
+                line = "    const T " + field + " = " + rhs + ";";
+                break;
+            case output_as::assign:
+                line = "    " + field + " = " + rhs + ";";
+                break;
+            case output_as::result:
+                line = prefix + field + " = " + rhs + ";";
+                break;
             }
         }
         r += line + "\n";
@@ -851,7 +891,7 @@ std::string place_outputs(const std::string& code, output_as how, const std::str
 }
 
 // The names a piece of emitted code declares (`const T name = ...`).
-std::vector<std::string> declared(const std::string& code)
+std::vector<std::string> declared(const std::string &code)
 {
     std::vector<std::string> r;
     std::istringstream lines(code);
@@ -870,7 +910,7 @@ std::vector<std::string> declared(const std::string& code)
 // The leading principal minors that make a symmetric tensor positive definite, block by
 // block (as the smooth headers check them: codegen.cpp), with the determinant of a block
 // of all three axes only when with_determinant.
-std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, const std::array<std::string, 3>& axes,
+std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
                                                                  bool with_determinant)
 {
     int block_of[3] = {0, 1, 2};
@@ -878,7 +918,7 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, 
         for (int c = r + 1; c < 3; ++c)
             if (!tidy(J[r][c]).is_zero()) {
                 const int from = block_of[c], to = block_of[r];
-                for (int& x : block_of)
+                for (int &x : block_of)
                     if (x == from)
                         x = to;
             }
@@ -903,7 +943,7 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3& J, 
     return minors;
 }
 
-bool depends_on(const ex& e, const exset& syms)
+bool depends_on(const ex &e, const exset &syms)
 {
     for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
         if (is_a<symbol>(*it) && syms.count(*it))
@@ -911,7 +951,7 @@ bool depends_on(const ex& e, const exset& syms)
     return false;
 }
 
-void collect_symbols(const ex& e, exset& out)
+void collect_symbols(const ex &e, exset &out)
 {
     for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
         if (is_a<symbol>(*it))
@@ -929,7 +969,7 @@ struct stage {
     emitted em;
     int next_step = 0;
 
-    void bind_step(const step& st, const std::string& name)
+    void bind_step(const step &st, const std::string &name)
     {
         scaled v = pool.convert(st.value);
         pool.bind_step(st.sym, next_step, name);
@@ -940,13 +980,13 @@ struct stage {
         if (!prog.is_leaf(id) && !names.count(id))
             names[id] = name;
     }
-    int lower(const ex& e, const std::string& owner)
+    int lower(const ex &e, const std::string &owner)
     {
         prog.set_owner(owner);
         return prog.lower(pool, pool.convert(e));
     }
-    void output(const std::string& field, const ex& e) { outs.push_back({field, lower(e, field)}); }
-    void add_check(const ex& value, check::kind_t kind, const std::string& status, const std::string& comment)
+    void output(const std::string &field, const ex &e) { outs.push_back({field, lower(e, field)}); }
+    void add_check(const ex &value, check::kind_t kind, const std::string &status, const std::string &comment)
     {
         if (is_a<numeric>(value))
             return; // a constant was validated when the problem was read
@@ -958,16 +998,17 @@ struct stage {
 // The writer
 
 struct case_names {
-    std::string prefix;          // "stick_", "slide_pos_", "slide_neg_", "slide_"
-    std::string N;               // stage A (or B) local of the candidate's normal impulse
-    std::vector<std::string> P;  // world components of the impulse (dim)
-    std::vector<std::string> F;  // world components of the tangential impulse (dim)
+    std::string prefix;         // "stick_", "slide_pos_", "slide_neg_", "slide_"
+    std::string N;              // stage A (or B) local of the candidate's normal impulse
+    std::vector<std::string> P; // world components of the impulse (dim)
+    std::vector<std::string> F; // world components of the tangential impulse (dim)
     std::vector<std::string> cond;
 };
 
-class friction_writer {
+class friction_writer
+{
 public:
-    friction_writer(const problem& p, const options& o) : o_(o) { prepare(p); }
+    friction_writer(const problem &p, const options &o) : o_(o) { prepare(p); }
 
     header run()
     {
@@ -989,7 +1030,7 @@ public:
         h.formula = total_;
         h.checks = a_.em.checks;
         h.inputs = input_names_;
-        for (const out_field& of : outs_)
+        for (const out_field &of : outs_)
             h.outputs.push_back(of.field);
         return h;
     }
@@ -1006,49 +1047,52 @@ private:
     };
 
     // ---- the problem, its regimes, the inputs and outputs
-    void prepare(const problem& p)
+    void prepare(const problem &p)
     {
         if (o_.inverse_inertia)
-            throw option_error(option_error::inverse_inertia,
-                               "the engine input convention is not offered for problems with friction (give masses and inertia)");
+            throw option_error(
+                option_error::inverse_inertia,
+                "the engine input convention is not offered for problems with friction (give masses and inertia)");
         if (o_.inverse_mass)
             throw option_error(option_error::inverse_mass,
                                "the engine input convention is not offered for problems with friction (give masses)");
         if (o_.jacobian || !o_.wrt.empty())
-            throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
-                                                       "selection makes the impact map piecewise)");
+            throw option_error(option_error::jacobian,
+                               "Jacobians are not offered for problems with friction (the regime "
+                               "selection makes the impact map piecewise)");
         problem p0 = p;
         // --params mu with a numeric coefficient: mu becomes the parameter.
         if (o_.params_given && std::find(o_.params.begin(), o_.params.end(), "mu") != o_.params.end() &&
             is_a<numeric>(p0.contact.friction)) {
             bool taken = false;
-            for (const symbol& s : p0.parameters())
+            for (const symbol &s : p0.parameters())
                 taken = taken || s.get_name() == "mu";
             if (!taken)
                 p0.contact.friction = symbol_named("mu", "\\mu");
         }
         q_ = specialise(p0, o_);
         if (!q_.has_friction())
-            throw input_error((q_.source.empty() ? std::string("contact") : names::display_text(q_.source) + ": contact") +
-                              ".friction: the coefficient of friction is 0: generate the smooth header (codegen::generate)");
+            throw input_error(
+                (q_.source.empty() ? std::string("contact") : names::display_text(q_.source) + ": contact") +
+                ".friction: the coefficient of friction is 0: generate the smooth header (codegen::generate)");
         // The smooth plan of the same problem without friction: the inputs in the smooth
         // headers' order with their meanings, the outputs, the vector views, the state a
         // failed call returns.
         problem sq = q_;
         sq.contact.friction = 0;
         std::set<std::string> rest;
-        for (const symbol& s : sq.parameters())
+        for (const symbol &s : sq.parameters())
             rest.insert(s.get_name());
         exset fsyms;
         collect_symbols(q_.contact.friction, fsyms);
         std::set<std::string> friction_only;
-        for (const ex& s : fsyms)
+        for (const ex &s : fsyms)
             if (!rest.count(ex_to<symbol>(s).get_name()))
                 friction_only.insert(ex_to<symbol>(s).get_name());
         options so = o_;
         so.set.clear();
         so.params.clear();
-        for (const std::string& nm : o_.params)
+        for (const std::string &nm : o_.params)
             if (!friction_only.count(nm))
                 so.params.push_back(nm);
         pl_ = make_plan(sq, so);
@@ -1061,20 +1105,20 @@ private:
         // Inputs: the parameters in the order given, else the smooth order with the
         // symbols of mu right after those of e.
         std::map<std::string, symbol> by_name;
-        for (const symbol& s : q_.parameters())
+        for (const symbol &s : q_.parameters())
             by_name.emplace(s.get_name(), s);
         const std::string mu_meaning = is_a<symbol>(q_.contact.friction)
                                            ? "coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)"
                                            : "appears in the coefficient of friction mu";
-        auto smooth_meaning = [&](const symbol& s) -> std::string {
+        auto smooth_meaning = [&](const symbol &s) -> std::string {
             for (std::size_t i = 0; i < pl_.inputs.size(); ++i)
                 if (pl_.inputs[i].is_equal(s))
                     return pl_.input_meaning[i];
             return mu_meaning;
         };
         if (o_.params_given) {
-            for (const std::string& nm : o_.params) {
-                const symbol& s = by_name.at(nm);
+            for (const std::string &nm : o_.params) {
+                const symbol &s = by_name.at(nm);
                 inputs_.push_back(s);
                 input_meaning_.push_back(smooth_meaning(s));
             }
@@ -1087,7 +1131,7 @@ private:
                     at = i + 1;
             for (std::size_t i = 0; i < pl_.inputs.size(); ++i) {
                 if (i == at)
-                    for (const std::string& nm : friction_only) {
+                    for (const std::string &nm : friction_only) {
                         inputs_.push_back(by_name.at(nm));
                         input_meaning_.push_back(mu_meaning);
                     }
@@ -1095,7 +1139,7 @@ private:
                 input_meaning_.push_back(pl_.input_meaning[i]);
             }
             if (at >= pl_.inputs.size())
-                for (const std::string& nm : friction_only) {
+                for (const std::string &nm : friction_only) {
                     inputs_.push_back(by_name.at(nm));
                     input_meaning_.push_back(mu_meaning);
                 }
@@ -1103,7 +1147,7 @@ private:
         // Outputs: the smooth ones with the tangential impulse after the normal impulse.
         const int dim = q_.dimension;
         for (std::size_t k = 0; k < pl_.outputs.size(); ++k) {
-            const output_value& ov = pl_.outputs[k];
+            const output_value &ov = pl_.outputs[k];
             out_field of;
             of.field = ov.field;
             of.meaning = ov.meaning;
@@ -1137,22 +1181,22 @@ private:
     // ---- names (one scope for the function's names, one per struct)
     void name_everything()
     {
-        for (const std::string& r : reserved())
+        for (const std::string &r : reserved())
             if (names::is_safe_identifier(r))
                 scope_.reserve(r);
-        for (names::identifier_scope* sc : {&in_members_, &members_})
-            for (const char* own : {"view", "T", "regime"})
+        for (names::identifier_scope *sc : {&in_members_, &members_})
+            for (const char *own : {"view", "T", "regime"})
                 sc->reserve(own);
-        for (const char* suffix : {"", "_result", "_input", "_unchanged", "_batch", "_input_count", "_output_count",
+        for (const char *suffix : {"", "_result", "_input", "_unchanged", "_batch", "_input_count", "_output_count",
                                    "_input_names", "_output_names", "_to_array"})
             scope_.reserve(o_.name + suffix);
-        for (const symbol& x : inputs_) {
+        for (const symbol &x : inputs_) {
             input_names_.push_back(scope_.claim(x.get_name()));
             input_ident_[x] = input_names_.back();
         }
         // The tangent basis computed at run time (a normal given as inputs): locals that the
         // stages read as they read inputs.
-        for (const symbol& x : d_.tangent_basis_symbols) {
+        for (const symbol &x : d_.tangent_basis_symbols) {
             basis_names_.push_back(scope_.claim(x.get_name()));
             input_ident_[x] = basis_names_.back();
         }
@@ -1161,21 +1205,22 @@ private:
             basis_b_name_ = scope_.claim("basis_b");
             nb_.pool.set_input_names(input_ident_);
             for (int a = 0; a < 3; ++a)
-                nb_.output(scope_.claim("basis_n_" + q_.axes[static_cast<std::size_t>(a)]), q_.contact.normal[static_cast<std::size_t>(a)]);
+                nb_.output(scope_.claim("basis_n_" + q_.axes[static_cast<std::size_t>(a)]),
+                           q_.contact.normal[static_cast<std::size_t>(a)]);
         }
-        for (out_field& of : outs_)
+        for (out_field &of : outs_)
             of.field = members_.claim(of.field);
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             in_members_.claim(nm);
-        for (const group& g : pl_.input_groups)
+        for (const group &g : pl_.input_groups)
             in_views_.push_back(in_members_.claim(g.name));
-        for (const group& g : pl_.output_groups)
+        for (const group &g : pl_.output_groups)
             out_views_.push_back(members_.claim(g.name));
         if (q_.dimension >= 2)
             tangential_view_ = members_.claim("tangential_impulse");
     }
 
-    std::string case_prefix(const regime_case& c) const
+    std::string case_prefix(const regime_case &c) const
     {
         if (c.kind == regime::stick)
             return "stick_";
@@ -1189,20 +1234,20 @@ private:
     // ---- the four programs
     void build_stages()
     {
-        const problem& q = q_;
+        const problem &q = q_;
         const int dim = q.dimension;
-        const regime_case& stick = f_.cases.front();
+        const regime_case &stick = f_.cases.front();
         for (std::size_t i = 0; i < f_.cases.size(); ++i)
             if (f_.cases[i].needs_angle)
                 angle_ = static_cast<int>(i);
         // Steps: stage A (every step of every case that does not depend on the sliding
         // angle, each once) and stage B (the angle case's own steps).
         exset shared;
-        for (const step& st : stick.sol.steps) {
+        for (const step &st : stick.sol.steps) {
             bool everywhere = true;
-            for (const regime_case& c : f_.cases) {
+            for (const regime_case &c : f_.cases) {
                 bool found = false;
-                for (const step& s2 : c.sol.steps)
+                for (const step &s2 : c.sol.steps)
                     found = found || s2.sym.is_equal(st.sym);
                 everywhere = everywhere && found;
             }
@@ -1215,8 +1260,8 @@ private:
             local_.insert(f_.cases[static_cast<std::size_t>(angle_)].dir_s);
         }
         for (std::size_t i = 0; i < f_.cases.size(); ++i) {
-            const regime_case& c = f_.cases[i];
-            for (const step& st : c.sol.steps) {
+            const regime_case &c = f_.cases[i];
+            for (const step &st : c.sol.steps) {
                 if (!seen.insert(st.sym).second)
                     continue;
                 const bool in_b = static_cast<int>(i) == angle_ && depends_on(st.value, local_);
@@ -1238,7 +1283,7 @@ private:
         // headers compute w = 1/m + (r x n).I^{-1}(r x n)), rather than the one fraction
         // symbolic/friction.hpp keeps for it (I1 I2 m1 m2 in its denominator under- or
         // overflows where the sum does not).
-        for (step& st : a_steps_)
+        for (step &st : a_steps_)
             if (st.role == step_role::contact_response)
                 st.value = response_entry(stick, st.row, st.column);
 
@@ -1262,34 +1307,44 @@ private:
         lst to_sel;
         for (int a = 0; a < dim; ++a)
             to_sel.append(stick.impulse[static_cast<std::size_t>(a)] == sel_P_[static_cast<std::size_t>(a)]);
-        const step* un = nullptr;
-        for (const step& st : stick.sol.steps)
+        const step *un = nullptr;
+        for (const step &st : stick.sol.steps)
             if (st.role == step_role::approach_velocity)
                 un = &st;
         if (!un)
             throw std::logic_error("codegen friction: no approach velocity step");
         std::vector<ex> c_values(outs_.size());
         for (std::size_t k = 0; k < outs_.size(); ++k) {
-            const out_field& of = outs_[k];
+            const out_field &of = outs_[k];
             if (of.tangential) {
                 c_values[k] = sel_F_[static_cast<std::size_t>(of.axis)];
                 continue;
             }
             switch (of.kind) {
-            case output_value::velocity: c_values[k] = stick.sol.after[of.index].velocity[of.component].subs(to_sel); break;
+            case output_value::velocity:
+                c_values[k] = stick.sol.after[of.index].velocity[of.component].subs(to_sel);
+                break;
             case output_value::angular_velocity:
                 c_values[k] = stick.sol.after[of.index].angular_velocity[of.component].subs(to_sel);
                 break;
-            case output_value::pivot_impulse: c_values[k] = stick.sol.pivot_impulses[of.index][of.component].subs(to_sel); break;
-            case output_value::normal_impulse: c_values[k] = sel_N_; break;
-            case output_value::approach_velocity: c_values[k] = un->sym; break;
-            case output_value::energy_lost: c_values[k] = energy_lost(stick, to_sel); break;
+            case output_value::pivot_impulse:
+                c_values[k] = stick.sol.pivot_impulses[of.index][of.component].subs(to_sel);
+                break;
+            case output_value::normal_impulse:
+                c_values[k] = sel_N_;
+                break;
+            case output_value::approach_velocity:
+                c_values[k] = un->sym;
+                break;
+            case output_value::energy_lost:
+                c_values[k] = energy_lost(stick, to_sel);
+                break;
             }
         }
         // Stage S: mu = 0, the frictionless impact: N = -(1 + e) u_n / (n.K n), P = N n.
-        const vec3& n = d_.n_hat;
+        const vec3 &n = d_.n_hat;
         mat3 K = zero_mat();
-        for (const step& st : stick.sol.steps)
+        for (const step &st : stick.sol.steps)
             if (st.role == step_role::contact_response)
                 K[static_cast<std::size_t>(st.row)][static_cast<std::size_t>(st.column)] =
                     K[static_cast<std::size_t>(st.column)][static_cast<std::size_t>(st.row)] = st.sym;
@@ -1300,8 +1355,8 @@ private:
         s_N0_ = N0;
 
         // Links: stage A values that stages B, C and S use.
-        auto link = [&](const ex& e) { return linkify(e); };
-        for (ex& v : c_values)
+        auto link = [&](const ex &e) { return linkify(e); };
+        for (ex &v : c_values)
             v = link(v);
         c_values_ = c_values;
         // (stage S, for mu = 0 only, computes its own reciprocals: links are computed on every call)
@@ -1309,7 +1364,7 @@ private:
         for (int a = 0; a < dim; ++a)
             s_P0_.push_back(N0 * n[static_cast<std::size_t>(a)]);
         if (angle_ >= 0) {
-            const regime_case& c = f_.cases[static_cast<std::size_t>(angle_)];
+            const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
             for (step st : b_steps_) {
                 st.value = link(st.value);
                 b_steps_linked_.push_back(st);
@@ -1319,7 +1374,7 @@ private:
                 b_P_.push_back(link(c.impulse[static_cast<std::size_t>(a)]));
                 b_F_.push_back(link(c.tangential_impulse[static_cast<std::size_t>(a)]));
             }
-            for (const regime_condition& rc : c.conditions)
+            for (const regime_condition &rc : c.conditions)
                 b_cond_.push_back(link(rc.value));
         }
         name_links();
@@ -1336,16 +1391,16 @@ private:
     // opposite on body 1): K_i P = P/m_i + (I_i^{-1} (r_i x P)) x r_i (a pinned body: about
     // its pivot, without the first term), with the inverse inertia as the solution has it
     // (its steps for a full tensor, 1/I for a diagonal one).
-    ex response_entry(const regime_case& stick, int a, int b) const
+    ex response_entry(const regime_case &stick, int a, int b) const
     {
-        const problem& q = q_;
-        const solution& s = stick.sol;
+        const problem &q = q_;
+        const solution &s = stick.sol;
         ex k = 0;
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
             if (q.immovable(i))
                 continue;
-            const body& bd = q.bodies[i];
-            const pivot* pv = q.pivot_of(i);
+            const body &bd = q.bodies[i];
+            const pivot *pv = q.pivot_of(i);
             const vec3 lever = pv ? q.contact.point - pv->point : q.contact.point - bd.position;
             if (!pv && a == b)
                 k += 1 / bd.mass;
@@ -1353,10 +1408,11 @@ private:
                 continue;
             mat3 inv = zero_mat();
             if (q.dimension == 2) {
-                const step* ie = s.find(step_role::pivot_inertia, i, 2, 2);
+                const step *ie = s.find(step_role::pivot_inertia, i, 2, 2);
                 ex Iz = bd.inertia[2][2];
                 if (pv)
-                    Iz = ie ? ex(ie->sym) : bd.inertia[2][2] + bd.mass * dot(bd.position - pv->point, bd.position - pv->point);
+                    Iz = ie ? ex(ie->sym)
+                            : bd.inertia[2][2] + bd.mass * dot(bd.position - pv->point, bd.position - pv->point);
                 inv[2][2] = 1 / Iz;
             } else {
                 mat3 J = bd.inertia;
@@ -1377,7 +1433,7 @@ private:
                             inv[r][c] = r == c ? 1 / tidy(J[r][r]) : ex(0);
                             continue;
                         }
-                        const step* js = s.find(step_role::inverse_inertia, i, static_cast<int>(std::min(r, c)),
+                        const step *js = s.find(step_role::inverse_inertia, i, static_cast<int>(std::min(r, c)),
                                                 static_cast<int>(std::max(r, c)));
                         if (js) {
                             inv[r][c] = js->sym;
@@ -1402,12 +1458,12 @@ private:
     // of the contact impulse, 1/2 Pi.(a + a') for a free body (Pi its impulse, a and a'
     // the velocities of its material point at O before and after), and for a pinned body
     // 1/2 m dv.(v + v') + 1/2 dw.I (w + w') (its pivot's impulse may work too).
-    ex energy_lost(const regime_case& stick, const lst& to_sel) const
+    ex energy_lost(const regime_case &stick, const lst &to_sel) const
     {
-        const problem& q = q_;
+        const problem &q = q_;
         ex work = 0;
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
+            const body &b = q.bodies[i];
             if (b.infinite_mass || q.immovable(i))
                 continue;
             const ex s = i == q.contact.body1 ? ex(-1) : ex(1);
@@ -1433,7 +1489,7 @@ private:
 
     // Powers of stage A values with a negative or fractional exponent become links; so do
     // the stage A steps an expression of stage B, C or S uses (linked in name_links).
-    ex linkify(const ex& e)
+    ex linkify(const ex &e)
     {
         if (is_a<power>(e) && is_a<numeric>(e.op(1))) {
             const numeric x = ex_to<numeric>(e.op(1));
@@ -1441,7 +1497,7 @@ private:
                 exset syms;
                 collect_symbols(e, syms);
                 if (!syms.empty()) {
-                    for (const auto& [value, sym] : power_links_)
+                    for (const auto &[value, sym] : power_links_)
                         if (value.is_equal(e))
                             return sym;
                     symbol s("friction_link");
@@ -1453,9 +1509,9 @@ private:
         if (is_a<symbol>(e) || is_a<numeric>(e) || e.nops() == 0)
             return e;
         struct mapper : map_function {
-            friction_writer* w;
-            explicit mapper(friction_writer* w_) : w(w_) {}
-            ex operator()(const ex& x) override { return w->linkify(x); }
+            friction_writer *w;
+            explicit mapper(friction_writer *w_) : w(w_) {}
+            ex operator()(const ex &x) override { return w->linkify(x); }
         } m(this);
         return e.map(m);
     }
@@ -1465,7 +1521,7 @@ private:
     {
         canonical_pool scratch;
         std::map<ex, std::string, ex_is_less> names = input_ident_;
-        for (const auto& [sym, nm] : step_name_)
+        for (const auto &[sym, nm] : step_name_)
             names[sym] = nm;
         scratch.set_input_names(names);
         std::vector<std::pair<std::string, std::size_t>> keyed;
@@ -1475,28 +1531,28 @@ private:
         }
         std::sort(keyed.begin(), keyed.end());
         for (std::size_t k = 0; k < keyed.size(); ++k) {
-            const auto& pl = power_links_[keyed[k].second];
+            const auto &pl = power_links_[keyed[k].second];
             link_names_[pl.second] = scope_.claim("lk_" + std::to_string(k + 1));
             link_order_.push_back(pl.second);
             link_value_[pl.second] = pl.first;
         }
         // The stage A steps used downstream, in stage A's order.
         exset used;
-        auto collect = [&](const ex& e) { collect_symbols(e, used); };
-        for (const ex& v : c_values_)
+        auto collect = [&](const ex &e) { collect_symbols(e, used); };
+        for (const ex &v : c_values_)
             collect(v);
         collect(s_D0_);
         collect(s_N0_value_);
-        for (const ex& v : s_P0_)
+        for (const ex &v : s_P0_)
             collect(v);
-        for (const step& st : b_steps_linked_)
+        for (const step &st : b_steps_linked_)
             collect(st.value);
         collect(b_N_);
-        for (const ex& v : b_P_)
+        for (const ex &v : b_P_)
             collect(v);
-        for (const ex& v : b_F_)
+        for (const ex &v : b_F_)
             collect(v);
-        for (const ex& v : b_cond_)
+        for (const ex &v : b_cond_)
             collect(v);
         for (std::size_t i = 0; i < a_steps_.size(); ++i)
             if (used.count(a_steps_[i].sym)) {
@@ -1507,26 +1563,26 @@ private:
     }
 
     // The input names of a downstream stage: the inputs, the links, and extra locals.
-    void downstream_names(stage& s, const std::map<ex, std::string, ex_is_less>& extra)
+    void downstream_names(stage &s, const std::map<ex, std::string, ex_is_less> &extra)
     {
         std::map<ex, std::string, ex_is_less> names = input_ident_;
-        for (const auto& [sym, nm] : link_names_)
+        for (const auto &[sym, nm] : link_names_)
             names[sym] = nm;
-        for (const auto& [sym, nm] : extra)
+        for (const auto &[sym, nm] : extra)
             names[sym] = nm;
         s.pool.set_input_names(names);
     }
 
     void build_stage_a()
     {
-        const problem& q = q_;
+        const problem &q = q_;
         const int dim = q.dimension;
         a_.pool.set_input_names(input_ident_);
         for (std::size_t i = 0; i < a_steps_.size(); ++i)
             a_.bind_step(a_steps_[i], a_step_names_[i]);
         add_checks();
         // mu as a value (when it is not simply an input or a number)
-        const ex& mu = q.contact.friction;
+        const ex &mu = q.contact.friction;
         if (is_a<symbol>(mu) && input_ident_.count(mu)) {
             mu_name_ = input_ident_.at(mu);
         } else if (is_a<numeric>(mu)) {
@@ -1537,7 +1593,7 @@ private:
         }
         // Candidates in closed form and the conditions of each.
         for (std::size_t i = 0; i < f_.cases.size(); ++i) {
-            const regime_case& c = f_.cases[i];
+            const regime_case &c = f_.cases[i];
             case_names cn;
             cn.prefix = case_prefix(c);
             if (static_cast<int>(i) == angle_) {
@@ -1556,24 +1612,23 @@ private:
             for (std::size_t j = 0; j < c.conditions.size(); ++j) {
                 cn.cond.push_back(scope_.claim("c_" + cn.prefix + "cond" + std::to_string(j + 1)));
                 a_.output(cn.cond.back(), c.conditions[j].value);
-
             }
             names_.push_back(cn);
         }
         // The angle equation's coefficients.
         if (angle_ >= 0) {
-            const regime_case& c = f_.cases[static_cast<std::size_t>(angle_)];
+            const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
             // g is a polynomial of degree 2 in (c, s) (g = n.(h x d), h and d of degree 1): its
             // coefficients by differentiation at c = s = 0, which keeps the factored form of
             // the closed form (expanding it multiplies out every product of sums).
-            const ex& g = c.angle_equation;
+            const ex &g = c.angle_equation;
             const lst zero{c.dir_c == 0, c.dir_s == 0};
-            auto at0 = [&](const ex& x) { return x.subs(zero); };
+            auto at0 = [&](const ex &x) { return x.subs(zero); };
             const ex gc = g.diff(c.dir_c), gs = g.diff(c.dir_s);
-            const ex c00 = at0(g), c10 = at0(gc), c01 = at0(gs), c20 = at0(gc.diff(c.dir_c)) / 2, c02 = at0(gs.diff(c.dir_s)) / 2,
-                     c11 = at0(gc.diff(c.dir_s));
+            const ex c00 = at0(g), c10 = at0(gc), c01 = at0(gs), c20 = at0(gc.diff(c.dir_c)) / 2,
+                     c02 = at0(gs.diff(c.dir_s)) / 2, c11 = at0(gc.diff(c.dir_s));
             const ex coef[5] = {c00 + (c20 + c02) / 2, c10, c01, (c20 - c02) / 2, c11 / 2};
-            const char* nm[5] = {"trig_a0", "trig_a1", "trig_b1", "trig_a2", "trig_b2"};
+            const char *nm[5] = {"trig_a0", "trig_a1", "trig_b1", "trig_a2", "trig_b2"};
             for (int k = 0; k < 5; ++k) {
                 trig_names_.push_back(scope_.claim(nm[k]));
                 a_.output(trig_names_.back(), coef[k]);
@@ -1581,10 +1636,10 @@ private:
             // The filter: lambda D = D (u.d) + a (Q.d), Q = K (n - mu d), D = n.Q, a = -(1 + e) u_n,
             // of the same form; a slide holds only where it is > 0 (lambda > 0 and D > 0), so
             // the root finder may leave out the arcs where it is negative throughout.
-            const regime_case& st = f_.cases.front();
+            const regime_case &st = f_.cases.front();
             mat3 K = zero_mat();
             ex un;
-            for (const step& x : st.sol.steps) {
+            for (const step &x : st.sol.steps) {
                 if (x.role == step_role::contact_response)
                     K[static_cast<std::size_t>(x.row)][static_cast<std::size_t>(x.column)] =
                         K[static_cast<std::size_t>(x.column)][static_cast<std::size_t>(x.row)] = x.sym;
@@ -1620,32 +1675,39 @@ private:
             // slide's direction is the root of one monotone scalar equation.
             const vec3 nh = d_.n_hat;
             const ex a = -(1 + q.restitution) * un;
-            auto Kdot = [&](const vec3& x, const vec3& y) { return dot(x, mul(K, y)); };
+            auto Kdot = [&](const vec3 &x, const vec3 &y) { return dot(x, mul(K, y)); };
             const ex Knn = Kdot(nh, nh), Knt = Kdot(f_.e_t, nh), Knb = Kdot(f_.e_b, nh);
             const ex Ktt = Kdot(f_.e_t, f_.e_t), Ktb = Kdot(f_.e_t, f_.e_b), Kbb = Kdot(f_.e_b, f_.e_b);
             const ex ut = dot(u, f_.e_t), ub = dot(u, f_.e_b);
-            const ex& mu = q.contact.friction;
-            const ex M11 = a * Ktt + ut * Knt, M12 = a * Ktb + ut * Knb, M21 = a * Ktb + ub * Knt, M22 = a * Kbb + ub * Knb;
-            const ex fast[7] = {mu * M11, mu * M12, mu * M21, mu * M22, a * Knt + ut * Knn, a * Knb + ub * Knn,
+            const ex &mu = q.contact.friction;
+            const ex M11 = a * Ktt + ut * Knt, M12 = a * Ktb + ut * Knb, M21 = a * Ktb + ub * Knt,
+                     M22 = a * Kbb + ub * Knb;
+            const ex fast[7] = {mu * M11,
+                                mu * M12,
+                                mu * M21,
+                                mu * M22,
+                                a * Knt + ut * Knn,
+                                a * Knb + ub * Knn,
                                 31 * M11 * M22 - 8 * (M12 + M21) * (M12 + M21)};
-            const char* fnm[7] = {"slide_m11", "slide_m12", "slide_m21", "slide_m22", "slide_b1", "slide_b2", "unique_monotone"};
+            const char *fnm[7] = {"slide_m11", "slide_m12", "slide_m21",      "slide_m22",
+                                  "slide_b1",  "slide_b2",  "unique_monotone"};
             for (int k = 0; k < 7; ++k) {
                 fast_names_.push_back(scope_.claim(fnm[k]));
                 a_.output(fast_names_.back(), fast[k]);
             }
         }
         // Links: aliases of stage A values.
-        for (const ex& s : link_order_)
+        for (const ex &s : link_order_)
             a_.output(link_names_.at(s), link_value_.at(s));
     }
 
     // Validity checks as the smooth headers make them, and det K > 0 for the stick candidate.
     void add_checks()
     {
-        const problem& q = q_;
+        const problem &q = q_;
         a_.add_check(q.restitution, check::unit_interval, "invalid_restitution", "0 <= e <= 1");
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
+            const body &b = q.bodies[i];
             if (b.infinite_mass)
                 continue;
             a_.add_check(b.mass, check::positive, "invalid_mass", "mass of " + b.name + " > 0, finite");
@@ -1654,19 +1716,20 @@ private:
                              "moment of inertia of " + b.name + " > 0, finite");
         }
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-            const body& b = q.bodies[i];
+            const body &b = q.bodies[i];
             if (q.dimension != 3 || b.particle || b.infinite_mass)
                 continue;
             mat3 J = b.inertia;
-            if (const pivot* pv = q.pivot_of(i)) {
+            if (const pivot *pv = q.pivot_of(i)) {
                 const vec3 arm = b.position - pv->point;
                 const ex dd = dot(arm, arm);
                 for (std::size_t r = 0; r < 3; ++r)
                     for (std::size_t c = 0; c < 3; ++c)
                         J[r][c] = tidy(J[r][c] + b.mass * ((r == c ? dd : ex(0)) - arm[r] * arm[c]));
             }
-            const std::string what = "inertia tensor of " + b.name + (q.pivot_of(i) ? " about its pivot" : "") + " positive definite: ";
-            for (const auto& [minor, text] : positive_definite_minors(J, q.axes, false))
+            const std::string what =
+                "inertia tensor of " + b.name + (q.pivot_of(i) ? " about its pivot" : "") + " positive definite: ";
+            for (const auto &[minor, text] : positive_definite_minors(J, q.axes, false))
                 a_.add_check(minor, check::positive, "invalid_inertia", what + text);
         }
         const ex nn = tidy(dot(q.contact.normal, q.contact.normal));
@@ -1677,10 +1740,11 @@ private:
                 a_.add_check(nn, check::normal_number, "invalid_normal",
                              "n.n a normal number: the normal neither zero, denormal nor too long");
         }
-        for (const step& st : a_steps_) {
+        for (const step &st : a_steps_) {
             switch (st.role) {
             case step_role::inertia_determinant:
-                a_.add_check(st.sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
+                a_.add_check(st.sym, check::positive, "invalid_inertia",
+                             "determinant of the inertia tensor > 0, finite");
                 break;
             case step_role::approach_velocity:
                 a_.add_check(st.sym, check::negative, "not_approaching", "the contact points approach: u_n < 0");
@@ -1688,7 +1752,8 @@ private:
             case step_role::response_determinant:
                 a_.add_check(st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
                 break;
-            default: break;
+            default:
+                break;
             }
         }
     }
@@ -1697,14 +1762,14 @@ private:
     {
         if (angle_ < 0)
             return;
-        const regime_case& c = f_.cases[static_cast<std::size_t>(angle_)];
+        const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
         const int dim = q_.dimension;
         dir_c_name_ = scope_.claim("c_d");
         dir_s_name_ = scope_.claim("s_d");
         downstream_names(b_, {{c.dir_c, dir_c_name_}, {c.dir_s, dir_s_name_}});
         for (std::size_t i = 0; i < b_steps_linked_.size(); ++i)
             b_.bind_step(b_steps_linked_[i], b_step_names_[i]);
-        case_names& cn = names_[static_cast<std::size_t>(angle_)];
+        case_names &cn = names_[static_cast<std::size_t>(angle_)];
         cn.N = scope_.claim("c_slide_N");
         b_.output(cn.N, b_N_);
         for (int a = 0; a < dim; ++a) {
@@ -1763,10 +1828,10 @@ private:
             u_.output(outs_[k].field, outs_[k].tangential ? ex(0) : pl_.unchanged[outs_[k].smooth]);
     }
 
-    void emit_one(stage& s)
+    void emit_one(stage &s)
     {
         s.em = emit_cpp(s.prog, s.outs, s.checks, s.names, scope_.names());
-        for (const std::string& nm : declared(s.em.code))
+        for (const std::string &nm : declared(s.em.code))
             if (!scope_.taken(nm))
                 scope_.claim(nm);
         add_counts(total_, s.em.formula);
@@ -1806,14 +1871,14 @@ private:
     std::string params() const
     {
         std::string r;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             r += "T " + nm + ", ";
         return r;
     }
     std::string args() const
     {
         std::string r;
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             r += nm + ", ";
         return r;
     }
@@ -1827,13 +1892,13 @@ private:
             command += " --params " + join(o_.params, ",");
         if (!o_.set.empty()) {
             std::vector<std::string> kv;
-            for (auto& [k, v] : o_.set)
+            for (auto &[k, v] : o_.set)
                 kv.push_back(k + "=" + v);
             command += " --set " + join(kv, ",");
         }
         if (o_.unit_normal)
             command += " --unit-normal";
-        const char* kind = angle_ >= 0 ? "3-D, sliding direction found at run time"
+        const char *kind = angle_ >= 0         ? "3-D, sliding direction found at run time"
                            : q_.dimension == 2 ? "planar"
                                                : "3-D, the contact response isotropic: sliding along u_t";
         h_ << "// Generated by impactgen " << o_.version << " from " << names::comment_text(o_.source)
@@ -1841,7 +1906,8 @@ private:
         h_ << "//   " << names::comment_text(command) << "\n";
         h_ << "// Closed forms of the impact with Coulomb friction (" << kind << "), specialised;\n";
         h_ << "// the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.\n";
-        h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula) << " (shared steps, checks, candidates)";
+        h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula)
+           << " (shared steps, checks, candidates)";
         if (angle_ >= 0)
             h_ << ";\n//   " << counts_text(b_.em.formula) << " per sliding direction (at most 4)";
         h_ << ";\n//   " << counts_text(c_.em.formula) << " (post-impact state).\n";
@@ -1857,7 +1923,7 @@ private:
         po.name = "impactgen_preamble";
         po.ns = o_.ns;
         po.source = "central-direct";
-        const named_class* cls = find_named_class("central-direct");
+        const named_class *cls = find_named_class("central-direct");
         const std::string text = generate(cls->build(), po).text;
         const std::string open = "namespace " + o_.ns + " {\n\n#ifndef ";
         const std::size_t from = text.find(open);
@@ -1876,25 +1942,26 @@ private:
         h_ << "#ifndef " << guard << "\n#define " << guard << "\n" << body;
     }
 
-    void view_functions(const std::string& name, int rows, int cols, const std::vector<std::string>& entries,
-                        const std::vector<std::string>& fixed, const std::string& meaning)
+    void view_functions(const std::string &name, int rows, int cols, const std::vector<std::string> &entries,
+                        const std::vector<std::string> &fixed, const std::string &meaning)
     {
         const std::string dims = std::to_string(rows) + ", " + std::to_string(cols);
         const std::string b = "{{" + join(entries, ", ") + "}, {" + join(fixed, ", ") + "}}";
         h_ << "    /// " << names::comment_text(meaning) << (cols == 1 ? " (vector)" : " (matrix, row-major)") << "\n";
         h_ << "    IMPACTGEN_MEMBER view<T, " << dims << "> " << name << "() noexcept { return " << b << "; }\n";
-        h_ << "    IMPACTGEN_MEMBER view<const T, " << dims << "> " << name << "() const noexcept { return " << b << "; }\n";
+        h_ << "    IMPACTGEN_MEMBER view<const T, " << dims << "> " << name << "() const noexcept { return " << b
+           << "; }\n";
     }
 
     void result_struct()
     {
         h_ << "/// Post-impact state of " << o_.name << " (units as the inputs).\n";
         h_ << "template <typename T> struct " << result() << " {\n";
-        for (const out_field& of : outs_)
+        for (const out_field &of : outs_)
             h_ << "    T " << of.field << "; ///< " << names::comment_text(of.meaning) << "\n";
         h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n";
         for (std::size_t g = 0; g < pl_.output_groups.size(); ++g) {
-            const group& gr = pl_.output_groups[g];
+            const group &gr = pl_.output_groups[g];
             std::vector<std::string> e, f;
             for (std::size_t k : gr.outputs) {
                 e.push_back("&" + outs_[smooth_index_.at(k)].field);
@@ -1917,9 +1984,9 @@ private:
         for (std::size_t i = 0; i < input_names_.size(); ++i)
             h_ << "    T " << input_names_[i] << "; ///< " << names::comment_text(input_meaning_[i]) << "\n";
         for (std::size_t g = 0; g < pl_.input_groups.size(); ++g) {
-            const group& gr = pl_.input_groups[g];
+            const group &gr = pl_.input_groups[g];
             std::vector<std::string> e, f;
-            for (const ex& x : gr.inputs) {
+            for (const ex &x : gr.inputs) {
                 if (is_a<numeric>(x)) {
                     e.push_back("nullptr");
                     f.push_back(decimal_literal(ex_to<numeric>(x)));
@@ -1963,31 +2030,33 @@ private:
         h_ << "// candidate apart from them holds, the answer is stick (the two are one solution).\n";
         h_ << "// The conditions of each candidate:\n";
         for (std::size_t i = 0; i < f_.cases.size(); ++i) {
-            const regime_case& c = f_.cases[i];
+            const regime_case &c = f_.cases[i];
             for (std::size_t j = 0; j < c.conditions.size(); ++j)
                 h_ << "//   " << names::comment_text(c.name) << ": " << names_[i].cond[j] << " "
-                   << (c.conditions[j].strict ? "> 0" : ">= 0") << "  (" << names::comment_text(c.conditions[j].meaning) << ")\n";
+                   << (c.conditions[j].strict ? "> 0" : ">= 0") << "  (" << names::comment_text(c.conditions[j].meaning)
+                   << ")\n";
         }
         h_ << "// This problem, step by step, as the code below computes it (shared steps, checks, candidates):\n";
-        for (const auto& [lhs, rhs] : a_.em.assignments)
+        for (const auto &[lhs, rhs] : a_.em.assignments)
             h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
         if (angle_ >= 0) {
             h_ << "// The slide along d = " << dir_c_name_ << " e_t + " << dir_s_name_ << " e_b, at each root of g:\n";
-            for (const auto& [lhs, rhs] : b_.em.assignments)
+            for (const auto &[lhs, rhs] : b_.em.assignments)
                 h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
         }
         if (!mu_name_.empty()) {
             h_ << "// mu = 0:\n";
-            for (const auto& [lhs, rhs] : s_.em.assignments)
+            for (const auto &[lhs, rhs] : s_.em.assignments)
                 h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
         }
-        h_ << "// The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:\n";
-        for (const auto& [lhs, rhs] : c_.em.assignments)
+        h_ << "// The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the "
+              "regime:\n";
+        for (const auto &[lhs, rhs] : c_.em.assignments)
             h_ << wrap_comment(lhs, rhs);
         h_ << "\n";
     }
 
-    std::string frame_text(const vec3& v) const
+    std::string frame_text(const vec3 &v) const
     {
         std::vector<std::string> parts;
         for (int a = 0; a < q_.dimension; ++a) {
@@ -2008,7 +2077,7 @@ private:
         h_ << "/// What a failed call of " << o_.name << " returns: the state unchanged (velocities as\n";
         h_ << "/// before; impulses, approach velocity and energy lost zero; regime smooth).\n";
         h_ << "template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void " << o_.name << "_unchanged(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "T " << (uses(u_.em.code, nm) ? nm : "/*" + nm + "*/") << ", ";
         h_ << result() << "<T>& out) noexcept\n{\n";
         if (u_.em.uses_sqrt)
@@ -2020,11 +2089,12 @@ private:
 
     // The conditions of a candidate, folded as unsigned (no branch implied, and nothing for
     // clang's -Wbitwise-instead-of-logical to say).
-    std::string holds_text(const case_names& cn, const regime_case& c) const
+    std::string holds_text(const case_names &cn, const regime_case &c) const
     {
         std::vector<std::string> parts;
         for (std::size_t j = 0; j < cn.cond.size(); ++j)
-            parts.push_back("static_cast<unsigned>(" + cn.cond[j] + (c.conditions[j].strict ? " > T(0))" : " >= T(0))"));
+            parts.push_back("static_cast<unsigned>(" + cn.cond[j] +
+                            (c.conditions[j].strict ? " > T(0))" : " >= T(0))"));
         if (parts.empty())
             return "true";
         if (parts.size() == 1)
@@ -2032,7 +2102,7 @@ private:
         return "((" + join(parts, " & ") + ") != 0u)";
     }
 
-    std::string select_text(const case_names& cn, const std::string& regime, const std::string& ind) const
+    std::string select_text(const case_names &cn, const std::string &regime, const std::string &ind) const
     {
         std::string r = ind + regime_name_ + " = impact_regime::" + regime + ";\n";
         r += ind + sel_N_name_ + " = " + cn.N + ";\n";
@@ -2045,15 +2115,15 @@ private:
 
     void main_function()
     {
-        const case_names& sn = names_.front();
+        const case_names &sn = names_.front();
         h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
         h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
         h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
         h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
         for (std::size_t i = 0; i < input_names_.size(); ++i)
             h_ << "///   " << input_names_[i] << ": " << names::comment_text(input_meaning_[i]) << "\n";
-        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "(" << params()
-           << result() << "<T>& out) noexcept\n{\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
+           << params() << result() << "<T>& out) noexcept\n{\n";
         h_ << "    using std::sqrt;\n";
         h_ << "    auto fail = [&](auto why) noexcept {\n";
         h_ << "        detail::" << o_.name << "_unchanged(" << args() << "out);\n";
@@ -2063,27 +2133,29 @@ private:
             h_ << "        return detail::all_finite(" << join(input_names_, ", ")
                << ") ? detail::friction_status_of(why) : friction_status::non_finite_input;\n";
         h_ << "    };\n";
-        const ex& mu = q_.contact.friction;
+        const ex &mu = q_.contact.friction;
         const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
-        const std::string mu_check = "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
-                                     "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
+        const std::string mu_check =
+            "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
+            "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
         if (mu_input)
             h_ << mu_check;
         if (!basis_names_.empty()) {
             h_ << "    // The unit tangent basis e_t, e_b of the contact plane for this normal (any direction).\n";
             h_ << place_outputs(nb_.em.code, output_as::locals);
             h_ << "    T " << basis_t_name_ << "[3], " << basis_b_name_ << "[3];\n";
-            h_ << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", " << nb_.outs[2].first
-               << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
+            h_ << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", "
+               << nb_.outs[2].first << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
             for (std::size_t k = 0; k < basis_names_.size(); ++k)
-                h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3 << "];\n";
+                h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "["
+                   << k % 3 << "];\n";
         }
         h_ << "    // Shared steps, checks, the candidates and their conditions.\n";
         h_ << place_outputs(a_.em.code, output_as::locals);
         if (!mu_input && !mu_name_.empty())
             h_ << mu_check;
-        h_ << "    // The regime that holds: its impulse (world axes, on " << names::comment_text(q_.bodies[q_.contact.body2].name)
-           << "), normal and tangential impulse.\n";
+        h_ << "    // The regime that holds: its impulse (world axes, on "
+           << names::comment_text(q_.bodies[q_.contact.body2].name) << "), normal and tangential impulse.\n";
         h_ << "    T " << sel_N_name_ << " = T(0);\n";
         for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
             h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
@@ -2104,13 +2176,13 @@ private:
         // forms are selected without a branch (the first that holds: stick, then the
         // slides); only the rare boundary and failure cases branch.
         std::vector<std::string> sizes;
-        for (const std::string& P : sn.P)
+        for (const std::string &P : sn.P)
             sizes.push_back("detail::abs_of(" + P + ")");
         std::string size = sizes[0];
         for (std::size_t a = 1; a < sizes.size(); ++a)
             size = "detail::max_of(" + size + ", " + sizes[a] + ")";
         const std::string merge_text = "detail::boundary_tolerance<T>() * " + size;
-        auto near_text = [&](const case_names& cn) {
+        auto near_text = [&](const case_names &cn) {
             std::vector<std::string> parts;
             for (std::size_t a = 0; a < cn.P.size(); ++a)
                 parts.push_back("detail::abs_of(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
@@ -2126,7 +2198,7 @@ private:
                    << names::comment_text(f_.cases[i].name) << "\n";
             }
         std::vector<std::string> counted;
-        for (const std::string& hname : holds)
+        for (const std::string &hname : holds)
             counted.push_back("static_cast<int>(" + hname + ")");
         h_ << ind << "int " << count_name_ << " = " << join(counted, " + ") << ";\n";
         // the first closed form that holds (or the last, when none does: replaced below)
@@ -2137,16 +2209,17 @@ private:
             return r;
         };
         h_ << ind << regime_name_ << " = " << stick_holds_name_ << " ? impact_regime::stick : impact_regime::slide;\n";
-        h_ << ind << sel_N_name_ << " = " << first_of([](const case_names& cn) { return cn.N; }) << ";\n";
+        h_ << ind << sel_N_name_ << " = " << first_of([](const case_names &cn) { return cn.N; }) << ";\n";
         for (std::size_t a = 0; a < sn.P.size(); ++a) {
-            h_ << ind << sel_P_names_[a] << " = " << first_of([a](const case_names& cn) { return cn.P[a]; }) << ";\n";
-            h_ << ind << sel_F_names_[a] << " = " << first_of([a](const case_names& cn) { return cn.F[a]; }) << ";\n";
+            h_ << ind << sel_P_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.P[a]; }) << ";\n";
+            h_ << ind << sel_F_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.F[a]; }) << ";\n";
         }
         if (angle_ >= 0) {
-            const case_names& cn = names_[static_cast<std::size_t>(angle_)];
-            const regime_case& c = f_.cases[static_cast<std::size_t>(angle_)];
+            const case_names &cn = names_[static_cast<std::size_t>(angle_)];
+            const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
             h_ << ind << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
-            h_ << ind << "bool " << at_stick_name_ << " = " << stick_holds_name_ << "; // some candidate is the stick solution\n";
+            h_ << ind << "bool " << at_stick_name_ << " = " << stick_holds_name_
+               << "; // some candidate is the stick solution\n";
             h_ << ind << "const T " << merge_name_ << " = " << merge_text << ";\n";
             h_ << ind << "// The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),\n";
             h_ << ind << "// only where lambda D may be > 0 (the filter keep_*).\n";
@@ -2159,19 +2232,19 @@ private:
             h_ << ind << "const bool " << unique_name_ << " = ((static_cast<unsigned>(" << fast_names_[0]
                << " > T(0)) & static_cast<unsigned>(" << fast_names_[6] << " > T(0))) != 0u);\n";
             h_ << ind << "bool " << slides_finite_name_ << " = true;\n";
-            h_ << ind << "for (int " << pass_name_ << " = " << unique_name_ << " ? 0 : 1; " << pass_name_ << " < 2; ++" << pass_name_
-               << ") {\n";
+            h_ << ind << "for (int " << pass_name_ << " = " << unique_name_ << " ? 0 : 1; " << pass_name_ << " < 2; ++"
+               << pass_name_ << ") {\n";
             const std::string j2 = i2 + "    ";
             h_ << i2 << "int " << n_roots_name_ << " = 0;\n";
             h_ << i2 << "if (" << pass_name_ << " == 0) {\n";
-            h_ << j2 << "if (!" << stick_holds_name_ << " && !detail::slide_direction(" << fast_names_[0] << ", " << fast_names_[1]
-               << ", " << fast_names_[2] << ", " << fast_names_[3] << ", " << fast_names_[4] << ", " << fast_names_[5] << ", "
-               << roots_c_name_ << "[0], " << roots_s_name_ << "[0]))\n";
+            h_ << j2 << "if (!" << stick_holds_name_ << " && !detail::slide_direction(" << fast_names_[0] << ", "
+               << fast_names_[1] << ", " << fast_names_[2] << ", " << fast_names_[3] << ", " << fast_names_[4] << ", "
+               << fast_names_[5] << ", " << roots_c_name_ << "[0], " << roots_s_name_ << "[0]))\n";
             h_ << j2 << "    continue;\n";
             h_ << j2 << n_roots_name_ << " = " << stick_holds_name_ << " ? 0 : 1;\n";
             h_ << i2 << "} else {\n";
-            h_ << j2 << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", " << keep_array_name_ << ", "
-               << roots_c_name_ << ", " << roots_s_name_ << ");\n";
+            h_ << j2 << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", "
+               << keep_array_name_ << ", " << roots_c_name_ << ", " << roots_s_name_ << ");\n";
             h_ << i2 << "}\n";
             h_ << i2 << "if (" << n_roots_name_ << " == -2) // a coefficient of g overflowed\n"
                << j2 << "return fail(friction_status::overflow);\n";
@@ -2179,28 +2252,32 @@ private:
             h_ << i2 << "// these four is one of infinitely many (ambiguous)\n";
             h_ << i2 << "const bool " << every_name_ << " = " << n_roots_name_ << " == -1;\n";
             h_ << i2 << "if (" << every_name_ << ") {\n";
-            const char* cs[4][2] = {{"T(1)", "T(0)"}, {"T(0)", "T(1)"}, {"T(-1)", "T(0)"}, {"T(0)", "T(-1)"}};
+            const char *cs[4][2] = {{"T(1)", "T(0)"}, {"T(0)", "T(1)"}, {"T(-1)", "T(0)"}, {"T(0)", "T(-1)"}};
             for (int k = 0; k < 4; ++k)
-                h_ << j2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n" << j2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
+                h_ << j2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n"
+                   << j2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
             h_ << j2 << n_roots_name_ << " = 4;\n" << i2 << "}\n";
             // the loop over the roots, one level deeper (inside the passes)
             const std::string ind_outer = ind, i2_outer = i2;
             ind = i2;
             i2 = j2;
-            h_ << ind << "for (int " << loop_name_ << " = 0; " << loop_name_ << " < " << n_roots_name_ << "; ++" << loop_name_ << ") {\n";
+            h_ << ind << "for (int " << loop_name_ << " = 0; " << loop_name_ << " < " << n_roots_name_ << "; ++"
+               << loop_name_ << ") {\n";
             h_ << i2 << "const T " << dir_c_name_ << " = " << roots_c_name_ << "[" << loop_name_ << "];\n";
             h_ << i2 << "const T " << dir_s_name_ << " = " << roots_s_name_ << "[" << loop_name_ << "];\n";
             h_ << indent(place_outputs(b_.em.code, output_as::locals), ind);
             std::vector<std::string> slide_values = cn.cond;
             slide_values.push_back(cn.N);
-            h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite(" << balanced_sum(slide_values) << ");\n";
+            h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
+               << balanced_sum(slide_values) << ");\n";
             const std::string step = "(" + every_name_ + " ? 2 : 1)";
             h_ << i2 << "const bool " << near_name_ << " = " << near_text(cn) << ";\n";
             h_ << i2 << at_stick_name_ << " = " << at_stick_name_ << " || " << near_name_ << ";\n";
             h_ << i2 << "if (" << holds_text(cn, c) << ") {\n";
             h_ << i2 << "    " << apart_name_ << " += " << near_name_ << " ? 0 : " << step << ";\n";
             h_ << i2 << "    " << count_name_ << " += " << step << ";\n";
-            h_ << i2 << "    if (" << count_name_ << " == " << step << ") {\n" << select_text(cn, "slide", i2 + "        ") << i2 << "    }\n";
+            h_ << i2 << "    if (" << count_name_ << " == " << step << ") {\n"
+               << select_text(cn, "slide", i2 + "        ") << i2 << "    }\n";
             h_ << i2 << "}\n";
             h_ << ind << "}\n";
             // Pass 0 found the one solution, or starts over with every direction.
@@ -2221,7 +2298,7 @@ private:
         for (std::size_t i = 0; i < names_.size(); ++i) {
             if (static_cast<int>(i) == angle_)
                 continue;
-            const case_names& cn = names_[i];
+            const case_names &cn = names_[i];
             values.push_back(cn.N);
             values.insert(values.end(), cn.P.begin(), cn.P.end());
             values.insert(values.end(), cn.cond.begin(), cn.cond.end());
@@ -2233,7 +2310,8 @@ private:
         if (angle_ < 0) {
             h_ << i2 << "const T " << merge_name_ << " = " << merge_text << ";\n";
             h_ << i2 << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
-            h_ << i2 << "bool " << at_stick_name_ << " = " << stick_holds_name_ << "; // some candidate is the stick solution\n";
+            h_ << i2 << "bool " << at_stick_name_ << " = " << stick_holds_name_
+               << "; // some candidate is the stick solution\n";
         }
         for (std::size_t k = 1; k < closed.size(); ++k) {
             const std::string nr = scope_.claim(names_[closed[k]].prefix + "near");
@@ -2246,21 +2324,22 @@ private:
         h_ << i2 << "    if (!detail::finite(" << balanced_sum(values) << ")"
            << (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) << ")\n";
         h_ << i2 << "        return fail(friction_status::overflow);\n";
-        h_ << i2 << "    return fail(" << count_name_ << " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
+        h_ << i2 << "    return fail(" << count_name_
+           << " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
         h_ << i2 << "}\n";
         h_ << ind << "}\n";
         h_ << "    }\n";
         h_ << "    // The post-impact state.\n";
         std::string energy;
-        for (const out_field& of : outs_)
+        for (const out_field &of : outs_)
             if (of.kind == output_value::energy_lost)
                 energy = of.field;
         h_ << place_outputs(c_.em.code, output_as::result, energy);
         h_ << "    out.regime = " << regime_name_ << ";\n";
         std::vector<std::string> terms;
-        for (const out_field& of : outs_)
+        for (const out_field &of : outs_)
             terms.push_back("out." + of.field);
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             terms.push_back(nm);
         h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
         h_ << "    if (!detail::finite(check_sum))\n";
@@ -2271,8 +2350,8 @@ private:
     void array_form()
     {
         h_ << "/// The same with the inputs in an array, in the order of " << o_.name << "_input_names.\n";
-        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status " << o_.name
-           << "(const T* in, " << result() << "<T>& out) noexcept\n{\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status "
+           << o_.name << "(const T* in, " << result() << "<T>& out) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    return " << o_.name << "<T, with_energy_lost>(";
@@ -2284,12 +2363,12 @@ private:
     void struct_form()
     {
         h_ << "/// The same with the inputs by name: " << input_struct() << "<T> in{}; in.e = ...;\n";
-        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status " << o_.name
-           << "(const " << input_struct() << "<T>& in, " << result() << "<T>& out) noexcept\n{\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status "
+           << o_.name << "(const " << input_struct() << "<T>& in, " << result() << "<T>& out) noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    return " << o_.name << "<T, with_energy_lost>(";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << "in." << nm << ", ";
         h_ << "out);\n}\n\n";
     }
@@ -2303,13 +2382,15 @@ private:
         h_ << "/// The same over n impacts in structure-of-arrays form: in[j][i] is input j (order of\n";
         h_ << "/// " << o_.name << "_input_names) of impact i, out[j][i] output j (order of " << o_.name
            << "_output_names),\n";
-        h_ << "/// status[i] its status and, unless regime is null, regime[i] its regime. One call of " << o_.name << "\n";
+        h_ << "/// status[i] its status and, unless regime is null, regime[i] its regime. One call of " << o_.name
+           << "\n";
         h_ << "/// per impact (the regime selection branches).";
         if (energy_index < outs_.size())
             h_ << " with_energy_lost = false: out[" << energy_index << "] is not written (it may be null).";
         h_ << "\n";
         h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC void " << o_.name
-           << "_batch(long n, const T* const* in, T* const* out, friction_status* status, impact_regime* regime) noexcept\n{\n";
+           << "_batch(long n, const T* const* in, T* const* out, friction_status* status, impact_regime* regime) "
+              "noexcept\n{\n";
         if (input_names_.empty())
             h_ << "    (void)in;\n";
         h_ << "    for (long i = 0; i < n; ++i) {\n";
@@ -2319,8 +2400,8 @@ private:
             h_ << "in[" << j << "][i], ";
         h_ << "r);\n";
         for (std::size_t j = 0; j < outs_.size(); ++j)
-            h_ << (j == energy_index ? "        if constexpr (with_energy_lost)\n    " : "") << "        out[" << j << "][i] = r."
-               << outs_[j].field << ";\n";
+            h_ << (j == energy_index ? "        if constexpr (with_energy_lost)\n    " : "") << "        out[" << j
+               << "][i] = r." << outs_[j].field << ";\n";
         h_ << "        if (regime)\n            regime[i] = r.regime;\n";
         h_ << "    }\n}\n\n";
     }
@@ -2330,11 +2411,11 @@ private:
         h_ << "inline constexpr int " << o_.name << "_input_count = " << input_names_.size() << ";\n";
         h_ << "inline constexpr int " << o_.name << "_output_count = " << outs_.size() << ";\n";
         h_ << "inline constexpr const char* " << o_.name << "_input_names[] = {";
-        for (const std::string& nm : input_names_)
+        for (const std::string &nm : input_names_)
             h_ << names::cpp_string_literal(nm) << ", ";
         h_ << "nullptr};\n";
         h_ << "inline constexpr const char* " << o_.name << "_output_names[] = {";
-        for (const out_field& of : outs_)
+        for (const out_field &of : outs_)
             h_ << names::cpp_string_literal(of.field) << ", ";
         h_ << "nullptr};\n\n";
         h_ << "/// The members of r in the order of " << o_.name << "_output_names (the regime is not among them).\n";
@@ -2346,7 +2427,7 @@ private:
     }
 
     // ---- state
-    const options& o_;
+    const options &o_;
     problem q_;
     plan pl_;
     derivation d_;
@@ -2388,7 +2469,8 @@ private:
     std::string mu_name_, dir_c_name_, dir_s_name_;
     std::string keep_array_name_, unique_name_, pass_name_;
     std::string loop_name_, tau_name_, slides_finite_name_, apart_name_, at_stick_name_, merge_name_, near_name_;
-    std::string count_name_, stick_holds_name_, regime_name_, roots_c_name_, roots_s_name_, n_roots_name_, every_name_, edge_name_;
+    std::string count_name_, stick_holds_name_, regime_name_, roots_c_name_, roots_s_name_, n_roots_name_, every_name_,
+        edge_name_;
     stage a_, b_, s_, c_, u_;
     op_counts total_;
     std::ostringstream h_;
@@ -2396,7 +2478,7 @@ private:
 
 } // namespace
 
-bool has_friction(const problem& p, const options& o)
+bool has_friction(const problem &p, const options &o)
 {
     if (!p.has_friction())
         return false;
@@ -2405,18 +2487,19 @@ bool has_friction(const problem& p, const options& o)
         so.params_given = false; // only --set can make mu 0
         so.params.clear();
         return specialise(p, so).has_friction();
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return true;
     }
 }
 
-header generate_friction(const problem& p, const options& o)
+header generate_friction(const problem &p, const options &o)
 {
     if (!names::is_safe_identifier(o.name) || reserved().count(o.name) || o.name.back() == '_')
-        throw option_error(option_error::function_name,
-                           "\"" + names::display_text(o.name) +
-                               "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
-                               "not a keyword or a reserved name)");
+        throw option_error(
+            option_error::function_name,
+            "\"" + names::display_text(o.name) +
+                "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
+                "not a keyword or a reserved name)");
     if (std::string why = names::namespace_problem(o.ns); !why.empty())
         throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
     return friction_writer(p, o).run();

@@ -18,19 +18,20 @@
 
 #include "codegen.hpp"
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 
 /// True when the problem, with the options' --set values folded in, has Coulomb friction
 /// (a coefficient that is not identically 0): `impactgen codegen` then calls
 /// generate_friction, else generate. A problem the options do not fit (an unknown
 /// symbol, say) counts as having friction when it has a coefficient at all, so that
 /// generate_friction reports the error.
-bool has_friction(const problem& p, const options& o);
+bool has_friction(const problem &p, const options &o);
 
 /// The header for a problem with friction. Options as for generate(): name, ns, source,
 /// version, params (mu may be named: a numeric coefficient of friction is then lifted
 /// to the parameter mu), set, unit_normal. The engine conventions (--inverse-mass,
 /// --inverse-inertia) and Jacobians are not offered for friction: option_error.
-header generate_friction(const problem& p, const options& o);
+header generate_friction(const problem &p, const options &o);
 
 } // namespace impactgen::codegen

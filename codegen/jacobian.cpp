@@ -8,15 +8,20 @@
 
 #include <set>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // A derivative that is a number or a bare symbol stays inline; anything else is named.
-bool trivial(const ex& e) { return is_a<numeric>(e) || is_a<symbol>(e); }
+bool trivial(const ex &e)
+{
+    return is_a<numeric>(e) || is_a<symbol>(e);
+}
 
-std::string tex(const symbol& s)
+std::string tex(const symbol &s)
 {
     const std::string t = s.get_TeX_name();
     return t.empty() ? s.get_name() : t;
@@ -24,26 +29,27 @@ std::string tex(const symbol& s)
 
 } // namespace
 
-jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
+jacobian_plan plan_jacobian(const plan &pl, const std::vector<std::string> &wrt)
 {
     jacobian_plan jp;
     if (wrt.empty()) {
         jp.wrt = pl.inputs;
     } else {
         std::set<std::string> seen;
-        for (const std::string& name : wrt) {
+        for (const std::string &name : wrt) {
             if (!seen.insert(name).second)
                 throw option_error(option_error::wrt, names::display_text(name) + " is named twice");
-            const symbol* found = nullptr;
-            for (const symbol& x : pl.inputs)
+            const symbol *found = nullptr;
+            for (const symbol &x : pl.inputs)
                 if (x.get_name() == name)
                     found = &x;
             if (!found) {
                 std::string all;
-                for (const symbol& x : pl.inputs)
+                for (const symbol &x : pl.inputs)
                     all += (all.empty() ? "" : ", ") + x.get_name();
                 throw option_error(option_error::wrt,
-                                   names::display_text(name) + " is not an input of the generated function (its inputs: " +
+                                   names::display_text(name) +
+                                       " is not an input of the generated function (its inputs: " +
                                        names::display_text(all.empty() ? std::string("none") : all, 400) + ")");
             }
             jp.wrt.push_back(*found);
@@ -52,16 +58,16 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
     if (jp.wrt.empty())
         throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
 
-    const std::vector<step>& steps = pl.sol.steps;
+    const std::vector<step> &steps = pl.sol.steps;
     const std::size_t nw = jp.wrt.size();
     // Derivative steps are named d<step>_d<input>, clear of every name the problem and
     // its closed form use (a symbol called dN_dm1 stays the symbol), with a trailing _.
     std::set<std::string> taken;
-    for (const symbol& x : pl.prob.parameters())
+    for (const symbol &x : pl.prob.parameters())
         taken.insert(x.get_name());
-    for (const symbol& x : pl.inputs)
+    for (const symbol &x : pl.inputs)
         taken.insert(x.get_name());
-    for (const step& st : steps)
+    for (const step &st : steps)
         taken.insert(st.sym.get_name());
     auto fresh = [&](std::string name) {
         while (taken.count(name))
@@ -72,14 +78,14 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
     // grad[k][j] = d step_k / d wrt_j (0, a number, an input, or a derivative step's symbol).
     std::vector<std::vector<ex>> grad(steps.size(), std::vector<ex>(nw, 0));
     // The earlier steps each step (or output) uses directly.
-    auto used_steps = [&](const ex& v, std::size_t before) {
+    auto used_steps = [&](const ex &v, std::size_t before) {
         std::vector<std::size_t> r;
         for (std::size_t m = 0; m < before; ++m)
             if (v.has(steps[m].sym))
                 r.push_back(m);
         return r;
     };
-    auto derivative = [&](const ex& v, const std::vector<std::size_t>& uses, std::size_t j) {
+    auto derivative = [&](const ex &v, const std::vector<std::size_t> &uses, std::size_t j) {
         ex d = v.diff(jp.wrt[j]);
         for (std::size_t m : uses)
             if (!grad[m][j].is_zero())
@@ -107,7 +113,7 @@ jacobian_plan plan_jacobian(const plan& pl, const std::vector<std::string>& wrt)
             grad[k][j] = ds.sym;
         }
     }
-    for (const output_value& ov : pl.outputs) {
+    for (const output_value &ov : pl.outputs) {
         const std::vector<std::size_t> uses = used_steps(ov.value, steps.size());
         std::vector<ex> row;
         for (std::size_t j = 0; j < nw; ++j)

@@ -14,68 +14,78 @@
 #include <sstream>
 #include <tuple>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // Quantity suffix of a body: "1" -> "1", "ball" -> "_ball".
-std::string suffix(const std::string& label) { return label.size() == 1 ? label : "_" + names::mangle(label); }
+std::string suffix(const std::string &label)
+{
+    return label.size() == 1 ? label : "_" + names::mangle(label);
+}
 
 struct quantity {
     std::string name;
-    ex* value;
+    ex *value;
     std::string meaning;
 };
 
 // Every liftable quantity of the problem, in problem order; inertia entries
 // (r <= c) stand for both symmetric entries.
-std::vector<quantity> quantities(problem& p)
+std::vector<quantity> quantities(problem &p)
 {
     std::vector<quantity> q;
     const int dim = p.dimension;
-    const auto& ax = p.axes;
+    const auto &ax = p.axes;
     q.push_back({"e", &p.restitution, "coefficient of restitution, 0 <= e <= 1"});
-    for (body& b : p.bodies) {
+    for (body &b : p.bodies) {
         const std::string s = suffix(b.label), sub = s;
         if (!b.infinite_mass)
             q.push_back({"m" + s, &b.mass, "mass of " + b.name + " (> 0)"});
         if (!b.particle && !b.infinite_mass) {
             if (dim == 2)
-                q.push_back({"I" + s, &b.inertia[2][2], "moment of inertia of " + b.name + " about its centre of mass (> 0)"});
+                q.push_back(
+                    {"I" + s, &b.inertia[2][2], "moment of inertia of " + b.name + " about its centre of mass (> 0)"});
             else
                 for (int r = 0; r < 3; ++r)
                     for (int c = r; c < 3; ++c)
-                        q.push_back({"I" + s + "_" + ax[r] + ax[c], &b.inertia[r][c],
-                                     "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
+                        q.push_back(
+                            {"I" + s + "_" + ax[r] + ax[c], &b.inertia[r][c],
+                             "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
         }
         for (int c = 0; c < dim; ++c)
             q.push_back({"r_" + ax[c] + sub, &b.position[c], "centre of mass of " + b.name + ", " + ax[c]});
         for (int c = 0; c < dim; ++c)
-            q.push_back({"v_" + ax[c] + sub, &b.velocity[c], "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
+            q.push_back({"v_" + ax[c] + sub, &b.velocity[c],
+                         "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
         for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
-            q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c], "angular velocity of " + b.name + " before impact, " + ax[c]});
+            q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c],
+                         "angular velocity of " + b.name + " before impact, " + ax[c]});
     }
     for (int c = 0; c < dim; ++c)
         q.push_back({"O_" + ax[c], &p.contact.point[c], "contact point, " + ax[c]});
     for (int c = 0; c < dim; ++c)
-        q.push_back({"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
-    for (pivot& pv : p.pivots)
+        q.push_back(
+            {"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
+    for (pivot &pv : p.pivots)
         for (int c = 0; c < dim; ++c)
             q.push_back({"E_" + ax[c] + suffix(p.bodies[pv.body].label), &pv.point[c],
                          "pivot of " + p.bodies[pv.body].name + ", " + ax[c]});
     return q;
 }
 
-void symmetrise(problem& p)
+void symmetrise(problem &p)
 {
-    for (body& b : p.bodies)
+    for (body &b : p.bodies)
         for (int r = 0; r < 3; ++r)
             for (int c = r + 1; c < 3; ++c)
                 b.inertia[c][r] = b.inertia[r][c];
 }
 
-std::string shown(const ex& e)
+std::string shown(const ex &e)
 {
     std::ostringstream os;
     os << e;
@@ -83,17 +93,17 @@ std::string shown(const ex& e)
 }
 
 // Every solution value the emitter reads, rewritten by one substitution.
-void rewrite_solution(solution& s, const ex& rel)
+void rewrite_solution(solution &s, const ex &rel)
 {
-    for (step& st : s.steps)
+    for (step &st : s.steps)
         st.value = st.value.subs(rel);
-    for (body_state& b : s.after)
+    for (body_state &b : s.after)
         for (int c = 0; c < 3; ++c) {
             b.velocity[c] = b.velocity[c].subs(rel);
             b.angular_velocity[c] = b.angular_velocity[c].subs(rel);
         }
-    for (vec3& r : s.pivot_impulses)
-        for (ex& c : r)
+    for (vec3 &r : s.pivot_impulses)
+        for (ex &c : r)
             c = c.subs(rel);
     s.normal_impulse = s.normal_impulse.subs(rel);
     s.energy_lost = s.energy_lost.subs(rel);
@@ -101,7 +111,7 @@ void rewrite_solution(solution& s, const ex& rel)
 
 // A new input symbol standing for the inverse of `old` (never a registered
 // symbol of the same name: a user's own symbol inv_m1 stays a different input).
-symbol inverse_symbol(plan& pl, const ex& old, const std::string& meaning, bool reciprocal = true)
+symbol inverse_symbol(plan &pl, const ex &old, const std::string &meaning, bool reciprocal = true)
 {
     symbol k("inv_" + ex_to<symbol>(old).get_name());
     pl.replaced[old].push_back(k);
@@ -112,15 +122,16 @@ symbol inverse_symbol(plan& pl, const ex& old, const std::string& meaning, bool 
 }
 
 // Engine convention for one planar body: I becomes 1/inv_I.
-bool planar_inverse_inertia(plan& pl, const body& b, lst& subs)
+bool planar_inverse_inertia(plan &pl, const body &b, lst &subs)
 {
-    const ex& old = b.inertia[2][2];
+    const ex &old = b.inertia[2][2];
     if (is_a<numeric>(old))
         return false;
     if (!is_a<symbol>(old))
-        throw option_error(option_error::inverse_inertia,
-                           "the moment of inertia of " + names::display_text(b.name) + " is neither a number nor a single symbol");
-    symbol k = inverse_symbol(pl, old, "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)");
+        throw option_error(option_error::inverse_inertia, "the moment of inertia of " + names::display_text(b.name) +
+                                                              " is neither a number nor a single symbol");
+    symbol k =
+        inverse_symbol(pl, old, "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)");
     subs.append(old == 1 / k);
     return true;
 }
@@ -138,15 +149,15 @@ bool planar_inverse_inertia(plan& pl, const body& b, lst& subs)
 // entries there are neither numbers nor inputs: they depend on the numbers and the
 // symbols together); a symbol of a larger block that stands for two entries or
 // appears anywhere else in the problem (its inverse entry cannot stand for it there).
-bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
+bool tensor_inverse_inertia(plan &pl, std::size_t i, lst &subs)
 {
-    const problem& q = pl.prob;
-    const body& b = q.bodies[i];
-    solution& s = pl.sol;
-    const mat3& I = b.inertia;
+    const problem &q = pl.prob;
+    const body &b = q.bodies[i];
+    solution &s = pl.sol;
+    const mat3 &I = b.inertia;
     bool symbolic = false;
-    for (auto& row : I)
-        for (auto& c : row)
+    for (auto &row : I)
+        for (auto &c : row)
             symbolic = symbolic || !is_constant(c);
     if (!symbolic)
         return false; // a known tensor is inverted exactly at generation time
@@ -160,7 +171,7 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
         for (int c = r + 1; c < 3; ++c)
             if (!tidy(I[r][c]).is_zero()) {
                 const int from = block_of[c], to = block_of[r];
-                for (int& x : block_of)
+                for (int &x : block_of)
                     if (x == from)
                         x = to;
             }
@@ -192,10 +203,10 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
         }
         if (n == 1) { // one symbol: inv_I = 1/I, shared by every entry (and body) it stands for
             const int a = axes[0];
-            const ex& old = I[a][a];
+            const ex &old = I[a][a];
             if (!is_a<symbol>(old))
                 throw option_error(option_error::inverse_inertia, "the inertia entry " + entry(a, a) + " of " + who +
-                                                                       " is neither a number nor a single symbol");
+                                                                      " is neither a number nor a single symbol");
             auto known = pl.inverse_of.find(old);
             if (known != pl.inverse_of.end()) {
                 K[a][a] = known->second;
@@ -205,8 +216,10 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
             for (int d = 0; d < 3; ++d)
                 if (I[d][d].is_equal(old))
                     where.push_back(entry(d, d));
-            symbol k = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " + join(where, ", ") +
-                                                   (where.size() > 1 ? " entries" : " entry") + " (= 1/" + ex_to<symbol>(old).get_name() + ")");
+            symbol k = inverse_symbol(pl, old,
+                                      "inverse inertia tensor of " + b.name + " (world axes), " + join(where, ", ") +
+                                          (where.size() > 1 ? " entries" : " entry") + " (= 1/" +
+                                          ex_to<symbol>(old).get_name() + ")");
             subs.append(old == 1 / k);
             K[a][a] = k;
             continue;
@@ -218,7 +231,7 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
             std::vector<std::string> numbers, names, exprs;
             for (std::size_t r = 0; r < n; ++r)
                 for (std::size_t c = r; c < n; ++c) {
-                    const ex& x = I[axes[r]][axes[c]];
+                    const ex &x = I[axes[r]][axes[c]];
                     if (is_constant(x)) {
                         numbers.push_back(entry(axes[r], axes[c]) + " = " + shown(x));
                         names.push_back(quantity_name(axes[r], axes[c]));
@@ -231,12 +244,13 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
                                    "the inertia entry " + exprs[0] + " of " + who +
                                        " is not a single symbol (the entries of a tensor whose axes " + block_axes +
                                        " are coupled are replaced by its inverse's entries, one input each)");
-            throw option_error(option_error::inverse_inertia,
-                               "the inertia tensor of " + who + " couples the axes " + block_axes +
-                                   " (non-zero off-diagonal entries), and in that block numbers (" + join(numbers, ", ") +
-                                   ") stand beside symbols: the entries of the inverse there depend on both, so they are "
-                                   "neither inputs nor numbers. Make every entry of the block a symbol (name " +
-                                   join(names, ", ") + " in --params) or a number");
+            throw option_error(
+                option_error::inverse_inertia,
+                "the inertia tensor of " + who + " couples the axes " + block_axes +
+                    " (non-zero off-diagonal entries), and in that block numbers (" + join(numbers, ", ") +
+                    ") stand beside symbols: the entries of the inverse there depend on both, so they are "
+                    "neither inputs nor numbers. Make every entry of the block a symbol (name " +
+                    join(names, ", ") + " in --params) or a number");
         }
         // A block of distinct symbols, each standing for its entry only.
         problem copy = q;
@@ -244,29 +258,31 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
         for (std::size_t r = 0; r < n; ++r)
             for (std::size_t c = r; c < n; ++c) {
                 const int ar = axes[r], ac = axes[c];
-                const ex& old = I[ar][ac];
+                const ex &old = I[ar][ac];
                 const std::string own = quantity_name(ar, ac);
-                for (const quantity& other : all)
+                for (const quantity &other : all)
                     if (other.name != own && other.value->has(old))
                         throw option_error(option_error::inverse_inertia,
                                            "the symbol " + names::display_text(ex_to<symbol>(old).get_name()) +
-                                               " is the inertia entry " + entry(ar, ac) + " of " + who + " and also appears in " +
-                                               names::display_text(other.name) + ": the inverse tensor's entry that replaces it "
+                                               " is the inertia entry " + entry(ar, ac) + " of " + who +
+                                               " and also appears in " + names::display_text(other.name) +
+                                               ": the inverse tensor's entry that replaces it "
                                                "cannot stand for it there (give that quantity its own symbol)");
-                K[ar][ac] = K[ac][ar] = inverse_symbol(pl, old, "inverse inertia tensor of " + b.name + " (world axes), " +
-                                                                    entry(ar, ac) + " entry", false);
+                K[ar][ac] = K[ac][ar] = inverse_symbol(
+                    pl, old, "inverse inertia tensor of " + b.name + " (world axes), " + entry(ar, ac) + " entry",
+                    false);
             }
     }
     pl.inverse_tensor[i] = K;
     vec3 tau = cross(q.contact.point - b.position, pl.deriv.n_hat);
     vec3 t;
     for (int c = 0; c < 3; ++c) {
-        const step* ts = s.find(step_role::lever_arm, i, c);
+        const step *ts = s.find(step_role::lever_arm, i, c);
         t[c] = ts ? ex(ts->sym) : tau[c].normal();
     }
     vec3 g = mul(K, t);
     for (int c = 0; c < 3; ++c) {
-        step* gs = s.find(step_role::angular_response, i, c);
+        step *gs = s.find(step_role::angular_response, i, c);
         if (gs) {
             gs->value = g[c];
             continue;
@@ -280,40 +296,42 @@ bool tensor_inverse_inertia(plan& pl, std::size_t i, lst& subs)
         if (!fixed_row && !g[c].expand().is_zero())
             throw std::logic_error("inverse inertia: no angular response step for body " + std::to_string(i));
     }
-    s.steps.erase(std::remove_if(s.steps.begin(), s.steps.end(),
-                                 [&](const step& st) { return st.role == step_role::inertia_determinant && st.body == i; }),
-                  s.steps.end());
+    s.steps.erase(
+        std::remove_if(s.steps.begin(), s.steps.end(),
+                       [&](const step &st) { return st.role == step_role::inertia_determinant && st.body == i; }),
+        s.steps.end());
     return true;
 }
 
-void apply_inverse_inertia(plan& pl)
+void apply_inverse_inertia(plan &pl)
 {
-    const problem& q = pl.prob;
+    const problem &q = pl.prob;
     bool any = false;
     lst subs;
     for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-        const body& b = q.bodies[i];
+        const body &b = q.bodies[i];
         if (b.particle || b.infinite_mass || q.pivot_of(i))
             continue;
         any = (q.dimension == 2 ? planar_inverse_inertia(pl, b, subs) : tensor_inverse_inertia(pl, i, subs)) || any;
     }
     if (!any)
-        throw option_error(option_error::inverse_inertia, "no free rigid body with a symbolic inertia takes part in the contact");
+        throw option_error(option_error::inverse_inertia,
+                           "no free rigid body with a symbolic inertia takes part in the contact");
     if (subs.nops() > 0)
         rewrite_solution(pl.sol, subs);
 }
 
-void apply_inverse_mass(plan& pl)
+void apply_inverse_mass(plan &pl)
 {
-    const problem& q = pl.prob;
+    const problem &q = pl.prob;
     lst subs;
     for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-        const body& b = q.bodies[i];
+        const body &b = q.bodies[i];
         if (b.infinite_mass || is_a<numeric>(b.mass))
             continue;
         if (!is_a<symbol>(b.mass))
-            throw option_error(option_error::inverse_mass,
-                               "the mass of " + names::display_text(b.name) + " is neither a number nor a single symbol");
+            throw option_error(option_error::inverse_mass, "the mass of " + names::display_text(b.name) +
+                                                               " is neither a number nor a single symbol");
         symbol im = inverse_symbol(pl, b.mass, "inverse mass 1/m of " + b.name + " (> 0)");
         subs.append(b.mass == 1 / im);
     }
@@ -324,12 +342,12 @@ void apply_inverse_mass(plan& pl)
 
 // Inputs in order: the parameters as given, else first appearance in the
 // problem; a symbol replaced by its inverse(s) is replaced in place.
-void order_inputs(plan& pl, const options& o)
+void order_inputs(plan &pl, const options &o)
 {
     problem q = pl.prob;
     std::vector<quantity> all = quantities(q);
     std::map<ex, std::string, ex_is_less> meaning;
-    for (const quantity& x : all) {
+    for (const quantity &x : all) {
         if (!is_a<symbol>(*x.value))
             continue;
         const bool normal = x.value >= &q.contact.normal[0] && x.value <= &q.contact.normal[2];
@@ -341,25 +359,26 @@ void order_inputs(plan& pl, const options& o)
     }
     std::vector<ex> order;
     if (o.params_given) {
-        for (const std::string& nm : o.params)
+        for (const std::string &nm : o.params)
             order.push_back(symbol_named(nm));
     } else {
         exset seen;
-        for (const quantity& x : all) {
+        for (const quantity &x : all) {
             std::vector<ex> found;
             for (const_preorder_iterator it = x.value->preorder_begin(); it != x.value->preorder_end(); ++it)
                 if (is_a<symbol>(*it) && seen.insert(*it).second)
                     found.push_back(*it);
-            std::sort(found.begin(), found.end(),
-                      [](const ex& a, const ex& b) { return ex_to<symbol>(a).get_name() < ex_to<symbol>(b).get_name(); });
+            std::sort(found.begin(), found.end(), [](const ex &a, const ex &b) {
+                return ex_to<symbol>(a).get_name() < ex_to<symbol>(b).get_name();
+            });
             order.insert(order.end(), found.begin(), found.end());
         }
     }
     exset done;
-    for (const ex& x0 : order) {
+    for (const ex &x0 : order) {
         auto r = pl.replaced.find(x0);
         std::vector<symbol> syms = r == pl.replaced.end() ? std::vector<symbol>{ex_to<symbol>(x0)} : r->second;
-        for (const symbol& x : syms) {
+        for (const symbol &x : syms) {
             if (!done.insert(x).second)
                 continue;
             pl.inputs.push_back(x);
@@ -369,7 +388,7 @@ void order_inputs(plan& pl, const options& o)
                 pl.input_meaning.push_back(m2->second);
             } else {
                 std::vector<std::string> where;
-                for (const quantity& qq : all)
+                for (const quantity &qq : all)
                     if (qq.value->has(x))
                         where.push_back(qq.name);
                 pl.input_meaning.push_back("appears in " + join(where, ", "));
@@ -379,14 +398,14 @@ void order_inputs(plan& pl, const options& o)
 }
 
 // The post-impact state of the bodies in contact, then impulses and energy.
-void plan_outputs(plan& pl)
+void plan_outputs(plan &pl)
 {
-    const problem& q = pl.prob;
-    const solution& s = pl.sol;
-    const auto& ax = q.axes;
+    const problem &q = pl.prob;
+    const solution &s = pl.sol;
+    const auto &ax = q.axes;
     const int dim = q.dimension;
     for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-        const body& b = q.bodies[i];
+        const body &b = q.bodies[i];
         if (b.infinite_mass)
             continue;
         const std::string sub = suffix(b.label);
@@ -395,18 +414,21 @@ void plan_outputs(plan& pl)
                                   "velocity of the centre of mass of " + b.name + " after impact, " + ax[c]});
         if (!b.particle)
             for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
-                pl.outputs.push_back({output_value::angular_velocity, i, c, "w_" + ax[c] + sub, s.after[i].angular_velocity[c],
+                pl.outputs.push_back({output_value::angular_velocity, i, c, "w_" + ax[c] + sub,
+                                      s.after[i].angular_velocity[c],
                                       "angular velocity of " + b.name + " after impact, " + ax[c]});
     }
     // N is the impulse along the unit normal (as `impactgen solve` reports it), whatever |n| was given.
     pl.outputs.push_back({output_value::normal_impulse, 0, 0, "normal_impulse", s.normal_impulse,
-                          "normal impulse, integral of N dt >= 0 along the unit normal: on " + q.bodies[q.contact.body2].name +
-                              " along +n, on " + q.bodies[q.contact.body1].name + " along -n"});
+                          "normal impulse, integral of N dt >= 0 along the unit normal: on " +
+                              q.bodies[q.contact.body2].name + " along +n, on " + q.bodies[q.contact.body1].name +
+                              " along -n"});
     for (std::size_t k = 0; k < q.pivots.size(); ++k)
         for (int c = 0; c < dim; ++c)
-            pl.outputs.push_back({output_value::pivot_impulse, k, c, "R_" + ax[c] + suffix(q.bodies[q.pivots[k].body].label),
-                                  s.pivot_impulses[k][c], "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
-    const step* u_step = s.find(step_role::approach_velocity);
+            pl.outputs.push_back({output_value::pivot_impulse, k, c,
+                                  "R_" + ax[c] + suffix(q.bodies[q.pivots[k].body].label), s.pivot_impulses[k][c],
+                                  "impulse of the pivot on " + q.bodies[q.pivots[k].body].name + ", " + ax[c]});
+    const step *u_step = s.find(step_role::approach_velocity);
     const ex u = u_step ? ex(u_step->sym) : ex(0);
     pl.outputs.push_back({output_value::approach_velocity, 0, 0, "approach_velocity", u,
                           "(v_B - v_A).n before impact along the unit normal (< 0)"});
@@ -415,27 +437,30 @@ void plan_outputs(plan& pl)
 }
 
 // The values given for symbols, folded in.
-problem set_values(const problem& p, const options& o, std::set<std::string>& given)
+problem set_values(const problem &p, const options &o, std::set<std::string> &given)
 {
     std::set<std::string> symbols;
-    for (const symbol& s : p.parameters())
+    for (const symbol &s : p.parameters())
         symbols.insert(s.get_name());
     lst values;
     std::set<std::string> seen;
-    for (const auto& [name, text] : o.set) {
+    for (const auto &[name, text] : o.set) {
         if (!seen.insert(name).second)
             throw option_error(option_error::set, names::display_text(name) + " is given two values");
         if (!symbols.count(name))
-            throw option_error(option_error::set, names::display_text(name) + ": the problem has no symbol " +
-                                                      names::display_text(name) +
-                                                      (symbols.empty() ? " (it has none)"
-                                                                       : " (its symbols: " +
-                                                                             names::display_text(join({symbols.begin(), symbols.end()}, ", "), 160) + ")"));
-        bool is_number = !text.empty() && (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '.') &&
+            throw option_error(
+                option_error::set,
+                names::display_text(name) + ": the problem has no symbol " + names::display_text(name) +
+                    (symbols.empty()
+                         ? " (it has none)"
+                         : " (its symbols: " + names::display_text(join({symbols.begin(), symbols.end()}, ", "), 160) +
+                               ")"));
+        bool is_number = !text.empty() &&
+                         (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '.') &&
                          text.find_first_not_of("0123456789.eE+-") == std::string::npos;
         try {
             values.append(symbol_named(name) == parse_value(text, !is_number, "the value of " + name));
-        } catch (const input_error& e) {
+        } catch (const input_error &e) {
             throw option_error(option_error::set, e.what());
         }
         given.insert(name);
@@ -444,40 +469,42 @@ problem set_values(const problem& p, const options& o, std::set<std::string>& gi
 }
 
 // A numeric quantity named in the parameter list becomes a symbol of that name.
-void lift_quantity(problem& q, const std::string& name, const std::set<std::string>& now)
+void lift_quantity(problem &q, const std::string &name, const std::set<std::string> &now)
 {
     bool lifted = false;
-    for (quantity& x : quantities(q))
+    for (quantity &x : quantities(q))
         if (x.name == name) {
             if (!is_a<numeric>(*x.value))
-                throw option_error(option_error::params,
-                                   "the quantity " + name + " is the expression " + shown(*x.value) + "; name its symbols instead");
+                throw option_error(option_error::params, "the quantity " + name + " is the expression " +
+                                                             shown(*x.value) + "; name its symbols instead");
             *x.value = symbol_named(name);
             lifted = true;
         }
     if (!lifted) {
         std::vector<std::string> numeric_names;
-        for (const auto& [n, v] : quantity_names(q))
+        for (const auto &[n, v] : quantity_names(q))
             if (is_a<numeric>(v))
                 numeric_names.push_back(n);
-        throw option_error(option_error::params,
-                           names::display_text(name) + " is neither a symbol of the problem" +
-                               (now.empty() ? "" : " (" + names::display_text(join({now.begin(), now.end()}, ", "), 160) + ")") +
-                               " nor a numeric quantity of it (" + names::display_text(join(numeric_names, ", "), 400) + ")");
+        throw option_error(
+            option_error::params,
+            names::display_text(name) + " is neither a symbol of the problem" +
+                (now.empty() ? "" : " (" + names::display_text(join({now.begin(), now.end()}, ", "), 160) + ")") +
+                " nor a numeric quantity of it (" + names::display_text(join(numeric_names, ", "), 400) + ")");
     }
     symmetrise(q);
 }
 
 // The vectors and tensors among the inputs and outputs (views for adapters): a
 // group whose entries are all input symbols or numbers, with at least one input.
-void plan_groups(plan& pl)
+void plan_groups(plan &pl)
 {
-    const problem& q = pl.prob;
+    const problem &q = pl.prob;
     const int dim = q.dimension;
     exset inputs(pl.inputs.begin(), pl.inputs.end());
-    auto add_input = [&](const std::string& name, int rows, int cols, std::vector<ex> entries, const std::string& meaning) {
+    auto add_input = [&](const std::string &name, int rows, int cols, std::vector<ex> entries,
+                         const std::string &meaning) {
         bool any = false;
-        for (const ex& x : entries) {
+        for (const ex &x : entries) {
             if (!is_a<numeric>(x) && !inputs.count(x))
                 return;
             any = any || inputs.count(x);
@@ -485,18 +512,18 @@ void plan_groups(plan& pl)
         if (any && entries.size() > 1)
             pl.input_groups.push_back({name, rows, cols, std::move(entries), {}, meaning});
     };
-    auto vec = [&](const vec3& v, int from = 0) {
+    auto vec = [&](const vec3 &v, int from = 0) {
         std::vector<ex> r;
         for (int c = from; c < (from == 0 ? dim : 3); ++c)
             r.push_back(v[c]);
         return r;
     };
     for (std::size_t i : {q.contact.body1, q.contact.body2}) {
-        const body& b = q.bodies[i];
+        const body &b = q.bodies[i];
         const std::string s = suffix(b.label);
         if (!b.infinite_mass && !b.particle && dim == 3) {
             auto inv = pl.inverse_tensor.find(i);
-            const mat3& J = inv == pl.inverse_tensor.end() ? b.inertia : inv->second;
+            const mat3 &J = inv == pl.inverse_tensor.end() ? b.inertia : inv->second;
             std::vector<ex> entries;
             for (int r = 0; r < 3; ++r)
                 for (int c = 0; c < 3; ++c)
@@ -511,42 +538,49 @@ void plan_groups(plan& pl)
     }
     add_input("O", dim, 1, vec(q.contact.point), "contact point");
     add_input("n", dim, 1, vec(q.contact.normal), "contact normal");
-    for (const pivot& pv : q.pivots)
+    for (const pivot &pv : q.pivots)
         add_input("E" + suffix(q.bodies[pv.body].label), dim, 1, vec(pv.point), "pivot of " + q.bodies[pv.body].name);
 
     // Outputs: every component of a vector is an output, or there is no group.
     std::map<std::tuple<int, std::size_t>, std::vector<std::size_t>> found;
     for (std::size_t k = 0; k < pl.outputs.size(); ++k) {
-        const output_value& ov = pl.outputs[k];
-        if (ov.kind == output_value::velocity || ov.kind == output_value::angular_velocity || ov.kind == output_value::pivot_impulse)
+        const output_value &ov = pl.outputs[k];
+        if (ov.kind == output_value::velocity || ov.kind == output_value::angular_velocity ||
+            ov.kind == output_value::pivot_impulse)
             found[{static_cast<int>(ov.kind), ov.index}].push_back(k);
     }
-    for (const auto& [key, ks] : found) {
+    for (const auto &[key, ks] : found) {
         const auto kind = static_cast<output_value::kind_t>(std::get<0>(key));
         const std::size_t i = std::get<1>(key);
         if (ks.size() < 2)
             continue;
-        const std::string who = kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].name : q.bodies[i].name;
-        const std::string s = suffix(kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].label : q.bodies[i].label);
-        const std::string name = (kind == output_value::velocity ? "v" : kind == output_value::angular_velocity ? "w" : "R") + s;
-        const std::string meaning = kind == output_value::velocity ? "velocity of the centre of mass of " + who + " after impact"
-                                    : kind == output_value::angular_velocity ? "angular velocity of " + who + " after impact"
-                                                                              : "impulse of the pivot on " + who;
+        const std::string who =
+            kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].name : q.bodies[i].name;
+        const std::string s =
+            suffix(kind == output_value::pivot_impulse ? q.bodies[q.pivots[i].body].label : q.bodies[i].label);
+        const std::string name = (kind == output_value::velocity           ? "v"
+                                  : kind == output_value::angular_velocity ? "w"
+                                                                           : "R") +
+                                 s;
+        const std::string meaning =
+            kind == output_value::velocity           ? "velocity of the centre of mass of " + who + " after impact"
+            : kind == output_value::angular_velocity ? "angular velocity of " + who + " after impact"
+                                                     : "impulse of the pivot on " + who;
         pl.output_groups.push_back({name, static_cast<int>(ks.size()), 1, {}, ks, meaning});
     }
     std::stable_sort(pl.output_groups.begin(), pl.output_groups.end(),
-                     [](const group& a, const group& b) { return a.outputs.front() < b.outputs.front(); });
+                     [](const group &a, const group &b) { return a.outputs.front() < b.outputs.front(); });
 }
 
 // What a failed call returns: each output with the impulses zero, in inputs only.
-void plan_unchanged(plan& pl)
+void plan_unchanged(plan &pl)
 {
-    const solution& s = pl.sol;
+    const solution &s = pl.sol;
     lst zero;
-    for (const step& st : s.steps)
+    for (const step &st : s.steps)
         if (st.role == step_role::normal_impulse)
             zero.append(st.sym == 0);
-    for (const output_value& ov : pl.outputs) {
+    for (const output_value &ov : pl.outputs) {
         ex v = 0;
         if (ov.kind == output_value::velocity || ov.kind == output_value::angular_velocity) {
             v = ov.value.subs(zero);
@@ -554,7 +588,7 @@ void plan_unchanged(plan& pl)
             for (auto st = s.steps.rbegin(); st != s.steps.rend(); ++st)
                 if (v.has(st->sym))
                     v = v.subs(st->sym == st->value);
-            for (const step& st : s.steps)
+            for (const step &st : s.steps)
                 if (v.has(st.sym))
                     throw std::logic_error("codegen: the unchanged state of " + ov.field + " still uses the step " +
                                            st.sym.get_name());
@@ -566,9 +600,9 @@ void plan_unchanged(plan& pl)
 // --unit-normal: the normal's inputs are promised to be a unit vector (the header
 // checks them: invalid_normal). A constant normal must have length 1 (then the
 // option changes nothing); one of another length is refused.
-void check_unit_normal(const problem& q)
+void check_unit_normal(const problem &q)
 {
-    const vec3& n = q.contact.normal;
+    const vec3 &n = q.contact.normal;
     const ex nn = tidy(dot(n, n));
     if (!is_constant(nn))
         return;
@@ -577,52 +611,62 @@ void check_unit_normal(const problem& q)
         return;
     std::string text = "(" + shown(n[0]) + ", " + shown(n[1]) + (q.dimension == 3 ? ", " + shown(n[2]) : "") + ")";
     if (d == decision::positive || d == decision::negative)
-        throw option_error(option_error::unit_normal,
-                           "the contact normal " + text + " is a constant of length " + shown(sqrt(nn)) +
-                               ", not 1 (--unit-normal declares the normal a unit vector; without it the header normalises "
-                               "this normal itself)");
+        throw option_error(
+            option_error::unit_normal,
+            "the contact normal " + text + " is a constant of length " + shown(sqrt(nn)) +
+                ", not 1 (--unit-normal declares the normal a unit vector; without it the header normalises "
+                "this normal itself)");
     throw option_error(option_error::unit_normal,
                        "whether the contact normal " + text + " has length 1 " + decision_text(d));
 }
 
 } // namespace
 
-const char* option_error::option_name(option o)
+const char *option_error::option_name(option o)
 {
     switch (o) {
-    case set: return "set";
-    case params: return "params";
-    case inverse_inertia: return "inverse-inertia";
-    case inverse_mass: return "inverse-mass";
-    case function_name: return "name";
-    case name_space: return "namespace";
-    case unit_normal: return "unit-normal";
-    case jacobian: return "jacobian";
-    case wrt: return "wrt";
+    case set:
+        return "set";
+    case params:
+        return "params";
+    case inverse_inertia:
+        return "inverse-inertia";
+    case inverse_mass:
+        return "inverse-mass";
+    case function_name:
+        return "name";
+    case name_space:
+        return "namespace";
+    case unit_normal:
+        return "unit-normal";
+    case jacobian:
+        return "jacobian";
+    case wrt:
+        return "wrt";
     }
     return "?";
 }
 
-std::vector<std::pair<std::string, ex>> quantity_names(const problem& p)
+std::vector<std::pair<std::string, ex>> quantity_names(const problem &p)
 {
     problem q = p;
     std::vector<std::pair<std::string, ex>> r;
-    for (const quantity& x : quantities(q))
+    for (const quantity &x : quantities(q))
         r.push_back({x.name, *x.value});
     return r;
 }
 
-problem specialise(const problem& p, const options& o)
+problem specialise(const problem &p, const options &o)
 {
     std::set<std::string> given;
     problem q = set_values(p, o, given);
     if (!o.params_given)
         return q;
     std::set<std::string> now;
-    for (const symbol& s : q.parameters())
+    for (const symbol &s : q.parameters())
         now.insert(s.get_name());
     std::set<std::string> wanted;
-    for (const std::string& name : o.params) {
+    for (const std::string &name : o.params) {
         if (!wanted.insert(name).second)
             throw option_error(option_error::params, names::display_text(name) + " is named twice");
         if (given.count(name))
@@ -630,14 +674,14 @@ problem specialise(const problem& p, const options& o)
         if (!now.count(name))
             lift_quantity(q, name, now);
     }
-    for (const symbol& s : q.parameters())
+    for (const symbol &s : q.parameters())
         if (!wanted.count(s.get_name()))
-            throw option_error(option_error::params, "symbol " + s.get_name() + " is neither a parameter nor given a value",
-                               s.get_name());
+            throw option_error(option_error::params,
+                               "symbol " + s.get_name() + " is neither a parameter nor given a value", s.get_name());
     return q;
 }
 
-plan make_plan(const problem& p, const options& o)
+plan make_plan(const problem &p, const options &o)
 {
     plan pl;
     pl.prob = specialise(p, o);

@@ -7,7 +7,8 @@
 #include <set>
 #include <stdexcept>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 using GiNaC::numeric;
 
 int program::make(op o)
@@ -17,7 +18,7 @@ int program::make(op o)
     return static_cast<int>(ops_.size()) - 1;
 }
 
-int program::input(const std::string& name)
+int program::input(const std::string &name)
 {
     auto it = inputs_.find(name);
     if (it != inputs_.end())
@@ -30,7 +31,7 @@ int program::input(const std::string& name)
     return id;
 }
 
-int program::constant(const numeric& x)
+int program::constant(const numeric &x)
 {
     std::string key = number_text(x);
     auto it = constants_.find(key);
@@ -46,7 +47,7 @@ int program::constant(const numeric& x)
 
 int program::negate(int a)
 {
-    const op& x = at(a);
+    const op &x = at(a);
     if (x.kind == op::constant)
         return constant(-x.value);
     if (x.kind == op::neg)
@@ -81,19 +82,23 @@ int program::square_root(int a)
 
 int program::binary(op::kind_t k, int a, int b)
 {
-    const op& x = at(a);
-    const op& y = at(b);
+    const op &x = at(a);
+    const op &y = at(b);
     const bool cx = x.kind == op::constant, cy = y.kind == op::constant;
     if (cx && cy) {
         switch (k) {
-        case op::add: return constant(x.value + y.value);
-        case op::sub: return constant(x.value - y.value);
-        case op::mul: return constant(x.value * y.value);
+        case op::add:
+            return constant(x.value + y.value);
+        case op::sub:
+            return constant(x.value - y.value);
+        case op::mul:
+            return constant(x.value * y.value);
         case op::div:
             if (y.value.is_zero())
                 throw std::runtime_error("code generation: division by zero");
             return constant(x.value / y.value);
-        default: break;
+        default:
+            break;
         }
     }
     if (k == op::add && cx && x.value.is_zero())
@@ -128,7 +133,7 @@ int program::binary(op::kind_t k, int a, int b)
     return id;
 }
 
-int program::lower(const canonical_pool& pool, const scaled& s)
+int program::lower(const canonical_pool &pool, const scaled &s)
 {
     if (s.node < 0)
         return constant(s.scale);
@@ -143,20 +148,20 @@ int program::lower(const canonical_pool& pool, const scaled& s)
 
 // A sum, starting from its first positive term so that it needs no negation
 // unless every term is negative.
-int program::lower_add(const canonical_pool& pool, int cid, bool negated)
+int program::lower_add(const canonical_pool &pool, int cid, bool negated)
 {
     auto memo = lowered_neg_.find(cid);
     if (negated && memo != lowered_neg_.end())
         return memo->second;
-    const cnode& n = pool.at(cid);
+    const cnode &n = pool.at(cid);
     std::vector<std::pair<numeric, int>> terms;
-    for (auto& [c, t] : n.terms)
+    for (auto &[c, t] : n.terms)
         terms.push_back({negated ? -c : c, t});
     numeric konst = negated ? -n.value : n.value;
-    std::stable_partition(terms.begin(), terms.end(), [](const auto& t) { return t.first > 0; });
+    std::stable_partition(terms.begin(), terms.end(), [](const auto &t) { return t.first > 0; });
     int r = -1;
     bool all_negative = terms.front().first < 0;
-    for (auto& [c, t] : terms) {
+    for (auto &[c, t] : terms) {
         int v = lower(pool, t);
         numeric a = abs(c);
         if (a != 1)
@@ -179,16 +184,20 @@ int program::lower_add(const canonical_pool& pool, int cid, bool negated)
     return r;
 }
 
-int program::lower(const canonical_pool& pool, int cid)
+int program::lower(const canonical_pool &pool, int cid)
 {
     auto memo = lowered_.find(cid);
     if (memo != lowered_.end())
         return memo->second;
-    const cnode& n = pool.at(cid);
+    const cnode &n = pool.at(cid);
     int r = -1;
     switch (n.kind) {
-    case cnode::constant: r = constant(n.value); break;
-    case cnode::input: r = input(n.name); break;
+    case cnode::constant:
+        r = constant(n.value);
+        break;
+    case cnode::input:
+        r = input(n.name);
+        break;
     case cnode::step: {
         auto it = step_op_.find(n.step_index);
         if (it == step_op_.end())
@@ -196,8 +205,12 @@ int program::lower(const canonical_pool& pool, int cid)
         r = it->second;
         break;
     }
-    case cnode::sqrt_: r = square_root(lower(pool, n.arg)); break;
-    case cnode::add: r = lower_add(pool, cid, false); break;
+    case cnode::sqrt_:
+        r = square_root(lower(pool, n.arg));
+        break;
+    case cnode::add:
+        r = lower_add(pool, cid, false);
+        break;
     case cnode::mul: {
         int num = -1, den = -1;
         numeric a = abs(n.value);
@@ -206,8 +219,8 @@ int program::lower(const canonical_pool& pool, int cid)
         // A product lowered before with the same coefficient whose factors (exponents
         // included) are among these, the largest: this one is that times the rest
         // (m v'_x - N beside v'_x = (1/2) l^2 N / I_E: one multiplication, not three).
-        const lowered_product* base = nullptr;
-        for (const lowered_product& lp : products_)
+        const lowered_product *base = nullptr;
+        for (const lowered_product &lp : products_)
             if (lp.coefficient == a && lp.factors.size() < factors.size() &&
                 (!base || lp.factors.size() > base->factors.size()) &&
                 std::includes(factors.begin(), factors.end(), lp.factors.begin(), lp.factors.end()))
@@ -217,9 +230,9 @@ int program::lower(const canonical_pool& pool, int cid)
             std::set_difference(factors.begin(), factors.end(), base->factors.begin(), base->factors.end(),
                                 std::back_inserter(rest));
             num = base->op_id;
-            for (auto& [f, x] : rest) {
+            for (auto &[f, x] : rest) {
                 int v = lower(pool, f);
-                int& acc = x > 0 ? num : den;
+                int &acc = x > 0 ? num : den;
                 for (int k = 0; k < (x > 0 ? x : -x); ++k)
                     acc = acc < 0 ? v : binary(op::mul, acc, v);
             }
@@ -229,9 +242,9 @@ int program::lower(const canonical_pool& pool, int cid)
                 r = negate(r);
             break;
         }
-        for (auto& [f, x] : n.factors) {
+        for (auto &[f, x] : n.factors) {
             int v = lower(pool, f);
-            int& acc = x > 0 ? num : den;
+            int &acc = x > 0 ? num : den;
             for (int k = 0; k < (x > 0 ? x : -x); ++k)
                 acc = acc < 0 ? v : binary(op::mul, acc, v);
         }
@@ -250,7 +263,7 @@ int program::lower(const canonical_pool& pool, int cid)
             r = num < 0 ? constant(1) : num;
         // worth reusing when it took a multiplication (or a division) of its own
         int multiplicity = a == 1 ? 0 : 1;
-        for (auto& [f, x] : factors)
+        for (auto &[f, x] : factors)
             multiplicity += x > 0 ? x : -x;
         if (multiplicity >= 2 && at(r).kind != op::constant)
             products_.push_back({factors, a, r});
@@ -266,34 +279,39 @@ int program::lower(const canonical_pool& pool, int cid)
 // ---------------------------------------------------------------------------
 // Emission
 
-namespace {
+namespace
+{
 
 struct printer {
-    const program& prog;
-    const std::vector<bool>& materialised;
-    const std::vector<int>& refs;
-    const std::map<int, std::string>& var;
-    op_counts* counts;
+    const program &prog;
+    const std::vector<bool> &materialised;
+    const std::vector<int> &refs;
+    const std::map<int, std::string> &var;
+    op_counts *counts;
     bool plain = false; ///< numbers as in mathematics (1/2), for the formula comments; else T(1) / T(2)
 
     bool inline_recip(int id) const
     {
-        const op& o = prog.at(id);
+        const op &o = prog.at(id);
         return o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1 &&
                !materialised[static_cast<std::size_t>(id)] && refs[static_cast<std::size_t>(id)] == 1;
     }
 
     // precedence: 1 = additive, 2 = multiplicative, 3 = unary, 4 = atom
-    std::string text(int id, int& prec, bool top = false) const
+    std::string text(int id, int &prec, bool top = false) const
     {
-        const op& o = prog.at(id);
+        const op &o = prog.at(id);
         if (!top && (materialised[static_cast<std::size_t>(id)] || o.kind == op::input)) {
             prec = 4;
             return o.kind == op::input ? o.name : var.at(id);
         }
         switch (o.kind) {
-        case op::input: prec = 4; return o.name;
-        case op::constant: prec = plain && !o.value.is_integer() ? 1 : 4; return plain ? number_text(o.value) : literal(o.value);
+        case op::input:
+            prec = 4;
+            return o.name;
+        case op::constant:
+            prec = plain && !o.value.is_integer() ? 1 : 4;
+            return plain ? number_text(o.value) : literal(o.value);
         case op::neg: {
             int p;
             std::string s = text(o.a, p);
@@ -346,9 +364,9 @@ struct printer {
         return "?";
     }
 
-    static std::string literal(const numeric& x)
+    static std::string literal(const numeric &x)
     {
-        auto integer = [](const numeric& k) {
+        auto integer = [](const numeric &k) {
             // exact in T when |k| <= 2^53 (and written as an integer literal); otherwise via long double
             if (abs(k) <= numeric(9007199254740992LL))
                 return "T(" + number_text(k) + ")";
@@ -367,14 +385,14 @@ struct printer {
 
 } // namespace
 
-std::string decimal_literal(const numeric& x)
+std::string decimal_literal(const numeric &x)
 {
     const long saved = GiNaC::Digits;
     GiNaC::Digits = 40;
     numeric v = x.is_rational() ? GiNaC::ex_to<numeric>(GiNaC::ex(x).evalf()) : x;
     GiNaC::Digits = saved;
     std::string t = number_text(v);
-    for (char& c : t)
+    for (char &c : t)
         if (c == 'E')
             c = 'e';
     if (t.find_first_of(".e") == std::string::npos)
@@ -382,10 +400,11 @@ std::string decimal_literal(const numeric& x)
     return t + "L";
 }
 
-namespace {
+namespace
+{
 
 // base, or base_2, base_3, ... when taken (never "__", which C++ reserves).
-std::string unique_name(const std::set<std::string>& taken, const std::string& base)
+std::string unique_name(const std::set<std::string> &taken, const std::string &base)
 {
     std::string nm = base;
     for (int k = 2; taken.count(nm); ++k)
@@ -395,14 +414,15 @@ std::string unique_name(const std::set<std::string>& taken, const std::string& b
 
 } // namespace
 
-namespace {
+namespace
+{
 
-bool is_reciprocal(const program& prog, const op& o)
+bool is_reciprocal(const program &prog, const op &o)
 {
     return o.kind == op::div && prog.at(o.a).kind == op::constant && prog.at(o.a).value == 1;
 }
 
-void add_unique(std::vector<std::string>& v, const std::string& t)
+void add_unique(std::vector<std::string> &v, const std::string &t)
 {
     if (std::find(v.begin(), v.end(), t) == v.end())
         v.push_back(t);
@@ -411,14 +431,16 @@ void add_unique(std::vector<std::string>& v, const std::string& t)
 // One emission of the program: which values are reached and named, which are
 // implied finite by the outputs, which reciprocals share a division, then the
 // code in program order with each check right after the value it tests.
-class emitter {
+class emitter
+{
 public:
-    emitter(const program& prog, const std::vector<std::pair<std::string, int>>& outputs, const std::vector<check>& checks,
-            const std::map<int, std::string>& names, const std::vector<std::string>& taken, bool branchless, bool share_divisions,
-            int optional_output)
+    emitter(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
+            const std::vector<check> &checks, const std::map<int, std::string> &names,
+            const std::vector<std::string> &taken, bool branchless, bool share_divisions, int optional_output)
         : prog_(prog), outputs_(outputs), checks_(checks), names_(names), branchless_(branchless),
           share_divisions_(share_divisions), optional_output_(optional_output), n_(prog.size()), reach_(n_, false),
-          materialised_(n_, false), covered_(n_, false), needed_(n_, false), emitted_(n_, false), refs_(n_, 0), used_names_(taken.begin(), taken.end())
+          materialised_(n_, false), covered_(n_, false), needed_(n_, false), emitted_(n_, false), refs_(n_, 0),
+          used_names_(taken.begin(), taken.end())
     {
     }
 
@@ -433,7 +455,7 @@ public:
         if (branchless_ && share_divisions_)
             group_reciprocals();
         std::set<int> input_checked;
-        for (const check& c : checks_)
+        for (const check &c : checks_)
             if (prog_.at(c.op_id).kind == op::input && input_checked.insert(c.op_id).second)
                 emit_checks(c.op_id);
         emit_values();
@@ -450,9 +472,9 @@ private:
             ++refs_[static_cast<std::size_t>(id)];
             stack.push_back(id);
         };
-        for (auto& o : outputs_)
+        for (auto &o : outputs_)
             root(o.second);
-        for (auto& c : checks_)
+        for (auto &c : checks_)
             root(c.op_id);
         while (!stack.empty()) {
             int id = stack.back();
@@ -460,7 +482,7 @@ private:
             if (reach_[static_cast<std::size_t>(id)])
                 continue;
             reach_[static_cast<std::size_t>(id)] = true;
-            const op& o = prog_.at(id);
+            const op &o = prog_.at(id);
             for (int c : {o.a, o.b})
                 if (c >= 0) {
                     ++refs_[static_cast<std::size_t>(c)];
@@ -474,7 +496,7 @@ private:
     void mark_needed()
     {
         std::vector<int> stack;
-        for (auto& o : outputs_)
+        for (auto &o : outputs_)
             stack.push_back(o.second);
         while (!stack.empty()) {
             int id = stack.back();
@@ -482,7 +504,7 @@ private:
             if (needed_[static_cast<std::size_t>(id)])
                 continue;
             needed_[static_cast<std::size_t>(id)] = true;
-            const op& o = prog_.at(id);
+            const op &o = prog_.at(id);
             for (int c : {o.a, o.b})
                 if (c >= 0)
                     stack.push_back(c);
@@ -497,11 +519,12 @@ private:
     // Whether every named value the text of id refers to has been emitted.
     bool operands_emitted(int id) const
     {
-        const op& o = prog_.at(id);
+        const op &o = prog_.at(id);
         for (int c : {o.a, o.b}) {
             if (c < 0 || prog_.is_leaf(c))
                 continue;
-            if (materialised_[static_cast<std::size_t>(c)] ? !emitted_[static_cast<std::size_t>(c)] : !operands_emitted(c))
+            if (materialised_[static_cast<std::size_t>(c)] ? !emitted_[static_cast<std::size_t>(c)]
+                                                           : !operands_emitted(c))
                 return false;
         }
         return true;
@@ -511,7 +534,7 @@ private:
     void name_materialised()
     {
         std::set<int> checked;
-        for (auto& c : checks_)
+        for (auto &c : checks_)
             checked.insert(c.op_id);
         std::map<std::string, int> part_counter;
         for (std::size_t i = 0; i < n_; ++i) {
@@ -526,7 +549,7 @@ private:
             if (named) {
                 nm = names_.at(id); // step names come unique from the caller's scope
             } else {
-                const op& o = prog_.at(id);
+                const op &o = prog_.at(id);
                 if (is_reciprocal(prog_, o) && (prog_.at(o.b).kind == op::input || var_.count(o.b)))
                     nm = "inv_" + (prog_.at(o.b).kind == op::input ? prog_.at(o.b).name : var_[o.b]);
                 else
@@ -554,7 +577,7 @@ private:
             if (covered_[static_cast<std::size_t>(id)])
                 continue;
             covered_[static_cast<std::size_t>(id)] = true;
-            const op& o = prog_.at(id);
+            const op &o = prog_.at(id);
             if (o.a >= 0)
                 stack.push_back(o.a);
             if (o.b >= 0 && o.kind != op::div)
@@ -569,9 +592,10 @@ private:
     {
         std::vector<int> recips;
         for (std::size_t i = 0; i < n_; ++i) {
-            const op& o = prog_.at(static_cast<int>(i));
+            const op &o = prog_.at(static_cast<int>(i));
             if (materialised_[i] && is_reciprocal(prog_, o) && prog_.at(o.b).kind == op::input &&
-                std::any_of(checks_.begin(), checks_.end(), [&](const check& c) { return c.op_id == o.b && c.kind == check::positive; }))
+                std::any_of(checks_.begin(), checks_.end(),
+                            [&](const check &c) { return c.op_id == o.b && c.kind == check::positive; }))
                 recips.push_back(static_cast<int>(i));
         }
         for (std::size_t g = 0; g + 1 < recips.size(); g += 4) {
@@ -594,13 +618,16 @@ private:
             return false;
         if (proves_positive(id, depth + 1))
             return true;
-        const op& o = prog_.at(id);
+        const op &o = prog_.at(id);
         switch (o.kind) {
-        case op::constant: return o.value.is_real() && !o.value.is_negative();
-        case op::add: return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
+        case op::constant:
+            return o.value.is_real() && !o.value.is_negative();
+        case op::add:
+            return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
         // a / b for a, b >= 0: >= 0, +inf (b = 0) or NaN (0 / 0); never -0, as no rule
         // here gives -0 (a product's sign is that of its factors, +0 + +0 = +0).
-        case op::div: return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
+        case op::div:
+            return nonnegative(o.a, depth + 1) && nonnegative(o.b, depth + 1);
         case op::mul: {
             std::map<int, int> factors; // product tree flattened: factor -> multiplicity
             std::vector<int> stack{id};
@@ -614,12 +641,13 @@ private:
                     ++factors[f];
                 }
             }
-            for (const auto& [f, count] : factors)
+            for (const auto &[f, count] : factors)
                 if (count % 2 && !nonnegative(f, depth + 1))
                     return false;
             return true;
         }
-        default: return false;
+        default:
+            return false;
         }
     }
 
@@ -632,7 +660,7 @@ private:
             return false;
         if (positive_ids_.count(id))
             return true;
-        const op& o = prog_.at(id);
+        const op &o = prog_.at(id);
         if (o.kind == op::constant)
             return o.value.is_real() && o.value.is_positive();
         if (o.kind == op::add)
@@ -645,12 +673,12 @@ private:
     // two operands, one a constant), (id, 1) for any other; (-1, 0) for a constant.
     std::pair<int, numeric> scaled(int id) const
     {
-        const op& o = prog_.at(id);
+        const op &o = prog_.at(id);
         if (o.kind == op::constant)
             return {-1, numeric(0)};
         if (o.kind == op::mul) {
-            const op& a = prog_.at(o.a);
-            const op& b = prog_.at(o.b);
+            const op &a = prog_.at(o.a);
+            const op &b = prog_.at(o.b);
             if (b.kind == op::constant && a.kind != op::constant && b.value.is_real() && b.value.is_positive())
                 return {o.a, b.value};
             if (a.kind == op::constant && b.kind != op::constant && a.value.is_real() && a.value.is_positive())
@@ -661,7 +689,7 @@ private:
 
     // Branchless: the checks of value id folded into the lists the one flag is made of
     // (signs through a min, finiteness through one sum).
-    void fold_check(const check& c, int id, const std::string& x, int p)
+    void fold_check(const check &c, int id, const std::string &x, int p)
     {
         if (c.kind == check::positive && proves_positive(id, 0)) {
             // x > 0 follows from the positive terms before it (k = w_1 + w_2 of
@@ -677,7 +705,7 @@ private:
             // test 1/x > 0 (1/inf = 0 fails it; 1/NaN is NaN) and let x go.
             int rid = -1;
             for (std::size_t k = 0; k < n_ && rid < 0; ++k) {
-                const op& o = prog_.at(static_cast<int>(k));
+                const op &o = prog_.at(static_cast<int>(k));
                 if (materialised_[k] && is_reciprocal(prog_, o) && o.b == id)
                     rid = static_cast<int>(k);
             }
@@ -691,13 +719,19 @@ private:
             }
         }
         switch (c.kind) {
-        case check::positive: add_unique(out_.positive_terms, x); break;
-        case check::negative: add_unique(out_.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x)); break;
+        case check::positive:
+            add_unique(out_.positive_terms, x);
+            break;
+        case check::negative:
+            add_unique(out_.positive_terms, "-" + (p < 3 ? "(" + x + ")" : x));
+            break;
         case check::unit_interval:
             add_unique(out_.nonneg_terms, x);
             add_unique(out_.nonneg_terms, "T(1) - " + (p < 2 ? "(" + x + ")" : x));
             break;
-        case check::normal_number: add_unique(out_.normal_terms, x); break;
+        case check::normal_number:
+            add_unique(out_.normal_terms, x);
+            break;
         case check::near_one:
             add_unique(out_.nonneg_terms, (p < 2 ? "(" + x + ")" : x) + " - " + unit_bound(-1));
             add_unique(out_.nonneg_terms, unit_bound(+1) + " - " + (p < 2 ? "(" + x + ")" : x));
@@ -717,7 +751,7 @@ private:
     // The flag tests 1/z and x is not computed at all; its comment comes with 1/z.
     void prefold_scaled_checks()
     {
-        for (const check& c : checks_) {
+        for (const check &c : checks_) {
             const int x = c.op_id;
             const auto xi = static_cast<std::size_t>(x);
             if (c.kind != check::positive || prog_.at(x).kind == op::input || !check_only(x) || refs_[xi] != 1)
@@ -727,7 +761,7 @@ private:
                 continue;
             int rid = -1;
             for (std::size_t k = 0; k < n_; ++k) {
-                const op& o = prog_.at(static_cast<int>(k));
+                const op &o = prog_.at(static_cast<int>(k));
                 if (!materialised_[k] || !is_reciprocal(prog_, o))
                     continue;
                 if (o.b == x) { // 1/x itself: fold_check's own rule
@@ -756,9 +790,9 @@ private:
     {
         auto pre = prefolded_comments_.find(id);
         if (pre != prefolded_comments_.end())
-            for (const std::string& comment : pre->second)
+            for (const std::string &comment : pre->second)
                 out_.check_comments.push_back(comment);
-        for (const check& c : checks_) {
+        for (const check &c : checks_) {
             if (c.op_id != id)
                 continue;
             int p;
@@ -769,11 +803,21 @@ private:
             }
             std::string cond;
             switch (c.kind) {
-            case check::positive: cond = x + " > T(0) && detail::finite(" + x + ")"; break;
-            case check::unit_interval: cond = x + " >= T(0) && " + x + " <= T(1)"; break;
-            case check::negative: cond = x + " < T(0)"; break;
-            case check::normal_number: cond = x + " >= std::numeric_limits<T>::min() && detail::finite(" + x + ")"; break;
-            case check::near_one: cond = x + " >= " + unit_bound(-1) + " && " + x + " <= " + unit_bound(+1); break;
+            case check::positive:
+                cond = x + " > T(0) && detail::finite(" + x + ")";
+                break;
+            case check::unit_interval:
+                cond = x + " >= T(0) && " + x + " <= T(1)";
+                break;
+            case check::negative:
+                cond = x + " < T(0)";
+                break;
+            case check::normal_number:
+                cond = x + " >= std::numeric_limits<T>::min() && detail::finite(" + x + ")";
+                break;
+            case check::near_one:
+                cond = x + " >= " + unit_bound(-1) + " && " + x + " <= " + unit_bound(+1);
+                break;
             }
             out_.code += "    if (!(" + cond + ")) // " + names::comment_text(c.comment) + "\n";
             out_.code += "        return fail(impact_status::" + c.status + ");\n";
@@ -787,7 +831,7 @@ private:
         return "(T(" + std::to_string(d + sign) + ") / T(" + std::to_string(d) + "))";
     }
 
-    std::string fresh(const std::string& base)
+    std::string fresh(const std::string &base)
     {
         std::string nm = unique_name(used_names_, base);
         used_names_.insert(nm);
@@ -795,9 +839,9 @@ private:
     }
 
     // Pairs (a, b) -> q = a b; then r = 1 / (q_1 q_2), s_1 = q_2 r = 1/q_1, s_2 = q_1 r = 1/q_2.
-    void emit_group(const std::vector<int>& members)
+    void emit_group(const std::vector<int> &members)
     {
-        std::string& code = out_.code;
+        std::string &code = out_.code;
         out_.shares_reciprocals = true;
         auto den = [&](int id) { return prog_.at(prog_.at(id).b).name; };
         std::string list;
@@ -809,7 +853,7 @@ private:
             pairs.push_back(std::vector<int>(members.begin() + static_cast<long>(j),
                                              members.begin() + static_cast<long>(std::min(j + 2, members.size()))));
         std::vector<std::string> q;
-        for (const auto& pair : pairs) {
+        for (const auto &pair : pairs) {
             if (pair.size() == 1) {
                 q.push_back(den(pair[0]));
                 continue;
@@ -913,7 +957,7 @@ private:
 
     void emit_outputs()
     {
-        for (auto& [field, id] : outputs_) {
+        for (auto &[field, id] : outputs_) {
             int p;
             if (branchless_) {
                 out_.code += "    const T " + field + " = " + printer_().text(id, p) + ";\n";
@@ -925,12 +969,15 @@ private:
     }
 
     printer printer_() { return printer{prog_, materialised_, refs_, var_, &out_.formula}; }
-    printer math_() { return printer{prog_, materialised_, refs_, var_, &uncounted_, true}; } // numbers as in mathematics
+    printer math_()
+    {
+        return printer{prog_, materialised_, refs_, var_, &uncounted_, true};
+    } // numbers as in mathematics
 
-    const program& prog_;
-    const std::vector<std::pair<std::string, int>>& outputs_;
-    const std::vector<check>& checks_;
-    const std::map<int, std::string>& names_;
+    const program &prog_;
+    const std::vector<std::pair<std::string, int>> &outputs_;
+    const std::vector<check> &checks_;
+    const std::map<int, std::string> &names_;
     const bool branchless_, share_divisions_;
     const int optional_output_;
     const std::size_t n_;
@@ -942,16 +989,16 @@ private:
     std::map<int, std::vector<int>> group_at_; // first member -> members
     std::set<int> grouped_;
     std::set<int> positive_ids_; // branchless: values the flag proves > 0 (fold_check)
-    std::vector<int> pending_; // values only checks use, not yet emitted, in program order
+    std::vector<int> pending_;   // values only checks use, not yet emitted, in program order
     emitted out_;
     op_counts uncounted_;
 };
 
 } // namespace
 
-emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
-                 const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& taken, bool branchless, bool share_divisions, int optional_output)
+emitted emit_cpp(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
+                 const std::vector<check> &checks, const std::map<int, std::string> &names,
+                 const std::vector<std::string> &taken, bool branchless, bool share_divisions, int optional_output)
 {
     return emitter(prog, outputs, checks, names, taken, branchless, share_divisions, optional_output).run();
 }

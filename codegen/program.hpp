@@ -14,45 +14,47 @@
 #include <tuple>
 #include <vector>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 
 struct op {
     enum kind_t { input, constant, add, sub, mul, div, neg, sqrt_ } kind = constant;
     int a = -1, b = -1;
-    GiNaC::numeric value;  ///< constant
-    std::string name;      ///< input
-    std::string owner;     ///< the step or output being lowered when this op was created
+    GiNaC::numeric value; ///< constant
+    std::string name;     ///< input
+    std::string owner;    ///< the step or output being lowered when this op was created
 };
 
 /// A number as a C++ long double literal of 40 significant digits ("1.5e-300L").
-std::string decimal_literal(const GiNaC::numeric& x);
+std::string decimal_literal(const GiNaC::numeric &x);
 
 struct op_counts {
     int add = 0, mul = 0, div = 0, sqrt = 0;
 };
 
-class program {
+class program
+{
 public:
     /// The ops of the canonical node; step nodes resolve through set_step.
-    int lower(const canonical_pool& pool, int cid);
-    int lower(const canonical_pool& pool, const scaled& s);
+    int lower(const canonical_pool &pool, int cid);
+    int lower(const canonical_pool &pool, const scaled &s);
     void set_step(int step_index, int op_id) { step_op_[step_index] = op_id; }
-    void set_owner(const std::string& owner) { owner_ = owner; }
+    void set_owner(const std::string &owner) { owner_ = owner; }
 
-    int input(const std::string& name);
-    int constant(const GiNaC::numeric& x);
+    int input(const std::string &name);
+    int constant(const GiNaC::numeric &x);
     int binary(op::kind_t k, int a, int b);
     int negate(int a);
     int square_root(int a);
     int reciprocal(int a) { return binary(op::div, constant(1), a); }
 
-    const op& at(int id) const { return ops_[static_cast<std::size_t>(id)]; }
+    const op &at(int id) const { return ops_[static_cast<std::size_t>(id)]; }
     std::size_t size() const { return ops_.size(); }
     bool is_leaf(int id) const { return at(id).kind == op::input || at(id).kind == op::constant; }
 
 private:
     int make(op o);
-    int lower_add(const canonical_pool& pool, int cid, bool negated);
+    int lower_add(const canonical_pool &pool, int cid, bool negated);
     std::map<int, int> lowered_neg_;
     std::vector<op> ops_;
     std::map<std::tuple<int, int, int>, int> memo_;
@@ -83,7 +85,7 @@ struct check {
         near_one       ///< |x - 1| <= unit_tolerance (the squared length of a unit vector rounded in float)
     } kind;
     int op_id;
-    std::string status;   ///< enumerator of impact_status
+    std::string status; ///< enumerator of impact_status
     std::string comment;
 };
 
@@ -94,15 +96,16 @@ struct check {
 inline constexpr long unit_tolerance_denominator = 131072;
 
 struct emitted {
-    std::string code;     ///< the function body, indented by 4
-    op_counts formula;    ///< arithmetic of the closed form
-    op_counts checks;     ///< arithmetic spent on validity checks
+    std::string code;  ///< the function body, indented by 4
+    op_counts formula; ///< arithmetic of the closed form
+    op_counts checks;  ///< arithmetic spent on validity checks
     bool uses_sqrt = false;
     // Branchless: the checks, for the caller to fold into one flag.
     std::vector<std::string> finite_terms;   ///< values that must be finite (tested in one sum)
     std::vector<std::string> positive_terms; ///< values that must be > 0 (their min)
     std::vector<std::string> nonneg_terms;   ///< values that must be >= 0 (their min)
-    std::vector<std::string> normal_terms;   ///< values that must be normal numbers (shared reciprocals' products, check::normal_number)
+    std::vector<std::string>
+        normal_terms; ///< values that must be normal numbers (shared reciprocals' products, check::normal_number)
     bool shares_reciprocals = false;         ///< reciprocals share divisions (their products are among normal_terms)
     std::vector<std::string> check_comments; ///< what the checks mean, in order
     /// Every value the checked form computes, in order, as `name = expression`
@@ -122,9 +125,9 @@ struct emitted {
 /// optional_output: the index in outputs of a value the form may leave 0 instead of
 /// computing it (energy_lost under with_energy_lost = false), or -1: its finiteness then
 /// implies nothing about the values it is made of (they are checked in their own right).
-emitted emit_cpp(const program& prog, const std::vector<std::pair<std::string, int>>& outputs,
-                 const std::vector<check>& checks, const std::map<int, std::string>& names,
-                 const std::vector<std::string>& taken, bool branchless = false, bool share_divisions = false,
+emitted emit_cpp(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
+                 const std::vector<check> &checks, const std::map<int, std::string> &names,
+                 const std::vector<std::string> &taken, bool branchless = false, bool share_divisions = false,
                  int optional_output = -1);
 
 } // namespace impactgen::codegen

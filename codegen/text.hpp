@@ -4,13 +4,14 @@
 #include <string>
 #include <vector>
 
-namespace impactgen::codegen {
+namespace impactgen::codegen
+{
 
 /// The items joined by sep ("a, b, c").
-inline std::string join(const std::vector<std::string>& items, const std::string& sep)
+inline std::string join(const std::vector<std::string> &items, const std::string &sep)
 {
     std::string r;
-    for (const std::string& s : items)
+    for (const std::string &s : items)
         r += (r.empty() ? "" : sep) + s;
     return r;
 }

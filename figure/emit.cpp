@@ -17,9 +17,11 @@
 #include <cmath>
 #include <string>
 
-namespace impactgen::figure {
+namespace impactgen::figure
+{
 
-namespace detail {
+namespace detail
+{
 
 std::string decimal(double v)
 {
@@ -38,15 +40,19 @@ std::string decimal(double v)
 
 } // namespace detail
 
-namespace {
+namespace
+{
 
 using detail::decimal;
 
 /// A body name as a label shows it: one visible line, cut to 24 bytes.
-std::string shown_name(const std::string& raw) { return names::display_text(raw, 24); }
+std::string shown_name(const std::string &raw)
+{
+    return names::display_text(raw, 24);
+}
 
 /// Code points in UTF-8 text (continuation bytes do not count).
-std::size_t glyphs(const std::string& s)
+std::size_t glyphs(const std::string &s)
 {
     std::size_t n = 0;
     for (unsigned char c : s)
@@ -65,22 +71,31 @@ struct box {
     double x0, x1, y0, y1;
 };
 
-box label_box(const label& l, const text_metrics& m)
+box label_box(const label &l, const text_metrics &m)
 {
     const double w = l.is_name ? static_cast<double>(glyphs(shown_name(l.name))) * m.char_width
                                : static_cast<double>(glyphs(l.text)) * m.char_width +
                                      static_cast<double>(glyphs(l.sub)) * m.subscript_width;
     const double h = m.height;
     switch (l.side) {
-    case place::east: return {0, w, -h / 2, h / 2};
-    case place::west: return {-w, 0, -h / 2, h / 2};
-    case place::north: return {-w / 2, w / 2, 0, h};
-    case place::south: return {-w / 2, w / 2, -h, 0};
-    case place::north_east: return {0, w, 0, h};
-    case place::north_west: return {-w, 0, 0, h};
-    case place::south_east: return {0, w, -h, 0};
-    case place::south_west: return {-w, 0, -h, 0};
-    case place::centre: break;
+    case place::east:
+        return {0, w, -h / 2, h / 2};
+    case place::west:
+        return {-w, 0, -h / 2, h / 2};
+    case place::north:
+        return {-w / 2, w / 2, 0, h};
+    case place::south:
+        return {-w / 2, w / 2, -h, 0};
+    case place::north_east:
+        return {0, w, 0, h};
+    case place::north_west:
+        return {-w, 0, 0, h};
+    case place::south_east:
+        return {0, w, -h, 0};
+    case place::south_west:
+        return {-w, 0, -h, 0};
+    case place::centre:
+        break;
     }
     return {-w / 2, w / 2, -h / 2, h / 2};
 }
@@ -91,13 +106,16 @@ struct layout {
     point out(point p) const { return {p.x * scale + shift_x, p.y * scale + shift_y}; }
 };
 
-point operator+(point a, point b) { return {a.x + b.x, a.y + b.y}; }
+point operator+(point a, point b)
+{
+    return {a.x + b.x, a.y + b.y};
+}
 
 /// Every point the geometry reaches, with a circle's extent.
-std::vector<box> geometry_extents(const drawing& g, std::vector<point>& at)
+std::vector<box> geometry_extents(const drawing &g, std::vector<point> &at)
 {
     std::vector<box> r;
-    for (const item& it : g.items) {
+    for (const item &it : g.items) {
         if (it.kind == item::circle) {
             const bool marker = it.what == role::centre || it.what == role::contact || it.what == role::pivot;
             const double rad = marker ? 0 : it.radius;
@@ -107,7 +125,7 @@ std::vector<box> geometry_extents(const drawing& g, std::vector<point>& at)
             }
             continue;
         }
-        for (const point& q : it.points) {
+        for (const point &q : it.points) {
             at.push_back(q);
             r.push_back({0, 0, 0, 0});
         }
@@ -115,15 +133,15 @@ std::vector<box> geometry_extents(const drawing& g, std::vector<point>& at)
     return r;
 }
 
-layout fit(const drawing& g, double max_width, double max_height, double margin, const text_metrics& m)
+layout fit(const drawing &g, double max_width, double max_height, double margin, const text_metrics &m)
 {
     std::vector<point> at;
     std::vector<box> extent = geometry_extents(g, at);
-    for (const label& l : g.labels) {
+    for (const label &l : g.labels) {
         at.push_back(l.at);
         extent.push_back(label_box(l, m));
     }
-    auto span = [&](double k, bool x_axis, double& lo_out) {
+    auto span = [&](double k, bool x_axis, double &lo_out) {
         double lo = 1e300, hi = -1e300;
         for (std::size_t i = 0; i < at.size(); ++i) {
             const double c = (x_axis ? at[i].x : at[i].y) * k;
@@ -154,53 +172,71 @@ layout fit(const drawing& g, double max_width, double max_height, double margin,
     return out;
 }
 
-bool is_vector_label(const label& l) { return l.what == role::velocity || l.what == role::lever_arm; }
+bool is_vector_label(const label &l)
+{
+    return l.what == role::velocity || l.what == role::lever_arm;
+}
 
 // ---------------------------------------------------------------------------
 // TikZ.
 
-const char* tikz_anchor(place p)
+const char *tikz_anchor(place p)
 {
     switch (p) {
-    case place::east: return "west";
-    case place::west: return "east";
-    case place::north: return "south";
-    case place::south: return "north";
-    case place::north_east: return "south west";
-    case place::north_west: return "south east";
-    case place::south_east: return "north west";
-    case place::south_west: return "north east";
-    case place::centre: break;
+    case place::east:
+        return "west";
+    case place::west:
+        return "east";
+    case place::north:
+        return "south";
+    case place::south:
+        return "north";
+    case place::north_east:
+        return "south west";
+    case place::north_west:
+        return "south east";
+    case place::south_east:
+        return "north west";
+    case place::south_west:
+        return "north east";
+    case place::centre:
+        break;
     }
     return "center";
 }
 
-const char* tikz_colour(role r)
+const char *tikz_colour(role r)
 {
     switch (r) {
-    case role::frame_axis: return "blue!70!black";
-    case role::impulse: return "red!75!black";
-    case role::pivot_impulse: return "orange!85!black";
-    case role::velocity: return "green!45!black";
-    case role::lever_arm: return "black!60";
-    default: return "black";
+    case role::frame_axis:
+        return "blue!70!black";
+    case role::impulse:
+        return "red!75!black";
+    case role::pivot_impulse:
+        return "orange!85!black";
+    case role::velocity:
+        return "green!45!black";
+    case role::lever_arm:
+        return "black!60";
+    default:
+        return "black";
     }
 }
 
-std::string tikz_point(const layout& L, point p)
+std::string tikz_point(const layout &L, point p)
 {
     const point q = L.out(p);
     return "(" + decimal(q.x) + "," + decimal(q.y) + ")";
 }
 
-std::string tikz_fill(const drawing& g, int body)
+std::string tikz_fill(const drawing &g, int body)
 {
     return body >= 0 && static_cast<std::size_t>(body) == g.body2 ? "black!16" : "black!7";
 }
 
 } // namespace
 
-std::string to_tikz(const drawing& g)
+std::string to_tikz(const drawing &g)
 {
     // cm; \small in an 11pt article: about 0.2 cm a letter, 0.45 cm a line.
     const text_metrics m{0.22, 0.16, 0.45};
@@ -208,7 +244,7 @@ std::string to_tikz(const drawing& g)
     std::string s = "\\begin{tikzpicture}[line cap=round, line join=round, >=stealth, font=\\small]\n";
     // The frame the layout reserved, so the picture's size does not depend on the fonts.
     s += "\\path (0,0) (" + decimal(L.width) + "," + decimal(L.height) + ");\n";
-    for (const item& it : g.items) {
+    for (const item &it : g.items) {
         if (it.kind == item::circle) {
             const std::string c = tikz_point(L, it.points[0]);
             if (it.what == role::centre) {
@@ -230,8 +266,9 @@ std::string to_tikz(const drawing& g)
             continue;
         std::string style;
         if (it.kind == item::arrow) {
-            style = std::string("->, ") + (it.what == role::impulse || it.what == role::pivot_impulse ? "very thick" : "thick") +
-                    ", " + tikz_colour(it.what);
+            style = std::string("->, ") +
+                    (it.what == role::impulse || it.what == role::pivot_impulse ? "very thick" : "thick") + ", " +
+                    tikz_colour(it.what);
         } else if (it.what == role::body) {
             style = it.thin ? "thin" : (it.closed ? "thick" : "very thick");
             if (it.filled)
@@ -250,7 +287,7 @@ std::string to_tikz(const drawing& g)
             s += (k ? " -- " : "") + tikz_point(L, it.points[k]);
         s += it.closed ? " -- cycle;\n" : ";\n";
     }
-    for (const label& l : g.labels) {
+    for (const label &l : g.labels) {
         s += "\\node[anchor=" + std::string(tikz_anchor(l.side)) + ", inner sep=1.5pt";
         if (l.what != role::body && l.what != role::centre && l.what != role::contact && l.what != role::pivot)
             s += std::string(", text=") + tikz_colour(l.what);
@@ -263,36 +300,43 @@ std::string to_tikz(const drawing& g)
     return s;
 }
 
-namespace {
+namespace
+{
 
 // ---------------------------------------------------------------------------
 // SVG.
 
-const char* svg_colour(role r)
+const char *svg_colour(role r)
 {
     switch (r) {
-    case role::frame_axis: return "#1f3fb0";
-    case role::impulse: return "#b3141b";
-    case role::pivot_impulse: return "#d46a00";
-    case role::velocity: return "#1d7a2c";
-    case role::lever_arm: return "#666666";
-    default: return "#000000";
+    case role::frame_axis:
+        return "#1f3fb0";
+    case role::impulse:
+        return "#b3141b";
+    case role::pivot_impulse:
+        return "#d46a00";
+    case role::velocity:
+        return "#1d7a2c";
+    case role::lever_arm:
+        return "#666666";
+    default:
+        return "#000000";
     }
 }
 
-std::string svg_fill(const drawing& g, int body)
+std::string svg_fill(const drawing &g, int body)
 {
     return body >= 0 && static_cast<std::size_t>(body) == g.body2 ? "#d6d6d6" : "#ededed";
 }
 
 /// SVG's y grows downwards.
-point svg_out(const layout& L, point p)
+point svg_out(const layout &L, point p)
 {
     const point q = L.out(p);
     return {q.x, L.height - q.y};
 }
 
-std::string svg_points(const std::vector<point>& pts)
+std::string svg_points(const std::vector<point> &pts)
 {
     std::string s;
     for (std::size_t k = 0; k < pts.size(); ++k)
@@ -302,31 +346,33 @@ std::string svg_points(const std::vector<point>& pts)
 
 } // namespace
 
-std::string to_svg(const drawing& g)
+std::string to_svg(const drawing &g)
 {
     // px; 15 px serif text.
     const text_metrics m{8.5, 6.5, 18};
     const layout L = fit(g, 520, 440, 6, m);
     const std::string w = decimal(L.width), h = decimal(L.height);
-    std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + w + "\" height=\"" + h + "\" viewBox=\"0 0 " +
-                    w + " " + h + "\" role=\"img\" font-family=\"serif\" font-size=\"15\">\n";
+    std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + w + "\" height=\"" + h +
+                    "\" viewBox=\"0 0 " + w + " " + h + "\" role=\"img\" font-family=\"serif\" font-size=\"15\">\n";
     s += "<title>" + names::xml_text(describe(g)) + "</title>\n";
-    for (const item& it : g.items) {
+    for (const item &it : g.items) {
         if (it.kind == item::circle) {
             const point c = svg_out(L, it.points[0]);
             const std::string cx = decimal(c.x), cy = decimal(c.y);
             if (it.what == role::centre) {
                 const double r = 3.4;
                 const std::string rs = decimal(r);
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + rs + "\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1\"/>\n";
+                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + rs +
+                     "\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1\"/>\n";
                 // Two quarters filled: upper right and lower left (y down).
-                s += "<path d=\"M" + cx + "," + cy + " L" + decimal(c.x + r) + "," + cy + " A" + rs + "," + rs + " 0 0 0 " +
-                     cx + "," + decimal(c.y - r) + " Z M" + cx + "," + cy + " L" + decimal(c.x - r) + "," + cy + " A" + rs +
-                     "," + rs + " 0 0 0 " + cx + "," + decimal(c.y + r) + " Z\" fill=\"#000000\"/>\n";
+                s += "<path d=\"M" + cx + "," + cy + " L" + decimal(c.x + r) + "," + cy + " A" + rs + "," + rs +
+                     " 0 0 0 " + cx + "," + decimal(c.y - r) + " Z M" + cx + "," + cy + " L" + decimal(c.x - r) + "," +
+                     cy + " A" + rs + "," + rs + " 0 0 0 " + cx + "," + decimal(c.y + r) + " Z\" fill=\"#000000\"/>\n";
             } else if (it.what == role::contact) {
                 s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"2.6\" fill=\"#000000\"/>\n";
             } else if (it.what == role::pivot) {
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"2.8\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1.2\"/>\n";
+                s += "<circle cx=\"" + cx + "\" cy=\"" + cy +
+                     "\" r=\"2.8\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1.2\"/>\n";
             } else {
                 s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + decimal(it.radius * L.scale) + "\" fill=\"" +
                      (it.filled ? svg_fill(g, it.body) : "none") + "\" stroke=\"#000000\" stroke-width=\"1.4\"/>\n";
@@ -336,7 +382,7 @@ std::string to_svg(const drawing& g)
         if (it.points.size() < 2)
             continue;
         std::vector<point> pts;
-        for (const point& q : it.points)
+        for (const point &q : it.points)
             pts.push_back(svg_out(L, q));
         if (it.kind == item::arrow) {
             // A line to the foot of the head, then the head as a polygon.
@@ -348,7 +394,7 @@ std::string to_svg(const drawing& g)
             const bool heavy = it.what == role::impulse || it.what == role::pivot_impulse;
             const double head = std::min(heavy ? 11.0 : 9.0, 0.6 * len), half = heavy ? 4.2 : 3.4;
             const point foot{b.x - head * ux, b.y - head * uy};
-            const char* col = svg_colour(it.what);
+            const char *col = svg_colour(it.what);
             s += "<line x1=\"" + decimal(a.x) + "\" y1=\"" + decimal(a.y) + "\" x2=\"" + decimal(foot.x) + "\" y2=\"" +
                  decimal(foot.y) + "\" stroke=\"" + col + "\" stroke-width=\"" + (heavy ? "2.4" : "1.6") + "\"/>\n";
             s += "<polygon points=\"" +
@@ -372,9 +418,9 @@ std::string to_svg(const drawing& g)
              "\" stroke=\"" + stroke + "\" stroke-width=\"" + width + "\"" +
              (it.dashed ? " stroke-dasharray=\"5,4\"" : "") + "/>\n";
     }
-    for (const label& l : g.labels) {
+    for (const label &l : g.labels) {
         const point p = svg_out(L, l.at);
-        const char* anchor = "middle";
+        const char *anchor = "middle";
         if (l.side == place::east || l.side == place::north_east || l.side == place::south_east)
             anchor = "start";
         else if (l.side == place::west || l.side == place::north_west || l.side == place::south_west)
@@ -404,12 +450,12 @@ std::string to_svg(const drawing& g)
     return s;
 }
 
-std::string describe(const drawing& g)
+std::string describe(const drawing &g)
 {
     auto who = [&](std::size_t i) {
         if (i >= g.bodies.size())
             return std::string("a body");
-        const body_summary& b = g.bodies[i];
+        const body_summary &b = g.bodies[i];
         std::string s = names::display_text(b.name, 64) + " (" + shape_name(b.form);
         if (b.pinned)
             s += " pinned at E";

@@ -21,39 +21,56 @@
 #include <map>
 #include <sstream>
 
-namespace impactgen::figure {
+namespace impactgen::figure
+{
 using namespace GiNaC;
 
-const char* role_name(role r)
+const char *role_name(role r)
 {
     switch (r) {
-    case role::body: return "body";
-    case role::centre: return "centre";
-    case role::contact: return "contact";
-    case role::frame_axis: return "frame axis";
-    case role::lever_arm: return "lever arm";
-    case role::impulse: return "impulse";
-    case role::pivot_impulse: return "pivot impulse";
-    case role::velocity: return "velocity";
-    case role::pivot: return "pivot";
+    case role::body:
+        return "body";
+    case role::centre:
+        return "centre";
+    case role::contact:
+        return "contact";
+    case role::frame_axis:
+        return "frame axis";
+    case role::lever_arm:
+        return "lever arm";
+    case role::impulse:
+        return "impulse";
+    case role::pivot_impulse:
+        return "pivot impulse";
+    case role::velocity:
+        return "velocity";
+    case role::pivot:
+        return "pivot";
     }
     return "?";
 }
 
-const char* shape_name(shape s)
+const char *shape_name(shape s)
 {
     switch (s) {
-    case shape::disc: return "disc";
-    case shape::rod: return "rod";
-    case shape::plate: return "plate";
-    case shape::box: return "box";
-    case shape::wall: return "wall";
-    case shape::marker: return "point";
+    case shape::disc:
+        return "disc";
+    case shape::rod:
+        return "rod";
+    case shape::plate:
+        return "plate";
+    case shape::box:
+        return "box";
+    case shape::wall:
+        return "wall";
+    case shape::marker:
+        return "point";
     }
     return "?";
 }
 
-namespace {
+namespace
+{
 
 // ---------------------------------------------------------------------------
 // Small 3-vector and 2-point arithmetic in doubles.
@@ -61,12 +78,30 @@ namespace {
 struct v3 {
     double x = 0, y = 0, z = 0;
 };
-v3 operator+(v3 a, v3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-v3 operator-(v3 a, v3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-v3 operator*(double s, v3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-v3 cross(v3 a, v3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double max_abs(v3 a) { return std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)}); }
+v3 operator+(v3 a, v3 b)
+{
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+v3 operator-(v3 a, v3 b)
+{
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+v3 operator*(double s, v3 a)
+{
+    return {s * a.x, s * a.y, s * a.z};
+}
+double dot(v3 a, v3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+v3 cross(v3 a, v3 b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double max_abs(v3 a)
+{
+    return std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+}
 
 /// |a| without overflow or underflow in the squares.
 double norm(v3 a)
@@ -88,52 +123,70 @@ v3 unit(v3 a, v3 fallback)
     return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? u : fallback;
 }
 
-point operator+(point a, point b) { return {a.x + b.x, a.y + b.y}; }
-point operator-(point a, point b) { return {a.x - b.x, a.y - b.y}; }
-point operator*(double s, point a) { return {s * a.x, s * a.y}; }
-double length(point a) { return std::hypot(a.x, a.y); }
+point operator+(point a, point b)
+{
+    return {a.x + b.x, a.y + b.y};
+}
+point operator-(point a, point b)
+{
+    return {a.x - b.x, a.y - b.y};
+}
+point operator*(double s, point a)
+{
+    return {s * a.x, s * a.y};
+}
+double length(point a)
+{
+    return std::hypot(a.x, a.y);
+}
 point unit2(point a, point fallback)
 {
     const double l = length(a);
     return l > 1e-12 && std::isfinite(l) ? point{a.x / l, a.y / l} : fallback;
 }
-point perp(point a) { return {-a.y, a.x}; }
+point perp(point a)
+{
+    return {-a.y, a.x};
+}
 
 /// A finite value or 0: nothing that is not finite reaches a printer.
-double finite(double v) { return std::isfinite(v) ? v : 0.0; }
+double finite(double v)
+{
+    return std::isfinite(v) ? v : 0.0;
+}
 
 // ---------------------------------------------------------------------------
 // Step 1: numbers.
 
 /// The value of e with the illustrative values substituted, as a double; the
 /// fallback when it does not evaluate to a finite real number.
-double number(const ex& e, const exmap& values, double fallback)
+double number(const ex &e, const exmap &values, double fallback)
 {
     try {
         const ex v = (values.empty() ? e : e.subs(values)).evalf();
         if (is_a<numeric>(v)) {
-            const numeric& x = ex_to<numeric>(v);
+            const numeric &x = ex_to<numeric>(v);
             if (x.is_real()) {
                 const double r = x.to_double();
                 if (std::isfinite(r))
                     return r;
             }
         }
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         // a pole, an overflow in CLN: the fallback below
     }
     return fallback;
 }
 
 /// The symbols an expression contains (ordered, so the walk is deterministic).
-std::vector<symbol> symbols_in(const ex& e)
+std::vector<symbol> symbols_in(const ex &e)
 {
     exset found;
     for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
         if (is_a<symbol>(*it))
             found.insert(*it);
     std::vector<symbol> out;
-    for (const ex& s : found)
+    for (const ex &s : found)
         out.push_back(ex_to<symbol>(s));
     return out;
 }
@@ -141,13 +194,13 @@ std::vector<symbol> symbols_in(const ex& e)
 /// Gives the symbols still open in e values: when e is linear in exactly one
 /// open symbol with numeric coefficients, the value that makes e equal to
 /// target; otherwise every open symbol of e takes the fallback.
-void settle(exmap& known, const ex& e, double target, double fallback)
+void settle(exmap &known, const ex &e, double target, double fallback)
 {
     ex r = e;
     try {
         if (!known.empty())
             r = e.subs(known);
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         r = e;
     }
     const std::vector<symbol> open = symbols_in(r);
@@ -155,7 +208,7 @@ void settle(exmap& known, const ex& e, double target, double fallback)
         return;
     if (open.size() == 1) {
         try {
-            const symbol& s = open[0];
+            const symbol &s = open[0];
             const ex x = r.expand();
             if (x.is_polynomial(s) && x.degree(s) == 1) {
                 const ex a = x.coeff(s, 1).evalf(), b = x.coeff(s, 0).evalf();
@@ -169,11 +222,11 @@ void settle(exmap& known, const ex& e, double target, double fallback)
                     }
                 }
             }
-        } catch (const std::exception&) {
+        } catch (const std::exception &) {
             // not solvable: the fallback below
         }
     }
-    for (const symbol& s : open)
+    for (const symbol &s : open)
         if (known.find(s) == known.end())
             known[s] = numeric(fallback);
 }
@@ -181,14 +234,13 @@ void settle(exmap& known, const ex& e, double target, double fallback)
 /// The named classes' symbols (symbolic/named_classes.cpp): bodies on their
 /// own side of the tangent plane, centres off the line of impact for the
 /// non-central classes, velocities that approach.
-double named_class_value(const std::string& name)
+double named_class_value(const std::string &name)
 {
     static const std::map<std::string, double> table = {
-        {"m1", 1}, {"m2", 1.5}, {"m", 1}, {"e", 0.8}, {"mu", 0.3},
-        {"R1", 1}, {"R2", 0.8}, {"R", 1}, {"l", 1.5}, {"v1", 1},
-        {"r_t1", -0.5}, {"r_n1", -0.9}, {"r_b1", 0.3}, {"r_t2", 0.6}, {"r_n2", 1.0}, {"r_b2", -0.25},
-        {"v_t1", 0.5}, {"v_n1", 1.0}, {"v_b1", 0.3}, {"v_t2", -0.4}, {"v_n2", -0.6}, {"v_b2", -0.2},
-        {"v_t", 1.0}, {"v_n", -1.2}, {"I1", 0.25}, {"I2", 0.25},
+        {"m1", 1},      {"m2", 1.5},     {"m", 1},      {"e", 0.8},     {"mu", 0.3},    {"R1", 1},      {"R2", 0.8},
+        {"R", 1},       {"l", 1.5},      {"v1", 1},     {"r_t1", -0.5}, {"r_n1", -0.9}, {"r_b1", 0.3},  {"r_t2", 0.6},
+        {"r_n2", 1.0},  {"r_b2", -0.25}, {"v_t1", 0.5}, {"v_n1", 1.0},  {"v_b1", 0.3},  {"v_t2", -0.4}, {"v_n2", -0.6},
+        {"v_b2", -0.2}, {"v_t", 1.0},    {"v_n", -1.2}, {"I1", 0.25},   {"I2", 0.25},
     };
     const auto it = table.find(name);
     if (it != table.end())
@@ -201,21 +253,21 @@ double named_class_value(const std::string& name)
     return 1;
 }
 
-exmap illustrative_values(const problem& p)
+exmap illustrative_values(const problem &p)
 {
     exmap known;
     const std::vector<symbol> all = p.parameters();
     if (all.empty())
         return known;
     if (find_named_class(p.source)) {
-        for (const symbol& s : all)
+        for (const symbol &s : all)
             known[s] = numeric(named_class_value(s.get_name()));
         return known;
     }
     const bool planar = p.dimension == 2;
     const int dim = planar ? 2 : 3;
     // Scalars first: masses, inertias, e, mu.
-    for (const body& b : p.bodies) {
+    for (const body &b : p.bodies) {
         if (!b.infinite_mass)
             settle(known, b.mass, 1, 1);
         for (int r = 0; r < 3; ++r)
@@ -232,17 +284,14 @@ exmap illustrative_values(const problem& p)
     const v3 n = unit({number(p.contact.normal[0], known, 0), number(p.contact.normal[1], known, 1),
                        planar ? 0 : number(p.contact.normal[2], known, 0)},
                       {0, 1, 0});
-    const v3 t = planar ? v3{n.y, -n.x, 0}
-                        : unit(cross(std::abs(n.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n), {1, 0, 0});
+    const v3 t = planar ? v3{n.y, -n.x, 0} : unit(cross(std::abs(n.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n), {1, 0, 0});
     const v3 o{number(p.contact.point[0], known, 0), number(p.contact.point[1], known, 0),
                planar ? 0 : number(p.contact.point[2], known, 0)};
-    auto side = [&](std::size_t i) {
-        return i == p.contact.body1 ? -1.0 : 1.0;
-    };
+    auto side = [&](std::size_t i) { return i == p.contact.body1 ? -1.0 : 1.0; };
     // Centres: 0.8 from O on the body's side, a rigid body's off the line of impact.
     std::vector<v3> centre(p.bodies.size());
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         const double off = (b.particle || b.infinite_mass) ? 0.0 : 0.3 * side(i);
         const v3 target = o + (0.8 * side(i)) * n + off * t;
         const double tc[3] = {target.x, target.y, target.z};
@@ -252,7 +301,7 @@ exmap illustrative_values(const problem& p)
                      planar ? 0 : number(b.position[2], known, 0)};
     }
     // A pivot beyond the centre, so that E, C and O are in line (a rod).
-    for (const pivot& pv : p.pivots) {
+    for (const pivot &pv : p.pivots) {
         if (pv.body >= p.bodies.size())
             continue;
         const v3 c = centre[pv.body];
@@ -263,7 +312,7 @@ exmap illustrative_values(const problem& p)
     }
     // Velocities that approach along the normal, spins 0.
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         const v3 target = b.infinite_mass ? v3{} : (-0.8 * side(i)) * n + (0.3 * side(i)) * t;
         const double tc[3] = {target.x, target.y, target.z};
         for (int c = 0; c < dim; ++c)
@@ -272,7 +321,7 @@ exmap illustrative_values(const problem& p)
             settle(known, b.angular_velocity[c], 0, 0);
     }
     // Anything else (there should be nothing): 1.
-    for (const symbol& s : all)
+    for (const symbol &s : all)
         if (known.find(s) == known.end())
             known[s] = numeric(1);
     return known;
@@ -286,20 +335,21 @@ constexpr double impulse_length = 0.45; // N on each body
 constexpr double impulse_gap = 0.07;    // the impulses run beside e_n, on the -e_t side
 constexpr double pivot_length = 0.36;   // R
 constexpr double velocity_max = 0.5, velocity_min = 0.15;
-constexpr double small_radius = 0.12;   // a particle at O, an off-normal particle
-constexpr double min_radius = 0.05;     // no disc is drawn smaller
+constexpr double small_radius = 0.12; // a particle at O, an off-normal particle
+constexpr double min_radius = 0.05;   // no disc is drawn smaller
 constexpr double rod_half_width = 0.035;
 constexpr double label_gap = 0.045;
 constexpr double cabinet = 0.35355339059327373; // 1/2 cos 45 deg = 1/2 sin 45 deg
 
-class builder {
+class builder
+{
 public:
-    explicit builder(const derivation& d) : d_(d), p_(d.prob) {}
+    explicit builder(const derivation &d) : d_(d), p_(d.prob) {}
     drawing build();
 
 private:
-    const derivation& d_;
-    const problem& p_;
+    const derivation &d_;
+    const problem &p_;
     drawing g_;
     exmap values_;
     bool planar_ = true;
@@ -310,7 +360,7 @@ private:
     std::vector<bool> has_centre_;
     std::vector<bool> centre_at_o_;  // the problem's C is O (no lever arm)
     std::vector<std::string> index_; // "1", "2", ...
-    long double world_unit_ = 1;   // the world length of one figure unit
+    long double world_unit_ = 1;     // the world length of one figure unit
 
     point proj(v3 a) const
     {
@@ -318,14 +368,14 @@ private:
             return {finite(a.x), finite(a.y)};
         return {finite(a.x - cabinet * a.z), finite(a.y - cabinet * a.z)};
     }
-    v3 value(const vec3& v, double fallback = 0) const
+    v3 value(const vec3 &v, double fallback = 0) const
     {
         return {number(v[0], values_, fallback), number(v[1], values_, fallback),
                 planar_ ? 0 : number(v[2], values_, fallback)};
     }
     double side(std::size_t i) const;
 
-    void add_path(role r, int body, const std::string& key, std::vector<point> pts, bool closed, bool filled,
+    void add_path(role r, int body, const std::string &key, std::vector<point> pts, bool closed, bool filled,
                   bool dashed = false, bool thin = false)
     {
         item it;
@@ -340,7 +390,7 @@ private:
         it.thin = thin;
         g_.items.push_back(std::move(it));
     }
-    void add_circle(role r, int body, const std::string& key, point c, double radius, bool filled)
+    void add_circle(role r, int body, const std::string &key, point c, double radius, bool filled)
     {
         item it;
         it.kind = item::circle;
@@ -353,7 +403,7 @@ private:
         g_.items.push_back(std::move(it));
     }
     /// An arrow, unless it is too short to see; returns whether it was drawn.
-    bool add_arrow(role r, int body, const std::string& key, point from, point to)
+    bool add_arrow(role r, int body, const std::string &key, point from, point to)
     {
         if (!(length(to - from) > 0.02))
             return false;
@@ -366,8 +416,8 @@ private:
         g_.items.push_back(std::move(it));
         return true;
     }
-    void add_math(role r, int body, const std::string& key, point at, point direction, const std::string& tex,
-                  const std::string& text, const std::string& sub);
+    void add_math(role r, int body, const std::string &key, point at, point direction, const std::string &tex,
+                  const std::string &text, const std::string &sub);
     void add_name(int body, point at, place side);
 
     void body_shape(std::size_t i);
@@ -397,13 +447,13 @@ place place_of(point dir)
     const double pi = 3.14159265358979323846;
     int sector = static_cast<int>(std::lround(a / (pi / 4))); // -4 .. 4
     sector = (sector + 8) % 8;
-    static const place by_sector[8] = {place::east,  place::north_east, place::north, place::north_west,
-                                       place::west,  place::south_west, place::south, place::south_east};
+    static const place by_sector[8] = {place::east, place::north_east, place::north, place::north_west,
+                                       place::west, place::south_west, place::south, place::south_east};
     return by_sector[sector];
 }
 
-void builder::add_math(role r, int body, const std::string& key, point at, point direction, const std::string& tex,
-                       const std::string& text, const std::string& sub)
+void builder::add_math(role r, int body, const std::string &key, point at, point direction, const std::string &tex,
+                       const std::string &text, const std::string &sub)
 {
     label l;
     const point u = unit2(direction, {0, 0});
@@ -444,8 +494,8 @@ drawing builder::build()
     n_ = unit(value(d_.n_hat), {0, 1, 0});
     if (planar_)
         n_.z = 0, n_ = unit(n_, {0, 1, 0});
-    const v3 t_guess = planar_ ? v3{n_.y, -n_.x, 0}
-                               : unit(cross(std::abs(n_.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n_), {1, 0, 0});
+    const v3 t_guess =
+        planar_ ? v3{n_.y, -n_.x, 0} : unit(cross(std::abs(n_.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n_), {1, 0, 0});
     v3 t = value(d_.t_dir);
     if (planar_)
         t.z = 0;
@@ -477,7 +527,7 @@ drawing builder::build()
     for (std::size_t i = 0; i < nb; ++i)
         if (!p_.bodies[i].infinite_mass)
             reach = std::max(reach, norm((1 / big) * c_world[i] - o));
-    for (const v3& e : e_world)
+    for (const v3 &e : e_world)
         reach = std::max(reach, norm((1 / big) * e - o));
     if (!(reach > 1e-250) || !std::isfinite(reach))
         reach = 1;
@@ -488,7 +538,7 @@ drawing builder::build()
     c_.resize(nb);
     for (std::size_t i = 0; i < nb; ++i)
         c_[i] = to_figure(c_world[i]);
-    for (const v3& e : e_world)
+    for (const v3 &e : e_world)
         e_.push_back(to_figure(e));
     world_unit_ = static_cast<long double>(big) * reach;
 
@@ -521,9 +571,9 @@ drawing builder::build()
 
 void builder::body_shape(std::size_t i)
 {
-    const body& b = p_.bodies[i];
+    const body &b = p_.bodies[i];
     const int bi = static_cast<int>(i);
-    body_summary& summary = g_.bodies[i];
+    body_summary &summary = g_.bodies[i];
     if (b.infinite_mass) {
         summary.form = shape::wall;
         wall(i);
@@ -547,7 +597,7 @@ void builder::body_shape(std::size_t i)
             add_name(bi, at + (std::max(radius, min_radius) + label_gap) * dir, place_of(dir));
         }
     };
-    const pivot* pv = p_.pivot_of(i);
+    const pivot *pv = p_.pivot_of(i);
     if (b.particle) {
         if (on_normal)
             disc(c, r);
@@ -617,8 +667,8 @@ void builder::body_shape(std::size_t i)
     summary.form = shape::marker;
     const point at = proj(c);
     const double h = 0.06;
-    add_path(role::body, bi, "body", {at + point{-h, -h}, at + point{h, -h}, at + point{h, h}, at + point{-h, h}},
-             true, true);
+    add_path(role::body, bi, "body", {at + point{-h, -h}, at + point{h, -h}, at + point{h, h}, at + point{-h, h}}, true,
+             true);
     if (!b.numbered)
         add_name(bi, at - point{0, h + label_gap}, place::south);
 }
@@ -670,15 +720,15 @@ void builder::box(std::size_t i, v3 c)
                 const v3 u = axis[(f + 1) % 3], w = axis[(f + 2) % 3];
                 const v3 centre = c + out;
                 add_path(role::body, bi, "body",
-                         {proj(centre - u - w), proj(centre + u - w), proj(centre + u + w), proj(centre - u + w)},
-                         true, true);
+                         {proj(centre - u - w), proj(centre + u - w), proj(centre + u + w), proj(centre - u + w)}, true,
+                         true);
             }
     }
     if (!p_.bodies[i].numbered) {
         double low = 1e9, x = proj(c).x;
-        for (const item& it : g_.items)
+        for (const item &it : g_.items)
             if (it.body == bi && it.what == role::body)
-                for (const point& q : it.points)
+                for (const point &q : it.points)
                     low = std::min(low, q.y);
         add_name(bi, {x, low - label_gap}, place::south);
     }
@@ -720,7 +770,7 @@ void builder::wall(std::size_t i)
 void builder::pivots()
 {
     for (std::size_t j = 0; j < p_.pivots.size(); ++j) {
-        const pivot& pv = p_.pivots[j];
+        const pivot &pv = p_.pivots[j];
         if (pv.body >= p_.bodies.size())
             continue;
         const std::string k = p_.pivots.size() == 1 ? "" : std::to_string(j + 1);
@@ -793,7 +843,7 @@ void builder::decorations()
     }
     if (vbig > 0 && std::isfinite(vbig)) {
         double fastest = 0;
-        for (v3& x : v) {
+        for (v3 &x : v) {
             x = (1 / vbig) * x;
             fastest = std::max(fastest, norm(x));
         }
@@ -856,7 +906,7 @@ void builder::decorations()
         add_circle(role::centre, bi, "C" + index_[i], c, 0.03, false);
         // The label where nothing starts: away from the velocity and from O.
         point away{0, 0};
-        for (const item& it : g_.items)
+        for (const item &it : g_.items)
             if (it.kind == item::arrow && it.what == role::velocity && it.body == bi) {
                 // The arrow lies on the side of its end that is not at C.
                 const point other = length(it.points[1] - c) > length(it.points[0] - c) ? it.points[1] : it.points[0];
@@ -875,14 +925,14 @@ void builder::decorations()
 // ---------------------------------------------------------------------------
 // The normal as text for describe().
 
-std::string rational_text(const numeric& q)
+std::string rational_text(const numeric &q)
 {
     std::ostringstream out;
     out << q;
     return out.str();
 }
 
-std::string normal_text(const derivation& d)
+std::string normal_text(const derivation &d)
 {
     const int dim = d.prob.dimension == 2 ? 2 : 3;
     bool rational = true, numeric_all = true;
@@ -915,7 +965,7 @@ std::string normal_text(const derivation& d)
 
 } // namespace
 
-drawing draw(const derivation& d)
+drawing draw(const derivation &d)
 {
     builder b(d);
     drawing g = b.build();

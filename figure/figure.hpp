@@ -30,7 +30,8 @@
 #include <string>
 #include <vector>
 
-namespace impactgen::figure {
+namespace impactgen::figure
+{
 
 struct point {
     double x = 0, y = 0;
@@ -48,34 +49,34 @@ enum class role {
     velocity,      ///< a centre's velocity before impact (scaled)
     pivot          ///< the pin support drawn at E
 };
-const char* role_name(role r);
+const char *role_name(role r);
 
 /// How a body is drawn.
 enum class shape {
-    disc,   ///< a particle or a sphere: radius |O - C| when C - O is along the normal, else small
-    rod,    ///< a slender rod: through a pin E, C and O, or a free rod whose end is at O
-    plate,  ///< a pinned body whose E, C and O are not in line: a parallelogram with centroid C
-    box,    ///< a free rigid body: a box about C with one face in the tangent plane through O
-    wall,   ///< a body of infinite mass: a hatched wall (plane in 3-D) through O
-    marker  ///< anything else: a small square at C
+    disc,  ///< a particle or a sphere: radius |O - C| when C - O is along the normal, else small
+    rod,   ///< a slender rod: through a pin E, C and O, or a free rod whose end is at O
+    plate, ///< a pinned body whose E, C and O are not in line: a parallelogram with centroid C
+    box,   ///< a free rigid body: a box about C with one face in the tangent plane through O
+    wall,  ///< a body of infinite mass: a hatched wall (plane in 3-D) through O
+    marker ///< anything else: a small square at C
 };
-const char* shape_name(shape s);
+const char *shape_name(shape s);
 
 /// One stroke or fill. Points are in figure coordinates.
 struct item {
     enum kind_t { circle, path, arrow } kind = path;
     role what = role::body;
-    int body = -1;          ///< index into problem::bodies, -1 for none
+    int body = -1; ///< index into problem::bodies, -1 for none
     /// What it is: "body", "hatch", "C1", "C2", "O", "e_t", "e_n", "e_b", "r1", "N1" (on body 1),
     /// "N2", "v1", "E" and "R" (E1, R1, ... with several pivots), "support", "ground".
     std::string key;
     /// circle: {centre}; path: its vertices; arrow: {tail, tip}.
     std::vector<point> points;
-    double radius = 0;      ///< circle only; the printers draw role centre and contact circles at a fixed size
-    bool closed = false;    ///< path: join the last vertex to the first
-    bool filled = false;    ///< circle or closed path: shaded like a body
+    double radius = 0;   ///< circle only; the printers draw role centre and contact circles at a fixed size
+    bool closed = false; ///< path: join the last vertex to the first
+    bool filled = false; ///< circle or closed path: shaded like a body
     bool dashed = false;
-    bool thin = false;      ///< a hairline (hatching, construction)
+    bool thin = false; ///< a hairline (hatching, construction)
 };
 
 /// Where a label sits relative to its point.
@@ -89,31 +90,31 @@ struct label {
     place side = place::centre;
     role what = role::body;
     int body = -1;
-    std::string key;        ///< as in item::key
+    std::string key; ///< as in item::key
     bool is_name = false;
-    std::string tex;        ///< math label: "C_1", "\\hat{e}_n"
-    std::string text, sub;  ///< math label in Unicode: "C" + "1", "\u00ea" + "n"
-    std::string name;       ///< name label: the raw name
+    std::string tex;       ///< math label: "C_1", "\\hat{e}_n"
+    std::string text, sub; ///< math label in Unicode: "C" + "1", "\u00ea" + "n"
+    std::string name;      ///< name label: the raw name
 };
 
 /// One body as the figure shows it (for describe() and for tests).
 struct body_summary {
-    std::string name;        ///< display_name(): "body 1" or the problem's name, raw
+    std::string name; ///< display_name(): "body 1" or the problem's name, raw
     shape form = shape::marker;
     bool infinite_mass = false;
-    bool at_rest = false;    ///< velocity and angular velocity exactly zero before impact
+    bool at_rest = false; ///< velocity and angular velocity exactly zero before impact
     bool pinned = false;
 };
 
 struct drawing {
     int dimension = 2;
-    bool schematic = false;        ///< drawn with illustrative values for the problem's symbols
-    std::vector<item> items;       ///< drawn in this order (bodies first, markers last)
-    std::vector<label> labels;     ///< drawn on top, in this order
+    bool schematic = false;    ///< drawn with illustrative values for the problem's symbols
+    std::vector<item> items;   ///< drawn in this order (bodies first, markers last)
+    std::vector<label> labels; ///< drawn on top, in this order
     std::vector<body_summary> bodies;
     std::size_t body1 = 0, body2 = 1; ///< the contact's bodies (indices into bodies)
-    std::string normal_text;       ///< the unit normal, "(3/5, 4/5)", or "n (symbolic)"
-    point n_hat, t_hat, b_hat;     ///< the contact frame as drawn (unit in 2-D; projected in 3-D)
+    std::string normal_text;          ///< the unit normal, "(3/5, 4/5)", or "n (symbolic)"
+    point n_hat, t_hat, b_hat;        ///< the contact frame as drawn (unit in 2-D; projected in 3-D)
 };
 
 /// The impact drawn from its derivation (problem + contact frame d.n_hat,
@@ -125,21 +126,21 @@ struct drawing {
 /// the centre, velocities that approach, spins 0). Never throws for a
 /// derivation that derive() returned; degenerate geometry (C at O, zero or
 /// extreme values, a symbolic normal) still gives finite coordinates.
-drawing draw(const impactgen::derivation& d);
+drawing draw(const impactgen::derivation &d);
 
 /// "\\begin{tikzpicture}...\\end{tikzpicture}", at most about 8.5 cm wide and
 /// 7.5 cm high (within 0.8\linewidth of an 11pt article); needs only tikz.
-std::string to_tikz(const drawing& g);
+std::string to_tikz(const drawing &g);
 
 /// One self-contained "<svg xmlns=... viewBox=...><title>..</title>...</svg>"
 /// element: no scripts, no external or internal references (arrow heads are
 /// drawn as polygons, so several figures can share one page).
-std::string to_svg(const drawing& g);
+std::string to_svg(const drawing &g);
 
 /// One line of alternative text, e.g. "ball (disc) strikes rod (rod pinned at
 /// E) at O; normal e_n along (1, 0)". Body names are made one-line by
 /// names::display_text but not escaped for any format: the caller escapes the
 /// line for its output (latex_text, html_text, xml_text).
-std::string describe(const drawing& g);
+std::string describe(const drawing &g);
 
 } // namespace impactgen::figure

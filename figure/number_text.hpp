@@ -4,7 +4,8 @@
 
 #include <string>
 
-namespace impactgen::figure::detail {
+namespace impactgen::figure::detail
+{
 
 /// v with three decimals, like "%.3f" in the C locale; a value that is not
 /// finite prints as 0.000 and the magnitude is clamped to 1e9.

@@ -2,9 +2,11 @@
 
 #include <cstdint>
 
-namespace impactgen::names {
+namespace impactgen::names
+{
 
-namespace {
+namespace
+{
 
 /// One step through the input: a well-formed UTF-8 sequence (valid, len 1-4,
 /// its code point cp) or a single byte that is not part of one (!valid, len 1).
@@ -14,7 +16,10 @@ struct unit {
     bool valid = false;
 };
 
-bool is_continuation(unsigned char b) { return (b & 0xC0) == 0x80; }
+bool is_continuation(unsigned char b)
+{
+    return (b & 0xC0) == 0x80;
+}
 
 // RFC 3629: no overlong forms, no surrogates, nothing beyond U+10FFFF.
 unit next_unit(std::string_view s, std::size_t i)
@@ -46,17 +51,20 @@ unit next_unit(std::string_view s, std::size_t i)
     return {len, cp, true};
 }
 
-bool is_control_byte(unsigned char c) { return c < 0x20 || c == 0x7F; }
+bool is_control_byte(unsigned char c)
+{
+    return c < 0x20 || c == 0x7F;
+}
 
 // Well-formed code points that are invisible or reorder text: escaped in
 // source comments and terminal output.
 bool is_hidden(std::uint32_t cp)
 {
-    return (cp >= 0x80 && cp <= 0x9F) || cp == 0x061C || cp == 0x200E || cp == 0x200F || cp == 0x2028 ||
-           cp == 0x2029 || (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069);
+    return (cp >= 0x80 && cp <= 0x9F) || cp == 0x061C || cp == 0x200E || cp == 0x200F || cp == 0x2028 || cp == 0x2029 ||
+           (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069);
 }
 
-void append_hex_escape(std::string& out, unsigned char c)
+void append_hex_escape(std::string &out, unsigned char c)
 {
     static const char digits[] = "0123456789abcdef";
     out += "\\x";
@@ -64,7 +72,7 @@ void append_hex_escape(std::string& out, unsigned char c)
     out += digits[c & 0xF];
 }
 
-void append_hex_escapes(std::string& out, std::string_view bytes)
+void append_hex_escapes(std::string &out, std::string_view bytes)
 {
     for (char c : bytes)
         append_hex_escape(out, static_cast<unsigned char>(c));
@@ -106,12 +114,24 @@ std::string cpp_string_literal(std::string_view s)
     for (char ch : s) {
         const auto c = static_cast<unsigned char>(ch);
         switch (c) {
-        case '\\': out += "\\\\"; break;
-        case '"': out += "\\\""; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
-        case '?': out += out.back() == '?' ? "\\?" : "?"; break;
+        case '\\':
+            out += "\\\\";
+            break;
+        case '"':
+            out += "\\\"";
+            break;
+        case '\n':
+            out += "\\n";
+            break;
+        case '\r':
+            out += "\\r";
+            break;
+        case '\t':
+            out += "\\t";
+            break;
+        case '?':
+            out += out.back() == '?' ? "\\?" : "?";
+            break;
         default:
             if (c < 0x20 || c >= 0x7F) {
                 out += '\\';
@@ -145,17 +165,38 @@ std::string latex_text(std::string_view s)
         }
         const char c = bytes[0];
         switch (c) {
-        case '#': out += "\\#"; break;
-        case '$': out += "\\$"; break;
-        case '%': out += "\\%"; break;
-        case '&': out += "\\&"; break;
-        case '_': out += "\\_"; break;
-        case '{': out += "\\{"; break;
-        case '}': out += "\\}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '^': out += "\\textasciicircum{}"; break;
-        case '\\': out += "\\textbackslash{}"; break;
-        default: out += is_control_byte(static_cast<unsigned char>(c)) ? ' ' : c;
+        case '#':
+            out += "\\#";
+            break;
+        case '$':
+            out += "\\$";
+            break;
+        case '%':
+            out += "\\%";
+            break;
+        case '&':
+            out += "\\&";
+            break;
+        case '_':
+            out += "\\_";
+            break;
+        case '{':
+            out += "\\{";
+            break;
+        case '}':
+            out += "\\}";
+            break;
+        case '~':
+            out += "\\textasciitilde{}";
+            break;
+        case '^':
+            out += "\\textasciicircum{}";
+            break;
+        case '\\':
+            out += "\\textbackslash{}";
+            break;
+        default:
+            out += is_control_byte(static_cast<unsigned char>(c)) ? ' ' : c;
         }
     }
     return out;
@@ -180,13 +221,25 @@ std::string html_text(std::string_view s)
         }
         const char c = bytes[0];
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&#39;"; break;
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        case '\'':
+            out += "&#39;";
+            break;
         case '\t':
-        case '\n': out += c; break;
+        case '\n':
+            out += c;
+            break;
         default:
             if (!is_control_byte(static_cast<unsigned char>(c)))
                 out += c;

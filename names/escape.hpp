@@ -17,7 +17,8 @@
 #include <string>
 #include <string_view>
 
-namespace impactgen::names {
+namespace impactgen::names
+{
 
 /// Text safe inside a C++ `//` line comment and on one line, and also safe
 /// inside a `/* */` comment: control bytes (< 0x20, including NUL, '\n',

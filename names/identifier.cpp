@@ -6,13 +6,18 @@
 #include <cstdint>
 #include <stdexcept>
 
-namespace impactgen::names {
+namespace impactgen::names
+{
 
-namespace {
+namespace
+{
 
-bool in_set(const std::set<std::string_view>& set, std::string_view s) { return set.count(s) != 0; }
+bool in_set(const std::set<std::string_view> &set, std::string_view s)
+{
+    return set.count(s) != 0;
+}
 
-const std::set<std::string_view>& keywords()
+const std::set<std::string_view> &keywords()
 {
     static const std::set<std::string_view> set = {
         "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
@@ -21,31 +26,31 @@ const std::set<std::string_view>& keywords()
         "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
         "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
         "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-        "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-        "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-        "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
+        "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct", "switch",
+        "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename", "union",
+        "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
         // identifiers with special meaning
         "final", "override", "import", "module"};
     return set;
 }
 
 // Standard macros and names that break code when declared as identifiers.
-const std::set<std::string_view>& reserved_names()
+const std::set<std::string_view> &reserved_names()
 {
     static const std::set<std::string_view> set = {
         "NULL", "EOF", "errno", "assert", "stdin", "stdout", "stderr", "offsetof", "setjmp", "va_arg", "va_start",
-        "va_end", "INFINITY", "NAN", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "FLT_MAX", "DBL_MAX", "LDBL_MAX",
-        "FLT_MIN", "DBL_MIN", "CHAR_BIT", "INT_MAX", "INT_MIN", "UINT_MAX", "LONG_MAX", "LONG_MIN", "SIZE_MAX",
-        "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX", "BUFSIZ", "FILENAME_MAX", "FOPEN_MAX", "TMP_MAX", "L_tmpnam",
-        "SEEK_SET", "SEEK_CUR", "SEEK_END", "CLOCKS_PER_SEC", "MB_CUR_MAX", "math_errhandling", "FP_NAN",
-        "FP_INFINITE", "FP_ZERO", "FP_NORMAL", "FP_SUBNORMAL", "isnan", "isinf", "isfinite", "signbit",
-        "fpclassify", "isnormal", "unix", "linux", "i386", "major", "minor", "std", "posix", "main",
+        "va_end", "INFINITY", "NAN", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "FLT_MAX", "DBL_MAX", "LDBL_MAX", "FLT_MIN",
+        "DBL_MIN", "CHAR_BIT", "INT_MAX", "INT_MIN", "UINT_MAX", "LONG_MAX", "LONG_MIN", "SIZE_MAX", "EXIT_SUCCESS",
+        "EXIT_FAILURE", "RAND_MAX", "BUFSIZ", "FILENAME_MAX", "FOPEN_MAX", "TMP_MAX", "L_tmpnam", "SEEK_SET",
+        "SEEK_CUR", "SEEK_END", "CLOCKS_PER_SEC", "MB_CUR_MAX", "math_errhandling", "FP_NAN", "FP_INFINITE", "FP_ZERO",
+        "FP_NORMAL", "FP_SUBNORMAL", "isnan", "isinf", "isfinite", "signbit", "fpclassify", "isnormal", "unix", "linux",
+        "i386", "major", "minor", "std", "posix", "main",
         // <cmath> / <math.h> macros (POSIX and GNU): a generated header may include <cmath>
-        "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI", "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI",
-        "M_2_SQRTPI", "M_SQRT2", "M_SQRT1_2", "MATH_ERRNO", "MATH_ERREXCEPT", "FP_ILOGB0", "FP_ILOGBNAN",
-        "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL", "HUGE", "MAXFLOAT", "FLT_EVAL_METHOD", "DECIMAL_DIG",
-        "FLT_EPSILON", "DBL_EPSILON", "LDBL_EPSILON", "LDBL_MIN", "FLT_DIG", "DBL_DIG", "LDBL_DIG",
-        "FLT_MANT_DIG", "DBL_MANT_DIG", "LDBL_MANT_DIG", "FLT_RADIX", "NDEBUG", "assert_perror", "min", "max"};
+        "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI", "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI", "M_2_SQRTPI",
+        "M_SQRT2", "M_SQRT1_2", "MATH_ERRNO", "MATH_ERREXCEPT", "FP_ILOGB0", "FP_ILOGBNAN", "FP_FAST_FMA",
+        "FP_FAST_FMAF", "FP_FAST_FMAL", "HUGE", "MAXFLOAT", "FLT_EVAL_METHOD", "DECIMAL_DIG", "FLT_EPSILON",
+        "DBL_EPSILON", "LDBL_EPSILON", "LDBL_MIN", "FLT_DIG", "DBL_DIG", "LDBL_DIG", "FLT_MANT_DIG", "DBL_MANT_DIG",
+        "LDBL_MANT_DIG", "FLT_RADIX", "NDEBUG", "assert_perror", "min", "max"};
     return set;
 }
 
@@ -54,9 +59,15 @@ bool is_ident_byte(unsigned char c)
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
+bool is_digit(unsigned char c)
+{
+    return c >= '0' && c <= '9';
+}
 
-char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+char upper(char c)
+{
+    return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
 
 std::uint64_t fnv1a64(std::string_view s)
 {
@@ -91,7 +102,10 @@ std::string macro_part(std::string_view s)
 
 } // namespace
 
-bool is_keyword(std::string_view s) { return in_set(keywords(), s); }
+bool is_keyword(std::string_view s)
+{
+    return in_set(keywords(), s);
+}
 
 bool is_reserved(std::string_view s)
 {
@@ -138,7 +152,7 @@ std::string mangle(std::string_view any)
     return out;
 }
 
-void identifier_scope::reserve(const std::string& s)
+void identifier_scope::reserve(const std::string &s)
 {
     if (!is_safe_identifier(s))
         throw std::invalid_argument("identifier_scope::reserve: \"" + display_text(s) +
@@ -166,7 +180,10 @@ std::string identifier_scope::claim_exact(std::string_view wanted)
     return name;
 }
 
-bool identifier_scope::taken(const std::string& s) const { return taken_.count(s) != 0; }
+bool identifier_scope::taken(const std::string &s) const
+{
+    return taken_.count(s) != 0;
+}
 
 std::string namespace_problem(std::string_view ns)
 {

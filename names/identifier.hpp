@@ -19,7 +19,8 @@
 #include <string_view>
 #include <vector>
 
-namespace impactgen::names {
+namespace impactgen::names
+{
 
 /// True for every C++20 keyword and alternative token (and, bitor, not_eq, ...)
 /// plus the identifiers with special meaning final, override, import, module.
@@ -48,14 +49,15 @@ bool is_safe_identifier(std::string_view s);
 std::string mangle(std::string_view any);
 
 /// Unique safe identifiers within one C++ scope.
-class identifier_scope {
+class identifier_scope
+{
 public:
     identifier_scope() = default;
 
     /// A name the emitter itself uses in this scope ("out", "T", "detail"):
     /// claim() never returns it. Throws std::invalid_argument when s is not
     /// a safe identifier.
-    void reserve(const std::string& s);
+    void reserve(const std::string &s);
 
     /// mangle(wanted); when that is taken (reserved or claimed before), the
     /// first free one of base_2, base_3, ... (a base that already ends in '_',
@@ -69,7 +71,7 @@ public:
     std::string claim_exact(std::string_view wanted);
 
     /// True when s was reserved or claimed in this scope.
-    bool taken(const std::string& s) const;
+    bool taken(const std::string &s) const;
     /// Every name reserved or claimed so far, sorted.
     std::vector<std::string> names() const { return {taken_.begin(), taken_.end()}; }
 

@@ -82,12 +82,14 @@
 #include <string>
 #include <vector>
 
-namespace impactgen::numeric {
+namespace impactgen::numeric
+{
 
 enum class friction_regime { smooth, stick, slide };
 enum class friction_status {
-    ok,          ///< exactly one solution of the law
-    singular,    ///< the body equations or the contact are degenerate (no compliance at the contact, two pivots on a body, ...)
+    ok,       ///< exactly one solution of the law
+    singular, ///< the body equations or the contact are degenerate (no compliance at the contact, two pivots on a body,
+              ///< ...)
     no_solution, ///< no impulse satisfies the law (or a separating contact: P_n < 0), or mu < 0
     ambiguous    ///< more than one distinct impulse satisfies the law; friction_answer::candidates lists them
 };
@@ -97,22 +99,29 @@ enum class friction_method {
     enumeration ///< regime enumeration only (3-D: stick + scan of the sliding direction)
 };
 
-inline const char* friction_regime_name(friction_regime r)
+inline const char *friction_regime_name(friction_regime r)
 {
     switch (r) {
-    case friction_regime::smooth: return "smooth";
-    case friction_regime::stick: return "stick";
-    case friction_regime::slide: return "slide";
+    case friction_regime::smooth:
+        return "smooth";
+    case friction_regime::stick:
+        return "stick";
+    case friction_regime::slide:
+        return "slide";
     }
     return "?";
 }
-inline const char* friction_status_name(friction_status s)
+inline const char *friction_status_name(friction_status s)
 {
     switch (s) {
-    case friction_status::ok: return "ok";
-    case friction_status::singular: return "singular";
-    case friction_status::no_solution: return "no_solution";
-    case friction_status::ambiguous: return "ambiguous";
+    case friction_status::ok:
+        return "ok";
+    case friction_status::singular:
+        return "singular";
+    case friction_status::no_solution:
+        return "no_solution";
+    case friction_status::ambiguous:
+        return "ambiguous";
     }
     return "?";
 }
@@ -140,23 +149,24 @@ template <typename T> struct friction_candidate {
     friction_regime regime = friction_regime::stick;
     T normal_impulse = 0;
     vec<T> tangential_impulse = vec<T>::Zero();
-    vec<T> sliding_direction = vec<T>::Zero(); ///< unit u'_t / |u'_t| when sliding, else 0
+    vec<T> sliding_direction = vec<T>::Zero();       ///< unit u'_t / |u'_t| when sliding, else 0
     vec<T> relative_velocity_after = vec<T>::Zero(); ///< u' = v'_B - v'_A at O
-    bool from_newton = false; ///< found by the Newton method (3-D), not by the enumeration
+    bool from_newton = false;                        ///< found by the Newton method (3-D), not by the enumeration
 };
 
 template <typename T> struct friction_answer {
     friction_status status = friction_status::singular;
     friction_regime regime = friction_regime::smooth;
-    std::vector<vec<T>> velocity, angular_velocity; ///< every body, after the impact (unchanged when singular / no solution)
-    T normal_impulse = 0;                              ///< P_n, on body 2
-    vec<T> tangential_impulse = vec<T>::Zero();        ///< P_t, world axes, on body 2
-    std::vector<vec<T>> pivot_impulses;                ///< per pivot, world axes, on its body
-    vec<T> relative_velocity_before = vec<T>::Zero();  ///< u
-    vec<T> relative_velocity_after = vec<T>::Zero();   ///< u'
-    int iterations = 0;                                ///< Newton iterations, all starts together (0: no Newton)
-    bool newton_converged = false;                     ///< 3-D, automatic or newton method
-    bool newton_reduced = false;                       ///< every Newton start failed: the reduced problem's root was the start
+    std::vector<vec<T>> velocity,
+        angular_velocity; ///< every body, after the impact (unchanged when singular / no solution)
+    T normal_impulse = 0; ///< P_n, on body 2
+    vec<T> tangential_impulse = vec<T>::Zero();       ///< P_t, world axes, on body 2
+    std::vector<vec<T>> pivot_impulses;               ///< per pivot, world axes, on its body
+    vec<T> relative_velocity_before = vec<T>::Zero(); ///< u
+    vec<T> relative_velocity_after = vec<T>::Zero();  ///< u'
+    int iterations = 0;                               ///< Newton iterations, all starts together (0: no Newton)
+    bool newton_converged = false;                    ///< 3-D, automatic or newton method
+    bool newton_reduced = false; ///< every Newton start failed: the reduced problem's root was the start
     /// The distinct solutions found (planar: by the enumeration; 3-D automatic: the
     /// enumeration's and Newton's, merged). The answer's state is candidates[0] in
     /// the planar case and Newton's in 3-D when it converged.
@@ -165,34 +175,36 @@ template <typename T> struct friction_answer {
 
 /// The contact problem in the contact frame: u'(x) = c + W x for the frame
 /// coordinates x = (P_n, P_t1[, P_t2]) of the impulse on body 2.
-template <typename T> class friction_contact {
+template <typename T> class friction_contact
+{
 public:
     using V3 = Eigen::Matrix<T, 3, 1>;
     using M3 = Eigen::Matrix<T, 3, 3>;
     using MX = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
     using VX = Eigen::Matrix<T, Eigen::Dynamic, 1>;
 
-    explicit friction_contact(const problem<T>& p) : p_(p) { assemble(); }
+    explicit friction_contact(const problem<T> &p) : p_(p) { assemble(); }
 
-    bool ok = false;     ///< false: singular body equations or no compliance at the contact
-    int tangents = 1;    ///< 1 (planar) or 2
-    vec<T> n = vec<T>::Zero(), t1 = vec<T>::Zero(), t2 = vec<T>::Zero(); ///< the frame: n^, t1, t2 = n^ x t1 (t2 = 0 in the plane)
-    M3 W = M3::Zero();   ///< Delassus matrix in the frame (unused rows/columns 0 in the plane)
-    V3 c = V3::Zero();   ///< u' at P = 0, frame coordinates
-    V3 u = V3::Zero();   ///< u before the impact, frame coordinates
+    bool ok = false;  ///< false: singular body equations or no compliance at the contact
+    int tangents = 1; ///< 1 (planar) or 2
+    vec<T> n = vec<T>::Zero(), t1 = vec<T>::Zero(),
+           t2 = vec<T>::Zero(); ///< the frame: n^, t1, t2 = n^ x t1 (t2 = 0 in the plane)
+    M3 W = M3::Zero();          ///< Delassus matrix in the frame (unused rows/columns 0 in the plane)
+    V3 c = V3::Zero();          ///< u' at P = 0, frame coordinates
+    V3 u = V3::Zero();          ///< u before the impact, frame coordinates
     vec<T> u_world = vec<T>::Zero();
     T e = 0, mu = 0;
     T velocity_scale = 0;   ///< V
     T compliance_scale = 0; ///< w
     T impulse_scale = 0;    ///< P0 = V / w
 
-    vec<T> world(const V3& x) const { return x[0] * n + x[1] * t1 + x[2] * t2; }
-    V3 frame(const vec<T>& a) const { return V3(a.dot(n), a.dot(t1), tangents == 2 ? a.dot(t2) : T(0)); }
-    V3 velocity_after(const V3& x) const { return c + W * x; }
+    vec<T> world(const V3 &x) const { return x[0] * n + x[1] * t1 + x[2] * t2; }
+    V3 frame(const vec<T> &a) const { return V3(a.dot(n), a.dot(t1), tangents == 2 ? a.dot(t2) : T(0)); }
+    V3 velocity_after(const V3 &x) const { return c + W * x; }
     T normal_rhs() const { return -e * u[0] - c[0]; } ///< W_n. x must equal this
 
     /// Every body's state after the impulse P (world, on body 2) and the pivot impulses.
-    void apply(const vec<T>& P, std::vector<vec<T>>& v, std::vector<vec<T>>& w, std::vector<vec<T>>& R) const
+    void apply(const vec<T> &P, std::vector<vec<T>> &v, std::vector<vec<T>> &w, std::vector<vec<T>> &R) const
     {
         v.clear();
         w.clear();
@@ -228,27 +240,27 @@ private:
     Eigen::FullPivLU<MX> S_;
     VX q_;
 
-    vec<T> lin(const VX& x, std::size_t i) const
+    vec<T> lin(const VX &x, std::size_t i) const
     {
         vec<T> a = vec<T>::Zero();
         for (int k = 0; k < dim_; ++k)
             a[k] = x[off_[i] + k];
         return a;
     }
-    vec<T> ang(const VX& x, std::size_t i) const
+    vec<T> ang(const VX &x, std::size_t i) const
     {
         vec<T> a = vec<T>::Zero();
         if (dim_ == 2)
             a[2] = x[off_[i] + 2];
         else
-            for (int k = 0; k < 3; ++k) // element-wise: g++ 12 reports a false -Warray-bounds on
+            for (int k = 0; k < 3; ++k)    // element-wise: g++ 12 reports a false -Warray-bounds on
                 a[k] = x[off_[i] + 3 + k]; // packet copies between a dynamic segment and vec<float>
         return a;
     }
     T sign(std::size_t i) const { return i == p_.body1 ? T(-1) : T(1); }
 
     /// Generalized impulse of P at O on body 2 and -P on body 1.
-    VX force(const vec<T>& P) const
+    VX force(const vec<T> &P) const
     {
         VX f = VX::Zero(ndof_);
         for (std::size_t i : {p_.body1, p_.body2}) {
@@ -272,7 +284,7 @@ private:
     /// impulse f: q' = base + M^-1 J_p^T R, R = -S^-1 J_p base, base = (q +) M^-1 f.
     /// Two steps of iterative refinement on J_p q' = 0: a light pinned body struck by
     /// a heavy one has |M^-1 f| ~ (mass ratio) V, which the pivot cancels.
-    void respond(const VX& f, bool with_initial, VX& q1, VX& r) const
+    void respond(const VX &f, bool with_initial, VX &q1, VX &r) const
     {
         VX base = Minv_ * f;
         if (with_initial)
@@ -286,11 +298,11 @@ private:
         }
     }
     /// v_B - v_A at O from generalized velocities x (with_known: the immovable bodies' own velocities count).
-    vec<T> contact_velocity(const VX& x, bool with_known) const
+    vec<T> contact_velocity(const VX &x, bool with_known) const
     {
         vec<T> out = vec<T>::Zero();
         for (std::size_t i : {p_.body1, p_.body2}) {
-            const auto& b = p_.bodies[i];
+            const auto &b = p_.bodies[i];
             const vec<T> arm = p_.point - b.position;
             vec<T> vi = vec<T>::Zero();
             if (off_[i] >= 0) {
@@ -308,7 +320,7 @@ private:
     }
     vec<T> point_velocity_before(std::size_t i) const
     {
-        const auto& b = p_.bodies[i];
+        const auto &b = p_.bodies[i];
         const bool spin = b.infinite_mass || !b.particle;
         return b.velocity + (spin ? vec<T>(b.angular_velocity.cross(p_.point - b.position)) : vec<T>::Zero());
     }
@@ -354,7 +366,7 @@ private:
         for (std::size_t i : {p_.body1, p_.body2}) {
             if (off_[i] < 0)
                 continue;
-            const auto& b = p_.bodies[i];
+            const auto &b = p_.bodies[i];
             if (!(b.mass > 0))
                 return;
             for (int k = 0; k < dim_; ++k) {
@@ -432,17 +444,22 @@ private:
     }
 };
 
-namespace detail {
+namespace detail
+{
 
 template <typename T> using fv3 = Eigen::Matrix<T, 3, 1>;
 template <typename T> using fm3 = Eigen::Matrix<T, 3, 3>;
 
 /// The tangential part (components 1, 2) of a frame vector.
-template <typename T> Eigen::Matrix<T, 2, 1> tangential(const fv3<T>& a) { return Eigen::Matrix<T, 2, 1>(a[1], a[2]); }
+template <typename T> Eigen::Matrix<T, 2, 1> tangential(const fv3<T> &a)
+{
+    return Eigen::Matrix<T, 2, 1>(a[1], a[2]);
+}
 
 /// Checks frame impulse x against the law (header comment); d: the sliding direction (frame, tangential) for a slide.
 template <typename T>
-bool satisfies_law(const friction_contact<T>& fc, const fv3<T>& x, friction_regime regime, const Eigen::Matrix<T, 2, 1>& d, const friction_options<T>& opt)
+bool satisfies_law(const friction_contact<T> &fc, const fv3<T> &x, friction_regime regime,
+                   const Eigen::Matrix<T, 2, 1> &d, const friction_options<T> &opt)
 {
     using std::abs;
     if (!x.allFinite())
@@ -465,7 +482,9 @@ bool satisfies_law(const friction_contact<T>& fc, const fv3<T>& x, friction_regi
     return along >= -tol * Vx && (ut - along * d).norm() <= tol * Vx && (pt + fc.mu * x[0] * d).norm() <= Pt;
 }
 
-template <typename T> friction_candidate<T> make_candidate(const friction_contact<T>& fc, const fv3<T>& x, friction_regime regime, const Eigen::Matrix<T, 2, 1>& d)
+template <typename T>
+friction_candidate<T> make_candidate(const friction_contact<T> &fc, const fv3<T> &x, friction_regime regime,
+                                     const Eigen::Matrix<T, 2, 1> &d)
 {
     friction_candidate<T> k;
     k.regime = regime;
@@ -477,17 +496,18 @@ template <typename T> friction_candidate<T> make_candidate(const friction_contac
     return k;
 }
 
-template <typename T> fv3<T> frame_impulse(const friction_contact<T>& fc, const friction_candidate<T>& k)
+template <typename T> fv3<T> frame_impulse(const friction_contact<T> &fc, const friction_candidate<T> &k)
 {
     return fv3<T>(k.normal_impulse, k.tangential_impulse.dot(fc.t1), k.tangential_impulse.dot(fc.t2));
 }
 
 /// Adds k to list unless a candidate with the same impulse is already there.
 template <typename T>
-void add_distinct(const friction_contact<T>& fc, std::vector<friction_candidate<T>>& list, const friction_candidate<T>& k, T merge, T floor)
+void add_distinct(const friction_contact<T> &fc, std::vector<friction_candidate<T>> &list,
+                  const friction_candidate<T> &k, T merge, T floor)
 {
     const fv3<T> x = frame_impulse(fc, k);
-    for (const auto& o : list) {
+    for (const auto &o : list) {
         const fv3<T> y = frame_impulse(fc, o);
         if ((x - y).norm() <= merge * std::max(x.norm(), y.norm()) + floor * fc.impulse_scale)
             return;
@@ -496,7 +516,7 @@ void add_distinct(const friction_contact<T>& fc, std::vector<friction_candidate<
 }
 
 /// The stick candidate: u'_t = 0 and the restitution, a (1 + tangents)-square solve.
-template <typename T> bool stick_impulse(const friction_contact<T>& fc, fv3<T>& x)
+template <typename T> bool stick_impulse(const friction_contact<T> &fc, fv3<T> &x)
 {
     const int k = 1 + fc.tangents;
     using MX = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
@@ -517,7 +537,7 @@ template <typename T> bool stick_impulse(const friction_contact<T>& fc, fv3<T>& 
 
 /// The slide candidate along the frame-tangential unit direction d: P_t = -mu P_n d
 /// and the normal equation; false when that equation is degenerate.
-template <typename T> bool slide_impulse(const friction_contact<T>& fc, const Eigen::Matrix<T, 2, 1>& d, fv3<T>& x)
+template <typename T> bool slide_impulse(const friction_contact<T> &fc, const Eigen::Matrix<T, 2, 1> &d, fv3<T> &x)
 {
     const T D = fc.W(0, 0) - fc.mu * (fc.W(0, 1) * d[0] + fc.W(0, 2) * d[1]);
     if (D == 0)
@@ -528,7 +548,7 @@ template <typename T> bool slide_impulse(const friction_contact<T>& fc, const Ei
 }
 
 /// D(theta) (u'_t(theta) x d(theta)), the scan function of the 3-D enumeration.
-template <typename T> T slide_residual(const friction_contact<T>& fc, T theta)
+template <typename T> T slide_residual(const friction_contact<T> &fc, T theta)
 {
     using std::cos;
     using std::sin;
@@ -546,7 +566,7 @@ template <typename T> T slide_residual(const friction_contact<T>& fc, T theta)
 /// F2 = u'_t x d, x = (P_n, -mu P_n d(theta)); steps are taken while |F| decreases.
 /// (Near grazing with a large mu, D is a small difference and P_n = rhs_n / D loses
 /// digits that this recovers.)
-template <typename T> fv3<T> polish_slide(const friction_contact<T>& fc, T theta, T Pn, int steps = 8)
+template <typename T> fv3<T> polish_slide(const friction_contact<T> &fc, T theta, T Pn, int steps = 8)
 {
     using std::cos;
     using std::sin;
@@ -556,8 +576,8 @@ template <typename T> fv3<T> polish_slide(const friction_contact<T>& fc, T theta
     const D2 wnt(fc.W(0, 1), fc.W(0, 2)), wtn(fc.W(1, 0), fc.W(2, 0));
     const M2 Wtt = fc.W.template bottomRightCorner<2, 2>();
     const D2 ct(fc.c[1], fc.c[2]);
-    auto cross = [](const D2& p, const D2& q) { return p[0] * q[1] - p[1] * q[0]; };
-    auto residual = [&](T th, T pn, M2* J) {
+    auto cross = [](const D2 &p, const D2 &q) { return p[0] * q[1] - p[1] * q[0]; };
+    auto residual = [&](T th, T pn, M2 *J) {
         const D2 d(cos(th), sin(th)), dd(-sin(th), cos(th));
         const D2 ut = ct + wtn * pn - mu * pn * (Wtt * d);
         D2 F(fc.W(0, 0) * pn - mu * pn * wnt.dot(d) - rhs, cross(ut, d));
@@ -589,14 +609,16 @@ template <typename T> fv3<T> polish_slide(const friction_contact<T>& fc, T theta
 }
 
 /// Every distinct solution of the law found by the enumeration (mu > 0).
-template <typename T> std::vector<friction_candidate<T>> enumerate(const friction_contact<T>& fc, const friction_options<T>& opt)
+template <typename T>
+std::vector<friction_candidate<T>> enumerate(const friction_contact<T> &fc, const friction_options<T> &opt)
 {
     using D2 = Eigen::Matrix<T, 2, 1>;
     std::vector<friction_candidate<T>> out;
     fv3<T> x;
     if (stick_impulse(fc, x) && satisfies_law(fc, x, friction_regime::stick, D2(D2::Zero()), opt))
-        add_distinct(fc, out, make_candidate(fc, x, friction_regime::stick, D2(D2::Zero())), opt.merge, opt.impulse_floor);
-    auto try_slide = [&](const D2& d) {
+        add_distinct(fc, out, make_candidate(fc, x, friction_regime::stick, D2(D2::Zero())), opt.merge,
+                     opt.impulse_floor);
+    auto try_slide = [&](const D2 &d) {
         fv3<T> y;
         if (slide_impulse(fc, d, y) && satisfies_law(fc, y, friction_regime::slide, d, opt))
             add_distinct(fc, out, make_candidate(fc, y, friction_regime::slide, d), opt.merge, opt.impulse_floor);
@@ -638,7 +660,8 @@ template <typename T> std::vector<friction_candidate<T>> enumerate(const frictio
                 y = polish_slide(fc, th, y[0]);
                 const D2 d = -tangential<T>(y) / (fc.mu * y[0]);
                 if (y[0] != 0 && satisfies_law(fc, y, friction_regime::slide, d, opt))
-                    add_distinct(fc, out, make_candidate(fc, y, friction_regime::slide, d), opt.merge, opt.impulse_floor);
+                    add_distinct(fc, out, make_candidate(fc, y, friction_regime::slide, d), opt.merge,
+                                 opt.impulse_floor);
                 else
                     try_slide(D2(std::cos(th), std::sin(th)));
             }
@@ -653,7 +676,7 @@ template <typename T> std::vector<friction_candidate<T>> enumerate(const frictio
 ///   F_n = u'_n + e u_n,
 ///   F_t = (P_t - proj_{|.| <= mu max(P_n, 0)}(P_t - rho u'_t)) / rho,
 /// and an element of its generalized Jacobian.
-template <typename T> fv3<T> alart_curnier(const friction_contact<T>& fc, const fv3<T>& x, T rho, fm3<T>* J)
+template <typename T> fv3<T> alart_curnier(const friction_contact<T> &fc, const fv3<T> &x, T rho, fm3<T> *J)
 {
     using M2 = Eigen::Matrix<T, 2, 2>;
     using D2 = Eigen::Matrix<T, 2, 1>;
@@ -690,7 +713,8 @@ template <typename T> fv3<T> alart_curnier(const friction_contact<T>& fc, const 
 /// Damped semismooth Newton from x (Armijo backtracking on |F|^2). Converged when
 /// |F| <= newton_tolerance * max(V, w |x|) and the step has stopped contracting
 /// (|dx| <= 8 eps |x|, or no smaller than half the previous step: the rounding floor).
-template <typename T> bool newton_from(const friction_contact<T>& fc, const friction_options<T>& opt, fv3<T>& x, int& iterations)
+template <typename T>
+bool newton_from(const friction_contact<T> &fc, const friction_options<T> &opt, fv3<T> &x, int &iterations)
 {
     const T eps = std::numeric_limits<T>::epsilon();
     const T rho = T(1) / fc.compliance_scale; // the Alart-Curnier parameter: 1 / max |W_ij|
@@ -698,7 +722,8 @@ template <typename T> bool newton_from(const friction_contact<T>& fc, const fric
     fv3<T> F = alart_curnier(fc, x, rho, &J);
     T previous = std::numeric_limits<T>::infinity();
     for (int it = 0; it < opt.max_iterations; ++it) {
-        const bool small = F.norm() <= opt.newton_tolerance * std::max(fc.velocity_scale, fc.compliance_scale * x.norm());
+        const bool small =
+            F.norm() <= opt.newton_tolerance * std::max(fc.velocity_scale, fc.compliance_scale * x.norm());
         Eigen::FullPivLU<fm3<T>> lu(J);
         const fv3<T> dx = lu.solve(-F);
         if (!dx.allFinite())
@@ -714,7 +739,8 @@ template <typename T> bool newton_from(const friction_contact<T>& fc, const fric
         bool accepted = false;
         for (int ls = 0; ls < 40 && !accepted; ++ls) {
             xn = x + alpha * dx;
-            accepted = alart_curnier(fc, xn, rho, static_cast<fm3<T>*>(nullptr)).squaredNorm() <= (T(1) - T(1e-4) * alpha) * phi;
+            accepted = alart_curnier(fc, xn, rho, static_cast<fm3<T> *>(nullptr)).squaredNorm() <=
+                       (T(1) - T(1e-4) * alpha) * phi;
             if (!accepted)
                 alpha /= 2;
         }
@@ -727,7 +753,9 @@ template <typename T> bool newton_from(const friction_contact<T>& fc, const fric
 }
 
 /// Classifies a converged point (stick when |u'_t| <= tol Vx) and checks it against the law.
-template <typename T> bool accept_point(const friction_contact<T>& fc, const friction_options<T>& opt, const fv3<T>& x, friction_candidate<T>& out)
+template <typename T>
+bool accept_point(const friction_contact<T> &fc, const friction_options<T> &opt, const fv3<T> &x,
+                  friction_candidate<T> &out)
 {
     using D2 = Eigen::Matrix<T, 2, 1>;
     const D2 ut = tangential<T>(fc.velocity_after(x));
@@ -749,7 +777,7 @@ template <typename T> bool accept_point(const friction_contact<T>& fc, const fri
 /// -W_tt^-1 b when inside, else -(W_tt + lambda 1)^-1 b with lambda > 0 such that
 /// |P_t| = mu P_n (found by bisection; |P_t(lambda)| decreases). False when W_tt
 /// is not positive definite.
-template <typename T> bool tangential_response(const friction_contact<T>& fc, T Pn, Eigen::Matrix<T, 2, 1>& Pt)
+template <typename T> bool tangential_response(const friction_contact<T> &fc, T Pn, Eigen::Matrix<T, 2, 1> &Pt)
 {
     using std::sqrt;
     using M2 = Eigen::Matrix<T, 2, 2>;
@@ -761,7 +789,9 @@ template <typename T> bool tangential_response(const friction_contact<T>& fc, T 
     if (!(a[0] > std::numeric_limits<T>::epsilon() * a[1]))
         return false;
     const D2 beta = es.eigenvectors().transpose() * b;
-    auto at = [&](T lambda) { return D2(-(es.eigenvectors() * D2(beta[0] / (a[0] + lambda), beta[1] / (a[1] + lambda)))); };
+    auto at = [&](T lambda) {
+        return D2(-(es.eigenvectors() * D2(beta[0] / (a[0] + lambda), beta[1] / (a[1] + lambda))));
+    };
     const T r = fc.mu * std::max(Pn, T(0));
     Pt = at(0);
     if (Pt.norm() <= r)
@@ -787,14 +817,14 @@ template <typename T> bool tangential_response(const friction_contact<T>& fc, T 
 /// (tangential_response). phi(0) = -rhs_n < 0 for an approach; P_n grows
 /// geometrically from 1e-3 rhs_n / w by factors of 2 (at most 160 steps) to the
 /// first sign change, which bisection narrows. x: the root with its P_t.
-template <typename T> bool reduced_root(const friction_contact<T>& fc, fv3<T>& x)
+template <typename T> bool reduced_root(const friction_contact<T> &fc, fv3<T> &x)
 {
     using D2 = Eigen::Matrix<T, 2, 1>;
     const T rhs = fc.normal_rhs();
     if (!(rhs > 0))
         return false;
     D2 Pt;
-    auto phi = [&](T Pn, bool& ok) {
+    auto phi = [&](T Pn, bool &ok) {
         ok = tangential_response(fc, Pn, Pt);
         return fc.W(0, 0) * Pn + fc.W(0, 1) * Pt[0] + fc.W(0, 2) * Pt[1] - rhs;
     };
@@ -833,7 +863,8 @@ template <typename T> bool reduced_root(const friction_contact<T>& fc, fv3<T>& x
 /// vanishing approach and |F| has a spurious local minimum at P = 0), the root
 /// of the reduced problem (reduced_root) is the last start; reduced is then true.
 template <typename T>
-bool newton(const friction_contact<T>& fc, const friction_options<T>& opt, friction_candidate<T>& out, int& iterations, bool& reduced)
+bool newton(const friction_contact<T> &fc, const friction_options<T> &opt, friction_candidate<T> &out, int &iterations,
+            bool &reduced)
 {
     using D2 = Eigen::Matrix<T, 2, 1>;
     reduced = false;
@@ -853,7 +884,7 @@ bool newton(const friction_contact<T>& fc, const friction_options<T>& opt, frict
     dirs.push_back(D2(-1, 0));
     dirs.push_back(D2(0, 1));
     dirs.push_back(D2(0, -1));
-    for (const D2& d : dirs)
+    for (const D2 &d : dirs)
         if (slide_impulse(fc, d, y))
             starts.push_back(y);
     for (fv3<T> x : starts)
@@ -873,11 +904,11 @@ bool newton(const friction_contact<T>& fc, const friction_options<T>& opt, frict
 /// Solves the impact with Coulomb friction (header comment). status ok: exactly
 /// one solution was found; ambiguous: several (the state is the first, or
 /// Newton's in 3-D); no_solution / singular: the state is the state before.
-template <typename T> friction_answer<T> solve_friction(const problem<T>& p, const friction_options<T>& opt = {})
+template <typename T> friction_answer<T> solve_friction(const problem<T> &p, const friction_options<T> &opt = {})
 {
     using D2 = Eigen::Matrix<T, 2, 1>;
     friction_answer<T> out;
-    for (const auto& b : p.bodies) {
+    for (const auto &b : p.bodies) {
         out.velocity.push_back(b.velocity);
         out.angular_velocity.push_back(b.angular_velocity);
     }
@@ -890,7 +921,7 @@ template <typename T> friction_answer<T> solve_friction(const problem<T>& p, con
         out.status = friction_status::no_solution;
         return out;
     }
-    const friction_candidate<T>* chosen = nullptr;
+    const friction_candidate<T> *chosen = nullptr;
     friction_candidate<T> newton_answer;
     if (fc.mu == 0) {
         detail::fv3<T> x(fc.normal_rhs() / fc.W(0, 0), 0, 0);
@@ -903,7 +934,7 @@ template <typename T> friction_answer<T> solve_friction(const problem<T>& p, con
         if (out.newton_converged)
             out.candidates.push_back(newton_answer);
         if (opt.method == friction_method::automatic)
-            for (const auto& k : detail::enumerate(fc, opt))
+            for (const auto &k : detail::enumerate(fc, opt))
                 detail::add_distinct(fc, out.candidates, k, opt.merge, opt.impulse_floor);
         if (out.newton_converged)
             chosen = &out.candidates.front();
@@ -919,17 +950,19 @@ template <typename T> friction_answer<T> solve_friction(const problem<T>& p, con
     out.normal_impulse = chosen->normal_impulse;
     out.tangential_impulse = chosen->tangential_impulse;
     out.relative_velocity_after = chosen->relative_velocity_after;
-    fc.apply(chosen->normal_impulse * fc.n + chosen->tangential_impulse, out.velocity, out.angular_velocity, out.pivot_impulses);
+    fc.apply(chosen->normal_impulse * fc.n + chosen->tangential_impulse, out.velocity, out.angular_velocity,
+             out.pivot_impulses);
     return out;
 }
 
 /// Kinetic energy of the bodies of finite mass: sum of m v.v / 2 + w.I w / 2
 /// (particles: translation only; planar: I_zz w_z^2 / 2 since w = (0, 0, w_z)).
-template <typename T> T kinetic_energy(const problem<T>& p, const std::vector<vec<T>>& velocity, const std::vector<vec<T>>& angular_velocity)
+template <typename T>
+T kinetic_energy(const problem<T> &p, const std::vector<vec<T>> &velocity, const std::vector<vec<T>> &angular_velocity)
 {
     T E = 0;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const auto& b = p.bodies[i];
+        const auto &b = p.bodies[i];
         if (b.infinite_mass)
             continue;
         E += b.mass * velocity[i].squaredNorm() / 2;
@@ -939,10 +972,10 @@ template <typename T> T kinetic_energy(const problem<T>& p, const std::vector<ve
     return E;
 }
 /// Kinetic energy before the impact.
-template <typename T> T kinetic_energy(const problem<T>& p)
+template <typename T> T kinetic_energy(const problem<T> &p)
 {
     std::vector<vec<T>> v, w;
-    for (const auto& b : p.bodies) {
+    for (const auto &b : p.bodies) {
         v.push_back(b.velocity);
         w.push_back(b.angular_velocity);
     }
@@ -954,9 +987,9 @@ template <typename T> T kinetic_energy(const problem<T>& p)
 // (numeric/prebuilt/), which compiles the solver once per scalar type: here it is only
 // declared (instantiating it costs ~15 s of compile time per type and translation unit).
 #define IMPACTGEN_NUMERIC_FRICTION_INSTANCES(T)                                                                        \
-    extern template friction_answer<T> solve_friction<T>(const problem<T>&, const friction_options<T>&);            \
-    extern template T kinetic_energy<T>(const problem<T>&, const std::vector<vec<T>>&, const std::vector<vec<T>>&); \
-    extern template T kinetic_energy<T>(const problem<T>&);
+    extern template friction_answer<T> solve_friction<T>(const problem<T> &, const friction_options<T> &);             \
+    extern template T kinetic_energy<T>(const problem<T> &, const std::vector<vec<T>> &, const std::vector<vec<T>> &); \
+    extern template T kinetic_energy<T>(const problem<T> &);
 IMPACTGEN_NUMERIC_FRICTION_INSTANCES(float)
 IMPACTGEN_NUMERIC_FRICTION_INSTANCES(double)
 IMPACTGEN_NUMERIC_FRICTION_INSTANCES(long double)

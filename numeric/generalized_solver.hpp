@@ -9,9 +9,10 @@
 
 #include "numeric_problem.hpp"
 
-namespace impactgen::numeric {
+namespace impactgen::numeric
+{
 
-template <typename T> answer<T> solve_generalized(const problem<T>& p)
+template <typename T> answer<T> solve_generalized(const problem<T> &p)
 {
     using M = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
     using V = Eigen::Matrix<T, Eigen::Dynamic, 1>;
@@ -46,8 +47,8 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     V c = V::Zero(ncon);
 
     // Jacobian row of the velocity of point q along a, for body i: v.a + (w x (q - C)).a
-    auto point_row = [&](int r, std::size_t i, const vec<T>& q, const vec<T>& a, T s) {
-        const auto& b = p.bodies[i];
+    auto point_row = [&](int r, std::size_t i, const vec<T> &q, const vec<T> &a, T s) {
+        const auto &b = p.bodies[i];
         for (int k = 0; k < dim; ++k)
             J(r, off[i] + k) += s * a[k];
         if (!b.particle) {
@@ -57,7 +58,7 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
         }
     };
     for (std::size_t i : ids) {
-        const auto& b = p.bodies[i];
+        const auto &b = p.bodies[i];
         if (off[i] < 0)
             continue;
         for (int k = 0; k < dim; ++k) {
@@ -77,7 +78,7 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     // Contact row: (v_B - v_A).n; a body without DOFs contributes a known velocity.
     T known = 0;
     for (std::size_t i : ids) {
-        const auto& b = p.bodies[i];
+        const auto &b = p.bodies[i];
         const T s = i == p.body1 ? T(-1) : T(1);
         vec<T> q = p.point - b.position;
         if (off[i] >= 0) {
@@ -89,7 +90,7 @@ template <typename T> answer<T> solve_generalized(const problem<T>& p)
     T approach = (J.row(0) * u)(0) + known;
     c[0] = -p.restitution * approach - known;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
-        const auto& pv = p.pivots[k];
+        const auto &pv = p.pivots[k];
         if (pivot_row[k] < 0)
             continue;
         for (int a = 0; a < dim; ++a) {

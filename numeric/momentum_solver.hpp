@@ -9,7 +9,8 @@
 
 #include <cmath>
 
-namespace impactgen::numeric {
+namespace impactgen::numeric
+{
 
 template <typename T> struct system_layout {
     // Column of the first velocity / angular velocity unknown of each body, or -1.
@@ -19,10 +20,13 @@ template <typename T> struct system_layout {
     int size = 0;
 };
 
-template <typename T> inline vec<T> unit(const vec<T>& n) { return n / n.norm(); }
+template <typename T> inline vec<T> unit(const vec<T> &n)
+{
+    return n / n.norm();
+}
 
 /// Tangent directions of the derivation's contact frame (not necessarily unit).
-template <typename T> void tangents(const problem<T>& p, const vec<T>& n, vec<T>& t, vec<T>& b)
+template <typename T> void tangents(const problem<T> &p, const vec<T> &n, vec<T> &t, vec<T> &b)
 {
     if (p.dimension == 2) {
         t = vec<T>(n.y(), -n.x(), 0);
@@ -52,7 +56,7 @@ template <typename T> void tangents(const problem<T>& p, const vec<T>& n, vec<T>
     b = t.cross(n);
 }
 
-template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
+template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
 {
     using M = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
     using V = Eigen::Matrix<T, Eigen::Dynamic, 1>;
@@ -92,11 +96,11 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
             A(r, c) += v;
     };
     // Coefficients of v'_i . a and of (w'_i x q) . a in row r.
-    auto velocity_dot = [&](int r, std::size_t i, const vec<T>& a, T scale) {
+    auto velocity_dot = [&](int r, std::size_t i, const vec<T> &a, T scale) {
         for (int c = 0; c < dim; ++c)
             put(r, L.v_col[i] + c, scale * a[c]);
     };
-    auto angular_dot = [&](int r, std::size_t i, const vec<T>& q, const vec<T>& a, T scale) {
+    auto angular_dot = [&](int r, std::size_t i, const vec<T> &q, const vec<T> &a, T scale) {
         vec<T> coef = q.cross(a); // (w x q).a = w.(q x a)
         for (int c = 0; c < 3; ++c)
             put(r, wcol(i, c), scale * coef[c]);
@@ -125,7 +129,7 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
             ++row;
         }
         for (std::size_t i : ids) {
-            const auto& bd = p.bodies[i];
+            const auto &bd = p.bodies[i];
             if (p.immovable(i) || bd.particle)
                 continue;
             vec<T> r = bd.position - p.point;
@@ -141,11 +145,11 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
         }
     } else {
         for (std::size_t i : ids) {
-            const auto& bd = p.bodies[i];
+            const auto &bd = p.bodies[i];
             if (bd.infinite_mass)
                 continue;
             const T s = i == p.body1 ? T(-1) : T(1);
-            const pivot<T>* pv = p.pivot_of(i);
+            const pivot<T> *pv = p.pivot_of(i);
             int rk = pv ? L.r_col[static_cast<std::size_t>(pv - p.pivots.data())] : -1;
             bool movable = !p.immovable(i);
             for (int c = 0; c < last_lin; ++c) {
@@ -186,11 +190,12 @@ template <typename T> answer<T> solve_momentum_system(const problem<T>& p)
     {
         T known_before = 0, known_after = 0;
         for (std::size_t i : ids) {
-            const auto& bd = p.bodies[i];
+            const auto &bd = p.bodies[i];
             const T s = i == p.body1 ? T(-1) : T(1);
             vec<T> q = p.point - bd.position;
             // A particle is a point: its spin does not move its contact point.
-            const vec<T> spin = bd.particle && !bd.infinite_mass ? vec<T>::Zero() : vec<T>(bd.angular_velocity.cross(q));
+            const vec<T> spin =
+                bd.particle && !bd.infinite_mass ? vec<T>::Zero() : vec<T>(bd.angular_velocity.cross(q));
             known_before += s * (bd.velocity + spin).dot(n);
             if (p.immovable(i)) {
                 known_after += s * (bd.velocity + spin).dot(n);

@@ -7,7 +7,8 @@
 
 #include <vector>
 
-namespace impactgen::numeric {
+namespace impactgen::numeric
+{
 
 template <typename T> using vec = Eigen::Matrix<T, 3, 1>;
 template <typename T> using mat = Eigen::Matrix<T, 3, 3>;
@@ -35,9 +36,9 @@ template <typename T> struct problem {
     T friction = 0; ///< Coulomb's mu at the contact (0: smooth)
     std::vector<pivot<T>> pivots;
 
-    const pivot<T>* pivot_of(std::size_t b) const
+    const pivot<T> *pivot_of(std::size_t b) const
     {
-        for (const auto& p : pivots)
+        for (const auto &p : pivots)
             if (p.body == b)
                 return &p;
         return nullptr;
@@ -46,7 +47,7 @@ template <typename T> struct problem {
 };
 
 template <typename T> struct answer {
-    bool ok = false;                     ///< false when the system is singular
+    bool ok = false; ///< false when the system is singular
     std::vector<vec<T>> velocity, angular_velocity;
     T normal_impulse = 0;
     std::vector<vec<T>> pivot_impulses;

@@ -8,15 +8,17 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 struct valuer {
-    const solution& s;
+    const solution &s;
     bool symbolic;
-    nlohmann::ordered_json operator()(const ex& e, const std::string& key) const
+    nlohmann::ordered_json operator()(const ex &e, const std::string &key) const
     {
         ex v = surd_form(tidy(s.expand_steps(e)));
         if (symbolic)
@@ -24,19 +26,21 @@ struct valuer {
         double x = 0;
         try {
             x = to_double(v);
-        } catch (const no_decimal& err) {
+        } catch (const no_decimal &err) {
             throw input_error("answer: " + key + ": " + err.what());
-        } catch (const std::invalid_argument&) {
-            throw input_error("answer: " + key + ": the exact value is out of the range of double (the inputs' scales overflow it)");
+        } catch (const std::invalid_argument &) {
+            throw input_error("answer: " + key +
+                              ": the exact value is out of the range of double (the inputs' scales overflow it)");
         }
         // A non-zero value below the smallest subnormal double (4.9e-324) would be written as 0:
         // refused as the overflow is (a subnormal is written, with the digits it has).
         if (x == 0 && !v.is_zero()) {
             const decision sign = decide(v);
             if (sign == decision::positive || sign == decision::negative)
-                throw input_error("answer: " + key +
-                                  ": the exact value is not 0 but below the range of double (it would be written as 0: the "
-                                  "inputs' scales underflow it)");
+                throw input_error(
+                    "answer: " + key +
+                    ": the exact value is not 0 but below the range of double (it would be written as 0: the "
+                    "inputs' scales underflow it)");
         }
         return x;
     }
@@ -44,9 +48,9 @@ struct valuer {
 
 } // namespace
 
-nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool symbolic)
+nlohmann::ordered_json answer_json(const derivation &d, const solution &s, bool symbolic)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     valuer val{s, symbolic};
     nlohmann::ordered_json out, bodies = nlohmann::ordered_json::object();
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
@@ -55,11 +59,13 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
             v.push_back(val(s.after[i].velocity[c], "bodies." + names::display_text(p.bodies[i].name) + ".velocity"));
         b["velocity"] = v;
         if (p.dimension == 2) {
-            b["angular_velocity"] = val(s.after[i].angular_velocity[2], "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity");
+            b["angular_velocity"] = val(s.after[i].angular_velocity[2],
+                                        "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity");
         } else {
             nlohmann::ordered_json w = nlohmann::ordered_json::array();
             for (int c = 0; c < 3; ++c)
-                w.push_back(val(s.after[i].angular_velocity[c], "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity"));
+                w.push_back(val(s.after[i].angular_velocity[c],
+                                "bodies." + names::display_text(p.bodies[i].name) + ".angular_velocity"));
             b["angular_velocity"] = w;
         }
         bodies[p.bodies[i].name] = b;
@@ -67,7 +73,7 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
     out["bodies"] = bodies;
     out["normal_impulse"] = val(s.normal_impulse, "normal_impulse");
     nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
-    for (const vec3& R : s.pivot_impulses) {
+    for (const vec3 &R : s.pivot_impulses) {
         nlohmann::ordered_json r = nlohmann::ordered_json::array();
         for (int c = 0; c < p.dimension; ++c)
             r.push_back(val(R[c], "pivot_impulses"));
@@ -86,7 +92,7 @@ nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool 
     return out;
 }
 
-nlohmann::ordered_json answer_json(const derivation& d, const regime_case& c, bool symbolic)
+nlohmann::ordered_json answer_json(const derivation &d, const regime_case &c, bool symbolic)
 {
     nlohmann::ordered_json out = answer_json(d, c.sol, symbolic);
     valuer val{c.sol, symbolic};
@@ -98,15 +104,21 @@ nlohmann::ordered_json answer_json(const derivation& d, const regime_case& c, bo
     return out;
 }
 
-std::string answer_text(const derivation& d, const solution& s) { return answer_text(d, s, nullptr); }
-
-std::string answer_text(const derivation& d, const regime_case& c) { return answer_text(d, c.sol, &c); }
-
-std::string answer_text(const derivation& d, const solution& s, const regime_case* friction)
+std::string answer_text(const derivation &d, const solution &s)
 {
-    const problem& p = d.prob;
+    return answer_text(d, s, nullptr);
+}
+
+std::string answer_text(const derivation &d, const regime_case &c)
+{
+    return answer_text(d, c.sol, &c);
+}
+
+std::string answer_text(const derivation &d, const solution &s, const regime_case *friction)
+{
+    const problem &p = d.prob;
     std::ostringstream os;
-    auto show = [&](const ex& e) {
+    auto show = [&](const ex &e) {
         ex v = surd_form(tidy(s.expand_steps(e)));
         if (is_a<numeric>(v) && !ex_to<numeric>(v).is_rational()) // a float: a root found numerically
             return decimal(v);
@@ -114,13 +126,13 @@ std::string answer_text(const derivation& d, const solution& s, const regime_cas
         try {
             std::string dec = decimal(v);
             return exact == dec ? exact : exact + " = " + dec;
-        } catch (const no_decimal& err) {
+        } catch (const no_decimal &err) {
             return exact + " (" + err.what() + ")";
-        } catch (const std::invalid_argument&) {
+        } catch (const std::invalid_argument &) {
             return exact + " (beyond the range of double)";
         }
     };
-    auto show_vec = [&](const vec3& v, int n) {
+    auto show_vec = [&](const vec3 &v, int n) {
         std::string r = "(";
         for (int c = 0; c < n; ++c)
             r += (c ? ", " : "") + show(v[c]);
@@ -147,7 +159,8 @@ std::string answer_text(const derivation& d, const solution& s, const regime_cas
     if (friction)
         os << "  tangential impulse  " << show_vec(friction->tangential_impulse, p.dimension) << "\n";
     for (std::size_t k = 0; k < s.pivot_impulses.size(); ++k)
-        os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(s.pivot_impulses[k], p.dimension) << "\n";
+        os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  "
+           << show_vec(s.pivot_impulses[k], p.dimension) << "\n";
     os << "Kinetic energy:\n";
     os << "  before  " << show(s.energy_before) << "\n";
     os << "  after   " << show(s.energy_after) << "\n";

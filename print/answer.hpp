@@ -6,20 +6,21 @@
 
 #include <nlohmann/json.hpp>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 /// symbolic == false: every value a decimal number (the problem must be numeric).
 /// symbolic == true: every value an expression string in the problem's symbols.
-nlohmann::ordered_json answer_json(const derivation& d, const solution& s, bool symbolic);
+nlohmann::ordered_json answer_json(const derivation &d, const solution &s, bool symbolic);
 
 /// A problem with friction: the smooth keys plus tangential_impulse and regime.
-nlohmann::ordered_json answer_json(const derivation& d, const regime_case& c, bool symbolic);
+nlohmann::ordered_json answer_json(const derivation &d, const regime_case &c, bool symbolic);
 
 /// The answer for a person: exact values with their decimals.
-std::string answer_text(const derivation& d, const solution& s);
+std::string answer_text(const derivation &d, const solution &s);
 /// With friction: the regime and the tangential impulse as well.
-std::string answer_text(const derivation& d, const regime_case& c);
+std::string answer_text(const derivation &d, const regime_case &c);
 /// friction may be nullptr (smooth).
-std::string answer_text(const derivation& d, const solution& s, const regime_case* friction);
+std::string answer_text(const derivation &d, const solution &s, const regime_case *friction);
 
 } // namespace impactgen::print

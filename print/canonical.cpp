@@ -12,10 +12,12 @@
 #include <utility>
 #include <vector>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // Binding strength of the printed form: a sum binds loosest.
 enum prec { p_sum = 0, p_product = 1, p_power = 2, p_atom = 3 };
@@ -26,25 +28,34 @@ struct printed {
     bool negative = false; ///< starts with a minus sign
 };
 
-std::string numeric_text(const numeric& n)
+std::string numeric_text(const numeric &n)
 {
     std::ostringstream os;
     os << n;
     return os.str();
 }
 
-printed print_ex(const ex& e, syntax sx);
+printed print_ex(const ex &e, syntax sx);
 
 // ---- MathML pieces. Every printed MathML string is a sequence of elements;
 // where one element is needed (a child of <msup>, <mfrac>) it goes through one().
 
-std::string tag(const std::string& name, const std::string& content) { return "<" + name + ">" + content + "</" + name + ">"; }
-std::string mn(const std::string& digits) { return tag("mn", digits); }
-std::string mo(const std::string& op) { return tag("mo", op); }
+std::string tag(const std::string &name, const std::string &content)
+{
+    return "<" + name + ">" + content + "</" + name + ">";
+}
+std::string mn(const std::string &digits)
+{
+    return tag("mn", digits);
+}
+std::string mo(const std::string &op)
+{
+    return tag("mo", op);
+}
 
 // The number of top-level elements of generated MathML (text content is
 // escaped, so every '<' starts a tag).
-std::size_t top_level_elements(const std::string& s)
+std::size_t top_level_elements(const std::string &s)
 {
     std::size_t count = 0;
     int depth = 0;
@@ -65,31 +76,40 @@ std::size_t top_level_elements(const std::string& s)
     return count;
 }
 
-std::string one(const std::string& s) { return top_level_elements(s) == 1 ? s : tag("mrow", s); }
+std::string one(const std::string &s)
+{
+    return top_level_elements(s) == 1 ? s : tag("mrow", s);
+}
 
 // Parentheses or bars around MathML. They stretch (as \left( \right) do) only
 // around something taller than a line of symbols with scripts: Chromium
 // stretches a delimiter to the exact height of its row, and around v_{t1}
 // that gives a larger, wider glyph where TeX keeps the normal one.
-std::string fenced(const std::string& open, const std::string& inside, const std::string& close)
+std::string fenced(const std::string &open, const std::string &inside, const std::string &close)
 {
     bool tall = false;
-    for (const char* t : {"<mfrac", "<msqrt", "<munder", "<mover", "stretchy=\"true\""})
+    for (const char *t : {"<mfrac", "<msqrt", "<munder", "<mover", "stretchy=\"true\""})
         tall = tall || inside.find(t) != std::string::npos;
     const std::string attr = tall ? "" : " stretchy=\"false\"";
     return tag("mrow", "<mo" + attr + ">" + open + "</mo>" + inside + "<mo" + attr + ">" + close + "</mo>");
 }
 
 /// The minus sign a printed form starts with when it is negative.
-std::string minus_sign(syntax sx) { return sx == syntax::mathml ? mo("−") : "-"; }
-bool starts_with_minus(const std::string& s, syntax sx)
+std::string minus_sign(syntax sx)
+{
+    return sx == syntax::mathml ? mo("−") : "-";
+}
+bool starts_with_minus(const std::string &s, syntax sx)
 {
     const std::string m = minus_sign(sx);
     return s.size() > m.size() && s.compare(0, m.size(), m) == 0;
 }
-std::string without_minus(const std::string& s, syntax sx) { return s.substr(minus_sign(sx).size()); }
+std::string without_minus(const std::string &s, syntax sx)
+{
+    return s.substr(minus_sign(sx).size());
+}
 
-std::string wrap(const printed& p, prec need, syntax sx)
+std::string wrap(const printed &p, prec need, syntax sx)
 {
     if (p.level >= need && !(p.negative && need > p_sum))
         return p.s;
@@ -98,7 +118,7 @@ std::string wrap(const printed& p, prec need, syntax sx)
     return sx == syntax::latex ? "\\left(" + p.s + "\\right)" : "(" + p.s + ")";
 }
 
-printed print_numeric(const numeric& n, syntax sx)
+printed print_numeric(const numeric &n, syntax sx)
 {
     if (!n.is_real())
         throw std::invalid_argument("canonical printer: complex number " + numeric_text(n));
@@ -128,9 +148,9 @@ printed print_numeric(const numeric& n, syntax sx)
     return {neg ? "-" + body : body, neg ? p_sum : level, neg};
 }
 
-const char* superscript(long k)
+const char *superscript(long k)
 {
-    static const char* sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    static const char *sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
     return k >= 0 && k <= 9 ? sup[k] : nullptr;
 }
 
@@ -138,7 +158,7 @@ const char* superscript(long k)
 // nothing before the _ that is a script, a prime or a group. A power can be
 // written right after it (r_{t1}^{2}); anything else with a script in it is
 // braced first ({v'_{x1}}^{2}, {I^{1}_{nb}}^{2}), or TeX sees a double superscript.
-bool subscript_only(const std::string& s)
+bool subscript_only(const std::string &s)
 {
     const std::size_t u = s.find('_');
     if (u == std::string::npos || u == 0 || u + 1 >= s.size() || s.find_first_of("^'{}()", 0) < u)
@@ -163,19 +183,20 @@ bool subscript_only(const std::string& s)
 // <msubsup>; a base with a superscript of its own (v'_{x1}, I^{1}_{nb}) is
 // put in parentheses, (I^1_nb)^2, where LaTeX braces it: a second superscript
 // right after the first reads as one.
-std::string mathml_power(const std::string& base, const std::string& exponent)
+std::string mathml_power(const std::string &base, const std::string &exponent)
 {
     const std::string open = "<msub>", close = "</msub>";
     const bool single = top_level_elements(base) == 1;
     if (single && base.compare(0, open.size(), open) == 0)
-        return "<msubsup>" + base.substr(open.size(), base.size() - open.size() - close.size()) + exponent + "</msubsup>";
+        return "<msubsup>" + base.substr(open.size(), base.size() - open.size() - close.size()) + exponent +
+               "</msubsup>";
     if (single && (base.compare(0, 6, "<msup>") == 0 || base.compare(0, 9, "<msubsup>") == 0))
         return tag("msup", fenced("(", base, ")") + exponent);
     return tag("msup", one(base) + exponent);
 }
 
 // base^exp with exp > 0 (negative exponents are moved to denominators by the caller).
-printed print_power(const ex& base, const ex& exponent, syntax sx)
+printed print_power(const ex &base, const ex &exponent, syntax sx)
 {
     printed b = print_ex(base, sx);
     if (exponent.is_equal(numeric(1, 2))) {
@@ -200,7 +221,7 @@ printed print_power(const ex& base, const ex& exponent, syntax sx)
         long k = ex_to<numeric>(exponent).to_long();
         if (sx == syntax::latex)
             return {bs + "^{" + std::to_string(k) + "}", p_power};
-        if (const char* s = superscript(k); s && sx == syntax::text)
+        if (const char *s = superscript(k); s && sx == syntax::text)
             return {bs + s, p_power};
         return {bs + "^" + std::to_string(k), p_power};
     }
@@ -217,10 +238,10 @@ struct factor {
 
 // The sign that makes a sum canonical: -1 when its first term, in canonical
 // order, is negative.
-int sum_sign(const ex& s);
+int sum_sign(const ex &s);
 
 // A product: numeric coefficient, numerator factors, denominator factors.
-printed print_product(const ex& e, syntax sx)
+printed print_product(const ex &e, syntax sx)
 {
     numeric coeff = 1;
     std::vector<factor> num, den;
@@ -228,8 +249,7 @@ printed print_product(const ex& e, syntax sx)
         bool negative_exp = is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_negative();
         if (negative_exp)
             exponent = -exponent;
-        if (is_a<add>(base) && is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer() &&
-            sum_sign(base) < 0) {
+        if (is_a<add>(base) && is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer() && sum_sign(base) < 0) {
             base = -base;
             if (ex_to<numeric>(exponent).is_odd())
                 coeff = -coeff;
@@ -240,7 +260,7 @@ printed print_product(const ex& e, syntax sx)
             f.key = print_ex(base, syntax::text).s;
         (negative_exp ? den : num).push_back(f);
     };
-    auto visit = [&](const ex& f) {
+    auto visit = [&](const ex &f) {
         if (is_a<numeric>(f))
             coeff *= ex_to<numeric>(f);
         else if (is_a<power>(f))
@@ -253,7 +273,7 @@ printed print_product(const ex& e, syntax sx)
             visit(e.op(i));
     else
         visit(e);
-    auto by_key = [](const factor& a, const factor& b) { return a.key < b.key; };
+    auto by_key = [](const factor &a, const factor &b) { return a.key < b.key; };
     std::sort(num.begin(), num.end(), by_key);
     std::sort(den.begin(), den.end(), by_key);
 
@@ -268,7 +288,7 @@ printed print_product(const ex& e, syntax sx)
                               : sx == syntax::mathml ? mo("&#x2062;")
                                                      : "·";
     prec sole_level = p_atom;
-    auto join = [&](const std::vector<factor>& fs, const numeric& number, bool& single_sum, std::size_t& count) {
+    auto join = [&](const std::vector<factor> &fs, const numeric &number, bool &single_sum, std::size_t &count) {
         std::string out;
         count = 0;
         single_sum = false;
@@ -277,7 +297,7 @@ printed print_product(const ex& e, syntax sx)
             out = sx == syntax::mathml ? mn(numeric_text(number)) : numeric_text(number);
             ++count;
         }
-        for (const factor& f : fs) {
+        for (const factor &f : fs) {
             printed pf = f.exponent.is_equal(1) ? print_ex(f.base, sx) : print_power(f.base, f.exponent, sx);
             bool alone = fs.size() == 1 && count == 0;
             if (alone && pf.level == p_sum)
@@ -337,11 +357,11 @@ struct term {
     bool negative = false; ///< the sign the term prints with
 };
 
-std::vector<term> sorted_terms(const ex& s)
+std::vector<term> sorted_terms(const ex &s)
 {
     std::vector<term> terms;
     for (std::size_t i = 0; i < s.nops(); ++i) {
-        const ex& t = s.op(i);
+        const ex &t = s.op(i);
         term tm{1, 1, ""};
         if (is_a<numeric>(t)) {
             tm.coeff = ex_to<numeric>(t);
@@ -364,7 +384,7 @@ std::vector<term> sorted_terms(const ex& s)
         terms.push_back(tm);
     }
     // Numbers first ("1 + e"), otherwise by text; equal texts by coefficient.
-    std::sort(terms.begin(), terms.end(), [](const term& a, const term& b) {
+    std::sort(terms.begin(), terms.end(), [](const term &a, const term &b) {
         bool an = a.rest.is_equal(1), bn = b.rest.is_equal(1);
         if (an != bn)
             return an;
@@ -377,14 +397,14 @@ std::vector<term> sorted_terms(const ex& s)
     return terms;
 }
 
-int sum_sign(const ex& s)
+int sum_sign(const ex &s)
 {
     // More positive than negative terms; on a tie, the term of the longest
     // text (then the first in order) positive: m (v′ - v), e - 1.
     std::vector<term> terms = sorted_terms(s);
     int balance = 0;
-    const term* lead = nullptr;
-    for (const term& t : terms) {
+    const term *lead = nullptr;
+    for (const term &t : terms) {
         balance += t.negative ? -1 : 1;
         if (!lead || t.key.size() > lead->key.size())
             lead = &t;
@@ -397,12 +417,12 @@ int sum_sign(const ex& s)
 }
 
 // The printed terms of a sum in the order they print, each with its sign.
-std::vector<std::pair<bool, std::string>> print_terms(const ex& e, syntax sx)
+std::vector<std::pair<bool, std::string>> print_terms(const ex &e, syntax sx)
 {
     std::vector<term> terms = sorted_terms(e);
-    std::stable_partition(terms.begin(), terms.end(), [](const term& t) { return !t.negative; });
+    std::stable_partition(terms.begin(), terms.end(), [](const term &t) { return !t.negative; });
     std::vector<std::pair<bool, std::string>> out;
-    for (const term& t : terms) {
+    for (const term &t : terms) {
         bool neg = t.coeff.is_negative();
         printed p = print_product(t.rest * abs(t.coeff), sx);
         if (p.negative && starts_with_minus(p.s, sx)) {
@@ -417,14 +437,14 @@ std::vector<std::pair<bool, std::string>> print_terms(const ex& e, syntax sx)
     return out;
 }
 
-printed print_sum(const ex& e, syntax sx)
+printed print_sum(const ex &e, syntax sx)
 {
     std::vector<term> terms = sorted_terms(e);
     // Positive terms first, each group in canonical order.
-    std::stable_partition(terms.begin(), terms.end(), [](const term& t) { return !t.negative; });
+    std::stable_partition(terms.begin(), terms.end(), [](const term &t) { return !t.negative; });
     std::string out;
     for (std::size_t i = 0; i < terms.size(); ++i) {
-        const term& t = terms[i];
+        const term &t = terms[i];
         bool neg = t.coeff.is_negative();
         printed p = print_product(t.rest * abs(t.coeff), sx);
         if (p.negative && starts_with_minus(p.s, sx)) {
@@ -446,20 +466,20 @@ printed print_sum(const ex& e, syntax sx)
     return {out, p_sum, !terms.empty() && terms.front().negative};
 }
 
-printed print_ex_uncached(const ex& e, syntax sx);
+printed print_ex_uncached(const ex &e, syntax sx);
 
 // Sorting keys print every subexpression in text several times: remember them.
-std::map<ex, printed, ex_is_less>& text_cache()
+std::map<ex, printed, ex_is_less> &text_cache()
 {
     static std::map<ex, printed, ex_is_less> cache;
     return cache;
 }
 
-printed print_ex(const ex& e, syntax sx)
+printed print_ex(const ex &e, syntax sx)
 {
     if (sx != syntax::text)
         return print_ex_uncached(e, sx);
-    auto& cache = text_cache();
+    auto &cache = text_cache();
     auto it = cache.find(e);
     if (it != cache.end())
         return it->second;
@@ -468,22 +488,25 @@ printed print_ex(const ex& e, syntax sx)
     return p;
 }
 
-printed print_ex_uncached(const ex& e, syntax sx)
+printed print_ex_uncached(const ex &e, syntax sx)
 {
     if (is_a<numeric>(e))
         return print_numeric(ex_to<numeric>(e), sx);
     if (is_a<symbol>(e)) {
-        const symbol& s = ex_to<symbol>(e);
+        const symbol &s = ex_to<symbol>(e);
         if (sx == syntax::mathml)
             return {symbol_mathml(s), p_atom};
-        return {sx == syntax::latex ? symbol_latex(s) : sx == syntax::parser ? s.get_name() : symbol_text(s.get_name()), p_atom};
+        return {sx == syntax::latex    ? symbol_latex(s)
+                : sx == syntax::parser ? s.get_name()
+                                       : symbol_text(s.get_name()),
+                p_atom};
     }
     if (is_a<add>(e))
         return print_sum(e, sx);
     if (is_a<mul>(e) || is_a<power>(e))
         return print_product(e, sx);
     if (is_a<function>(e)) {
-        const function& f = ex_to<function>(e);
+        const function &f = ex_to<function>(e);
         std::string args;
         if (sx == syntax::mathml) {
             // abs(x) as |x|; others f(x, y) with a function application (U+2061).
@@ -491,7 +514,8 @@ printed print_ex_uncached(const ex& e, syntax sx)
                 args += (i ? mo(",") : "") + one(print_ex(e.op(i), sx).s);
             if (f.get_name() == "abs")
                 return {fenced("|", args, "|"), p_atom};
-            return {tag("mrow", tag("mi", names::xml_text(f.get_name())) + mo("&#x2061;") + fenced("(", args, ")")), p_atom};
+            return {tag("mrow", tag("mi", names::xml_text(f.get_name())) + mo("&#x2061;") + fenced("(", args, ")")),
+                    p_atom};
         }
         for (std::size_t i = 0; i < e.nops(); ++i)
             args += (i ? ", " : "") + print_ex(e.op(i), sx).s;
@@ -513,11 +537,11 @@ printed print_ex_uncached(const ex& e, syntax sx)
 
 } // namespace
 
-std::string symbol_text(const std::string& name)
+std::string symbol_text(const std::string &name)
 {
     std::string out;
     std::size_t i = 0;
-    auto starts = [&](const std::string& word) {
+    auto starts = [&](const std::string &word) {
         if (name.compare(0, word.size(), word) != 0)
             return false;
         std::size_t k = word.size();
@@ -555,7 +579,7 @@ std::string symbol_text(const std::string& name)
     return out;
 }
 
-std::string symbol_latex(const symbol& s)
+std::string symbol_latex(const symbol &s)
 {
     std::string t = s.get_TeX_name();
     if (t.find('{') != std::string::npos)
@@ -569,9 +593,12 @@ std::string symbol_latex(const symbol& s)
     return t;
 }
 
-std::string symbol_mathml(const symbol& s) { return one(tex_to_mathml(symbol_latex(s))); }
+std::string symbol_mathml(const symbol &s)
+{
+    return one(tex_to_mathml(symbol_latex(s)));
+}
 
-std::vector<std::pair<bool, std::string>> canonical_terms(const ex& e, syntax s)
+std::vector<std::pair<bool, std::string>> canonical_terms(const ex &e, syntax s)
 {
     if (!is_a<add>(e))
         return {{false, canonical(e, s)}};
@@ -581,7 +608,7 @@ std::vector<std::pair<bool, std::string>> canonical_terms(const ex& e, syntax s)
     return out;
 }
 
-std::string canonical(const ex& e, syntax s)
+std::string canonical(const ex &e, syntax s)
 {
     std::string out = print_ex(e, s).s;
     if (s == syntax::mathml) // one element: a leading minus is first in its row, a prefix sign

@@ -37,26 +37,39 @@
 #include <utility>
 #include <vector>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 enum class syntax { text, latex, parser, mathml };
 
-std::string canonical(const GiNaC::ex& e, syntax s);
-inline std::string canonical_text(const GiNaC::ex& e) { return canonical(e, syntax::text); }
-inline std::string canonical_latex(const GiNaC::ex& e) { return canonical(e, syntax::latex); }
-inline std::string canonical_parser(const GiNaC::ex& e) { return canonical(e, syntax::parser); }
-inline std::string canonical_mathml(const GiNaC::ex& e) { return canonical(e, syntax::mathml); }
+std::string canonical(const GiNaC::ex &e, syntax s);
+inline std::string canonical_text(const GiNaC::ex &e)
+{
+    return canonical(e, syntax::text);
+}
+inline std::string canonical_latex(const GiNaC::ex &e)
+{
+    return canonical(e, syntax::latex);
+}
+inline std::string canonical_parser(const GiNaC::ex &e)
+{
+    return canonical(e, syntax::parser);
+}
+inline std::string canonical_mathml(const GiNaC::ex &e)
+{
+    return canonical(e, syntax::mathml);
+}
 
 /// The terms of a sum as they print, in the same order and with the same signs as
 /// canonical(e, s) gives them: (negative, term without its sign). Not a sum: one
 /// term, its whole text (sign included). For breaking a long sum over lines.
-std::vector<std::pair<bool, std::string>> canonical_terms(const GiNaC::ex& e, syntax s);
+std::vector<std::pair<bool, std::string>> canonical_terms(const GiNaC::ex &e, syntax s);
 
 /// A symbol's name for a terminal: w -> ω, tau -> τ, eps -> ε, ' -> ′.
-std::string symbol_text(const std::string& name);
+std::string symbol_text(const std::string &name);
 /// A symbol's TeX name, with multi-character subscripts braced.
-std::string symbol_latex(const GiNaC::symbol& s);
+std::string symbol_latex(const GiNaC::symbol &s);
 /// A symbol as MathML: symbol_latex through tex_to_mathml, one element.
-std::string symbol_mathml(const GiNaC::symbol& s);
+std::string symbol_mathml(const GiNaC::symbol &s);
 
 } // namespace impactgen::print

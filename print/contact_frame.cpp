@@ -6,15 +6,17 @@
 #include <map>
 #include <set>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
-const char* const frame_axes[3] = {"t", "n", "b"};
+const char *const frame_axes[3] = {"t", "n", "b"};
 
-int nodes(const ex& x)
+int nodes(const ex &x)
 {
     int n = 0;
     for (const_preorder_iterator it = x.preorder_begin(); it != x.preorder_end(); ++it)
@@ -22,12 +24,15 @@ int nodes(const ex& x)
     return n;
 }
 
-ex simplified(const ex& x) { return tidy_expand(x); }
+ex simplified(const ex &x)
+{
+    return tidy_expand(x);
+}
 
 // How many terms x.expand() would have, at most (capped): the view expands the derivation's
 // equations, and a hostile input such as a contact point (a + b + ... + q)^12 must not make
 // that take minutes.
-double expanded_terms(const ex& x)
+double expanded_terms(const ex &x)
 {
     constexpr double cap = 1e9;
     if (is_a<add>(x)) {
@@ -52,9 +57,8 @@ double expanded_terms(const ex& x)
     return 1;
 }
 
-
 // "..., x component" -> "..., t component": the derivation's meanings end with the world axis.
-std::string frame_meaning(const std::string& world_meaning, const std::string& axis)
+std::string frame_meaning(const std::string &world_meaning, const std::string &axis)
 {
     const std::string tail = " component";
     const std::size_t comma = world_meaning.rfind(", ");
@@ -69,17 +73,18 @@ std::string frame_meaning(const std::string& world_meaning, const std::string& a
 // sum_l (e_a·I e_l) ω′_l. Where such a coefficient is a combination of the world
 // entries (a rotated tensor), it is named, I_tn,box = e_t·I e_n, on both sides
 // (symmetric: I_nt is I_tn), and defined in v.inertia.
-void name_inertia(contact_frame_view& v, const derivation& d, std::size_t which, const std::vector<symbol>& after,
-                  const std::vector<symbol>& before)
+void name_inertia(contact_frame_view &v, const derivation &d, std::size_t which, const std::vector<symbol> &after,
+                  const std::vector<symbol> &before)
 {
-    const body& b = d.prob.bodies[which];
+    const body &b = d.prob.bodies[which];
     std::map<std::pair<int, int>, std::pair<symbol, ex>> named;
     const std::size_t first = v.equations.size() - 3;
     for (int a = 0; a < 3; ++a) {
-        framed_equation& f = v.equations[first + static_cast<std::size_t>(a)];
+        framed_equation &f = v.equations[first + static_cast<std::size_t>(a)];
         for (int l = 0; l < 3; ++l) {
             const ex c = f.lhs.coeff(after[static_cast<std::size_t>(l)], 1);
-            if (c.is_zero() || is_a<symbol>(c) || is_a<numeric>(c) || has(c, after[0]) || has(c, after[1]) || has(c, after[2]))
+            if (c.is_zero() || is_a<symbol>(c) || is_a<numeric>(c) || has(c, after[0]) || has(c, after[1]) ||
+                has(c, after[2]))
                 continue;
             const auto key = std::make_pair(std::min(a, l), std::max(a, l));
             auto it = named.find(key);
@@ -87,16 +92,19 @@ void name_inertia(contact_frame_view& v, const derivation& d, std::size_t which,
                 const std::string axes = std::string(frame_axes[key.first]) + frame_axes[key.second];
                 const symbol s(quantity_name("I", axes, b.label, false), quantity_tex("I", axes, b.label, false));
                 it = named.emplace(key, std::make_pair(s, c)).first;
-                v.inertia.push_back({s, c, "inertia tensor of " + display_name(b) + " about C in the contact frame, " + axes + " entry"});
+                v.inertia.push_back(
+                    {s, c,
+                     "inertia tensor of " + display_name(b) + " about C in the contact frame, " + axes + " entry"});
             } else if (!(c - it->second.second).expand().is_zero()) {
                 continue;
             }
-            const symbol& s = it->second.first;
+            const symbol &s = it->second.first;
             f.lhs = (f.lhs - c * after[static_cast<std::size_t>(l)] + s * after[static_cast<std::size_t>(l)]).expand();
             if (!before.empty()) {
                 const ex cb = f.rhs.coeff(before[static_cast<std::size_t>(l)], 1);
                 if ((cb - c).expand().is_zero())
-                    f.rhs = (f.rhs - c * before[static_cast<std::size_t>(l)] + s * before[static_cast<std::size_t>(l)]).expand();
+                    f.rhs = (f.rhs - c * before[static_cast<std::size_t>(l)] + s * before[static_cast<std::size_t>(l)])
+                                .expand();
             }
         }
     }
@@ -104,47 +112,55 @@ void name_inertia(contact_frame_view& v, const derivation& d, std::size_t which,
 
 } // namespace
 
-ex contact_frame_view::apply(const ex& x) const
+ex contact_frame_view::apply(const ex &x) const
 {
-    for (const auto& [world, frame] : to_frame)
+    for (const auto &[world, frame] : to_frame)
         if (x.has(world))
             return simplified(x.subs(to_frame));
     return x; // as it was (a step such as N = -(1 + e) u/k keeps its form)
 }
 
-namespace {
+namespace
+{
 // An equation of the derivation is linear in the velocities, spins and impulses, with
 // coefficients of low degree in the masses, inertias and e: expanding it is cheap, and
 // it is what makes the radicals of the frame cancel (sqrt(2) sqrt(2) -> 2).
-ex rewritten(const contact_frame_view& v, const ex& x) { return merge_roots(x.subs(v.to_frame).expand()).expand(); }
+ex rewritten(const contact_frame_view &v, const ex &x)
+{
+    return merge_roots(x.subs(v.to_frame).expand()).expand();
+}
 // m1 v′_t - m1 v_t -> m1 (v′_t - v_t), as the derivation writes impulse-momentum.
-ex factored(const ex& x) { return is_a<add>(x) ? collect_common_factors(x) : x; }
+ex factored(const ex &x)
+{
+    return is_a<add>(x) ? collect_common_factors(x) : x;
+}
 } // namespace
 
-lst contact_frame_view::with_inputs(const ex& values) const
+lst contact_frame_view::with_inputs(const ex &values) const
 {
     lst out;
-    for (const ex& v : values)
+    for (const ex &v : values)
         out.append(v);
-    for (const auto* list : {&inputs, &inertia})
-        for (const frame_component& c : *list)
+    for (const auto *list : {&inputs, &inertia})
+        for (const frame_component &c : *list)
             out.append(c.sym == simplified(c.world.subs(values)));
     return out;
 }
 
-contact_frame_view world_components_view(const derivation& d)
+contact_frame_view world_components_view(const derivation &d)
 {
     contact_frame_view w;
-    for (const unknown& u : d.unknowns)
+    for (const unknown &u : d.unknowns)
         w.unknowns.push_back({u.sym, u.sym, u.meaning});
-    for (const equation& eq : d.equations)
-        w.equations.push_back({&eq, eq.lhs, eq.rhs, eq.component >= 0 ? d.prob.axes[static_cast<std::size_t>(eq.component)] : ""});
+    for (const equation &eq : d.equations)
+        w.equations.push_back(
+            {&eq, eq.lhs, eq.rhs, eq.component >= 0 ? d.prob.axes[static_cast<std::size_t>(eq.component)] : ""});
     return w;
 }
 
-contact_frame_view contact_frame_view_of(const derivation& d)
+contact_frame_view contact_frame_view_of(const derivation &d)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     const int dim = p.dimension;
     contact_frame_view v;
     auto world_only = [&]() { return world_components_view(d); };
@@ -159,8 +175,8 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     v.e[0] = d.e_t;
     v.e[1] = d.n_hat;
     v.e[2] = dim == 3 ? d.e_b : vec3{0, 0, 1};
-    for (const vec3& e : v.e)
-        for (const ex& c : e)
+    for (const vec3 &e : v.e)
+        for (const ex &c : e)
             if (!is_constant(c))
                 return world_only();
 
@@ -169,8 +185,8 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     // A body's spin components in the frame (3-D): after impact (unknowns), before (renamed inputs).
     std::map<std::size_t, std::vector<symbol>> spin_after, spin_before;
     std::vector<symbol> frame;
-    auto rename = [&](const vec3& world, const std::string& base, const std::string& base_tex, const std::string& label, bool after,
-                      const std::vector<std::string>& meanings, std::vector<frame_component>& into) {
+    auto rename = [&](const vec3 &world, const std::string &base, const std::string &base_tex, const std::string &label,
+                      bool after, const std::vector<std::string> &meanings, std::vector<frame_component> &into) {
         frame.clear();
         for (int c = 0; c < dim; ++c)
             if (!is_a<symbol>(world[c]) || v.to_frame.count(world[c]))
@@ -180,7 +196,8 @@ contact_frame_view contact_frame_view_of(const derivation& d)
                 if (world[c].is_equal(world[k]))
                     return false;
         for (int k = 0; k < dim; ++k) {
-            frame.emplace_back(quantity_name(base, frame_axes[k], label, after), quantity_tex(base_tex, frame_axes[k], label, after));
+            frame.emplace_back(quantity_name(base, frame_axes[k], label, after),
+                               quantity_tex(base_tex, frame_axes[k], label, after));
             ex combination = 0;
             for (int c = 0; c < dim; ++c)
                 combination += v.e[k][c] * world[c];
@@ -198,7 +215,7 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     // Unknowns, in the derivation's order: the world components of one vector are
     // consecutive (velocity, angular velocity in 3-D, pivot impulse).
     for (std::size_t i = 0; i < d.unknowns.size();) {
-        const unknown& u = d.unknowns[i];
+        const unknown &u = d.unknowns[i];
         const bool vector_kind = u.kind == unknown_kind::velocity || u.kind == unknown_kind::pivot_impulse ||
                                  (u.kind == unknown_kind::angular_velocity && dim == 3);
         if (!vector_kind || i + static_cast<std::size_t>(dim) > d.unknowns.size()) {
@@ -209,17 +226,18 @@ contact_frame_view contact_frame_view_of(const derivation& d)
         vec3 world = zero_vec();
         std::vector<std::string> meanings;
         for (int c = 0; c < dim; ++c) {
-            const unknown& uc = d.unknowns[i + static_cast<std::size_t>(c)];
+            const unknown &uc = d.unknowns[i + static_cast<std::size_t>(c)];
             if (uc.kind != u.kind || uc.owner != u.owner || uc.component != c)
                 return world_only();
             world[c] = uc.sym;
             meanings.push_back(frame_meaning(uc.meaning, frame_axes[c]));
         }
         const std::size_t owner_body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
-        const std::string& label = p.bodies[owner_body].label;
-        const bool ok = u.kind == unknown_kind::velocity           ? rename(world, "v", "v", label, true, meanings, v.unknowns)
-                        : u.kind == unknown_kind::angular_velocity ? rename(world, "w", "\\omega", label, true, meanings, v.unknowns)
-                                                                   : rename(world, "R", "R", label, false, meanings, v.unknowns);
+        const std::string &label = p.bodies[owner_body].label;
+        const bool ok = u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
+                        : u.kind == unknown_kind::angular_velocity
+                            ? rename(world, "w", "\\omega", label, true, meanings, v.unknowns)
+                            : rename(world, "R", "R", label, false, meanings, v.unknowns);
         if (!ok)
             return world_only();
         if (u.kind == unknown_kind::angular_velocity)
@@ -229,11 +247,12 @@ contact_frame_view contact_frame_view_of(const derivation& d)
 
     // Inputs before impact given as plain symbols.
     for (std::size_t i : {p.contact.body1, p.contact.body2}) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         const std::string who = display_name(b);
         std::vector<std::string> meanings;
         for (int k = 0; k < dim; ++k)
-            meanings.push_back("velocity of the centre of mass of " + who + " before impact, " + frame_axes[k] + " component");
+            meanings.push_back("velocity of the centre of mass of " + who + " before impact, " + frame_axes[k] +
+                               " component");
         rename(b.velocity, "v", "v", b.label, false, meanings, v.inputs);
         if (dim == 3) {
             meanings.clear();
@@ -246,12 +265,12 @@ contact_frame_view contact_frame_view_of(const derivation& d)
 
     // The equations: scalar ones rewritten, vector ones projected on the frame -- if that
     // is cheap (each equation, written through the frame, at most a few thousand terms).
-    for (const equation& eq : d.equations)
+    for (const equation &eq : d.equations)
         if (expanded_terms(eq.lhs.subs(v.to_frame)) + expanded_terms(eq.rhs.subs(v.to_frame)) > 4000)
             return world_only();
     int before = 0, after = 0;
     for (std::size_t k = 0; k < d.equations.size();) {
-        const equation& first = d.equations[k];
+        const equation &first = d.equations[k];
         if (first.component < 0) {
             // The smooth-contact equations are along e_t and e_b as the derivation's
             // directions, not of length 1 in general: written for the unit vectors here.
@@ -270,7 +289,7 @@ contact_frame_view contact_frame_view_of(const derivation& d)
             components.insert(d.equations[j++].component);
         if (dim == 2 && components == std::set<int>{2}) { // a spin in plane motion: along z = e_b
             for (; k < j; ++k) {
-                const equation& eq = d.equations[k];
+                const equation &eq = d.equations[k];
                 framed_equation f{&eq, rewritten(v, eq.lhs), rewritten(v, eq.rhs), p.axes[2]};
                 before += nodes(eq.lhs) + nodes(eq.rhs);
                 after += nodes(f.lhs) + nodes(f.rhs);
@@ -278,12 +297,12 @@ contact_frame_view contact_frame_view_of(const derivation& d)
             }
             continue;
         }
-        if (j - k != static_cast<std::size_t>(dim) || static_cast<int>(components.size()) != dim || *components.begin() != 0 ||
-            *components.rbegin() != dim - 1)
+        if (j - k != static_cast<std::size_t>(dim) || static_cast<int>(components.size()) != dim ||
+            *components.begin() != 0 || *components.rbegin() != dim - 1)
             return world_only();
         vec3 lhs = zero_vec(), rhs = zero_vec();
         for (std::size_t q = k; q < j; ++q) {
-            const equation& eq = d.equations[q];
+            const equation &eq = d.equations[q];
             lhs[static_cast<std::size_t>(eq.component)] = eq.lhs;
             rhs[static_cast<std::size_t>(eq.component)] = eq.rhs;
             before += nodes(eq.lhs) + nodes(eq.rhs);
@@ -295,7 +314,8 @@ contact_frame_view contact_frame_view_of(const derivation& d)
                 r += v.e[a][c] * rhs[static_cast<std::size_t>(c)];
             }
             // The equations keep their numbers (the steps cite them): the a-th of the group.
-            v.equations.push_back({&d.equations[k + static_cast<std::size_t>(a)], rewritten(v, l), rewritten(v, r), frame_axes[a]});
+            v.equations.push_back(
+                {&d.equations[k + static_cast<std::size_t>(a)], rewritten(v, l), rewritten(v, r), frame_axes[a]});
         }
         if (first.why == principle::angular_momentum && first.bodies.size() == 1 && spin_after.count(first.bodies[0]))
             name_inertia(v, d, first.bodies[0], spin_after[first.bodies[0]], spin_before[first.bodies[0]]);
@@ -309,14 +329,14 @@ contact_frame_view contact_frame_view_of(const derivation& d)
     // has sqrt(5), lengthens them a little; unlike radicals that do not cancel, several times)
     if (2 * after > 3 * before)
         return world_only();
-    for (framed_equation& f : v.equations) {
+    for (framed_equation &f : v.equations) {
         // "after = before" as the derivation writes it: where the projection left knowns
         // beside the unknowns on the left of "= 0" (a pinned body's partner), they go right.
         if (f.rhs.is_zero() && is_a<add>(f.lhs)) {
             ex unknown_part = 0, known_part = 0;
-            for (const ex& term : f.lhs) {
+            for (const ex &term : f.lhs) {
                 bool has_unknown = false;
-                for (const frame_component& u : v.unknowns)
+                for (const frame_component &u : v.unknowns)
                     has_unknown = has_unknown || term.has(u.sym);
                 (has_unknown ? unknown_part : known_part) += term;
             }

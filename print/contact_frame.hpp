@@ -20,7 +20,8 @@
 #include <string>
 #include <vector>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 /// A contact-frame component that the view names: v′_t,puck = e_t · v′_puck.
 struct frame_component {
@@ -31,16 +32,16 @@ struct frame_component {
 
 /// One equation of the derivation as the view prints it.
 struct framed_equation {
-    const equation* source = nullptr; ///< label, principle and bodies
+    const equation *source = nullptr; ///< label, principle and bodies
     GiNaC::ex lhs, rhs;
     std::string axis; ///< "t", "n", "b" (projected), a world axis name, or "" (a scalar equation)
 };
 
 struct contact_frame_view {
-    bool active = false; ///< false: the equations print in world components as derived
-    int count = 0;       ///< 2 (e_t, e_n) or 3 (e_t, e_n, e_b)
-    vec3 e[3];           ///< unit e_t, e_n, e_b
-    GiNaC::exmap to_frame; ///< world symbol -> its contact-frame combination
+    bool active = false;                   ///< false: the equations print in world components as derived
+    int count = 0;                         ///< 2 (e_t, e_n) or 3 (e_t, e_n, e_b)
+    vec3 e[3];                             ///< unit e_t, e_n, e_b
+    GiNaC::exmap to_frame;                 ///< world symbol -> its contact-frame combination
     std::vector<frame_component> unknowns; ///< the derivation's unknowns as the view names them, in its order
     std::vector<frame_component> inputs;   ///< the inputs before impact it renamed
     /// In 3-D, the entries of a body's inertia tensor about C in the contact frame,
@@ -49,9 +50,9 @@ struct contact_frame_view {
     std::vector<framed_equation> equations;
 
     /// x with the world symbols written through their contact-frame components (tidy).
-    GiNaC::ex apply(const GiNaC::ex& x) const;
+    GiNaC::ex apply(const GiNaC::ex &x) const;
     /// values (a list of symbol == number) with the renamed inputs' and the inertia entries' values appended.
-    GiNaC::lst with_inputs(const GiNaC::ex& values) const;
+    GiNaC::lst with_inputs(const GiNaC::ex &values) const;
 };
 
 /// The view of d, active when the normal is a fixed (symbol-free) direction other
@@ -59,8 +60,8 @@ struct contact_frame_view {
 /// t, n, b is already in the contact frame), and when it does not make the
 /// equations longer (a normal with unlike radicals may not simplify); inactive
 /// otherwise, with `equations` then the derivation's own.
-contact_frame_view contact_frame_view_of(const derivation& d);
+contact_frame_view contact_frame_view_of(const derivation &d);
 /// The inactive view: the derivation's unknowns and equations in world components.
-contact_frame_view world_components_view(const derivation& d);
+contact_frame_view world_components_view(const derivation &d);
 
 } // namespace impactgen::print

@@ -15,7 +15,8 @@
 #include <string>
 #include <vector>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 /// Notation that is not a GiNaC expression (vector identities, operators):
 /// the same formula for a terminal and for LaTeX, side by side.
@@ -35,16 +36,32 @@ struct span {
 
 struct paragraph {
     std::vector<span> spans;
-    paragraph& w(const std::string& t) { spans.push_back({span::words, t, 0, {}}); return *this; }
-    paragraph& m(const GiNaC::ex& e) { spans.push_back({span::math, "", e, {}}); return *this; }
-    paragraph& n(const std::string& text, const std::string& tex) { spans.push_back({span::note, "", 0, {text, tex}}); return *this; }
-    paragraph& ref(const std::string& tag) { spans.push_back({span::ref, tag, 0, {}}); return *this; }
+    paragraph &w(const std::string &t)
+    {
+        spans.push_back({span::words, t, 0, {}});
+        return *this;
+    }
+    paragraph &m(const GiNaC::ex &e)
+    {
+        spans.push_back({span::math, "", e, {}});
+        return *this;
+    }
+    paragraph &n(const std::string &text, const std::string &tex)
+    {
+        spans.push_back({span::note, "", 0, {text, tex}});
+        return *this;
+    }
+    paragraph &ref(const std::string &tag)
+    {
+        spans.push_back({span::ref, tag, 0, {}});
+        return *this;
+    }
     /// Teaching prose written by the project itself: words with symbols set
     /// between dollars, "the impulse acts along $e_n$ on $C1$"; see
     /// prose_notation() for what may stand between them. It takes a C string
     /// so that a std::string (a user's name, a value) cannot reach it by
     /// accident: what a user writes goes through w() and stays words.
-    paragraph& t(const char* prose);
+    paragraph &t(const char *prose);
 };
 
 /// The notation of one symbol group of teaching prose (the text between two
@@ -52,42 +69,58 @@ struct paragraph {
 /// "C1" is C with subscript 1; "~v_C" marks a vector, e_t, e_n, e_b are unit
 /// vectors), numbers, and the signs + - = / ( ) , | < > ± ∓ × · ≤ ≥ → ∞ ≈ ≠ ⁻¹ ² ∫ √.
 /// Anything else is a programming error (std::logic_error naming it).
-notation prose_notation(const std::string& src);
+notation prose_notation(const std::string &src);
 
 /// A displayed relation lhs REL rhs with an optional tag "(3)" and a note.
 struct math_row {
     std::string tag;
     GiNaC::ex lhs, rhs;
-    std::string rel = "=";                 ///< "=", "->" (a limit), "<=", ">="
-    notation lhs_note;                     ///< used instead of lhs when lhs_note.text is set
-    bool has_then = false;                 ///< lhs = rhs = then: a formula and its value
+    std::string rel = "="; ///< "=", "->" (a limit), "<=", ">="
+    notation lhs_note;     ///< used instead of lhs when lhs_note.text is set
+    bool has_then = false; ///< lhs = rhs = then: a formula and its value
     GiNaC::ex then;
-    paragraph note;                        ///< printed under or beside the row
+    paragraph note; ///< printed under or beside the row
 };
 
 /// A figure of the impact, already drawn in each format that shows pictures.
 struct figure_art {
-    std::string caption;                   ///< plain words (escaped by each printer)
-    std::string tikz;                      ///< a tikzpicture environment (LaTeX needs \usepackage{tikz})
-    std::string svg;                       ///< one self-contained <svg> element (HTML)
-    std::string alt;                       ///< a one-line description (text, Markdown, the SVG's title)
+    std::string caption; ///< plain words (escaped by each printer)
+    std::string tikz;    ///< a tikzpicture environment (LaTeX needs \usepackage{tikz})
+    std::string svg;     ///< one self-contained <svg> element (HTML)
+    std::string alt;     ///< a one-line description (text, Markdown, the SVG's title)
 };
 
 struct block {
     enum kind { text, list, rows, figure } k = text;
-    paragraph para;                        ///< text
-    std::vector<paragraph> items;          ///< list
-    std::vector<math_row> math;            ///< rows
-    figure_art art;                        ///< figure
+    paragraph para;               ///< text
+    std::vector<paragraph> items; ///< list
+    std::vector<math_row> math;   ///< rows
+    figure_art art;               ///< figure
 };
 
 struct section {
     std::string title;
     std::vector<block> blocks;
-    section& para(const paragraph& p) { blocks.push_back({block::text, p, {}, {}, {}}); return *this; }
-    section& list(const std::vector<paragraph>& items) { blocks.push_back({block::list, {}, items, {}, {}}); return *this; }
-    section& rows(const std::vector<math_row>& r) { blocks.push_back({block::rows, {}, {}, r, {}}); return *this; }
-    section& picture(const figure_art& a) { blocks.push_back({block::figure, {}, {}, {}, a}); return *this; }
+    section &para(const paragraph &p)
+    {
+        blocks.push_back({block::text, p, {}, {}, {}});
+        return *this;
+    }
+    section &list(const std::vector<paragraph> &items)
+    {
+        blocks.push_back({block::list, {}, items, {}, {}});
+        return *this;
+    }
+    section &rows(const std::vector<math_row> &r)
+    {
+        blocks.push_back({block::rows, {}, {}, r, {}});
+        return *this;
+    }
+    section &picture(const figure_art &a)
+    {
+        blocks.push_back({block::figure, {}, {}, {}, a});
+        return *this;
+    }
 };
 
 struct document {
@@ -99,28 +132,28 @@ struct document {
 struct worked_example {
     std::string caption;
     GiNaC::lst values;
-    bool problem_numbers = false;  ///< the values are the problem's own (a numeric problem taught in symbols first)
+    bool problem_numbers = false;   ///< the values are the problem's own (a numeric problem taught in symbols first)
     std::vector<std::string> units; ///< per value: " kg", " m/s", ... or "" (empty vector: none)
 };
 
 /// The worked example of the notes for a named class, if the notes have one
 /// (pinned-planar: ball 0.5 kg at 5 m/s, rod 2 kg of 1 m, e = 0.8).
-bool notes_example(const std::string& class_name, worked_example& out);
+bool notes_example(const std::string &class_name, worked_example &out);
 
 /// The explanation of one impact. `example` (optional, may be null): values to
 /// substitute into every step of a symbolic problem at the end.
-document explain(const derivation& d, const solution& s, const worked_example* example = nullptr);
+document explain(const derivation &d, const solution &s, const worked_example *example = nullptr);
 
 /// The explanation of an impact with Coulomb friction (problem.contact.friction not 0):
 /// the contact law, impulse-momentum with the friction impulse, the contact response K,
 /// stick tested against the cone, then slide; the regimes as conditions on mu, the
 /// energy, existence and uniqueness; for a numeric problem every number and the
 /// regime that holds (or why none or several do).
-document explain_friction(const derivation& d, const friction_solution& f);
+document explain_friction(const derivation &d, const friction_solution &f);
 
-std::string explain_text(const document& doc);      ///< Unicode, wrapped at 100 columns
-std::string explain_markdown(const document& doc);  ///< $...$ math (GiNaC-compatible LaTeX)
-std::string explain_latex(const document& doc);     ///< a complete amsmath document for pdflatex
-std::string explain_html(const document& doc);      ///< one self-contained HTML5 page, mathematics in MathML
+std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
+std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)
+std::string explain_latex(const document &doc);    ///< a complete amsmath document for pdflatex
+std::string explain_html(const document &doc);     ///< one self-contained HTML5 page, mathematics in MathML
 
 } // namespace impactgen::print

@@ -10,36 +10,37 @@
 #include <utility>
 #include <vector>
 
-namespace impactgen::print::detail {
+namespace impactgen::print::detail
+{
 
 /// "body 1", "body 2 (ball)", ...
-std::string body_ref(const problem& p, std::size_t i);
+std::string body_ref(const problem &p, std::size_t i);
 /// (a, b[, c]) with every component through the canonical printer.
-paragraph& vector_span(paragraph& p, const vec3& v, int n);
+paragraph &vector_span(paragraph &p, const vec3 &v, int n);
 /// Small enough to print as one formula (fewer than `limit` nodes).
-bool printable(const GiNaC::ex& e, int limit = 400);
-math_row row(const GiNaC::ex& lhs, const GiNaC::ex& rhs, const std::string& tag = "", const std::string& note = "");
-math_row note_row(const std::string& text, const std::string& tex, const GiNaC::ex& rhs, const std::string& note = "");
+bool printable(const GiNaC::ex &e, int limit = 400);
+math_row row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &tag = "", const std::string &note = "");
+math_row note_row(const std::string &text, const std::string &tex, const GiNaC::ex &rhs, const std::string &note = "");
 /// A notation row without a value: the formula itself (text and TeX), and a note
 /// (teaching prose, see paragraph::t, or a paragraph built by the caller).
-math_row formula_row(const std::string& text, const std::string& tex, const char* note = "");
-math_row formula_row(const std::string& text, const std::string& tex, const paragraph& note);
+math_row formula_row(const std::string &text, const std::string &tex, const char *note = "");
+math_row formula_row(const std::string &text, const std::string &tex, const paragraph &note);
 /// "≈ 0.142857142857143" for an exact number that is not an integer, else "".
-std::string decimal_note(const GiNaC::ex& v);
+std::string decimal_note(const GiNaC::ex &v);
 
 /// The figure of the impact (figure/), drawn from the derivation's problem and frame.
-figure_art figure_of(const derivation& d);
+figure_art figure_of(const derivation &d);
 
 /// A step's meaning in teaching prose, from its role, body and component (typed),
 /// not from the solution's ASCII sentence.
-paragraph step_note(const problem& p, const step& st);
+paragraph step_note(const problem &p, const step &st);
 
 /// What a number measures, for its unit when the problem gives "units": "SI".
 enum class quantity { mass, inertia, length, velocity, angular_velocity, impulse, energy };
 /// " kg", " m/s", ... (with the leading space), or "" when the problem gives no units.
-std::string unit(const problem& p, quantity q);
+std::string unit(const problem &p, quantity q);
 /// The units of a problem in words: "SI (masses in kg, ...)".
-std::string units_key(const problem& p);
+std::string units_key(const problem &p);
 
 /// With friction, the set-up also names Coulomb's coefficient and the impulses
 /// that become unknowns: N (unless the derivation has it already) and F.
@@ -51,17 +52,17 @@ struct friction_setup {
 /// A numeric problem's twin with symbols for its masses, inertias, velocities, e and μ
 /// (geometry kept), for teaching in symbols first; values gets symbol == number and
 /// units the unit of each (" kg", or "").
-problem symbolized(const problem& p, GiNaC::lst& values, std::vector<std::string>& units);
+problem symbolized(const problem &p, GiNaC::lst &values, std::vector<std::string> &units);
 
 /// A numeric problem taught in symbols first: its symbolized twin derived as d was (the
 /// same normal convention), teach(twin, values, units) builds the document, and the
 /// figure is drawn from the numbers. Empty when there is no number to name, or when the
 /// twin cannot be derived or taught (a decision that needs the numbers).
-std::optional<document> taught_in_symbols(
-    const derivation& d,
-    const std::function<document(const derivation& twin, const GiNaC::lst& values, const std::vector<std::string>& units)>& teach);
+std::optional<document> taught_in_symbols(const derivation &d,
+                                          const std::function<document(const derivation &twin, const GiNaC::lst &values,
+                                                                       const std::vector<std::string> &units)> &teach);
 
 /// Section 1: bodies, contact frame, unknowns and their count.
-section setup_section(const derivation& d, const friction_setup* friction = nullptr);
+section setup_section(const derivation &d, const friction_setup *friction = nullptr);
 
 } // namespace impactgen::print::detail

@@ -6,8 +6,8 @@
 // that holds. Built from solve_friction()'s closed forms (symbolic/friction.hpp);
 // every formula is a GiNaC expression printed by the canonical printer.
 #include "explain.hpp"
-#include "formulas.hpp"
 #include "explain_detail.hpp"
+#include "formulas.hpp"
 
 #include "canonical.hpp"
 #include "expression.hpp"
@@ -18,19 +18,21 @@
 #include <cstdio>
 #include <set>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 using namespace detail;
 
-namespace {
+namespace
+{
 
 // A name for a print-only symbol that no symbol of the problem (nor an unknown) has.
-std::string fresh_name(const derivation& d, const std::string& base)
+std::string fresh_name(const derivation &d, const std::string &base)
 {
     std::set<std::string> taken;
-    for (const symbol& s : d.prob.parameters())
+    for (const symbol &s : d.prob.parameters())
         taken.insert(s.get_name());
-    for (const unknown& u : d.unknowns)
+    for (const unknown &u : d.unknowns)
         taken.insert(u.sym.get_name());
     std::string name = base;
     while (taken.count(name))
@@ -38,7 +40,7 @@ std::string fresh_name(const derivation& d, const std::string& base)
     return name;
 }
 
-std::string tex_of(const std::string& name, const std::string& tex_base)
+std::string tex_of(const std::string &name, const std::string &tex_base)
 {
     // a name made unique with trailing underscores keeps them in TeX: N_ -> N\_
     std::string extra;
@@ -49,7 +51,7 @@ std::string tex_of(const std::string& name, const std::string& tex_base)
 
 // |r| split over the factors of a product: numbers by their absolute value, even
 // powers as they are, (1 + e) and e (e >= 0 the restitution) as they are.
-ex abs_split(const ex& r, const ex& e)
+ex abs_split(const ex &r, const ex &e)
 {
     if (is_a<numeric>(r))
         return abs(ex_to<numeric>(r));
@@ -71,14 +73,16 @@ ex abs_split(const ex& r, const ex& e)
         const int deg = x.degree(e);
         for (int k = 0; k <= deg && positive; ++k) {
             ex c = x.coeff(e, k);
-            positive = is_a<numeric>(c) && !ex_to<numeric>(c).is_negative() && (k > 0 || ex_to<numeric>(c).is_positive());
+            positive =
+                is_a<numeric>(c) && !ex_to<numeric>(c).is_negative() && (k > 0 || ex_to<numeric>(c).is_positive());
         }
         if (positive && x.has(e))
             return r;
         bool negative = true; // -(1 + e): factor() may choose either sign
         for (int k = 0; k <= deg && negative; ++k) {
             ex c = x.coeff(e, k);
-            negative = is_a<numeric>(c) && !ex_to<numeric>(c).is_positive() && (k > 0 || ex_to<numeric>(c).is_negative());
+            negative =
+                is_a<numeric>(c) && !ex_to<numeric>(c).is_positive() && (k > 0 || ex_to<numeric>(c).is_negative());
         }
         if (negative && x.has(e))
             return -r;
@@ -95,14 +99,14 @@ ex abs_split(const ex& r, const ex& e)
 
 // An exact number's decimal, for a note; "" when it is not a constant or is an integer.
 // Six significant digits: what a reader takes in; the exact value is printed beside it.
-std::string short_decimal(const ex& x)
+std::string short_decimal(const ex &x)
 {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6g", to_double(x));
     return buf;
 }
 
-std::string approx_note(const ex& v)
+std::string approx_note(const ex &v)
 {
     if (!is_constant(v))
         return "";
@@ -113,15 +117,18 @@ std::string approx_note(const ex& v)
         if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
             return "";
         return "≈ " + short_decimal(x);
-    } catch (const std::invalid_argument&) {
+    } catch (const std::invalid_argument &) {
         return "";
     }
 }
 
-bool is_float(const ex& v) { return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational(); }
+bool is_float(const ex &v)
+{
+    return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational();
+}
 
 // A value with a float in it (the sliding angle found numerically) as one float.
-ex settle(const ex& v)
+ex settle(const ex &v)
 {
     for (const_preorder_iterator it = v.preorder_begin(); it != v.preorder_end(); ++it)
         if (is_a<numeric>(*it) && !ex_to<numeric>(*it).is_rational()) {
@@ -135,11 +142,12 @@ ex settle(const ex& v)
 }
 
 // sym = value; a float (a root found numerically) as 15 significant digits.
-math_row value_row(const ex& sym, const ex& value, const std::string& note = "")
+math_row value_row(const ex &sym, const ex &value, const std::string &note = "")
 {
     if (is_float(value)) {
         const std::string dec = decimal(value);
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
+                           paragraph().w(note));
     }
     if (!is_constant(value) || !is_a<numeric>(value))
         for (const_preorder_iterator it = value.preorder_begin(); it != value.preorder_end(); ++it)
@@ -148,7 +156,8 @@ math_row value_row(const ex& sym, const ex& value, const std::string& note = "")
     if (is_constant(value) && !is_a<numeric>(value) && canonical_text(value).size() > 60) {
         // exact but unreadable (nested roots of large rationals): its decimal
         const std::string dec = decimal(value.evalf());
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
+                           paragraph().w(note));
     }
     std::string n = approx_note(value);
     if (!note.empty())
@@ -157,7 +166,7 @@ math_row value_row(const ex& sym, const ex& value, const std::string& note = "")
 }
 
 // A regime's name in teaching prose, from its kind, sign and angle.
-paragraph regime_words(const regime_case& rc)
+paragraph regime_words(const regime_case &rc)
 {
     paragraph q;
     if (rc.kind == regime::stick)
@@ -177,38 +186,45 @@ paragraph regime_words(const regime_case& rc)
 }
 
 // A regime condition in teaching prose, from its kind.
-paragraph condition_note(const regime_condition& rc)
+paragraph condition_note(const regime_condition &rc)
 {
     paragraph q;
     switch (rc.kind) {
-    case condition_kind::cone_below: return q.t("$μN - F ≥ 0$ (the impulse inside the friction cone)");
-    case condition_kind::cone_above: return q.t("$μN + F ≥ 0$ (the impulse inside the friction cone)");
-    case condition_kind::pushes: return q.t("$N ≥ 0$ (the contact pushes)");
-    case condition_kind::cone: return q.t("$μ² N² - |~F|² ≥ 0$ (the impulse inside the friction cone)");
-    case condition_kind::slide_denominator: return q.t("$D_s > 0$ (the normal impulse $N$ is positive)");
-    case condition_kind::slides: return q.t("$λ = ~u′_t·~d > 0$ (the contact slides along $~d$ after impact)");
+    case condition_kind::cone_below:
+        return q.t("$μN - F ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::cone_above:
+        return q.t("$μN + F ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::pushes:
+        return q.t("$N ≥ 0$ (the contact pushes)");
+    case condition_kind::cone:
+        return q.t("$μ² N² - |~F|² ≥ 0$ (the impulse inside the friction cone)");
+    case condition_kind::slide_denominator:
+        return q.t("$D_s > 0$ (the normal impulse $N$ is positive)");
+    case condition_kind::slides:
+        return q.t("$λ = ~u′_t·~d > 0$ (the contact slides along $~d$ after impact)");
     }
     return q.w(rc.meaning);
 }
 
 // lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), a pointer to
 // where it is printed in full.
-math_row srow(const ex& lhs, const ex& rhs, const std::string& note = "")
+math_row srow(const ex &lhs, const ex &rhs, const std::string &note = "")
 {
     if (printable(rhs, 400))
         return row(lhs, rhs, "", note);
     const std::string more = "too long to print here; impactgen formulas prints it";
-    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots", paragraph().w(note.empty() ? more : note + " (" + more + ")"));
+    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots",
+                       paragraph().w(note.empty() ? more : note + " (" + more + ")"));
 }
 
 // A step's row, its meaning from its role (teaching prose with symbols in math).
-math_row srow(const problem& p, const step& st)
+math_row srow(const problem &p, const step &st)
 {
     math_row r = srow(st.sym, st.value);
     paragraph note = step_note(p, st);
     if (!r.note.spans.empty()) { // too long to print: the note says so
         note.w(" (");
-        for (const span& x : r.note.spans)
+        for (const span &x : r.note.spans)
             note.spans.push_back(x);
         note.w(")");
     }
@@ -219,42 +235,45 @@ math_row srow(const problem& p, const step& st)
 // A line can be broken in a sum, not in the denominator of a fraction: a formula whose
 // denominator is a long sum does not fit a printed page's column (LaTeX, HTML), so the
 // optional forms of a formula are shown only when their denominator is short.
-bool short_denominator(const ex& x) { return printable(x.denom(), 24); }
+bool short_denominator(const ex &x)
+{
+    return printable(x.denom(), 24);
+}
 
 struct context {
-    const derivation& d;
-    const friction_solution& f;
-    const problem& p;
+    const derivation &d;
+    const friction_solution &f;
+    const problem &p;
     int dim;
     std::size_t i1, i2;
     ex e, mu;
     vec3 n;
-    std::vector<vec3> tangents;   // e_t (and e_b): unit
-    std::vector<std::string> tnames; // "t" (and "b")
-    ex N;                         // print symbol of the normal impulse (the derivation's N with a pivot)
-    std::vector<ex> F;            // print symbols of the friction impulse along the tangents
-    std::size_t shared = 0;       // steps every case shares (K, u, u_n)
-    std::vector<equation> eqs;    // impulse-momentum, pivot, restitution
+    std::vector<vec3> tangents;                 // e_t (and e_b): unit
+    std::vector<std::string> tnames;            // "t" (and "b")
+    ex N;                                       // print symbol of the normal impulse (the derivation's N with a pivot)
+    std::vector<ex> F;                          // print symbols of the friction impulse along the tangents
+    std::size_t shared = 0;                     // steps every case shares (K, u, u_n)
+    std::vector<equation> eqs;                  // impulse-momentum, pivot, restitution
     std::vector<equation> stick_law, slide_law; // Coulomb's law, one per tangent
-    std::vector<ex> slide_d;      // print symbols of d's components (3-D)
+    std::vector<ex> slide_d;                    // print symbols of d's components (3-D)
     bool numeric = false;
     // A numeric problem taught in symbols first: d and f are its symbolic twin's, these
     // are the problem's own (the numbers, the regime that holds, the answer).
-    const derivation* numeric_d = nullptr;
-    const friction_solution* numeric_f = nullptr;
-    lst inputs;                       // symbol == number for the twin's symbols
-    std::vector<std::string> units;   // the unit of each
+    const derivation *numeric_d = nullptr;
+    const friction_solution *numeric_f = nullptr;
+    lst inputs;                     // symbol == number for the twin's symbols
+    std::vector<std::string> units; // the unit of each
 
-    context(const derivation& dd, const friction_solution& ff) : d(dd), f(ff), p(dd.prob) {}
+    context(const derivation &dd, const friction_solution &ff) : d(dd), f(ff), p(dd.prob) {}
     // Whether the stick impulse can push (N > 0 for some μ): decided on the problem's numbers
     bool can_stick() const { return numeric_d ? stick_can_hold(*numeric_d, *numeric_f) : stick_can_hold(d, f); }
     // x with the problem's numbers for the twin's symbols
-    ex at_inputs(const ex& x) const { return inputs.nops() ? x.subs(inputs) : x; }
+    ex at_inputs(const ex &x) const { return inputs.nops() ? x.subs(inputs) : x; }
 
-    const regime_case& stick() const { return f.cases.front(); }
+    const regime_case &stick() const { return f.cases.front(); }
     ex un() const
     {
-        const step* s = stick().sol.find(step_role::approach_velocity);
+        const step *s = stick().sol.find(step_role::approach_velocity);
         return s ? ex(s->sym) : ex(0);
     }
     // The relative velocity u of the contact points in world components: steps, or inline values.
@@ -262,7 +281,7 @@ struct context {
     {
         vec3 u = zero_vec();
         for (int a = 0; a < dim; ++a) {
-            const step* s = stick().sol.find(step_role::relative_velocity, no_body, a);
+            const step *s = stick().sol.find(step_role::relative_velocity, no_body, a);
             // along a normal +e_a, u's component is the approach step u_n (symbolic/friction.cpp)
             u[a] = s ? ex(s->sym) : n[a].is_equal(1) ? un() : tidy(d.vB[a] - d.vA[a]);
         }
@@ -270,11 +289,11 @@ struct context {
     }
     ex K(int a, int b) const
     {
-        const step* s = stick().sol.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
+        const step *s = stick().sol.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
         return s ? ex(s->sym) : ex(0);
     }
     // x.K y in world steps.
-    ex kform(const vec3& x, const vec3& y) const
+    ex kform(const vec3 &x, const vec3 &y) const
     {
         ex r = 0;
         for (int a = 0; a < dim; ++a)
@@ -294,28 +313,32 @@ struct context {
     }
 };
 
-
 // ---------------------------------------------------------------- 2. the law
 
-section law_section(const context& c)
+section law_section(const context &c)
 {
-    const problem& p = c.p;
+    const problem &p = c.p;
     section sec{"2. The contact law: restitution and Coulomb friction", {}};
     std::vector<paragraph> items;
-    items.push_back(paragraph()
-                        .w("The contact impulse on " + body_ref(p, c.i2))
-                        .t(" is $~P = N e_n + ~F$, and on ")
-                        .w(body_ref(p, c.i1))
-                        .t(" it is $-~P$ (action and reaction): $N ≥ 0$ is the normal impulse, $~F$ the friction impulse, "
-                           "tangential (normal to $e_n$)."));
-    items.push_back(paragraph().t("Newton's law of restitution acts on the normal relative velocity of the contact points, exactly as "
-                                  "without friction: $u′_n = -e u_n$, with $u = v_B - v_A$ and $u_n = u·e_n < 0$ for an impact."));
-    items.push_back(paragraph().t("Coulomb's law bounds the friction impulse by the cone $|F| ≤ μN$, and there are two regimes:"));
-    items.push_back(paragraph().t("stick: the contact points leave with no relative tangential velocity, $u′_t = 0$, with any $F$ inside "
-                                  "the cone;"));
-    items.push_back(paragraph().t("slide: $u′_t ≠ 0$, and friction is at its limit and opposes the sliding of $B$ relative to A: "
-                                  "$F = -μN u′_t/|u′_t|$."));
-    for (const pivot& pv : p.pivots) {
+    items.push_back(
+        paragraph()
+            .w("The contact impulse on " + body_ref(p, c.i2))
+            .t(" is $~P = N e_n + ~F$, and on ")
+            .w(body_ref(p, c.i1))
+            .t(" it is $-~P$ (action and reaction): $N ≥ 0$ is the normal impulse, $~F$ the friction impulse, "
+               "tangential (normal to $e_n$)."));
+    items.push_back(paragraph().t(
+        "Newton's law of restitution acts on the normal relative velocity of the contact points, exactly as "
+        "without friction: $u′_n = -e u_n$, with $u = v_B - v_A$ and $u_n = u·e_n < 0$ for an impact."));
+    items.push_back(
+        paragraph().t("Coulomb's law bounds the friction impulse by the cone $|F| ≤ μN$, and there are two regimes:"));
+    items.push_back(paragraph().t(
+        "stick: the contact points leave with no relative tangential velocity, $u′_t = 0$, with any $F$ inside "
+        "the cone;"));
+    items.push_back(
+        paragraph().t("slide: $u′_t ≠ 0$, and friction is at its limit and opposes the sliding of $B$ relative to A: "
+                      "$F = -μN u′_t/|u′_t|$."));
+    for (const pivot &pv : p.pivots) {
         paragraph q;
         q.t("The pin at $E =$ ");
         vector_span(q, pv.point, p.dimension);
@@ -324,60 +347,71 @@ section law_section(const context& c)
     }
     for (std::size_t i : {c.i1, c.i2})
         if (p.bodies[i].infinite_mass)
-            items.push_back(paragraph().w(body_ref(p, i) + " has infinite mass: the finite impulse P does not change its motion."));
-    items.push_back(paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+            items.push_back(
+                paragraph().w(body_ref(p, i) + " has infinite mass: the finite impulse P does not change its motion."));
+    items.push_back(
+        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
     sec.list(items);
-    sec.rows({formula_row("P = N e_n + F,   |F| ≤ μ N", "\\underline{P} = N\\,\\hat{\\underline{e}}_n + \\underline{F},\\quad |\\underline{F}| \\le \\mu N",
-                          "the contact impulse on body 2 and Coulomb's cone"),
+    sec.rows({formula_row(
+                  "P = N e_n + F,   |F| ≤ μ N",
+                  "\\underline{P} = N\\,\\hat{\\underline{e}}_n + \\underline{F},\\quad |\\underline{F}| \\le \\mu N",
+                  "the contact impulse on body 2 and Coulomb's cone"),
               formula_row("u′_n = -e u_n", "u'_n = -e\\,u_n", "restitution: the normal velocity of separation"),
               formula_row("stick: u′_t = 0", "\\text{stick: } \\underline{u}'_t = \\underline{0}", "needs $|~F| ≤ μN$"),
-              formula_row("slide: F = -μ N u′_t/|u′_t|", "\\text{slide: } \\underline{F} = -\\mu N\\,\\underline{u}'_t/|\\underline{u}'_t|",
+              formula_row("slide: F = -μ N u′_t/|u′_t|",
+                          "\\text{slide: } \\underline{F} = -\\mu N\\,\\underline{u}'_t/|\\underline{u}'_t|",
                           "needs $~u′_t ≠ 0$, in the direction $~d = ~u′_t/|~u′_t|$")});
-    sec.para(paragraph().w("This is the algebraic law of textbooks (Newton's restitution with Coulomb friction at the level of impulses): "
-                           "the friction impulse has one direction for the whole impact. A contact whose sliding stops or turns "
-                           "during the impact needs the impact to be followed through its duration (Routh's method); the answer "
-                           "here is the one the law gives."));
+    sec.para(paragraph().w(
+        "This is the algebraic law of textbooks (Newton's restitution with Coulomb friction at the level of impulses): "
+        "the friction impulse has one direction for the whole impact. A contact whose sliding stops or turns "
+        "during the impact needs the impact to be followed through its duration (Routh's method); the answer "
+        "here is the one the law gives."));
     return sec;
 }
 
 // ---------------------------------------------------------------- 3. the equations
 
-void build_equations(context& c)
+void build_equations(context &c)
 {
-    const problem& p = c.p;
-    const derivation& d = c.d;
+    const problem &p = c.p;
+    const derivation &d = c.d;
     const int dim = c.dim;
     int label = 0;
-    auto add = [&](std::vector<equation>& to, const ex& lhs, const ex& rhs, principle why, const std::string& reason,
+    auto add = [&](std::vector<equation> &to, const ex &lhs, const ex &rhs, principle why, const std::string &reason,
                    std::vector<std::size_t> bodies, int component) {
         to.push_back({std::to_string(++label), lhs, rhs, why, reason, std::move(bodies), component});
     };
     const vec3 P = c.impulse_vector();
     for (std::size_t i : {c.i1, c.i2}) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         if (b.infinite_mass)
             continue;
         const int s = i == c.i1 ? -1 : 1;
-        const pivot* pv = p.pivot_of(i);
+        const pivot *pv = p.pivot_of(i);
         vec3 R = zero_vec();
         if (pv)
             R = d.pivot_impulse[static_cast<std::size_t>(pv - p.pivots.data())];
         const vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
         const std::string name = display_name(b);
-        std::string reason = "the change of linear momentum of " + name + " equals the impulses on it: " +
-                             (s < 0 ? "-P = -(N e_n + F)" : "P = N e_n + F") + (pv ? " and the pivot impulse R" : "") +
+        std::string reason = "the change of linear momentum of " + name +
+                             " equals the impulses on it: " + (s < 0 ? "-P = -(N e_n + F)" : "P = N e_n + F") +
+                             (pv ? " and the pivot impulse R" : "") +
                              "; with friction the tangential components change too";
         for (int a = 0; a < dim; ++a)
             add(c.eqs, tidy_expand(dp[a]), tidy_expand(ex(s) * P[a] + R[a]), principle::linear_impulse, reason, {i}, a);
         if (!b.particle) {
             const int first = dim == 2 ? 2 : 0;
             if (pv) {
-                const vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) + cross(b.position - pv->point, dp);
+                const vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) +
+                                cross(b.position - pv->point, dp);
                 const vec3 moment = cross(p.contact.point - pv->point, ex(s) * P);
                 for (int a = first; a < 3; ++a)
                     add(c.eqs, tidy_expand(dH[a]), tidy_expand(moment[a]), principle::angular_momentum,
-                        "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change of angular "
-                        "momentum of " + name + " about E is the moment (O - E) × P of the contact impulse, its friction part included",
+                        "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change "
+                        "of angular "
+                        "momentum of " +
+                            name +
+                            " about E is the moment (O - E) × P of the contact impulse, its friction part included",
                         {i}, a);
             } else {
                 const vec3 r = b.position - p.contact.point;
@@ -385,53 +419,64 @@ void build_equations(context& c)
                 const vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
                 for (int a = first; a < 3; ++a)
                     add(c.eqs, tidy_expand(Ha[a]), tidy_expand(Hb[a]), principle::angular_momentum,
-                        "the whole contact impulse on " + name + ", normal and friction part alike, acts at O, which is fixed in "
-                        "the inertial frame: it has no moment about O, so the angular momentum of " + name +
-                        " about O is conserved, with friction as without",
+                        "the whole contact impulse on " + name +
+                            ", normal and friction part alike, acts at O, which is fixed in "
+                            "the inertial frame: it has no moment about O, so the angular momentum of " +
+                            name + " about O is conserved, with friction as without",
                         {i}, a);
             }
         }
     }
-    for (const equation& eq : d.equations)
+    for (const equation &eq : d.equations)
         if (eq.why == principle::pivot_fixed)
             add(c.eqs, eq.lhs, eq.rhs, eq.why, eq.reason, eq.bodies, eq.component);
-    for (const equation& eq : d.equations)
+    for (const equation &eq : d.equations)
         if (eq.why == principle::restitution)
             add(c.eqs, eq.lhs, eq.rhs, eq.why, eq.reason, eq.bodies, eq.component);
     // Coulomb's law: one equation per tangent, different in each regime.
     const int base = label;
     for (std::size_t k = 0; k < c.tangents.size(); ++k) {
         const std::string tag = std::to_string(base + 1 + static_cast<int>(k));
-        c.stick_law.push_back({tag, tidy_expand(dot(d.vB_after - d.vA_after, c.tangents[k])), 0, principle::restitution,
-                               "stick", {c.i1, c.i2}, -1});
+        c.stick_law.push_back({tag,
+                               tidy_expand(dot(d.vB_after - d.vA_after, c.tangents[k])),
+                               0,
+                               principle::restitution,
+                               "stick",
+                               {c.i1, c.i2},
+                               -1});
         ex rhs = dim == 2 ? ex(-c.mu * c.N) : ex(-c.mu * c.N * c.slide_d[k]);
         c.slide_law.push_back({tag + "'", c.F[k], rhs, principle::restitution, "slide", {c.i1, c.i2}, -1});
     }
 }
 
-section equations_section(const context& c)
+section equations_section(const context &c)
 {
-    const problem& p = c.p;
+    const problem &p = c.p;
     section sec{"3. The equations: impulse-momentum with the friction impulse", {}};
     sec.para(paragraph()
-                 .t("With friction the notes' smooth-contact equations fail: they said that no impulse acts along the tangent, "
+                 .t("With friction the notes' smooth-contact equations fail: they said that no impulse acts along the "
+                    "tangent, "
                     "so each body's centre-of-mass velocity along $e_t$")
                  .t(c.dim == 3 ? " and $e_b$" : "")
-                 .t(" is unchanged. Now the friction impulse $~F$ acts along the tangent, and $m (~v′_C - ~v_C)·e_t = ±~F·e_t$. "
+                 .t(" is unchanged. Now the friction impulse $~F$ acts along the tangent, and $m (~v′_C - ~v_C)·e_t = "
+                    "±~F·e_t$. "
                     "So impulse-momentum is written for each body with the impulses $N$ and $~F$ as unknowns."));
-    sec.para(paragraph().t("Angular momentum needs no change: the contact impulse $P$, friction part included, acts at the contact point $O$, "
-                           "so each free body's angular momentum about $O$ is still conserved (a pinned body's about its pivot $E$ changes by "
-                           "the moment of $P$ about $E)$. What friction changes is the linear momentum along the tangent, and the moment "
-                           "about the centre of mass: $I_C (ω′ - ω) = r × P$ now has a part $r × F$ from the friction impulse."));
+    sec.para(paragraph().t(
+        "Angular momentum needs no change: the contact impulse $P$, friction part included, acts at the contact point "
+        "$O$, "
+        "so each free body's angular momentum about $O$ is still conserved (a pinned body's about its pivot $E$ "
+        "changes by "
+        "the moment of $P$ about $E)$. What friction changes is the linear momentum along the tangent, and the moment "
+        "about the centre of mass: $I_C (ω′ - ω) = r × P$ now has a part $r × F$ from the friction impulse."));
     // Grouped by principle and bodies; the words come from those (typed), not from the ASCII reason.
     std::size_t k = 0;
     while (k < c.eqs.size()) {
-        const equation& first = c.eqs[k];
+        const equation &first = c.eqs[k];
         const principle why = first.why;
         std::vector<math_row> rows;
         std::size_t j = k;
         for (; j < c.eqs.size() && c.eqs[j].bodies == first.bodies && c.eqs[j].why == why; ++j) {
-            const equation& eq = c.eqs[j];
+            const equation &eq = c.eqs[j];
             math_row r = row(eq.lhs, eq.rhs, eq.label);
             if (eq.component >= 0)
                 r.note.w("component along " + p.axes[static_cast<std::size_t>(eq.component)]);
@@ -441,7 +486,7 @@ section equations_section(const context& c)
         title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
         const std::size_t i = first.bodies.empty() ? c.i1 : first.bodies[0];
         const std::string who = display_name(p.bodies[i]);
-        const pivot* pv = p.pivot_of(i);
+        const pivot *pv = p.pivot_of(i);
         paragraph q;
         q.w(title + ": ");
         switch (why) {
@@ -453,13 +498,15 @@ section equations_section(const context& c)
             break;
         case principle::angular_momentum:
             if (pv)
-                q.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change of angular "
+                q.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change of "
+                    "angular "
                     "momentum of ")
                     .w(who)
                     .t(" about $E$ is the moment $(O - E) × ~P$ of the contact impulse, its friction part included.");
             else
                 q.w("the whole contact impulse on " + who)
-                    .t(", normal and friction part alike, acts at $O$, which is fixed in the inertial frame: it has no moment "
+                    .t(", normal and friction part alike, acts at $O$, which is fixed in the inertial frame: it has no "
+                       "moment "
                        "about $O$, so the angular momentum of ")
                     .w(who)
                     .t(" about $O$ is conserved, with friction as without.");
@@ -468,7 +515,8 @@ section equations_section(const context& c)
             q.t("the pivot $E$ of ").w(who).t(" does not move: $~v′_C + ~ω′ × ~r_CE = 0$.");
             break;
         case principle::restitution:
-            q.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ times "
+            q.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ "
+                "times "
                 "their velocity of approach.");
             break;
         default:
@@ -482,11 +530,13 @@ section equations_section(const context& c)
                            (c.tangents.size() == 1 ? " equation" : " equations") + ", different in each regime:"));
     std::vector<math_row> law;
     for (std::size_t t = 0; t < c.stick_law.size(); ++t) {
-        const equation& eq = c.stick_law[t];
-        law.push_back(row(eq.lhs, eq.rhs, eq.label,
-                          ""));
-        law.back().note.t("stick: $(~v′_B - ~v′_A)·$").n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t])
-            .t(" $= 0$, the contact points leave together along ").n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t]);
+        const equation &eq = c.stick_law[t];
+        law.push_back(row(eq.lhs, eq.rhs, eq.label, ""));
+        law.back()
+            .note.t("stick: $(~v′_B - ~v′_A)·$")
+            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t])
+            .t(" $= 0$, the contact points leave together along ")
+            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t]);
     }
     if (c.dim == 2) {
         for (int s : {1, -1}) {
@@ -495,62 +545,83 @@ section equations_section(const context& c)
             law.push_back(r);
         }
     } else {
-        for (std::size_t t = 0; t < c.slide_law.size(); ++t)
-        {
+        for (std::size_t t = 0; t < c.slide_law.size(); ++t) {
             math_row r = row(c.slide_law[t].lhs, c.slide_law[t].rhs, c.slide_law[t].label);
             if (t == 0)
-                r.note.t("slide along the unit tangent $~d = (d_t, d_b) = ~u′_t/|~u′_t|$ (components along $e_t$, $e_b$)");
+                r.note.t(
+                    "slide along the unit tangent $~d = (d_t, d_b) = ~u′_t/|~u′_t|$ (components along $e_t$, $e_b$)");
             law.push_back(r);
         }
     }
     sec.rows(law);
     const std::size_t n_eq = c.eqs.size() + c.tangents.size();
     std::size_t n_unknowns = c.d.count_unknowns() + c.F.size() + (c.d.impulse_form ? 0 : 1);
-    sec.para(paragraph().w(std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) + " unknowns: " +
-                           (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
-                           " in either regime; which regime holds is decided by inequalities: stick needs |F| ≤ μN, slide needs the "
-                           "contact to slide the way friction assumed."));
+    sec.para(paragraph().w(
+        std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) +
+        " unknowns: " + (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
+        " in either regime; which regime holds is decided by inequalities: stick needs |F| ≤ μN, slide needs the "
+        "contact to slide the way friction assumed."));
     return sec;
 }
 
 // ---------------------------------------------------------------- 4. the contact response
 
-section response_section(const context& c)
+section response_section(const context &c)
 {
-    const problem& p = c.p;
+    const problem &p = c.p;
     section sec{"4. The contact response K", {}};
-    sec.para(paragraph().t("Every equation is linear in the impulse. Solve each body's equations for its velocities in terms of $P$ and "
-                           "put them into the velocities of the contact points: the relative velocity $u = v_B - v_A$ then changes "
-                           "linearly with $P$, through a symmetric matrix $K$, the contact response (the inverse of an effective mass):"));
+    sec.para(paragraph().t(
+        "Every equation is linear in the impulse. Solve each body's equations for its velocities in terms of $P$ and "
+        "put them into the velocities of the contact points: the relative velocity $u = v_B - v_A$ then changes "
+        "linearly with $P$, through a symmetric matrix $K$, the contact response (the inverse of an effective mass):"));
     std::vector<math_row> rows;
-    rows.push_back(formula_row("u′ = u + K P,   K = K_1 + K_2", "\\underline{u}' = \\underline{u} + \\underline{\\underline{K}}\\,\\underline{P},\\quad \\underline{\\underline{K}} = \\underline{\\underline{K}}_1 + \\underline{\\underline{K}}_2",
-                               "u′ - u is the velocity change of B minus that of A; body 1 receives -P"));
+    rows.push_back(
+        formula_row("u′ = u + K P,   K = K_1 + K_2",
+                    "\\underline{u}' = \\underline{u} + \\underline{\\underline{K}}\\,\\underline{P},\\quad "
+                    "\\underline{\\underline{K}} = \\underline{\\underline{K}}_1 + \\underline{\\underline{K}}_2",
+                    "u′ - u is the velocity change of B minus that of A; body 1 receives -P"));
     for (std::size_t i : {c.i1, c.i2}) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         const std::string who = body_ref(p, i);
         if (p.immovable(i))
-            rows.push_back(formula_row("K_" + std::string(i == c.i1 ? "1" : "2") + " = 0", "\\underline{\\underline{K}}_" + std::string(i == c.i1 ? "1" : "2") + " = 0",
-                                       paragraph().w(who + (b.infinite_mass ? ": infinite mass, the impulse cannot move it" : ": a particle pinned at a fixed point"))));
+            rows.push_back(
+                formula_row("K_" + std::string(i == c.i1 ? "1" : "2") + " = 0",
+                            "\\underline{\\underline{K}}_" + std::string(i == c.i1 ? "1" : "2") + " = 0",
+                            paragraph().w(who + (b.infinite_mass ? ": infinite mass, the impulse cannot move it"
+                                                                 : ": a particle pinned at a fixed point"))));
         else if (p.pivot_of(i))
-            rows.push_back(formula_row("K_i P = (I_E⁻¹(ρ × P)) × ρ,   ρ = O - E", "\\underline{\\underline{K}}_i\\underline{P} = (\\underline{\\underline{I}}_E^{-1}(\\underline{\\rho}\\times\\underline{P}))\\times\\underline{\\rho},\\quad \\underline{\\rho} = O - E",
-                                       paragraph().w(who).t(": it can only turn about its pivot $E$ ($~~I_E$ its inertia about $E$)")));
+            rows.push_back(formula_row(
+                "K_i P = (I_E⁻¹(ρ × P)) × ρ,   ρ = O - E",
+                "\\underline{\\underline{K}}_i\\underline{P} = "
+                "(\\underline{\\underline{I}}_E^{-1}(\\underline{\\rho}\\times\\underline{P}))\\times\\underline{\\rho}"
+                ",\\quad \\underline{\\rho} = O - E",
+                paragraph().w(who).t(": it can only turn about its pivot $E$ ($~~I_E$ its inertia about $E$)")));
         else if (b.particle)
-            rows.push_back(formula_row("K_i P = P/m_i", "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i", paragraph().w(who + ": a particle")));
+            rows.push_back(formula_row("K_i P = P/m_i",
+                                       "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i",
+                                       paragraph().w(who + ": a particle")));
         else
-            rows.push_back(formula_row("K_i P = P/m_i + (I_i⁻¹(r_i × P)) × r_i,   r_i = O - C_i", "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i + (\\underline{\\underline{I}}_i^{-1}(\\underline{r}_i\\times\\underline{P}))\\times\\underline{r}_i,\\quad \\underline{r}_i = O - C_i",
-                                       paragraph().w(who).t(": a free rigid body, translation plus the rotation the moment $~r_i × ~P$ gives")));
+            rows.push_back(
+                formula_row("K_i P = P/m_i + (I_i⁻¹(r_i × P)) × r_i,   r_i = O - C_i",
+                            "\\underline{\\underline{K}}_i\\underline{P} = \\underline{P}/m_i + "
+                            "(\\underline{\\underline{I}}_i^{-1}(\\underline{r}_i\\times\\underline{P}))"
+                            "\\times\\underline{r}_i,\\quad \\underline{r}_i = O - C_i",
+                            paragraph().w(who).t(
+                                ": a free rigid body, translation plus the rotation the moment $~r_i × ~P$ gives")));
     }
     sec.rows(rows);
-    sec.para(paragraph().t("$K$ is symmetric and positive definite (each $K_i$ is the velocity response of a body to an impulse: "
-                           "$P·K P > 0$ is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
-                           "the relative velocity before impact, through named steps:"));
+    sec.para(paragraph().t(
+        "$K$ is symmetric and positive definite (each $K_i$ is the velocity response of a body to an impulse: "
+        "$P·K P > 0$ is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
+        "the relative velocity before impact, through named steps:"));
     std::vector<math_row> steps;
-    const auto& st = c.stick().sol.steps;
+    const auto &st = c.stick().sol.steps;
     for (std::size_t k = 0; k < c.shared; ++k)
         steps.push_back(srow(c.p, st[k]));
     sec.rows(steps);
-    sec.para(paragraph().t("$u_n < 0$: the contact points approach. Its tangential part $u_t = u - u_n e_n$ is the velocity with which "
-                           "$B$ slides over A before impact."));
+    sec.para(paragraph().t(
+        "$u_n < 0$: the contact points approach. Its tangential part $u_t = u - u_n e_n$ is the velocity with which "
+        "$B$ slides over A before impact."));
     return sec;
 }
 
@@ -558,12 +629,13 @@ section response_section(const context& c)
 
 // F/N of the stick impulse in the contact frame with print-only symbols, and the threshold.
 struct planar_frame {
-    symbol Ktt{"K_tt", "K_{tt}"}, Ktn{"K_tn", "K_{tn}"}, Knn{"K_nn", "K_{nn}"}, ut{"u_t", "u_{t}"}, un{"u_n", "u_{n}"}, DK{"D_K", "D_{K}"};
+    symbol Ktt{"K_tt", "K_{tt}"}, Ktn{"K_tn", "K_{tn}"}, Knn{"K_nn", "K_{nn}"}, ut{"u_t", "u_{t}"}, un{"u_n", "u_{n}"},
+        DK{"D_K", "D_{K}"};
 };
 
-ex stick_threshold_value(const context& c)
+ex stick_threshold_value(const context &c)
 {
-    const regime_case& st = c.stick();
+    const regime_case &st = c.stick();
     if (c.dim == 2)
         return abs(st.tangential_scalar) / st.sol.normal_impulse;
     const ex Ft = tidy(dot(st.impulse, c.f.e_t)), Fb = tidy(dot(st.impulse, c.f.e_b));
@@ -572,14 +644,14 @@ ex stick_threshold_value(const context& c)
 
 // The notes write -(u + e u_n e_n) along e_n as -(1 + e) u_n: every sum that equals (1 + e) u_n
 // printed so (the value is the same; the step is not changed, nor the generated code).
-ex with_one_plus_e(const ex& x, const ex& e, const ex& un)
+ex with_one_plus_e(const ex &x, const ex &e, const ex &un)
 {
     if (un.is_zero() || !is_a<symbol>(e))
         return x;
     struct fold : map_function {
         ex e, un;
-        fold(const ex& ee, const ex& uu) : e(ee), un(uu) {}
-        ex operator()(const ex& y) override
+        fold(const ex &ee, const ex &uu) : e(ee), un(uu) {}
+        ex operator()(const ex &y) override
         {
             if (is_a<add>(y) && y.nops() == 2 && (y - (1 + e) * un).expand().is_zero())
                 return (1 + e) * un;
@@ -589,14 +661,17 @@ ex with_one_plus_e(const ex& x, const ex& e, const ex& un)
     return f(x);
 }
 
-section stick_section(const context& c)
+section stick_section(const context &c)
 {
-    const regime_case& st = c.stick();
+    const regime_case &st = c.stick();
     section sec{"5. Assume sticking", {}};
-    sec.para(paragraph().t("Textbooks try sticking first. Then $u′_t = 0$, and restitution gives $u′_n = -e u_n$, so $u′ = -e u_n e_n$ and "
+    sec.para(paragraph().t("Textbooks try sticking first. Then $u′_t = 0$, and restitution gives $u′_n = -e u_n$, so "
+                           "$u′ = -e u_n e_n$ and "
                            "$u′ = u + K P$ becomes a linear system for the whole impulse $P$:"));
-    sec.rows({formula_row("K P = -(u + e u_n e_n)", "\\underline{\\underline{K}}\\,\\underline{P} = -(\\underline{u} + e\\,u_n\\,\\hat{\\underline{e}}_n)",
-                          "$~P = -K⁻¹(~u + e u_n e_n)$: $K$ is positive definite, so $D_K = det K > 0$")});
+    sec.rows({formula_row(
+        "K P = -(u + e u_n e_n)",
+        "\\underline{\\underline{K}}\\,\\underline{P} = -(\\underline{u} + e\\,u_n\\,\\hat{\\underline{e}}_n)",
+        "$~P = -K⁻¹(~u + e u_n e_n)$: $K$ is positive definite, so $D_K = det K > 0$")});
     std::vector<math_row> steps;
     for (std::size_t k = c.shared; k < st.sol.steps.size(); ++k) {
         step shown = st.sol.steps[k];
@@ -604,7 +679,8 @@ section stick_section(const context& c)
         steps.push_back(srow(c.p, shown));
     }
     sec.rows(steps);
-    sec.para(paragraph().t("$μ$ does not appear: the stick impulse does not depend on $μ$. If it sticks, the bodies leave with"));
+    sec.para(paragraph().t(
+        "$μ$ does not appear: the stick impulse does not depend on $μ$. If it sticks, the bodies leave with"));
     std::vector<math_row> unknowns;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k)
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
@@ -613,48 +689,55 @@ section stick_section(const context& c)
     // The rolling remark: B leaves with A's tangential velocity.
     for (std::size_t i : {c.i1, c.i2}) {
         const std::size_t other = i == c.i1 ? c.i2 : c.i1;
-        const body& b = c.p.bodies[i];
+        const body &b = c.p.bodies[i];
         if (b.infinite_mass && b.at_rest() && !c.p.bodies[other].particle) {
             paragraph q;
-            q.w("Here " + body_ref(c.p, i)).t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
-                .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ").ref(c.stick_law[0].label).w(": ");
+            q.w("Here " + body_ref(c.p, i))
+                .t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
+                .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ")
+                .ref(c.stick_law[0].label)
+                .w(": ");
             q.m(c.stick_law[0].lhs).t(" $= 0$.");
             sec.para(q);
         }
     }
     sec.para(paragraph().t("Test: the stick impulse must lie inside the friction cone, $|F| ≤ μN$:"));
     std::vector<math_row> conds;
-    for (const regime_condition& rc : st.conditions) {
+    for (const regime_condition &rc : st.conditions) {
         math_row r = row(rc.value, 0);
         r.note = condition_note(rc);
         r.rel = rc.strict ? ">" : "≥";
         conds.push_back(r);
     }
     sec.rows(conds);
-    sec.para(paragraph().t("As the stick impulse does not depend on $μ$, the test is a condition on $μ$ alone: sticking holds exactly when "
+    sec.para(paragraph().t("As the stick impulse does not depend on $μ$, the test is a condition on $μ$ alone: "
+                           "sticking holds exactly when "
                            "the stick impulse pushes $(N > 0)$ and $μ ≥ μ*$, the threshold"));
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
-    thr.push_back(row(mu_star, stick_threshold_value(c), "", c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
+    thr.push_back(row(mu_star, stick_threshold_value(c), "",
+                      c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
     if (!c.can_stick())
-        sec.para(paragraph().t("Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
-                               "not a threshold."));
+        sec.para(paragraph().t(
+            "Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
+            "not a threshold."));
     if (c.dim == 2) {
         planar_frame k;
         const ex one_e = 1 + c.e;
         // D_K F = (1 + e) K_tn u_n - K_nn u_t,  D_K N = K_tn u_t - (1 + e) K_tt u_n
         const ex num = k.Knn * k.ut - one_e * k.Ktn * k.un, den = k.Ktn * k.ut - one_e * k.Ktt * k.un;
-        thr.push_back(formula_row("μ* = |K_nn u_t - (1 + e) K_tn u_n| / (K_tn u_t - (1 + e) K_tt u_n)",
-                                  "\\mu^{*} = \\frac{|K_{nn} u_t - (1 + e) K_{tn} u_n|}{K_{tn} u_t - (1 + e) K_{tt} u_n}",
-                                  "in the contact frame: $K_tt = e_t·K e_t$, $K_tn = e_t·K e_n$, $K_nn = e_n·K e_n$, $u_t = ~u·e_t$, "
-                                  "$u_n = ~u·e_n$ ($D_K$ cancels; $N > 0$ when sticking is possible)"));
+        thr.push_back(formula_row(
+            "μ* = |K_nn u_t - (1 + e) K_tn u_n| / (K_tn u_t - (1 + e) K_tt u_n)",
+            "\\mu^{*} = \\frac{|K_{nn} u_t - (1 + e) K_{tn} u_n|}{K_{tn} u_t - (1 + e) K_{tt} u_n}",
+            "in the contact frame: $K_tt = e_t·K e_t$, $K_tn = e_t·K e_n$, $K_nn = e_n·K e_n$, $u_t = ~u·e_t$, "
+            "$u_n = ~u·e_n$ ($D_K$ cancels; $N > 0$ when sticking is possible)"));
         // With this problem's K when its entries are small.
-        const vec3& et = c.d.t_dir;
+        const vec3 &et = c.d.t_dir;
         const ex kt = c.kform(et, et), ktn = c.kform(et, c.n), kn = c.kform(c.n, c.n);
         const std::vector<step_role> roles = {step_role::contact_response};
         ex kvals[3] = {kt, ktn, kn};
         bool small = true;
-        for (ex& v : kvals) {
+        for (ex &v : kvals) {
             v = tidy(st.sol.expand_steps(v));
             small = small && printable(v, 16);
         }
@@ -662,10 +745,14 @@ section stick_section(const context& c)
             ex r = (kvals[2] * k.ut - one_e * kvals[1] * k.un) / (kvals[1] * k.ut - one_e * kvals[0] * k.un);
             r = factor(normal(r));
             const ex shown = abs_split(r, c.e);
-            if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero())
-            {
+            if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero()) {
                 math_row mr = row(mu_star, shown);
-                mr.note.t("with this problem's $K$: $K_tt$ = ").m(kvals[0]).t(", $K_tn$ = ").m(kvals[1]).t(", $K_nn$ = ").m(kvals[2]);
+                mr.note.t("with this problem's $K$: $K_tt$ = ")
+                    .m(kvals[0])
+                    .t(", $K_tn$ = ")
+                    .m(kvals[1])
+                    .t(", $K_nn$ = ")
+                    .m(kvals[2]);
                 thr.push_back(mr);
             }
         }
@@ -678,8 +765,9 @@ section stick_section(const context& c)
     }
     sec.rows(thr);
     if (c.can_stick())
-        sec.para(paragraph().t("If $μ ≥ μ*$ the contact sticks and the answer is above. If $μ < μ*$ the friction the contact would "
-                               "need exceeds $μN$: it cannot stick, and it slides."));
+        sec.para(paragraph().t(
+            "If $μ ≥ μ*$ the contact sticks and the answer is above. If $μ < μ*$ the friction the contact would "
+            "need exceeds $μN$: it cannot stick, and it slides."));
     else
         sec.para(paragraph().t("Whatever $μ$, the contact cannot stick: only a slide can hold, if any does."));
     return sec;
@@ -687,33 +775,46 @@ section stick_section(const context& c)
 
 // ---------------------------------------------------------------- 6. slide
 
-section slide_section(const context& c)
+section slide_section(const context &c)
 {
     section sec{"6. If the test fails: sliding", {}};
-    sec.para(paragraph().t("A sliding contact has friction at its limit, opposite to the sliding: $F = -μN d$, where $d$ is the unit "
-                           "direction of $u′_t$. The impulse $P = N (e_n - μ d)$ then has one unknown $N$ (once $d$ is known), and "
-                           "restitution alone gives it:"));
-    sec.rows({formula_row("u′_n = u_n + N e_n·K(e_n - μ d) = -e u_n", "u'_n = u_n + N\\,\\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - \\mu\\,\\underline{d}) = -e\\,u_n"),
-              formula_row("N = -(1 + e) u_n / D_s,   D_s = e_n·K(e_n - μ d)", "N = -\\frac{(1 + e)\\,u_n}{D_s},\\quad D_s = \\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - \\mu\\,\\underline{d})",
+    sec.para(paragraph().t(
+        "A sliding contact has friction at its limit, opposite to the sliding: $F = -μN d$, where $d$ is the unit "
+        "direction of $u′_t$. The impulse $P = N (e_n - μ d)$ then has one unknown $N$ (once $d$ is known), and "
+        "restitution alone gives it:"));
+    sec.rows({formula_row(
+                  "u′_n = u_n + N e_n·K(e_n - μ d) = -e u_n",
+                  "u'_n = u_n + N\\,\\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - "
+                  "\\mu\\,\\underline{d}) = -e\\,u_n"),
+              formula_row("N = -(1 + e) u_n / D_s,   D_s = e_n·K(e_n - μ d)",
+                          "N = -\\frac{(1 + e)\\,u_n}{D_s},\\quad D_s = "
+                          "\\hat{\\underline{e}}_n\\cdot\\underline{\\underline{K}}(\\hat{\\underline{e}}_n - "
+                          "\\mu\\,\\underline{d})",
                           "$D_s$ must be positive, else $N$ would not be")});
-    sec.para(paragraph().t("Then check that the contact really slides along $d$ after impact: $λ = u′·d > 0$ (the sliding speed)."));
+    sec.para(paragraph().t(
+        "Then check that the contact really slides along $d$ after impact: $λ = u′·d > 0$ (the sliding speed)."));
     if (c.dim == 2)
-        sec.para(paragraph().t("In the plane $d = +e_t$ or $d = -e_t$, two closed forms. The one to try is opposite to the friction the stick "
-                               "impulse needed: if its $F < 0$ (friction on body 2 along $-e_t)$ the contact tends to slide along $+e_t$, "
-                               "usually the direction of $u_t$. The check $λ > 0$ confirms it."));
+        sec.para(paragraph().t(
+            "In the plane $d = +e_t$ or $d = -e_t$, two closed forms. The one to try is opposite to the friction the "
+            "stick "
+            "impulse needed: if its $F < 0$ (friction on body 2 along $-e_t)$ the contact tends to slide along $+e_t$, "
+            "usually the direction of $u_t$. The check $λ > 0$ confirms it."));
     else if (c.f.isotropic)
-        sec.para(paragraph().t("Here $K$ does not couple the normal to the tangent plane $(K e_n$ is along $e_n)$ and is isotropic in it "
-                               "(the same for every tangent direction): sliding does not turn the tangential velocity, and "
-                               "$d = u_t/|u_t|$, the direction of sliding before impact."));
+        sec.para(paragraph().t(
+            "Here $K$ does not couple the normal to the tangent plane $(K e_n$ is along $e_n)$ and is isotropic in it "
+            "(the same for every tangent direction): sliding does not turn the tangential velocity, and "
+            "$d = u_t/|u_t|$, the direction of sliding before impact."));
     else
-        sec.para(paragraph().t("Here $K$ couples the tangent directions with each other and with the normal, so the contact does not "
-                               "in general keep sliding the way it came: the sliding direction $d = c_d e_t + s_d e_b$ "
-                               "$(c_d = cos θ$, $s_d = sin θ)$ is itself unknown, and $u′_t$ along $d$ is one more equation for $θ$."));
+        sec.para(paragraph().t(
+            "Here $K$ couples the tangent directions with each other and with the normal, so the contact does not "
+            "in general keep sliding the way it came: the sliding direction $d = c_d e_t + s_d e_b$ "
+            "$(c_d = cos θ$, $s_d = sin θ)$ is itself unknown, and $u′_t$ along $d$ is one more equation for $θ$."));
     for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
-        const regime_case& sc = c.f.cases[ci];
+        const regime_case &sc = c.f.cases[ci];
         paragraph head;
         if (c.dim == 2)
-            head.t(sc.sign > 0 ? "Slide along $+e_t$ ($~d = e_t$, $F = -μN$):" : "Slide along $-e_t$ ($~d = -e_t$, $F = μN$):");
+            head.t(sc.sign > 0 ? "Slide along $+e_t$ ($~d = e_t$, $F = -μN$):"
+                               : "Slide along $-e_t$ ($~d = -e_t$, $F = μN$):");
         else if (!sc.needs_angle)
             head.t("Slide along $u_t (d = u_t/|u_t|$, $F = -μN d)$:");
         else
@@ -724,15 +825,17 @@ section slide_section(const context& c)
             steps.push_back(srow(c.p, sc.sol.steps[k]));
         sec.rows(steps);
         if (sc.needs_angle) {
-            sec.para(paragraph().t("$u′_t$ along $d$, i.e. $e_n·((D_s u + a K(e_n - μ d)) × d) = 0$ with $a = -(1 + e) u_n$, is the "
-                                   "equation for the sliding angle:"));
+            sec.para(paragraph().t(
+                "$u′_t$ along $d$, i.e. $e_n·((D_s u + a K(e_n - μ d)) × d) = 0$ with $a = -(1 + e) u_n$, is the "
+                "equation for the sliding angle:"));
             math_row g = srow(0, sc.angle_equation);
             paragraph gn;
-            gn.t("with $c_d² + s_d² = 1$: a trigonometric polynomial of degree 2 in $θ$, at most four roots; no closed form, so "
+            gn.t("with $c_d² + s_d² = 1$: a trigonometric polynomial of degree 2 in $θ$, at most four roots; no closed "
+                 "form, so "
                  "a numeric problem's roots are found numerically");
             if (!g.note.spans.empty()) {
                 gn.w(" (");
-                for (const span& x : g.note.spans)
+                for (const span &x : g.note.spans)
                     gn.spans.push_back(x);
                 gn.w(")");
             }
@@ -741,7 +844,7 @@ section slide_section(const context& c)
         }
         sec.para(paragraph().w(std::string("It holds when") + (sc.needs_angle ? " (at a root θ)" : "") + ":"));
         std::vector<math_row> conds;
-        for (const regime_condition& rc : sc.conditions) {
+        for (const regime_condition &rc : sc.conditions) {
             math_row r = row(rc.value, 0);
             r.note = condition_note(rc);
             r.rel = rc.strict ? ">" : "≥";
@@ -756,25 +859,26 @@ section slide_section(const context& c)
         sec.rows(unknowns);
     }
     if (c.f.cases.size() == 1)
-        sec.para(paragraph().t("Here the contact points have no tangential velocity before impact $(u_t = 0)$: the stick impulse has "
-                               "$F = 0$, inside the cone for every $μ$, and there is nothing to slide."));
+        sec.para(paragraph().t(
+            "Here the contact points have no tangential velocity before impact $(u_t = 0)$: the stick impulse has "
+            "$F = 0$, inside the cone for every $μ$, and there is nothing to slide."));
     return sec;
 }
 
 // ---------------------------------------------------------------- 7. boundaries and energy
 
 // vanishes_identically, false where a numeric problem's step divides by zero (D_s = 0).
-bool identically_zero(const solution& s, const ex& value)
+bool identically_zero(const solution &s, const ex &value)
 {
     try {
         return vanishes_identically(s, value, "an identity of the explanation");
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return false;
     }
 }
 
 // A solution holding the stick case's steps and then the slide case's own: both at once.
-solution merged(const context& c, const regime_case& sc)
+solution merged(const context &c, const regime_case &sc)
 {
     solution m = c.stick().sol;
     for (std::size_t k = c.shared; k < sc.sol.steps.size(); ++k)
@@ -783,7 +887,7 @@ solution merged(const context& c, const regime_case& sc)
 }
 
 // The work of the contact impulse in the case's own quantities (see the text).
-ex energy_lost_formula(const context& c, const regime_case& rc)
+ex energy_lost_formula(const context &c, const regime_case &rc)
 {
     const vec3 u = c.u_world();
     const ex N = rc.sol.normal_impulse;
@@ -792,33 +896,36 @@ ex energy_lost_formula(const context& c, const regime_case& rc)
         if (c.dim == 2)
             Fu = rc.tangential_scalar * tidy(dot(u, c.d.t_dir));
         else
-            for (const vec3& t : c.tangents)
+            for (const vec3 &t : c.tangents)
                 Fu += tidy(dot(rc.impulse, t)) * tidy(dot(u, t));
         return -(Fu + (1 - c.e) * N * c.un()) / 2;
     }
     return N * (c.mu * (tidy(dot(rc.direction, u)) + rc.sliding_speed) - (1 - c.e) * c.un()) / 2;
 }
 
-section regimes_section(const context& c)
+section regimes_section(const context &c)
 {
     section sec{"7. The regimes as conditions on μ, and the energy", {}};
-    const regime_case& st = c.stick();
+    const regime_case &st = c.stick();
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     std::vector<paragraph> items;
-    items.push_back(paragraph().w("stick: μ ≥ μ*" + std::string(c.dim == 3 ? " (and N ≥ 0)" : "") + ", from section 5."));
+    items.push_back(
+        paragraph().w("stick: μ ≥ μ*" + std::string(c.dim == 3 ? " (and N ≥ 0)" : "") + ", from section 5."));
     if (c.dim == 2) {
-        sec.para(paragraph().t("In the plane each slide's conditions are linear in $μ$. With $N = -(1 + e) u_n/D_s$ put into $λ$, and $F$, $N$, $D_K$ "
+        sec.para(paragraph().t("In the plane each slide's conditions are linear in $μ$. With $N = -(1 + e) u_n/D_s$ "
+                               "put into $λ$, and $F$, $N$, $D_K$ "
                                "those of the stick impulse (section 5):"));
         std::vector<math_row> rows;
         for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
-            const regime_case& sc = c.f.cases[ci];
-            const step* Ds = sc.sol.find(step_role::slide_denominator);
-            const step* DK = st.sol.find(step_role::response_determinant);
+            const regime_case &sc = c.f.cases[ci];
+            const step *Ds = sc.sol.find(step_role::slide_denominator);
+            const step *DK = st.sol.find(step_role::response_determinant);
             if (!Ds || !DK)
                 continue;
             // lambda D_s = -D_K (s F + mu N), F and N of the stick impulse: checked, not assumed.
             solution m = merged(c, sc);
-            const ex claim = sc.sliding_speed * Ds->sym + DK->sym * (sc.sign * st.tangential_scalar + c.mu * st.sol.normal_impulse);
+            const ex claim =
+                sc.sliding_speed * Ds->sym + DK->sym * (sc.sign * st.tangential_scalar + c.mu * st.sol.normal_impulse);
             if (!identically_zero(m, claim))
                 continue;
             const std::string s = sc.sign > 0 ? "" : "-";
@@ -833,41 +940,52 @@ section regimes_section(const context& c)
                                 .t(" $> 0$."));
         }
         sec.rows(rows);
-        sec.para(paragraph().t("$D_K > 0$, so with $D_s > 0$ the slide holds exactly when $μN < ∓F$: when $N > 0$, that is $μ < μ*$ on the side "
+        sec.para(paragraph().t("$D_K > 0$, so with $D_s > 0$ the slide holds exactly when $μN < ∓F$: when $N > 0$, "
+                               "that is $μ < μ*$ on the side "
                                "where the stick impulse's friction points. The regimes:"));
     } else if (c.f.isotropic) {
-        sec.para(paragraph().t("With $K e_n$ along $e_n$ the slide has the same $N$ as the stick impulse, $D_s = K_nn·(e_n$, $e_n) > 0$, and "
-                               "$λ = |u_t| - μ N k_t$ with $k_t$ the tangential entry of $K$; the stick impulse has $|F| = |u_t|/k_t$, so "
-                               "$λ > 0$ exactly when $μ < μ*$. The regimes:"));
+        sec.para(paragraph().t(
+            "With $K e_n$ along $e_n$ the slide has the same $N$ as the stick impulse, $D_s = K_nn·(e_n$, $e_n) > 0$, "
+            "and "
+            "$λ = |u_t| - μ N k_t$ with $k_t$ the tangential entry of $K$; the stick impulse has $|F| = |u_t|/k_t$, so "
+            "$λ > 0$ exactly when $μ < μ*$. The regimes:"));
         items.push_back(paragraph().t("slide along $u_t$: $μ < μ*$."));
     } else {
-        sec.para(paragraph().t("In 3-D with coupling the slide's conditions depend on $μ$ through the sliding angle too: no interval in "
-                               "closed form. The regimes:"));
+        sec.para(paragraph().t(
+            "In 3-D with coupling the slide's conditions depend on $μ$ through the sliding angle too: no interval in "
+            "closed form. The regimes:"));
         items.push_back(paragraph().t("slide: at a root $θ$ of the sliding equation, $D_s > 0$ and $λ > 0$."));
     }
     sec.list(items);
     if (c.dim == 2 || c.f.isotropic)
-        sec.para(paragraph().t("At $μ = μ*$ the stick impulse lies on the edge of the cone: there $λ = 0$ and the slide's impulse equals "
-                               "the stick impulse, so the answer changes continuously with $μ$."));
+        sec.para(paragraph().t(
+            "At $μ = μ*$ the stick impulse lies on the edge of the cone: there $λ = 0$ and the slide's impulse equals "
+            "the stick impulse, so the answer changes continuously with $μ$."));
 
     // Energy.
-    sec.para(paragraph().t("Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
-                           "mean relative velocity of the contact points:"));
-    sec.rows({formula_row("T_lost = T - T′ = -P·(u + u′)/2", "T_{\\text{lost}} = T - T' = -\\underline{P}\\cdot(\\underline{u} + \\underline{u}')/2"),
-              formula_row("stick (u′ = -e u_n e_n):   T_lost = -(F·u + (1 - e) N u_n)/2", "\\text{stick: } T_{\\text{lost}} = -(\\underline{F}\\cdot\\underline{u} + (1 - e)\\,N u_n)/2",
-                          "$(1 - e) N u_n ≤ 0$ is the loss of restitution; $~F·~u$, the work of friction on the sliding before impact"),
-              formula_row("slide (u′ = λ d - e u_n e_n):   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2", "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + \\lambda) - (1 - e)\\,u_n)/2",
-                          "both terms are losses when the sliding keeps its direction ($~d·~u > 0$)")});
+    sec.para(paragraph().t(
+        "Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
+        "mean relative velocity of the contact points:"));
+    sec.rows(
+        {formula_row("T_lost = T - T′ = -P·(u + u′)/2",
+                     "T_{\\text{lost}} = T - T' = -\\underline{P}\\cdot(\\underline{u} + \\underline{u}')/2"),
+         formula_row("stick (u′ = -e u_n e_n):   T_lost = -(F·u + (1 - e) N u_n)/2",
+                     "\\text{stick: } T_{\\text{lost}} = -(\\underline{F}\\cdot\\underline{u} + (1 - e)\\,N u_n)/2",
+                     "$(1 - e) N u_n ≤ 0$ is the loss of restitution; $~F·~u$, the work of friction on the sliding "
+                     "before impact"),
+         formula_row("slide (u′ = λ d - e u_n e_n):   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2",
+                     "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + \\lambda) - "
+                     "(1 - e)\\,u_n)/2",
+                     "both terms are losses when the sliding keeps its direction ($~d·~u > 0$)")});
     std::vector<math_row> energy;
     const ex T = symbol("T", "T");
     ex before = tidy(st.sol.energy_before);
-    if (printable(before, 200))
-    {
+    if (printable(before, 200)) {
         math_row r = row(T, before);
         r.note.t("kinetic energy before impact (bodies of finite mass); $T′ = T - T_lost$");
         energy.push_back(r);
     }
-    for (const regime_case& rc : c.f.cases) {
+    for (const regime_case &rc : c.f.cases) {
         const ex lost = energy_lost_formula(c, rc);
         if (!rc.needs_angle && !identically_zero(rc.sol, lost - rc.sol.energy_lost))
             continue;
@@ -875,7 +993,7 @@ section regimes_section(const context& c)
         paragraph note = regime_words(rc);
         if (!r.note.spans.empty()) {
             note.w(" (");
-            for (const span& x : r.note.spans)
+            for (const span &x : r.note.spans)
                 note.spans.push_back(x);
             note.w(")");
         }
@@ -888,28 +1006,35 @@ section regimes_section(const context& c)
 
 // ---------------------------------------------------------------- 8. existence and uniqueness
 
-section existence_section(const context& c)
+section existence_section(const context &c)
 {
     section sec{"8. One regime, none, or several?", {}};
     if (c.dim == 2) {
-        sec.para(paragraph().t("In the plane, with $K$ positive definite and $u_n < 0$, the law has exactly one solution for every $μ ≥ 0$. "
-                               "If the stick impulse has $N > 0$, sticking holds for $μ ≥ μ*$, and for $μ < μ*$ exactly the slide opposite "
-                               "to the stick impulse's friction: its $D_s$ could only be $≤ 0$ for $μ ≥ K_nn/|K_tn|$, which is larger than $μ*$. "
-                               "If strong coupling of the normal and tangential directions makes the stick impulse pull "
-                               "$(N < 0$, i.e. $K_tn·u_t < (1 + e)·K_tt·u_n)$, sticking is impossible and exactly the slide along $u_t$ holds. "
-                               "$D_s ≤ 0$ -- friction that would drive the contact points together faster than the normal impulse "
-                               "separates them, the jam of Painleve's paradox -- only ever rules out a slide that fails anyway."));
+        sec.para(paragraph().t(
+            "In the plane, with $K$ positive definite and $u_n < 0$, the law has exactly one solution for every $μ ≥ "
+            "0$. "
+            "If the stick impulse has $N > 0$, sticking holds for $μ ≥ μ*$, and for $μ < μ*$ exactly the slide "
+            "opposite "
+            "to the stick impulse's friction: its $D_s$ could only be $≤ 0$ for $μ ≥ K_nn/|K_tn|$, which is larger "
+            "than $μ*$. "
+            "If strong coupling of the normal and tangential directions makes the stick impulse pull "
+            "$(N < 0$, i.e. $K_tn·u_t < (1 + e)·K_tt·u_n)$, sticking is impossible and exactly the slide along $u_t$ "
+            "holds. "
+            "$D_s ≤ 0$ -- friction that would drive the contact points together faster than the normal impulse "
+            "separates them, the jam of Painleve's paradox -- only ever rules out a slide that fails anyway."));
     } else if (c.f.isotropic) {
-        sec.para(paragraph().t("With this $K$ (isotropic, not coupling the normal to the tangent plane) exactly one regime holds for every "
+        sec.para(paragraph().t("With this $K$ (isotropic, not coupling the normal to the tangent plane) exactly one "
+                               "regime holds for every "
                                "$μ ≥ 0$: stick for $μ ≥ μ*$, slide along $u_t$ for $μ < μ*$."));
     } else {
-        sec.para(paragraph().t("In 3-D with coupling the sliding direction is itself unknown, and the algebraic law can have several "
-                               "solutions: with strong coupling between the normal and the tangential directions $(K_tn$, $K_nb$ large "
-                               "against $K_nn)$ and a large $μ$, sticking and one or more sliding directions can all satisfy their "
-                               "conditions at once; a sliding direction with $D_s ≤ 0$ (friction wedging the contact shut) is excluded, "
-                               "and in principle none might remain. Then the law of impulses does not decide the outcome: impactgen "
-                               "refuses such a numeric problem, naming the regimes, and the impact has to be followed through its "
-                               "duration (Routh's method, or integrating the contact in the normal impulse, Darboux-Keller)."));
+        sec.para(paragraph().t(
+            "In 3-D with coupling the sliding direction is itself unknown, and the algebraic law can have several "
+            "solutions: with strong coupling between the normal and the tangential directions $(K_tn$, $K_nb$ large "
+            "against $K_nn)$ and a large $μ$, sticking and one or more sliding directions can all satisfy their "
+            "conditions at once; a sliding direction with $D_s ≤ 0$ (friction wedging the contact shut) is excluded, "
+            "and in principle none might remain. Then the law of impulses does not decide the outcome: impactgen "
+            "refuses such a numeric problem, naming the regimes, and the impact has to be followed through its "
+            "duration (Routh's method, or integrating the contact in the normal impulse, Darboux-Keller)."));
     }
     return sec;
 }
@@ -918,7 +1043,7 @@ section existence_section(const context& c)
 
 // g(c_d, s_d) with c_d = cos θ, s_d = sin θ as a0 + a1 cos θ + b1 sin θ + a2 cos 2θ + b2 sin 2θ,
 // the coefficients as decimals (evaluated at 50 digits).
-notation trig_form(const ex& g, const symbol& cd, const symbol& sd)
+notation trig_form(const ex &g, const symbol &cd, const symbol &sd)
 {
     const long saved = Digits;
     Digits = 50;
@@ -934,10 +1059,10 @@ notation trig_form(const ex& g, const symbol& cd, const symbol& sd)
         const numeric c00 = co(0, 0), c10 = co(1, 0), c01 = co(0, 1), c20 = co(2, 0), c02 = co(0, 2), c11 = co(1, 1);
         const numeric a[5] = {c00 + (c20 + c02) / 2, c10, c01, (c20 - c02) / 2, c11 / 2};
         numeric scale = 0;
-        for (const numeric& v : a)
+        for (const numeric &v : a)
             scale = std::max(scale, abs(v));
-        const char* text_terms[5] = {"", " cos θ", " sin θ", " cos 2θ", " sin 2θ"};
-        const char* tex_terms[5] = {"", "\\cos\\theta", "\\sin\\theta", "\\cos 2\\theta", "\\sin 2\\theta"};
+        const char *text_terms[5] = {"", " cos θ", " sin θ", " cos 2θ", " sin 2θ"};
+        const char *tex_terms[5] = {"", "\\cos\\theta", "\\sin\\theta", "\\cos 2\\theta", "\\sin 2\\theta"};
         std::string text, tex;
         for (int k = 0; k < 5; ++k) {
             if (abs(a[k]) <= scale * numeric(1, 10).power(40))
@@ -953,7 +1078,7 @@ notation trig_form(const ex& g, const symbol& cd, const symbol& sd)
             out.text = "0 = " + text;
             out.tex = "0 = " + tex;
         }
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         out = {};
     }
     Digits = saved;
@@ -961,16 +1086,16 @@ notation trig_form(const ex& g, const symbol& cd, const symbol& sd)
 }
 
 struct case_numbers {
-    lst values;                 ///< step == value, exact, in order (stops at D_s <= 0)
-    bool stopped = false;       ///< D_s <= 0: the rest of the steps divide by it
+    lst values;           ///< step == value, exact, in order (stops at D_s <= 0)
+    bool stopped = false; ///< D_s <= 0: the rest of the steps divide by it
     std::vector<decision> verdicts;
     bool holds = false;
 };
 
-case_numbers evaluate(const context& c, const regime_case& rc)
+case_numbers evaluate(const context &c, const regime_case &rc)
 {
     case_numbers out;
-    for (const step& st : rc.sol.steps) {
+    for (const step &st : rc.sol.steps) {
         ex v = tidy(c.at_inputs(st.value).subs(out.values));
         out.values.append(st.sym == v);
         if (st.role == step_role::slide_denominator && decide(v) != decision::positive) {
@@ -979,7 +1104,7 @@ case_numbers evaluate(const context& c, const regime_case& rc)
         }
     }
     out.holds = true;
-    for (const regime_condition& cond : rc.conditions) {
+    for (const regime_condition &cond : rc.conditions) {
         const decision dd = decide(tidy(c.at_inputs(cond.value).subs(out.values)));
         out.verdicts.push_back(dd);
         const bool ok = dd == decision::positive || (!cond.strict && dd == decision::zero);
@@ -991,10 +1116,14 @@ case_numbers evaluate(const context& c, const regime_case& rc)
 std::string verdict_word(decision dd, bool strict)
 {
     switch (dd) {
-    case decision::positive: return "holds";
-    case decision::zero: return strict ? "fails (= 0)" : "holds (on the boundary)";
-    case decision::negative: return "fails";
-    default: return "cannot be decided";
+    case decision::positive:
+        return "holds";
+    case decision::zero:
+        return strict ? "fails (= 0)" : "holds (on the boundary)";
+    case decision::negative:
+        return "fails";
+    default:
+        return "cannot be decided";
     }
 }
 
@@ -1004,7 +1133,7 @@ struct mu_interval {
     bool lo_closed = true, has_hi = false, hi_closed = false, empty = false;
 };
 
-void restrict_interval(mu_interval& iv, const numeric& a, const numeric& b, bool strict)
+void restrict_interval(mu_interval &iv, const numeric &a, const numeric &b, bool strict)
 {
     if (iv.empty)
         return;
@@ -1028,22 +1157,23 @@ void restrict_interval(mu_interval& iv, const numeric& a, const numeric& b, bool
         iv.empty = true;
 }
 
-std::string interval_text(const mu_interval& iv)
+std::string interval_text(const mu_interval &iv)
 {
     if (iv.empty)
         return "for no μ ≥ 0";
     const std::string lo = canonical_text(iv.lo), hi = canonical_text(iv.hi);
     if (!iv.has_hi)
-        return iv.lo.is_zero() && iv.lo_closed ? "for every μ ≥ 0" : "for μ " + std::string(iv.lo_closed ? "≥ " : "> ") + lo;
+        return iv.lo.is_zero() && iv.lo_closed ? "for every μ ≥ 0"
+                                               : "for μ " + std::string(iv.lo_closed ? "≥ " : "> ") + lo;
     if (iv.hi == iv.lo)
         return "only at μ = " + lo;
     return "for " + lo + (iv.lo_closed ? " ≤ μ " : " < μ ") + (iv.hi_closed ? "≤ " : "< ") + hi;
 }
 
-void numbers_section(context& c, document& doc)
+void numbers_section(context &c, document &doc)
 {
     section sec{"9. The numbers", {}};
-    const regime_case& st = c.stick();
+    const regime_case &st = c.stick();
     if (c.inputs.nops()) {
         std::vector<math_row> given;
         for (std::size_t k = 0; k < c.inputs.nops(); ++k) {
@@ -1056,15 +1186,16 @@ void numbers_section(context& c, document& doc)
         sec.rows(given);
         sec.para(paragraph().w("Every step above is then a number, exact where the closed form is. The shared steps:"));
     } else {
-        sec.para(paragraph().w("The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
+        sec.para(paragraph().w(
+            "The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
     }
     std::vector<case_numbers> nums;
-    for (const regime_case& rc : c.f.cases)
+    for (const regime_case &rc : c.f.cases)
         nums.push_back(rc.needs_angle ? case_numbers{} : evaluate(c, rc));
-    auto step_rows = [&](const regime_case& rc, const case_numbers& cn, std::size_t from, std::size_t to) {
+    auto step_rows = [&](const regime_case &rc, const case_numbers &cn, std::size_t from, std::size_t to) {
         std::vector<math_row> rows;
         for (std::size_t k = from; k < to && k < cn.values.nops(); ++k) {
-            const step& s = rc.sol.steps[k];
+            const step &s = rc.sol.steps[k];
             const ex v = cn.values.op(k).rhs();
             const ex formula = c.at_inputs(s.value); // in the earlier steps, whose numbers are above
             math_row r = value_row(s.sym, v);
@@ -1099,32 +1230,38 @@ void numbers_section(context& c, document& doc)
         mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(nums[0].values));
         sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
         paragraph q;
-        q.t("$μ =$ ").m(c.at_inputs(c.mu)).w(nums[0].holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
+        q.t("$μ =$ ")
+            .m(c.at_inputs(c.mu))
+            .w(nums[0].holds ? ": μ ≥ μ*, the stick test passes."
+                             : ": μ < μ*, the stick test fails -- the contact slides.");
         sec.para(q);
     } else {
-        sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact cannot stick for any $μ$."));
+        sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact "
+                               "cannot stick for any $μ$."));
     }
 
     // Slides.
     for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
-        const regime_case& sc = c.f.cases[ci];
-        const case_numbers& cn = nums[ci];
+        const regime_case &sc = c.f.cases[ci];
+        const case_numbers &cn = nums[ci];
         if (sc.needs_angle) {
-            sec.para(paragraph().t("Slide: with the numbers, the equation for the sliding direction $d = c_d e_t + s_d e_b$ is"));
+            sec.para(paragraph().t(
+                "Slide: with the numbers, the equation for the sliding direction $d = c_d e_t + s_d e_b$ is"));
             lst shared_vals;
             for (std::size_t k = 0; k < c.shared && k < nums[0].values.nops(); ++k)
                 shared_vals.append(nums[0].values.op(k));
             ex g = tidy_expand(c.at_inputs(sc.angle_equation).subs(shared_vals));
-            if (printable(g, 150))
-            {
+            if (printable(g, 150)) {
                 math_row r = row(0, g);
                 r.note.t("with $c_d² + s_d² = 1$");
                 sec.rows({r});
             }
             if (const auto trig = trig_form(g, sc.dir_c, sc.dir_s); !trig.text.empty())
-                sec.rows({formula_row(trig.text, trig.tex, "$c_d = cos θ$, $s_d = sin θ$; the coefficients to 15 digits")});
-            sec.para(paragraph().t("impactgen finds its roots $θ$ on the unit circle at 50 significant digits, isolated with bounds on "
-                                   "the derivatives, and checks $D_s > 0$ and $λ > 0$ at each."));
+                sec.rows(
+                    {formula_row(trig.text, trig.tex, "$c_d = cos θ$, $s_d = sin θ$; the coefficients to 15 digits")});
+            sec.para(paragraph().t(
+                "impactgen finds its roots $θ$ on the unit circle at 50 significant digits, isolated with bounds on "
+                "the derivatives, and checks $D_s > 0$ and $λ > 0$ at each."));
             continue;
         }
         paragraph head;
@@ -1150,25 +1287,27 @@ void numbers_section(context& c, document& doc)
 
     // Planar: the regimes along the mu axis for this problem.
     if (c.dim == 2 && c.f.cases.size() == 3) {
-        const step* DK = st.sol.find(step_role::response_determinant);
+        const step *DK = st.sol.find(step_role::response_determinant);
         std::vector<ex> vals;
-        const vec3& et = c.d.t_dir;
+        const vec3 &et = c.d.t_dir;
         const ex F = tidy(c.at_inputs(st.tangential_scalar).subs(nums[0].values)),
                  Kn = tidy(c.at_inputs(c.kform(c.n, c.n)).subs(nums[0].values)),
                  Ktn = tidy(c.at_inputs(c.kform(et, c.n)).subs(nums[0].values));
         if (DK && is_a<numeric>(F) && is_a<numeric>(Nst) && is_a<numeric>(Kn) && is_a<numeric>(Ktn) &&
             ex_to<numeric>(F).is_rational() && ex_to<numeric>(Nst).is_rational()) {
             std::vector<paragraph> items;
-            const numeric nF = ex_to<numeric>(F), nN = ex_to<numeric>(Nst), nK = ex_to<numeric>(Kn), nT = ex_to<numeric>(Ktn);
+            const numeric nF = ex_to<numeric>(F), nN = ex_to<numeric>(Nst), nK = ex_to<numeric>(Kn),
+                          nT = ex_to<numeric>(Ktn);
             // stick: mu N - |F| >= 0
             mu_interval stick;
             restrict_interval(stick, -abs(nF), -nN, false);
             items.push_back(paragraph().w("stick " + interval_text(stick)));
             for (int s : {1, -1}) {
                 mu_interval iv;
-                restrict_interval(iv, -numeric(s) * nF, nN, true);       // -(sF + mu N) > 0
-                restrict_interval(iv, nK, numeric(s) * nT, true);        // K_nn - mu s K_tn > 0
-                items.push_back(paragraph().t(s > 0 ? "slide along $+e_t$ " : "slide along $-e_t$ ").w(interval_text(iv)));
+                restrict_interval(iv, -numeric(s) * nF, nN, true); // -(sF + mu N) > 0
+                restrict_interval(iv, nK, numeric(s) * nT, true);  // K_nn - mu s K_tn > 0
+                items.push_back(
+                    paragraph().t(s > 0 ? "slide along $+e_t$ " : "slide along $-e_t$ ").w(interval_text(iv)));
             }
             sec.para(paragraph().t("Along the $μ$ axis, for this problem (section 7):"));
             sec.list(items);
@@ -1182,22 +1321,23 @@ void numbers_section(context& c, document& doc)
     try {
         sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
         selected = true;
-    } catch (const input_error& err) {
+    } catch (const input_error &err) {
         why = err.what();
     }
     if (!selected) {
         sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
         sec.para(paragraph().w("\"" + why + "\""));
-        sec.para(paragraph().t("That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
-                               "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
-                               "tangential directions, typically leaves a single regime."));
+        sec.para(paragraph().t(
+            "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
+            "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
+            "tangential directions, typically leaves a single regime."));
         doc.sections.push_back(sec);
         return;
     }
     {
         paragraph q;
         q.w("The regime that holds: ");
-        for (const span& x : regime_words(sel).spans)
+        for (const span &x : regime_words(sel).spans)
             q.spans.push_back(x);
         q.w(".");
         if (sel.kind == regime::slide && c.dim == 3) {
@@ -1232,7 +1372,8 @@ void numbers_section(context& c, document& doc)
         impulse_values.append(c.F[k] == Fk);
         {
             math_row r = value_row(c.F[k], Fk);
-            r.note.w(r.note.spans.empty() ? "" : ", ").w("the friction impulse on body 2 along ")
+            r.note.w(r.note.spans.empty() ? "" : ", ")
+                .w("the friction impulse on body 2 along ")
                 .n("e_" + c.tnames[k], "\\hat{\\underline{e}}_" + c.tnames[k]);
             answers.push_back(r);
         }
@@ -1256,7 +1397,7 @@ void numbers_section(context& c, document& doc)
         }
         law_tags = c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
     }
-    for (const equation& eq : all) {
+    for (const equation &eq : all) {
         ex r = c.at_inputs(eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values);
         r = tidy(r);
         if (r.is_zero())
@@ -1270,8 +1411,9 @@ void numbers_section(context& c, document& doc)
     }
     const std::string range = "(1)-(" + c.eqs.back().label + ") and Coulomb's law (" + law_tags + ")";
     ans.para(paragraph().w(exact   ? "Substituted back, every equation " + range + " holds exactly."
-                           : small ? "Substituted back, every equation " + range + " holds to 25 digits (the sliding angle is a root "
-                                     "found numerically)."
+                           : small ? "Substituted back, every equation " + range +
+                                         " holds to 25 digits (the sliding angle is a root "
+                                         "found numerically)."
                                    : "Substituted back, SOME EQUATION DOES NOT HOLD: this is a bug."));
     // Energy.
     const ex T0 = sel.sol.energy_before, T1 = sel.sol.energy_after, Tl = sel.sol.energy_lost;
@@ -1279,11 +1421,13 @@ void numbers_section(context& c, document& doc)
               value_row(symbol("T_lost", "T_{\\text{lost}}"), Tl, "lost")});
     const decision loss = decide(is_float(Tl) ? Tl : tidy(Tl));
     if (loss == decision::negative)
-        ans.para(paragraph().t("The kinetic energy rises in this impact: $T_lost < 0$. Newton's restitution law with friction can do that in "
-                               "an eccentric impact, where the friction impulse changes the normal velocity of the contact points "
-                               "$(K_tn ≠ 0)$ and restitution then acts on a normal velocity that friction has made. Stronge's energetic "
-                               "coefficient of restitution, with the impact followed through its duration, avoids it. The answer is "
-                               "the one the law gives."));
+        ans.para(paragraph().t(
+            "The kinetic energy rises in this impact: $T_lost < 0$. Newton's restitution law with friction can do that "
+            "in "
+            "an eccentric impact, where the friction impulse changes the normal velocity of the contact points "
+            "$(K_tn ≠ 0)$ and restitution then acts on a normal velocity that friction has made. Stronge's energetic "
+            "coefficient of restitution, with the impact followed through its duration, avoids it. The answer is "
+            "the one the law gives."));
     else if (loss == decision::zero)
         ans.para(paragraph().w("No kinetic energy is lost."));
     doc.sections.push_back(sec);
@@ -1291,22 +1435,22 @@ void numbers_section(context& c, document& doc)
 }
 
 // Prints mu and lambda as μ and λ in text (their TeX names are \mu and \lambda already).
-void rename(document& doc, const exmap& m)
+void rename(document &doc, const exmap &m)
 {
     if (m.empty())
         return;
-    auto fix = [&](ex& e) { e = e.subs(m); };
-    auto fix_para = [&](paragraph& p) {
-        for (span& s : p.spans)
+    auto fix = [&](ex &e) { e = e.subs(m); };
+    auto fix_para = [&](paragraph &p) {
+        for (span &s : p.spans)
             if (s.k == span::math)
                 fix(s.expr);
     };
-    for (section& sec : doc.sections)
-        for (block& b : sec.blocks) {
+    for (section &sec : doc.sections)
+        for (block &b : sec.blocks) {
             fix_para(b.para);
-            for (paragraph& p : b.items)
+            for (paragraph &p : b.items)
                 fix_para(p);
-            for (math_row& r : b.math) {
+            for (math_row &r : b.math) {
                 fix(r.lhs);
                 fix(r.rhs);
                 fix(r.then);
@@ -1316,16 +1460,16 @@ void rename(document& doc, const exmap& m)
 }
 
 struct problem_numbers {
-    const derivation* d;
-    const friction_solution* f;
+    const derivation *d;
+    const friction_solution *f;
     lst values;
     std::vector<std::string> units;
 };
 
-document friction_document(const derivation& d, const friction_solution& f, const problem_numbers* numbers)
+document friction_document(const derivation &d, const friction_solution &f, const problem_numbers *numbers)
 {
     context c(d, f);
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     c.dim = p.dimension;
     c.i1 = p.contact.body1;
     c.i2 = p.contact.body2;
@@ -1346,7 +1490,7 @@ document friction_document(const derivation& d, const friction_solution& f, cons
         c.tangents = {f.e_t, f.e_b};
         c.tnames = {"t", "b"};
     }
-    for (const step& st : c.stick().sol.steps) {
+    for (const step &st : c.stick().sol.steps) {
         if (st.role == step_role::response_determinant)
             break;
         ++c.shared;
@@ -1370,7 +1514,12 @@ document friction_document(const derivation& d, const friction_solution& f, cons
     fs.mu = f.mu;
     const std::string body2 = display_name(p.bodies[c.i2]), body1 = display_name(p.bodies[c.i1]);
     if (!d.impulse_form)
-        fs.impulses.push_back({c.N, paragraph().t("normal impulse $∫N dt$, on ").w(body2).t(" along $+e_n$ and on ").w(body1).t(" along $-e_n$")});
+        fs.impulses.push_back({c.N, paragraph()
+                                        .t("normal impulse $∫N dt$, on ")
+                                        .w(body2)
+                                        .t(" along $+e_n$ and on ")
+                                        .w(body1)
+                                        .t(" along $-e_n$")});
     for (std::size_t k = 0; k < c.F.size(); ++k)
         fs.impulses.push_back({c.F[k], paragraph()
                                            .w("friction impulse on " + body2 + " along ")
@@ -1394,7 +1543,7 @@ document friction_document(const derivation& d, const friction_solution& f, cons
     if (is_a<symbol>(f.mu) && ex_to<symbol>(f.mu).get_name() == "mu")
         m[f.mu] = symbol("μ", "\\mu");
     const symbol lambda("λ", "\\lambda");
-    for (const regime_case& rc : f.cases)
+    for (const regime_case &rc : f.cases)
         if (is_a<symbol>(rc.sliding_speed) && ex_to<symbol>(rc.sliding_speed).get_name() == "lambda")
             m[rc.sliding_speed] = lambda;
     rename(doc, m);
@@ -1403,7 +1552,7 @@ document friction_document(const derivation& d, const friction_solution& f, cons
 
 } // namespace
 
-document explain_friction(const derivation& d, const friction_solution& f)
+document explain_friction(const derivation &d, const friction_solution &f)
 {
     // A numeric problem is taught as the notes teach: the equations, the regimes and their
     // conditions in symbols first (μ among them, so that the boundaries are conditions on
@@ -1413,12 +1562,12 @@ document explain_friction(const derivation& d, const friction_solution& f)
     // as (0.2, 1, 0.1), of length sqrt(21/20), every step of the twin would carry products
     // of unlike roots; the numbers are clearer there.
     bool rational_frame = true;
-    for (const vec3* v : {&d.n_hat, &f.e_t, &f.e_b})
-        for (const ex& x : *v)
+    for (const vec3 *v : {&d.n_hat, &f.e_t, &f.e_b})
+        for (const ex &x : *v)
             rational_frame = rational_frame && is_a<numeric>(x) && ex_to<numeric>(x).is_rational();
     if (d.prob.is_numeric() && rational_frame)
         if (std::optional<document> doc = taught_in_symbols(
-                d, [&](const derivation& twin, const lst& values, const std::vector<std::string>& units) {
+                d, [&](const derivation &twin, const lst &values, const std::vector<std::string> &units) {
                     const problem_numbers numbers{&d, &f, values, units};
                     return friction_document(twin, solve_friction(twin), &numbers);
                 }))

@@ -23,14 +23,16 @@
 
 #include <cctype>
 #include <set>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
-namespace {
+namespace
+{
 
-const char* const style = R"css(
+const char *const style = R"css(
   html { background: #fff; }
   body { max-width: 50em; margin: 2.5em auto 4em; padding: 0 1.5em; color: #1a1a1a;
          font-family: "Latin Modern Roman", "LM Roman 10", "STIX Two Text", Cambria, Georgia, "Times New Roman", serif;
@@ -68,21 +70,26 @@ const char* const style = R"css(
 
 } // namespace
 
-namespace layout {
-double estimated_width_em(const std::string& tex); // print/explain_print.cpp: the LaTeX layout's glyph model
+namespace layout
+{
+double estimated_width_em(const std::string &tex); // print/explain_print.cpp: the LaTeX layout's glyph model
 // print/explain_print.cpp: a row wider than budget em as the LaTeX layout breaks it (a sum
 // at its terms, a long fraction as a factor times the broken sum, a parenthesised sum
 // inside its \left( ... \right.), one TeX line each with & alignment marks; {} if it fits.
-std::vector<std::string> broken_row_lines(const math_row& r, double budget);
+std::vector<std::string> broken_row_lines(const math_row &r, double budget);
 } // namespace layout
 
-namespace {
+namespace
+{
 
-std::string inline_math(const std::string& mathml) { return "<math display=\"inline\">" + mathml + "</math>"; }
+std::string inline_math(const std::string &mathml)
+{
+    return "<math display=\"inline\">" + mathml + "</math>";
+}
 
 // The id of a tag: "eq-" and the tag, each run of spaces one '-' (HTML ids
 // hold no spaces): (3) is eq-3, (8') is eq-8', (e = 0) is eq-e-=-0.
-std::string eq_id(const std::string& tag)
+std::string eq_id(const std::string &tag)
 {
     std::string id = "eq-";
     for (char c : tag) {
@@ -94,14 +101,20 @@ std::string eq_id(const std::string& tag)
     return id;
 }
 
-std::string spans(const paragraph& p)
+std::string spans(const paragraph &p)
 {
     std::string out;
-    for (const span& s : p.spans) {
+    for (const span &s : p.spans) {
         switch (s.k) {
-        case span::words: out += names::html_text(s.text); break;
-        case span::math: out += inline_math(canonical_mathml(s.expr)); break;
-        case span::note: out += inline_math(tex_to_mathml(s.formula.tex)); break;
+        case span::words:
+            out += names::html_text(s.text);
+            break;
+        case span::math:
+            out += inline_math(canonical_mathml(s.expr));
+            break;
+        case span::note:
+            out += inline_math(tex_to_mathml(s.formula.tex));
+            break;
         case span::ref:
             out += "<a href=\"#" + names::html_text(eq_id(s.text)) + "\">(" + names::html_text(s.text) + ")</a>";
             break;
@@ -110,7 +123,7 @@ std::string spans(const paragraph& p)
     return out;
 }
 
-std::string relation(const std::string& rel)
+std::string relation(const std::string &rel)
 {
     if (rel == "->" || rel == "→")
         return "<mo>→</mo>";
@@ -122,7 +135,7 @@ std::string relation(const std::string& rel)
 }
 
 // lhs REL rhs [= then], as MathML children.
-std::string row_math(const math_row& r)
+std::string row_math(const math_row &r)
 {
     std::string out = r.lhs_note.text.empty() ? canonical_mathml(r.lhs) : tex_to_mathml(r.lhs_note.tex);
     if (!r.rel.empty())
@@ -144,7 +157,7 @@ struct piece {
 
 // A side of a row as pieces to break between: a sum's terms with their signs (as the
 // canonical printer orders them), anything else whole.
-void add_pieces(std::vector<piece>& out, const ex& e, const std::string& lead)
+void add_pieces(std::vector<piece> &out, const ex &e, const std::string &lead)
 {
     const auto ml = canonical_terms(e, syntax::mathml);
     const auto tx = canonical_terms(e, syntax::latex);
@@ -156,7 +169,7 @@ void add_pieces(std::vector<piece>& out, const ex& e, const std::string& lead)
 
 // The row, broken at the terms of its sides when it is wider than the column: the
 // first line holds the left side and the relation, the next lines the rest, indented.
-std::string row_block(const math_row& r)
+std::string row_block(const math_row &r)
 {
     std::vector<piece> pieces;
     if (r.lhs_note.text.empty())
@@ -168,20 +181,20 @@ std::string row_block(const math_row& r)
     if (r.has_then)
         add_pieces(pieces, r.then, "<mo>=</mo>");
     double total = 0;
-    for (const piece& p : pieces)
+    for (const piece &p : pieces)
         total += p.width;
     if (total <= html_row_em)
         return "<math display=\"block\">" + row_math(r) + "</math>";
     // A term wider than the column (a product such as (a + b + ...)·√105/105) cannot be
     // broken between terms: take the LaTeX layout's lines, which break inside it.
     bool wide_piece = pieces.size() < 2;
-    for (const piece& p : pieces)
+    for (const piece &p : pieces)
         wide_piece = wide_piece || p.width > html_row_em;
     if (wide_piece) {
         try {
             std::string out = "<math display=\"block\"><mtable columnalign=\"left\">";
             const std::vector<std::string> tex_lines = layout::broken_row_lines(r, html_row_em);
-            for (const std::string& line : tex_lines) {
+            for (const std::string &line : tex_lines) {
                 std::string tex; // without the alignment marks (an escaped \& stays)
                 for (std::size_t k = 0; k < line.size(); ++k)
                     if (line[k] != '&' || (k > 0 && line[k - 1] == '\\'))
@@ -190,7 +203,7 @@ std::string row_block(const math_row& r)
             }
             if (tex_lines.size() > 1)
                 return out + "</mtable></math>";
-        } catch (const std::exception&) {
+        } catch (const std::exception &) {
             // the terms below
         }
         if (pieces.size() < 2)
@@ -198,7 +211,7 @@ std::string row_block(const math_row& r)
     }
     std::vector<std::string> lines(1);
     double used = 0;
-    for (const piece& p : pieces) {
+    for (const piece &p : pieces) {
         if (used > 0 && used + p.width > html_row_em) {
             lines.push_back("<mspace width=\"2em\"></mspace>");
             used = 2;
@@ -207,14 +220,14 @@ std::string row_block(const math_row& r)
         used += p.width;
     }
     std::string out = "<math display=\"block\"><mtable columnalign=\"left\">";
-    for (const std::string& l : lines)
+    for (const std::string &l : lines)
         out += "<mtr><mtd><mrow>" + l + "</mrow></mtd></mtr>";
     return out + "</mtable></math>";
 }
 
 } // namespace
 
-std::string explain_html(const document& doc)
+std::string explain_html(const document &doc)
 {
     std::ostringstream os;
     const std::string title = names::html_text(doc.title);
@@ -233,16 +246,16 @@ std::string explain_html(const document& doc)
 
     std::set<std::string> ids; // the first row of a tag gets its id
     for (std::size_t k = 0; k < doc.sections.size(); ++k) {
-        const section& sec = doc.sections[k];
+        const section &sec = doc.sections[k];
         os << "\n<section id=\"sec-" << k + 1 << "\">\n<h2>" << names::html_text(sec.title) << "</h2>\n";
-        for (const block& b : sec.blocks) {
+        for (const block &b : sec.blocks) {
             switch (b.k) {
             case block::text:
                 os << "<p>" << spans(b.para) << "</p>\n";
                 break;
             case block::list:
                 os << "<ul>\n";
-                for (const paragraph& item : b.items)
+                for (const paragraph &item : b.items)
                     os << "<li>" << spans(item) << "</li>\n";
                 os << "</ul>\n";
                 break;
@@ -254,26 +267,26 @@ std::string explain_html(const document& doc)
                 break;
             case block::rows: {
                 bool plain = true;
-                for (const math_row& r : b.math)
+                for (const math_row &r : b.math)
                     plain = plain && r.rel.empty() && r.tag.empty();
                 bool bare = plain; // formulas without notes: displayed, one per line
-                for (const math_row& r : b.math)
+                for (const math_row &r : b.math)
                     bare = bare && r.note.spans.empty();
                 if (bare) {
-                    for (const math_row& r : b.math)
+                    for (const math_row &r : b.math)
                         os << "<div class=\"eq\">" << row_block(r) << "</div>\n";
                     break;
                 }
                 if (plain) { // definitions: symbol: meaning
                     os << "<ul>\n";
-                    for (const math_row& r : b.math) {
+                    for (const math_row &r : b.math) {
                         std::string note = spans(r.note);
                         os << "<li>" << inline_math(row_math(r)) << (note.empty() ? "" : ": " + note) << "</li>\n";
                     }
                     os << "</ul>\n";
                     break;
                 }
-                for (const math_row& r : b.math) {
+                for (const math_row &r : b.math) {
                     os << "<div class=\"eq\"";
                     if (!r.tag.empty() && ids.insert(eq_id(r.tag)).second)
                         os << " id=\"" << names::html_text(eq_id(r.tag)) << "\"";

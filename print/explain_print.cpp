@@ -11,16 +11,18 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 constexpr std::size_t width = 100;
 // Spaces inside a formula must not break a line: held as this byte while wrapping.
 constexpr char hard_space = '\x01';
 
-std::size_t columns(const std::string& s)
+std::size_t columns(const std::string &s)
 {
     std::size_t n = 0;
     for (unsigned char c : s)
@@ -31,7 +33,7 @@ std::size_t columns(const std::string& s)
 
 std::string harden(std::string s)
 {
-    for (char& c : s)
+    for (char &c : s)
         if (c == ' ')
             c = hard_space;
     return s;
@@ -76,17 +78,24 @@ std::string bars_latex(std::string s)
         if (k >= s.size())
             break;
         // \right) -> \right|
-        s = s.substr(0, at) + "\\left|" + s.substr(at + open.size(), k - at - open.size()) + "\\right|" + s.substr(k + 7);
+        s = s.substr(0, at) + "\\left|" + s.substr(at + open.size(), k - at - open.size()) + "\\right|" +
+            s.substr(k + 7);
         ++at;
     }
     return s;
 }
 
-std::string math_text(const ex& e) { return bars_text(canonical_text(e)); }
-std::string math_latex(const ex& e) { return bars_latex(canonical_latex(e)); }
+std::string math_text(const ex &e)
+{
+    return bars_text(canonical_text(e));
+}
+std::string math_latex(const ex &e)
+{
+    return bars_latex(canonical_latex(e));
+}
 
 // Greedy wrap at `width` columns; `first` and `rest` are the line prefixes.
-std::string wrap(const std::string& text, const std::string& first, const std::string& rest)
+std::string wrap(const std::string &text, const std::string &first, const std::string &rest)
 {
     std::istringstream in(text);
     std::string word, out, line = first;
@@ -101,7 +110,7 @@ std::string wrap(const std::string& text, const std::string& first, const std::s
         empty = false;
     }
     out += line + "\n";
-    for (char& c : out)
+    for (char &c : out)
         if (c == hard_space)
             c = ' ';
     return out;
@@ -109,10 +118,10 @@ std::string wrap(const std::string& text, const std::string& first, const std::s
 
 // ---------------------------------------------------------------- text
 
-std::string text_spans(const paragraph& p)
+std::string text_spans(const paragraph &p)
 {
     std::string out;
-    for (const span& s : p.spans) {
+    for (const span &s : p.spans) {
         if (s.k == span::words)
             out += s.text;
         else if (s.k == span::math)
@@ -125,7 +134,7 @@ std::string text_spans(const paragraph& p)
     return out;
 }
 
-std::string text_row_left(const math_row& r)
+std::string text_row_left(const math_row &r)
 {
     return r.lhs_note.text.empty() ? math_text(r.lhs) : r.lhs_note.text;
 }
@@ -134,19 +143,40 @@ std::string text_row_left(const math_row& r)
 
 // Running text for LaTeX: escapes and the few Unicode signs the notes use.
 // Anything else outside ASCII is an error, never silently wrong output.
-std::string tex_words(const std::string& s)
+std::string tex_words(const std::string &s)
 {
-    static const std::pair<const char*, const char*> map[] = {
-        {"≤", "$\\le$"},   {"≥", "$\\ge$"},       {"∫", "$\\int$"},    {"→", "$\\to$"},         {"′", "$'$"},
-        {"ω", "$\\omega$"}, {"·", "$\\cdot$"},    {"×", "$\\times$"},  {"∞", "$\\infty$"},      {"≈", "$\\approx$"},
-        {"²", "$^2$"},     {"⁻¹", "$^{-1}$"},     {"ε", "$\\varepsilon$"}, {"±", "$\\pm$"},     {"τ", "$\\tau$"},
-        {"|", "$|$"},      {"<", "$<$"},          {">", "$>$"},           {"μ", "$\\mu$"},       {"λ", "$\\lambda$"},
-        {"θ", "$\\theta$"}, {"≠", "$\\ne$"},    {"√", "$\\surd$"},    {"∓", "$\\mp$"},       {"⁺", "$^+$"},     {"é", "\\'{e}"},
+    static const std::pair<const char *, const char *> map[] = {
+        {"≤", "$\\le$"},
+        {"≥", "$\\ge$"},
+        {"∫", "$\\int$"},
+        {"→", "$\\to$"},
+        {"′", "$'$"},
+        {"ω", "$\\omega$"},
+        {"·", "$\\cdot$"},
+        {"×", "$\\times$"},
+        {"∞", "$\\infty$"},
+        {"≈", "$\\approx$"},
+        {"²", "$^2$"},
+        {"⁻¹", "$^{-1}$"},
+        {"ε", "$\\varepsilon$"},
+        {"±", "$\\pm$"},
+        {"τ", "$\\tau$"},
+        {"|", "$|$"},
+        {"<", "$<$"},
+        {">", "$>$"},
+        {"μ", "$\\mu$"},
+        {"λ", "$\\lambda$"},
+        {"θ", "$\\theta$"},
+        {"≠", "$\\ne$"},
+        {"√", "$\\surd$"},
+        {"∓", "$\\mp$"},
+        {"⁺", "$^+$"},
+        {"é", "\\'{e}"},
     };
     std::string out;
     for (std::size_t i = 0; i < s.size();) {
         bool done = false;
-        for (const auto& [from, to] : map) {
+        for (const auto &[from, to] : map) {
             std::size_t n = std::char_traits<char>::length(from);
             if (s.compare(i, n, from) == 0) {
                 out += to;
@@ -167,24 +197,45 @@ std::string tex_words(const std::string& s)
                                         "\"); use ASCII names for --format latex");
         }
         switch (c) {
-        case '_': out += "\\_"; break;
-        case '&': out += "\\&"; break;
-        case '%': out += "\\%"; break;
-        case '#': out += "\\#"; break;
-        case '$': out += "\\$"; break;
-        case '{': out += "\\{"; break;
-        case '}': out += "\\}"; break;
-        case '^': out += "\\^{}"; break;
-        case '~': out += "\\~{}"; break;
-        case '\\': out += "\\textbackslash{}"; break;
-        default: out += static_cast<char>(c);
+        case '_':
+            out += "\\_";
+            break;
+        case '&':
+            out += "\\&";
+            break;
+        case '%':
+            out += "\\%";
+            break;
+        case '#':
+            out += "\\#";
+            break;
+        case '$':
+            out += "\\$";
+            break;
+        case '{':
+            out += "\\{";
+            break;
+        case '}':
+            out += "\\}";
+            break;
+        case '^':
+            out += "\\^{}";
+            break;
+        case '~':
+            out += "\\~{}";
+            break;
+        case '\\':
+            out += "\\textbackslash{}";
+            break;
+        default:
+            out += static_cast<char>(c);
         }
         ++i;
     }
     return out;
 }
 
-std::string tex_rel(const std::string& rel)
+std::string tex_rel(const std::string &rel)
 {
     if (rel == "→")
         return "\\to";
@@ -234,7 +285,7 @@ double glyph_em(char c, bool text_mode)
                                           .81, .77, .65, .80, .76, .62, .59, .69, .59, .95, .83, .59, .69};
     static const double text_lower[26] = {.50, .56, .45, .56, .45, .31, .50, .56, .28, .31, .53, .28, .84,
                                           .56, .50, .56, .53, .40, .40, .39, .56, .53, .73, .53, .53, .45};
-    static const double text_upper[26] = {.75, .71, .73, .77, .69, .66, .79, .75, .37, .52, .78, .63, .92,
+    static const double text_upper[26] = {.75, .71, .73, .77, .69, .66, .79, .75, .37, .52,  .78, .63, .92,
                                           .75, .78, .69, .78, .74, .56, .73, .75, .75, 1.03, .75, .75, .62};
     const unsigned char u = static_cast<unsigned char>(c);
     if (u < 0x80 && std::islower(u))
@@ -245,46 +296,63 @@ double glyph_em(char c, bool text_mode)
         return 0.5;
     if (text_mode) {
         switch (c) {
-        case ' ': return 0.34;
+        case ' ':
+            return 0.34;
         case '(':
         case ')':
         case '[':
-        case ']': return 0.39;
+        case ']':
+            return 0.39;
         case '.':
         case ',':
         case ':':
         case ';':
         case '\'':
-        case '!': return 0.28;
-        case '-': return 0.34;
-        default: return 0.78; // + = < > and the rest
+        case '!':
+            return 0.28;
+        case '-':
+            return 0.34;
+        default:
+            return 0.78; // + = < > and the rest
         }
     }
     switch (c) {
-    case ' ': return 0;
+    case ' ':
+        return 0;
     case '+':
-    case '-': return 1.23; // the sign and a medium space each side
+    case '-':
+        return 1.23; // the sign and a medium space each side
     case '=':
     case '<':
-    case '>': return 1.34; // a relation and a thick space each side
+    case '>':
+        return 1.34; // a relation and a thick space each side
     case '(':
     case ')':
     case '[':
-    case ']': return 0.4;
-    case '|': return 0.3;
-    case '/': return 0.5;
+    case ']':
+        return 0.4;
+    case '|':
+        return 0.3;
+    case '/':
+        return 0.5;
     case ',':
-    case ';': return 0.46; // punctuation and a thin space
-    case ':': return 0.6;
-    case '.': return 0.3;
-    case '\'': return 0.32; // a prime
-    case '!': return 0.3;
-    default: return 0.78;
+    case ';':
+        return 0.46; // punctuation and a thin space
+    case ':':
+        return 0.6;
+    case '.':
+        return 0.3;
+    case '\'':
+        return 0.32; // a prime
+    case '!':
+        return 0.3;
+    default:
+        return 0.78;
     }
 }
 
 // The end of the argument starting at `at`: a braced group, a command, or one character.
-std::size_t skip_argument(const std::string& s, std::size_t at)
+std::size_t skip_argument(const std::string &s, std::size_t at)
 {
     while (at < s.size() && s[at] == ' ')
         ++at;
@@ -318,7 +386,7 @@ std::size_t skip_argument(const std::string& s, std::size_t at)
 }
 
 // An argument without its braces.
-std::string argument_body(const std::string& s, std::size_t from, std::size_t to)
+std::string argument_body(const std::string &s, std::size_t from, std::size_t to)
 {
     while (from < to && s[from] == ' ')
         ++from;
@@ -331,20 +399,29 @@ std::string argument_body(const std::string& s, std::size_t from, std::size_t to
 double control_symbol_em(char d)
 {
     switch (d) {
-    case ',': return 0.17;
-    case ':': return 0.23;
-    case ';': return 0.28;
-    case ' ': return 0.36;
+    case ',':
+        return 0.17;
+    case ':':
+        return 0.23;
+    case ';':
+        return 0.28;
+    case ' ':
+        return 0.36;
     case '!':
-    case '\\': return 0; // a negative thin space; a line break
-    default: return 0.55;
+    case '\\':
+        return 0; // a negative thin space; a line break
+    default:
+        return 0.55;
     }
 }
 
-bool contains_fraction(const std::string& s) { return s.find("\\frac") != std::string::npos; }
+bool contains_fraction(const std::string &s)
+{
+    return s.find("\\frac") != std::string::npos;
+}
 
 // The estimated width of TeX (math mode, or text mode inside \text{...}) at `scale`.
-double tex_width(const std::string& s, double scale = 1, bool text_mode = false)
+double tex_width(const std::string &s, double scale = 1, bool text_mode = false)
 {
     double w = 0;
     double script = -1; // the width of a sub- or superscript just set: x^{a}_{b} stacks them
@@ -403,9 +480,9 @@ double tex_width(const std::string& s, double scale = 1, bool text_mode = false)
                 w += 0.75 * scale;
             } else if (name == "times" || name == "pm" || name == "mp" || name == "setminus") {
                 w += 1.24 * scale;
-            } else if (name == "le" || name == "ge" || name == "leq" || name == "geq" || name == "ne" || name == "neq" ||
-                       name == "to" || name == "approx" || name == "equiv" || name == "rightarrow" || name == "sim" ||
-                       name == "mapsto" || name == "in" || name == "propto" || name == "simeq") {
+            } else if (name == "le" || name == "ge" || name == "leq" || name == "geq" || name == "ne" ||
+                       name == "neq" || name == "to" || name == "approx" || name == "equiv" || name == "rightarrow" ||
+                       name == "sim" || name == "mapsto" || name == "in" || name == "propto" || name == "simeq") {
                 w += 1.34 * scale;
             } else if (name == "tag" || name == "label" || name == "eqref" || name == "ref") {
                 arg(); // tags are measured by the caller
@@ -413,9 +490,8 @@ double tex_width(const std::string& s, double scale = 1, bool text_mode = false)
                     w += 2 * scale;
             } else if (name == "small") {
                 scale *= 0.92; // to the end of the group
-            } else if (name == "allowbreak" || name == "displaystyle" || name == "textstyle" ||
-                       name == "nonumber" || name == "notag" || name == "limits" || name == "nolimits" ||
-                       name == "begin" || name == "end") {
+            } else if (name == "allowbreak" || name == "displaystyle" || name == "textstyle" || name == "nonumber" ||
+                       name == "notag" || name == "limits" || name == "nolimits" || name == "begin" || name == "end") {
                 if (name == "begin" || name == "end")
                     arg();
             } else if (name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "log" ||
@@ -468,32 +544,36 @@ struct tex_item {
 };
 using tex_seq = std::vector<tex_item>;
 
-double seq_width(const tex_seq& seq)
+double seq_width(const tex_seq &seq)
 {
     double w = 0;
-    for (const tex_item& it : seq)
+    for (const tex_item &it : seq)
         w += it.width;
     return w;
 }
 
-std::string render(const tex_seq& seq);
+std::string render(const tex_seq &seq);
 
-std::string render(const tex_item& it)
+std::string render(const tex_item &it)
 {
     switch (it.k) {
-    case tex_item::atom: return it.tex;
-    case tex_item::op: return it.tex;
-    case tex_item::group: return it.tex + render(it.inner) + it.close;
-    case tex_item::frac: return "\\frac{" + render(it.inner) + "}{" + it.tex + "}";
+    case tex_item::atom:
+        return it.tex;
+    case tex_item::op:
+        return it.tex;
+    case tex_item::group:
+        return it.tex + render(it.inner) + it.close;
+    case tex_item::frac:
+        return "\\frac{" + render(it.inner) + "}{" + it.tex + "}";
     }
     return it.tex;
 }
 
 // Items joined as canonical.cpp joins them: spaces between factors, " + " around operators.
-std::string render(const tex_seq& seq)
+std::string render(const tex_seq &seq)
 {
     std::string out;
-    for (const tex_item& it : seq) {
+    for (const tex_item &it : seq) {
         if (!out.empty())
             out += ' ';
         out += render(it);
@@ -506,13 +586,14 @@ std::string render(const tex_seq& seq)
 struct group_span {
     std::size_t open_end = std::string::npos, close_start = 0, end = 0;
 };
-group_span find_group(const std::string& s, std::size_t at)
+group_span find_group(const std::string &s, std::size_t at)
 {
     group_span g;
     g.open_end = skip_argument(s, at + 5); // after "\left" and its delimiter
     int depth = 1;
     for (std::size_t k = g.open_end; k < s.size(); ++k) {
-        if (s.compare(k, 5, "\\left") == 0 && (k + 5 >= s.size() || !std::isalpha(static_cast<unsigned char>(s[k + 5])))) {
+        if (s.compare(k, 5, "\\left") == 0 &&
+            (k + 5 >= s.size() || !std::isalpha(static_cast<unsigned char>(s[k + 5])))) {
             ++depth;
         } else if (s.compare(k, 6, "\\right") == 0 &&
                    (k + 6 >= s.size() || !std::isalpha(static_cast<unsigned char>(s[k + 6]))) && --depth == 0) {
@@ -525,7 +606,7 @@ group_span find_group(const std::string& s, std::size_t at)
     return g;
 }
 
-tex_seq parse_tex(const std::string& s)
+tex_seq parse_tex(const std::string &s)
 {
     tex_seq out;
     std::string cur;
@@ -559,7 +640,8 @@ tex_seq parse_tex(const std::string& s)
             ++i;
             continue;
         }
-        if (s.compare(i, 5, "\\left") == 0 && !(i + 5 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 5])))) {
+        if (s.compare(i, 5, "\\left") == 0 &&
+            !(i + 5 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 5])))) {
             group_span g = find_group(s, i);
             if (g.open_end != std::string::npos) {
                 flush();
@@ -576,7 +658,8 @@ tex_seq parse_tex(const std::string& s)
                 continue;
             }
         }
-        if (s.compare(i, 5, "\\frac") == 0 && !(i + 5 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 5])))) {
+        if (s.compare(i, 5, "\\frac") == 0 &&
+            !(i + 5 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 5])))) {
             std::size_t a = skip_argument(s, i + 5), b = skip_argument(s, a);
             flush();
             tex_item it;
@@ -611,10 +694,10 @@ tex_seq parse_tex(const std::string& s)
 }
 
 // The terms of a sum: each with the operator before it ("" for the first).
-std::vector<std::pair<std::string, tex_seq>> terms_of(const tex_seq& seq)
+std::vector<std::pair<std::string, tex_seq>> terms_of(const tex_seq &seq)
 {
     std::vector<std::pair<std::string, tex_seq>> out(1);
-    for (const tex_item& it : seq) {
+    for (const tex_item &it : seq) {
         if (it.k == tex_item::op)
             out.push_back({it.tex, {}});
         else
@@ -624,13 +707,14 @@ std::vector<std::pair<std::string, tex_seq>> terms_of(const tex_seq& seq)
 }
 
 // How many \left minus how many \right: the groups a piece of TeX leaves open.
-int open_groups(const std::string& s)
+int open_groups(const std::string &s)
 {
     int n = 0;
     for (std::size_t k = s.find('\\'); k != std::string::npos; k = s.find('\\', k + 1)) {
         if (s.compare(k, 5, "\\left") == 0 && !(k + 5 < s.size() && std::isalpha(static_cast<unsigned char>(s[k + 5]))))
             ++n;
-        else if (s.compare(k, 6, "\\right") == 0 && !(k + 6 < s.size() && std::isalpha(static_cast<unsigned char>(s[k + 6]))))
+        else if (s.compare(k, 6, "\\right") == 0 &&
+                 !(k + 6 < s.size() && std::isalpha(static_cast<unsigned char>(s[k + 6]))))
             --n;
     }
     return n;
@@ -647,7 +731,8 @@ struct piece {
 
     double width() const
     {
-        return (op.empty() ? 0 : 1.24) + tex_width(head) + seq_width(term) + (term.size() > 1 ? 0.2 : 0) + tex_width(tail);
+        return (op.empty() ? 0 : 1.24) + tex_width(head) + seq_width(term) + (term.size() > 1 ? 0.2 : 0) +
+               tex_width(tail);
     }
     std::string tex(bool line_start) const
     {
@@ -664,27 +749,27 @@ struct piece {
     }
 };
 
-std::vector<piece> pieces_of(const std::string& tex)
+std::vector<piece> pieces_of(const std::string &tex)
 {
     std::vector<piece> out;
-    for (auto& [op, term] : terms_of(parse_tex(tex)))
+    for (auto &[op, term] : terms_of(parse_tex(tex)))
         out.push_back({op, "", term, "", 0});
     return out;
 }
 
 // The piece opened one level down (see above), or nothing when it cannot be.
-std::vector<piece> open_up(const piece& p)
+std::vector<piece> open_up(const piece &p)
 {
     // the widest group or fraction of the term that has a sum to break
     std::size_t best = p.term.size();
     for (std::size_t k = 0; k < p.term.size(); ++k) {
-        const tex_item& it = p.term[k];
+        const tex_item &it = p.term[k];
         bool breakable = false;
         if (it.k == tex_item::group)
             breakable = terms_of(it.inner).size() > 1;
         if (it.k == tex_item::frac) {
             breakable = terms_of(it.inner).size() > 1;
-            for (const tex_item& f : it.inner)
+            for (const tex_item &f : it.inner)
                 breakable = breakable || (f.k == tex_item::group && terms_of(f.inner).size() > 1);
         }
         if (breakable && (best == p.term.size() || it.width > p.term[best].width))
@@ -692,7 +777,7 @@ std::vector<piece> open_up(const piece& p)
     }
     if (best == p.term.size())
         return {};
-    const tex_item& it = p.term[best];
+    const tex_item &it = p.term[best];
     std::string open, close, lead;
     tex_seq sum;
     if (it.k == tex_item::group) {
@@ -724,11 +809,11 @@ std::vector<piece> open_up(const piece& p)
     tex_seq before(p.term.begin(), p.term.begin() + static_cast<std::ptrdiff_t>(best));
     tex_seq after(p.term.begin() + static_cast<std::ptrdiff_t>(best) + 1, p.term.end());
     std::string head = p.head;
-    for (const std::string& part : {render(before), lead, open})
+    for (const std::string &part : {render(before), lead, open})
         if (!part.empty())
             head += (head.empty() ? "" : " ") + part;
     std::string tail = close;
-    for (const std::string& part : {render(after), p.tail})
+    for (const std::string &part : {render(after), p.tail})
         if (!part.empty())
             tail += " " + part;
     std::vector<std::pair<std::string, tex_seq>> terms = terms_of(sum);
@@ -740,7 +825,7 @@ std::vector<piece> open_up(const piece& p)
     return out;
 }
 
-std::string repeat(const std::string& s, int n)
+std::string repeat(const std::string &s, int n)
 {
     std::string out;
     for (int k = 0; k < n; ++k)
@@ -757,7 +842,7 @@ std::vector<std::string> fill_lines(std::vector<piece> pieces, double first, dou
     double used = 0, room = first;
     bool empty = true;
     for (std::size_t i = 0; i < pieces.size();) {
-        const piece& p = pieces[i];
+        const piece &p = pieces[i];
         const double w = p.width();
         if (used + w <= room || (empty && w <= room)) {
             line += (line.empty() ? "" : " ") + p.tex(empty);
@@ -793,11 +878,11 @@ std::vector<std::string> fill_lines(std::vector<piece> pieces, double first, dou
 
 // A displayed row as TeX: its parts and where the printers put it.
 struct row_tex {
-    std::string left;                                         ///< lhs (or its notation)
+    std::string left;                                        ///< lhs (or its notation)
     std::vector<std::pair<std::string, std::string>> rights; ///< (relation, rhs), then ("=", then)
 };
 
-row_tex tex_row_parts(const math_row& r)
+row_tex tex_row_parts(const math_row &r)
 {
     row_tex out;
     out.left = r.lhs_note.text.empty() ? math_latex(r.lhs) : r.lhs_note.tex;
@@ -808,17 +893,20 @@ row_tex tex_row_parts(const math_row& r)
     return out;
 }
 
-std::string one_line(const row_tex& row)
+std::string one_line(const row_tex &row)
 {
     std::string s = row.left;
-    for (const auto& [rel, rhs] : row.rights)
+    for (const auto &[rel, rhs] : row.rights)
         s += " " + rel + " " + rhs;
     return s;
 }
 
 // A short lhs stays in a column left of the relations; a longer one goes
 // into the formula's lines.
-bool short_lhs(double width) { return width <= 0.3 * row_budget_em; }
+bool short_lhs(double width)
+{
+    return width <= 0.3 * row_budget_em;
+}
 
 // A row too wide for one line, as the lines of an align* (or aligned)
 // environment, each within `budget` em: "lhs &= a + b", "&\quad {}+ c".
@@ -826,18 +914,19 @@ bool short_lhs(double width) { return width <= 0.3 * row_budget_em; }
 // the first line(s), "lhs =", and the right side follows, indented. `column`: the width of
 // the lhs column when the row shares an align* with others (at least its own
 // short lhs).
-std::vector<std::string> break_row(const row_tex& row, double budget, double column = 0)
+std::vector<std::string> break_row(const row_tex &row, double budget, double column = 0)
 {
     std::vector<std::string> lines;
     const double left = tex_width(row.left);
     if (short_lhs(left)) {
         column = std::max(column, left);
         for (std::size_t k = 0; k < row.rights.size(); ++k) {
-            const auto& [rel, rhs] = row.rights[k];
+            const auto &[rel, rhs] = row.rights[k];
             const double room = budget - column - tex_width(rel) - 0.5;
             std::vector<std::string> part = fill_lines(pieces_of(rhs), room, budget - column - 1);
             for (std::size_t j = 0; j < part.size(); ++j)
-                lines.push_back(j == 0 ? (k == 0 ? row.left + " " : "") + "&" + rel + " " + part[j] : "&\\quad " + part[j]);
+                lines.push_back(j == 0 ? (k == 0 ? row.left + " " : "") + "&" + rel + " " + part[j]
+                                       : "&\\quad " + part[j]);
         }
         return lines;
     }
@@ -845,7 +934,7 @@ std::vector<std::string> break_row(const row_tex& row, double budget, double col
     // relation at the end of its last line
     budget -= column;
     auto rel_room = [&](std::size_t k) { return k < row.rights.size() ? tex_width(row.rights[k].first) + 0.5 : 0.0; };
-    for (const std::string& part : fill_lines(pieces_of(row.left), budget - rel_room(0), budget - 1 - rel_room(0)))
+    for (const std::string &part : fill_lines(pieces_of(row.left), budget - rel_room(0), budget - 1 - rel_room(0)))
         lines.push_back(lines.empty() ? "&" + part : "&\\quad " + part);
     for (std::size_t k = 0; k < row.rights.size(); ++k) {
         lines.back() += " " + row.rights[k].first;
@@ -862,12 +951,12 @@ std::vector<std::string> break_row(const row_tex& row, double budget, double col
 // between them, inside \left( \right) too. Between two pieces, a break that
 // may leave its line ragged (by up to a third of it): stretch that a break keeps at
 // the end of the line and that cancels out when there is no break.
-std::string inline_math(const std::string& tex)
+std::string inline_math(const std::string &tex)
 {
     if (tex_width(tex) <= 0.45 * text_width_em)
         return "$" + tex + "$";
     std::string out;
-    for (const std::string& part : fill_lines(pieces_of(tex), 0.25 * text_width_em, 0.25 * text_width_em))
+    for (const std::string &part : fill_lines(pieces_of(tex), 0.25 * text_width_em, 0.25 * text_width_em))
         out += (out.empty() ? "$" : "$\\nobreak\\hskip 0pt plus 15em\\penalty0\\hskip 0pt plus -15em\\relax$") + part;
     return out + "$";
 }
@@ -875,7 +964,7 @@ std::string inline_math(const std::string& tex)
 // A label key for a tag: letters and digits as they are, any other byte (and
 // 'z', the escape) as "z" and two hex digits: 3' -> 3z27. Distinct tags get
 // distinct keys, and every key is safe in \label and \eqref.
-std::string label_key(const std::string& tag)
+std::string label_key(const std::string &tag)
 {
     static const char hex[] = "0123456789abcdef";
     std::string out = "eq:";
@@ -891,10 +980,10 @@ std::string label_key(const std::string& tag)
     return out;
 }
 
-std::string tex_spans(const paragraph& p, bool markdown)
+std::string tex_spans(const paragraph &p, bool markdown)
 {
     std::string out;
-    for (const span& s : p.spans) {
+    for (const span &s : p.spans) {
         if (s.k == span::words) {
             if (markdown) {
                 std::string w;
@@ -917,7 +1006,7 @@ std::string tex_spans(const paragraph& p, bool markdown)
 
 // A displayed row for Markdown ($$...$$, MathJax or KaTeX): one line when it
 // fits the same width as in LaTeX, else broken the same way inside aligned.
-std::string markdown_row(const math_row& r)
+std::string markdown_row(const math_row &r)
 {
     row_tex parts = tex_row_parts(r);
     std::string tag = r.tag.empty() ? "" : " \\tag{" + r.tag + "}";
@@ -935,7 +1024,7 @@ std::string markdown_row(const math_row& r)
 // " \tag{3}\label{eq:3}": the label only where the tag first appears (the
 // worked example shows the equations again under their tags; a reference
 // goes to the equation as first stated).
-std::string tag_tex(const std::string& tag, std::set<std::string>& labelled)
+std::string tag_tex(const std::string &tag, std::set<std::string> &labelled)
 {
     if (tag.empty())
         return "";
@@ -946,7 +1035,7 @@ std::string tag_tex(const std::string& tag, std::set<std::string>& labelled)
 }
 
 // The room a tag takes at the end of a line: "(3)" and the space before it.
-double tag_width_em(const std::string& tag)
+double tag_width_em(const std::string &tag)
 {
     return tag.empty() ? 0 : tex_width("(" + tex_words(tag) + ")", 1, true) + 1.5;
 }
@@ -955,7 +1044,7 @@ double tag_width_em(const std::string& tag)
 // (the estimate is generous), at most what is left of the line after
 // `column` and at most five eighths of the text width, which keeps a long
 // note a compact paragraph under its formula.
-std::string note_box(const std::string& note, double column)
+std::string note_box(const std::string &note, double column)
 {
     const double width =
         std::min({row_budget_em - column - 1, 0.625 * text_width_em, tex_width(note, 0.92, true) + 0.5});
@@ -966,7 +1055,7 @@ std::string note_box(const std::string& note, double column)
 // A note under a row of an align*: the next line, in the column of the
 // relations (`column`: the width of the lhs column). \\* keeps it on the
 // page of its row.
-std::string note_line(const std::string& note, double column)
+std::string note_line(const std::string &note, double column)
 {
     return " \\\\*\n  &" + note_box(note, column) + "{\\small\\raggedright " + note + "}";
 }
@@ -975,7 +1064,7 @@ std::string note_line(const std::string& note, double column)
 // it (before the tag); a long note centred under it (gather*). Too wide:
 // align*, broken into lines (allowdisplaybreaks lets a long row continue on
 // the next page), the note under the relations.
-std::string latex_row(const math_row& r, std::set<std::string>& labelled)
+std::string latex_row(const math_row &r, std::set<std::string> &labelled)
 {
     row_tex parts = tex_row_parts(r);
     const std::string tag = tag_tex(r.tag, labelled);
@@ -1008,7 +1097,7 @@ std::string latex_row(const math_row& r, std::set<std::string>& labelled)
 // its tag; a row too wide for one line broken as in break_row; the notes in a
 // column of their own beside the rows when every row is one line and they all
 // fit there, else each under its row. One row alone: latex_row.
-std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>& labelled)
+std::string latex_rows(const std::vector<math_row> &rows, std::set<std::string> &labelled)
 {
     if (rows.size() == 1)
         return latex_row(rows.front(), labelled);
@@ -1019,7 +1108,7 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
     };
     std::vector<laid> all;
     double column = 0, right = 0, tags = 0, notes = 0;
-    for (const math_row& r : rows) {
+    for (const math_row &r : rows) {
         laid l;
         l.parts = tex_row_parts(r);
         l.tag = r.tag;
@@ -1037,14 +1126,14 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
     }
     // one line each: a short lhs and its right side beside the lhs column, with the tag
     bool one_line_each = true;
-    for (const laid& l : all) {
+    for (const laid &l : all) {
         one_line_each = one_line_each && column + l.right + l.tag_width <= row_budget_em;
         right = std::max(right, l.right);
     }
     const bool beside = one_line_each && notes > 0 && column + right + 2 + notes + tags <= row_budget_em;
     std::string out = "\\begin{align*}\n";
     for (std::size_t k = 0; k < all.size(); ++k) {
-        const laid& l = all[k];
+        const laid &l = all[k];
         std::vector<std::string> lines;
         if (l.left <= column && column + l.right + l.tag_width <= row_budget_em) {
             std::string line = l.parts.left + " &";
@@ -1068,10 +1157,10 @@ std::string latex_rows(const std::vector<math_row>& rows, std::set<std::string>&
     return out + "\\end{align*}\n";
 }
 
-bool has_figures(const document& doc)
+bool has_figures(const document &doc)
 {
-    for (const section& sec : doc.sections)
-        for (const block& b : sec.blocks)
+    for (const section &sec : doc.sections)
+        for (const block &b : sec.blocks)
             if (b.k == block::figure)
                 return true;
     return false;
@@ -1079,20 +1168,20 @@ bool has_figures(const document& doc)
 
 } // namespace
 
-std::string explain_text(const document& doc)
+std::string explain_text(const document &doc)
 {
     std::ostringstream os;
     os << doc.title << "\n" << std::string(columns(doc.title), '=') << "\n";
-    for (const section& sec : doc.sections) {
+    for (const section &sec : doc.sections) {
         os << "\n" << sec.title << "\n" << std::string(columns(sec.title), '-') << "\n";
-        for (const block& b : sec.blocks) {
+        for (const block &b : sec.blocks) {
             switch (b.k) {
             case block::text:
                 os << "\n" << wrap(text_spans(b.para), "", "");
                 break;
             case block::list:
                 os << "\n";
-                for (const paragraph& item : b.items)
+                for (const paragraph &item : b.items)
                     os << wrap(text_spans(item), "  - ", "    ");
                 break;
             case block::figure:
@@ -1101,9 +1190,9 @@ std::string explain_text(const document& doc)
             case block::rows: {
                 os << "\n";
                 std::size_t tag_width = 0;
-                for (const math_row& r : b.math)
+                for (const math_row &r : b.math)
                     tag_width = std::max(tag_width, r.tag.empty() ? std::size_t(0) : columns(r.tag) + 2);
-                for (const math_row& r : b.math) {
+                for (const math_row &r : b.math) {
                     std::string tag = r.tag.empty() ? "" : "(" + r.tag + ")";
                     std::string line = "  " + tag + std::string(tag_width - columns(tag) + (tag_width ? 2 : 0), ' ') +
                                        text_row_left(r);
@@ -1115,9 +1204,11 @@ std::string explain_text(const document& doc)
                     if (note.empty()) {
                         os << line << "\n";
                     } else if (r.rel.empty() && r.lhs_note.text.empty() && columns(line) < 22) {
-                        os << wrap(harden(line + std::string(22 - columns(line), ' ')) + note, "", std::string(24, ' '));
+                        os << wrap(harden(line + std::string(22 - columns(line), ' ')) + note, "",
+                                   std::string(24, ' '));
                     } else {
-                        os << line << "\n" << wrap(note, std::string(tag_width + 8, ' '), std::string(tag_width + 8, ' '));
+                        os << line << "\n"
+                           << wrap(note, std::string(tag_width + 8, ' '), std::string(tag_width + 8, ' '));
                     }
                 }
                 break;
@@ -1128,20 +1219,20 @@ std::string explain_text(const document& doc)
     return os.str();
 }
 
-std::string explain_markdown(const document& doc)
+std::string explain_markdown(const document &doc)
 {
     std::ostringstream os;
     os << "# " << doc.title << "\n";
-    for (const section& sec : doc.sections) {
+    for (const section &sec : doc.sections) {
         os << "\n## " << sec.title << "\n";
-        for (const block& b : sec.blocks) {
+        for (const block &b : sec.blocks) {
             switch (b.k) {
             case block::text:
                 os << "\n" << tex_spans(b.para, true) << "\n";
                 break;
             case block::list:
                 os << "\n";
-                for (const paragraph& item : b.items)
+                for (const paragraph &item : b.items)
                     os << "- " << tex_spans(item, true) << "\n";
                 break;
             case block::figure:
@@ -1149,7 +1240,7 @@ std::string explain_markdown(const document& doc)
                 break;
             case block::rows:
                 os << "\n";
-                for (const math_row& r : b.math) {
+                for (const math_row &r : b.math) {
                     std::string note = tex_spans(r.note, true);
                     if (r.rel.empty() && r.tag.empty()) {
                         os << "- $" << one_line(tex_row_parts(r)) << "$" << (note.empty() ? "" : ": " + note) << "\n";
@@ -1167,7 +1258,7 @@ std::string explain_markdown(const document& doc)
     return os.str();
 }
 
-std::string explain_latex(const document& doc)
+std::string explain_latex(const document &doc)
 {
     const bool figures = has_figures(doc);
     std::set<std::string> labelled;
@@ -1194,16 +1285,16 @@ std::string explain_latex(const document& doc)
        << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
-    for (const section& sec : doc.sections) {
+    for (const section &sec : doc.sections) {
         os << "\n\\section*{" << tex_words(sec.title) << "}\n";
-        for (const block& b : sec.blocks) {
+        for (const block &b : sec.blocks) {
             switch (b.k) {
             case block::text:
                 os << "\n" << tex_spans(b.para, false) << "\n";
                 break;
             case block::list:
                 os << "\n\\begin{itemize}\n";
-                for (const paragraph& item : b.items)
+                for (const paragraph &item : b.items)
                     os << "  \\item " << tex_spans(item, false) << "\n";
                 os << "\\end{itemize}\n";
                 break;
@@ -1219,10 +1310,10 @@ std::string explain_latex(const document& doc)
                 break;
             case block::rows: {
                 bool plain = true;
-                for (const math_row& r : b.math)
+                for (const math_row &r : b.math)
                     plain = plain && r.rel.empty() && r.tag.empty();
                 bool bare = plain; // formulas without notes: displayed, one per line
-                for (const math_row& r : b.math)
+                for (const math_row &r : b.math)
                     bare = bare && r.note.spans.empty();
                 if (bare) {
                     os << "\\begin{gather*}\n";
@@ -1233,10 +1324,10 @@ std::string explain_latex(const document& doc)
                 }
                 if (plain) {
                     os << "\n\\begin{itemize}\n";
-                    for (const math_row& r : b.math) {
+                    for (const math_row &r : b.math) {
                         std::string note = tex_spans(r.note, false);
-                        os << "  \\item " << inline_math(one_line(tex_row_parts(r))) << (note.empty() ? "" : ": " + note)
-                           << "\n";
+                        os << "  \\item " << inline_math(one_line(tex_row_parts(r)))
+                           << (note.empty() ? "" : ": " + note) << "\n";
                     }
                     os << "\\end{itemize}\n";
                     break;
@@ -1258,10 +1349,12 @@ std::string explain_latex(const document& doc)
             while (k + n < out.size() && (static_cast<unsigned char>(out[k + n]) & 0xC0) == 0x80)
                 ++n;
             const std::size_t from = out.rfind('\n', k), to = out.find('\n', k);
-            const std::string line = out.substr(from == std::string::npos ? 0 : from + 1,
-                                                (to == std::string::npos ? out.size() : to) - (from == std::string::npos ? 0 : from + 1));
-            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" + names::display_text(out.substr(k, n)) +
-                                        "\" (in \"" + names::display_text(line, 60) + "\"); use ASCII names for --format latex");
+            const std::string line =
+                out.substr(from == std::string::npos ? 0 : from + 1,
+                           (to == std::string::npos ? out.size() : to) - (from == std::string::npos ? 0 : from + 1));
+            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" +
+                                        names::display_text(out.substr(k, n)) + "\" (in \"" +
+                                        names::display_text(line, 60) + "\"); use ASCII names for --format latex");
         }
     return out;
 }
@@ -1270,10 +1363,17 @@ std::string explain_latex(const document& doc)
 
 // The width model of the LaTeX layout, for its tests (tests/explain/latex_tools.hpp
 // declares the first two), and its row breaking for the HTML page (explain_html.cpp).
-namespace impactgen::print::layout {
-double estimated_width_em(const std::string& tex) { return tex_width(tex); }
-double row_budget_em() { return print::row_budget_em; }
-std::vector<std::string> broken_row_lines(const math_row& r, double budget)
+namespace impactgen::print::layout
+{
+double estimated_width_em(const std::string &tex)
+{
+    return tex_width(tex);
+}
+double row_budget_em()
+{
+    return print::row_budget_em;
+}
+std::vector<std::string> broken_row_lines(const math_row &r, double budget)
 {
     const row_tex parts = tex_row_parts(r);
     if (tex_width(one_line(parts)) <= budget)

@@ -9,13 +9,18 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 
-std::string parser_syntax(const ex& e) { return canonical_parser(e); }
+std::string parser_syntax(const ex &e)
+{
+    return canonical_parser(e);
+}
 
-namespace {
-ex evaluated(const ex& e)
+namespace
+{
+ex evaluated(const ex &e)
 {
     if (is_a<numeric>(e))
         return e.evalf();
@@ -26,7 +31,7 @@ ex evaluated(const ex& e)
         ex v;
         try {
             v = e.evalf();
-        } catch (const std::exception&) {
+        } catch (const std::exception &) {
             continue; // a part that cancels to a float 0 and divides (1/(sqrt(10^100 + 1) - 10^50)): more digits
         }
         if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
@@ -45,14 +50,17 @@ ex evaluated(const ex& e)
 }
 } // namespace
 
-ex evaluated_constant(const ex& e) { return evaluated(e); }
+ex evaluated_constant(const ex &e)
+{
+    return evaluated(e);
+}
 
-double to_double(const ex& e)
+double to_double(const ex &e)
 {
     ex v = evaluated(e);
     if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
         throw std::invalid_argument("not a real number: " + parser_syntax(e));
-    const numeric& x = ex_to<numeric>(v);
+    const numeric &x = ex_to<numeric>(v);
     double d = x.to_double();
     if (d == 0 && !x.is_zero()) // CLN flushes values below DBL_MIN to 0: scale into range, then back (a subnormal)
         d = std::ldexp((x * numeric(2).power(600)).to_double(), -600);
@@ -61,7 +69,7 @@ double to_double(const ex& e)
     return d == 0 ? 0.0 : d; // no "-0"
 }
 
-std::string decimal(const ex& e)
+std::string decimal(const ex &e)
 {
     const ex v = evaluated(e);
     const double d = to_double(v);
@@ -74,6 +82,9 @@ std::string decimal(const ex& e)
     return buf;
 }
 
-ex tidy(const ex& e) { return impactgen::tidy(e); }
+ex tidy(const ex &e)
+{
+    return impactgen::tidy(e);
+}
 
 } // namespace impactgen::print

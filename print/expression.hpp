@@ -7,12 +7,13 @@
 #include <stdexcept>
 #include <string>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 /// GiNaC's own syntax: what GiNaC's parser reads back (also the text format).
-std::string parser_syntax(const GiNaC::ex& e);
+std::string parser_syntax(const GiNaC::ex &e);
 /// A number as a decimal with 15 significant digits; throws when e is not a number.
-std::string decimal(const GiNaC::ex& e);
+std::string decimal(const GiNaC::ex &e);
 /// A constant whose float value no precision up to 1280 digits settles (it cancels deeper).
 struct no_decimal : std::invalid_argument {
     no_decimal() : std::invalid_argument("no decimal: its exact form cancels beyond 1280 digits") {}
@@ -20,9 +21,9 @@ struct no_decimal : std::invalid_argument {
 /// The value of a constant as a float, to double precision at least: evaluated at 40, 80,
 /// ... 1280 digits until two evaluations agree (a cancellation in the leading digits needs
 /// more than GiNaC's default); 0 where decided so. Throws no_decimal when nothing settles it.
-GiNaC::ex evaluated_constant(const GiNaC::ex& e);
-double to_double(const GiNaC::ex& e);
+GiNaC::ex evaluated_constant(const GiNaC::ex &e);
+double to_double(const GiNaC::ex &e);
 /// Fully expanded steps may still be large: normalise only what is cheap.
-GiNaC::ex tidy(const GiNaC::ex& e);
+GiNaC::ex tidy(const GiNaC::ex &e);
 
 } // namespace impactgen::print

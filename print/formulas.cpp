@@ -6,10 +6,12 @@
 
 #include <sstream>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 // One formula document, printed by a format-specific line writer.
 struct formula_line {
@@ -18,13 +20,13 @@ struct formula_line {
     std::string meaning;
 };
 
-std::vector<formula_line> collect(const derivation& d, const solution& s)
+std::vector<formula_line> collect(const derivation &d, const solution &s)
 {
     std::vector<formula_line> lines;
-    for (const step& st : s.steps)
+    for (const step &st : s.steps)
         lines.push_back({st.sym.get_name(), symbol_latex(st.sym), st.value, st.meaning});
     for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
-        const unknown& u = d.unknowns[k];
+        const unknown &u = d.unknowns[k];
         if (u.kind == unknown_kind::normal_impulse)
             continue; // N is already a step
         ex v = s.unknown_values.op(k).rhs();
@@ -33,7 +35,7 @@ std::vector<formula_line> collect(const derivation& d, const solution& s)
     return lines;
 }
 
-std::string header(const derivation& d)
+std::string header(const derivation &d)
 {
     std::ostringstream os;
     os << d.prob.source << ": " << d.count_unknowns() << " unknowns, " << d.count_equations() << " equations";
@@ -42,7 +44,7 @@ std::string header(const derivation& d)
 
 } // namespace
 
-std::string formulas_text(const derivation& d, const solution& s)
+std::string formulas_text(const derivation &d, const solution &s)
 {
     std::ostringstream os;
     os << header(d) << "\n";
@@ -50,41 +52,46 @@ std::string formulas_text(const derivation& d, const solution& s)
         os << "unit normal n = (" << canonical_text(d.n_hat[0]) << ", " << canonical_text(d.n_hat[1])
            << (d.prob.dimension == 3 ? ", " + canonical_text(d.n_hat[2]) : "") << ")\n";
     os << "\n";
-    for (const formula_line& l : collect(d, s))
+    for (const formula_line &l : collect(d, s))
         os << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n    (" << l.meaning << ")\n";
     return os.str();
 }
 
-std::string formulas_latex(const derivation& d, const solution& s)
+std::string formulas_latex(const derivation &d, const solution &s)
 {
     std::ostringstream os;
     os << "% impactgen formulas -- " << header(d) << "\n";
     os << "\\begin{align*}\n";
     auto lines = collect(d, s);
     for (std::size_t k = 0; k < lines.size(); ++k)
-        os << "  " << lines[k].name_tex << " &= " << canonical_latex(lines[k].value) << (k + 1 < lines.size() ? " \\\\" : "") << "\n";
+        os << "  " << lines[k].name_tex << " &= " << canonical_latex(lines[k].value)
+           << (k + 1 < lines.size() ? " \\\\" : "") << "\n";
     os << "\\end{align*}\n";
     return os.str();
 }
 
 // ---- friction ---------------------------------------------------------------
 
-namespace {
+namespace
+{
 
 // The steps a case adds to the shared ones (every case starts with the same shared steps).
-std::size_t shared_count(const friction_solution& f)
+std::size_t shared_count(const friction_solution &f)
 {
     if (f.cases.size() < 2)
         return 0;
     std::size_t n = 0;
-    const auto& a = f.cases[0].sol.steps;
-    const auto& b = f.cases[1].sol.steps;
+    const auto &a = f.cases[0].sol.steps;
+    const auto &b = f.cases[1].sol.steps;
     while (n < a.size() && n < b.size() && a[n].sym.is_equal(b[n].sym))
         ++n;
     return n;
 }
 
-std::string relation(const regime_condition& c) { return c.strict ? " > 0" : " >= 0"; }
+std::string relation(const regime_condition &c)
+{
+    return c.strict ? " > 0" : " >= 0";
+}
 
 struct case_line {
     std::string name_text, name_tex;
@@ -92,12 +99,12 @@ struct case_line {
     std::string meaning;
 };
 
-std::vector<case_line> case_results(const derivation& d, const regime_case& c)
+std::vector<case_line> case_results(const derivation &d, const regime_case &c)
 {
     std::vector<case_line> lines;
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
-        const unknown& u = d.unknowns[k];
+        const unknown &u = d.unknowns[k];
         if (u.kind == unknown_kind::normal_impulse)
             continue;
         lines.push_back({u.sym.get_name(), symbol_latex(u.sym), c.sol.unknown_values.op(k).rhs(), u.meaning});
@@ -106,39 +113,39 @@ std::vector<case_line> case_results(const derivation& d, const regime_case& c)
         for (int a = 0; a < 3; ++a)
             if (!is_a<symbol>(c.tangential_impulse[a])) // a step already
                 lines.push_back({"F_" + p.axes[a], "F_{" + p.axes[a] + "}", c.tangential_impulse[a],
-                             "tangential impulse on body 2, " + p.axes[a] + " component"});
+                                 "tangential impulse on body 2, " + p.axes[a] + " component"});
     return lines;
 }
 
 } // namespace
 
-bool stick_can_hold(const derivation& d, const friction_solution& f)
+bool stick_can_hold(const derivation &d, const friction_solution &f)
 {
     (void)d;
     // The stick impulse does not depend on mu: with numbers for the rest, its sign is known.
-    const regime_case& st = f.cases.front();
+    const regime_case &st = f.cases.front();
     const ex N = tidy(st.sol.expand_steps(st.sol.normal_impulse));
     if (!is_constant(N))
         return true; // decided by the values: the condition N > 0 is printed with the threshold
     return decide(N) == decision::positive;
 }
 
-ex stick_threshold(const derivation& d, const friction_solution& f)
+ex stick_threshold(const derivation &d, const friction_solution &f)
 {
-    const regime_case& st = f.cases.front();
+    const regime_case &st = f.cases.front();
     const ex Pn = st.sol.normal_impulse;
     if (d.prob.dimension == 2)
         return abs(tidy(st.sol.expand_steps(st.tangential_scalar / Pn)));
     return sqrt(dot(st.tangential_impulse, st.tangential_impulse)) / Pn;
 }
 
-std::string formulas_text(const derivation& d, const friction_solution& f)
+std::string formulas_text(const derivation &d, const friction_solution &f)
 {
     std::ostringstream os;
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     os << p.source << ": impact with Coulomb friction mu = " << canonical_text(f.mu) << ", " << f.cases.size()
        << " candidate regimes; exactly one holds\n";
-    auto vec_text = [&](const vec3& v) {
+    auto vec_text = [&](const vec3 &v) {
         std::string r = "(";
         for (int a = 0; a < p.dimension; ++a)
             r += (a ? ", " : "") + canonical_text(v[a]);
@@ -149,69 +156,74 @@ std::string formulas_text(const derivation& d, const friction_solution& f)
         os << ", e_b = " << vec_text(f.e_b);
     os << "\n\n";
     const std::size_t shared = shared_count(f);
-    const auto& first = f.cases.front().sol.steps;
+    const auto &first = f.cases.front().sol.steps;
     for (std::size_t k = 0; k < shared; ++k)
-        os << symbol_text(first[k].sym.get_name()) << " = " << canonical_text(first[k].value) << "\n    (" << first[k].meaning << ")\n";
+        os << symbol_text(first[k].sym.get_name()) << " = " << canonical_text(first[k].value) << "\n    ("
+           << first[k].meaning << ")\n";
     for (std::size_t ci = 0; ci < f.cases.size(); ++ci) {
-        const regime_case& c = f.cases[ci];
+        const regime_case &c = f.cases[ci];
         os << "\nRegime " << ci + 1 << ": " << c.name << "\n";
         for (std::size_t k = shared; k < c.sol.steps.size(); ++k)
-            os << "  " << symbol_text(c.sol.steps[k].sym.get_name()) << " = " << canonical_text(c.sol.steps[k].value) << "\n      ("
-               << c.sol.steps[k].meaning << ")\n";
+            os << "  " << symbol_text(c.sol.steps[k].sym.get_name()) << " = " << canonical_text(c.sol.steps[k].value)
+               << "\n      (" << c.sol.steps[k].meaning << ")\n";
         if (c.needs_angle)
             os << "  the sliding direction d = c_d e_t + s_d e_b (c_d^2 + s_d^2 = 1) solves\n      0 = "
-               << canonical_text(c.angle_equation) << "\n      (u'_t parallel to d: a trigonometric polynomial of degree 2 in the sliding angle)\n";
-        for (const case_line& l : case_results(d, c))
+               << canonical_text(c.angle_equation)
+               << "\n      (u'_t parallel to d: a trigonometric polynomial of degree 2 in the sliding angle)\n";
+        for (const case_line &l : case_results(d, c))
             os << "  " << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n";
         os << "  holds when:\n";
-        for (const regime_condition& rc : c.conditions)
+        for (const regime_condition &rc : c.conditions)
             os << "    " << rc.meaning << ":  " << canonical_text(rc.value) << relation(rc) << "\n";
     }
     if (stick_can_hold(d, f))
-        os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when its N > 0 and\n  mu >= mu* = |F| / N = "
+        os << "\nThe stick impulse does not depend on mu, so sticking holds exactly when its N > 0 and\n  mu >= mu* = "
+              "|F| / N = "
            << canonical_text(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
     else
         os << "\nThe stick impulse pulls (N <= 0), and it does not depend on mu: no mu makes the contact stick.\n";
     return os.str();
 }
 
-std::string formulas_latex(const derivation& d, const friction_solution& f)
+std::string formulas_latex(const derivation &d, const friction_solution &f)
 {
     std::ostringstream os;
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     os << "% impactgen formulas -- " << p.source << ": impact with Coulomb friction\n";
     const std::size_t shared = shared_count(f);
-    const auto& first = f.cases.front().sol.steps;
+    const auto &first = f.cases.front().sol.steps;
     os << "\\begin{align*}\n";
     for (std::size_t k = 0; k < shared; ++k)
         os << "  " << symbol_latex(first[k].sym) << " &= " << canonical_latex(first[k].value) << " \\\\\n";
     if (stick_can_hold(d, f))
-        os << "  \\mu^{*} &= " << canonical_latex(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))) << "\n";
+        os << "  \\mu^{*} &= " << canonical_latex(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f))))
+           << "\n";
     else
         os << "  N_{\\text{stick}} &\\leq 0 \\quad \\text{(no } \\mu \\text{ sticks)}\n";
     os << "\\end{align*}\n";
-    for (const regime_case& c : f.cases) {
+    for (const regime_case &c : f.cases) {
         os << "% regime: " << c.name << "\n\\begin{align*}\n";
         for (std::size_t k = shared; k < c.sol.steps.size(); ++k)
-            os << "  " << symbol_latex(c.sol.steps[k].sym) << " &= " << canonical_latex(c.sol.steps[k].value) << " \\\\\n";
+            os << "  " << symbol_latex(c.sol.steps[k].sym) << " &= " << canonical_latex(c.sol.steps[k].value)
+               << " \\\\\n";
         if (c.needs_angle)
             os << "  0 &= " << canonical_latex(c.angle_equation) << " \\\\\n";
-        for (const case_line& l : case_results(d, c))
+        for (const case_line &l : case_results(d, c))
             os << "  " << l.name_tex << " &= " << canonical_latex(l.value) << " \\\\\n";
         for (std::size_t k = 0; k < c.conditions.size(); ++k)
-            os << "  " << canonical_latex(c.conditions[k].value) << " &" << (c.conditions[k].strict ? ">" : "\\geq") << " 0"
-               << (k + 1 < c.conditions.size() ? " \\\\" : "") << "\n";
+            os << "  " << canonical_latex(c.conditions[k].value) << " &" << (c.conditions[k].strict ? ">" : "\\geq")
+               << " 0" << (k + 1 < c.conditions.size() ? " \\\\" : "") << "\n";
         os << "\\end{align*}\n";
     }
     return os.str();
 }
 
-nlohmann::ordered_json formulas_json(const derivation& d, const friction_solution& f)
+nlohmann::ordered_json formulas_json(const derivation &d, const friction_solution &f)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     nlohmann::ordered_json out;
     out["friction"] = canonical_parser(f.mu);
-    auto vec_json = [&](const vec3& v) {
+    auto vec_json = [&](const vec3 &v) {
         nlohmann::ordered_json a = nlohmann::ordered_json::array();
         for (int k = 0; k < p.dimension; ++k)
             a.push_back(canonical_parser(v[k]));
@@ -219,13 +231,14 @@ nlohmann::ordered_json formulas_json(const derivation& d, const friction_solutio
     };
     out["normal"] = vec_json(f.n_hat);
     out["regimes"] = nlohmann::ordered_json::array();
-    for (const regime_case& c : f.cases) {
+    for (const regime_case &c : f.cases) {
         nlohmann::ordered_json r;
         r["regime"] = regime_name(c.kind);
         r["case"] = c.name;
         r["steps"] = nlohmann::ordered_json::array();
-        for (const step& st : c.sol.steps)
-            r["steps"].push_back({{"name", st.sym.get_name()}, {"value", canonical_parser(st.value)}, {"meaning", st.meaning}});
+        for (const step &st : c.sol.steps)
+            r["steps"].push_back(
+                {{"name", st.sym.get_name()}, {"value", canonical_parser(st.value)}, {"meaning", st.meaning}});
         if (c.needs_angle)
             r["angle_equation"] = {{"unknowns", {c.dir_c.get_name(), c.dir_s.get_name()}},
                                    {"direction", "d = c_d e_t + s_d e_b, c_d^2 + s_d^2 = 1"},
@@ -251,18 +264,21 @@ nlohmann::ordered_json formulas_json(const derivation& d, const friction_solutio
                        {"tangential_impulse", vec_json(c.tangential_impulse)},
                        {"regime", regime_name(c.kind)}};
         nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
-        for (const vec3& R : c.sol.pivot_impulses)
+        for (const vec3 &R : c.sol.pivot_impulses)
             pivots.push_back(vec_json(R));
         r["answer"]["pivot_impulses"] = pivots;
         r["conditions"] = nlohmann::ordered_json::array();
-        for (const regime_condition& rc : c.conditions)
-            r["conditions"].push_back({{"expression", canonical_parser(rc.value)}, {"relation", c.needs_angle || rc.strict ? ">" : ">="},
+        for (const regime_condition &rc : c.conditions)
+            r["conditions"].push_back({{"expression", canonical_parser(rc.value)},
+                                       {"relation", c.needs_angle || rc.strict ? ">" : ">="},
                                        {"meaning", rc.meaning}});
         out["regimes"].push_back(r);
     }
     // null when the stick impulse pulls (N <= 0, decided for numbers): no mu sticks
-    out["stick_threshold"] = stick_can_hold(d, f) ? nlohmann::ordered_json(canonical_parser(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))))
-                                                  : nlohmann::ordered_json(nullptr);
+    out["stick_threshold"] =
+        stick_can_hold(d, f)
+            ? nlohmann::ordered_json(canonical_parser(tidy(f.cases.front().sol.expand_steps(stick_threshold(d, f)))))
+            : nlohmann::ordered_json(nullptr);
     return out;
 }
 

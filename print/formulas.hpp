@@ -8,26 +8,27 @@
 
 #include <string>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
-std::string formulas_text(const derivation& d, const solution& s);
-std::string formulas_latex(const derivation& d, const solution& s);
+std::string formulas_text(const derivation &d, const solution &s);
+std::string formulas_latex(const derivation &d, const solution &s);
 
 /// With friction: the shared steps, then each regime's closed form and the
 /// inequalities that select it, and the threshold mu* = |P_t| / P_n of sticking.
-std::string formulas_text(const derivation& d, const friction_solution& f);
-std::string formulas_latex(const derivation& d, const friction_solution& f);
+std::string formulas_text(const derivation &d, const friction_solution &f);
+std::string formulas_latex(const derivation &d, const friction_solution &f);
 /// {"regimes": [{"regime", "case", "steps", "answer", "conditions"}], "stick_threshold"}:
 /// expressions in GiNaC's syntax, in the steps (which read back in order).
-nlohmann::ordered_json formulas_json(const derivation& d, const friction_solution& f);
+nlohmann::ordered_json formulas_json(const derivation &d, const friction_solution &f);
 
 /// False when the stick impulse is a number (every value but mu given) and pulls (N <= 0): no mu sticks,
 /// and no threshold is printed.
-bool stick_can_hold(const derivation& d, const friction_solution& f);
+bool stick_can_hold(const derivation &d, const friction_solution &f);
 
 /// The threshold of sticking: stick holds iff mu >= mu* = |P_t| / P_n, where P is the
 /// stick impulse (which does not depend on mu). In the stick case's steps; for a planar
 /// problem |P_t| is written as an absolute value.
-GiNaC::ex stick_threshold(const derivation& d, const friction_solution& f);
+GiNaC::ex stick_threshold(const derivation &d, const friction_solution &f);
 
 } // namespace impactgen::print

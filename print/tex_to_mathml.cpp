@@ -15,54 +15,56 @@
 #include <string_view>
 #include <vector>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
-namespace {
+namespace
+{
 
 struct command_symbol {
-    const char* name;
-    const char* element; ///< "mi" or "mo"
-    const char* text;    ///< UTF-8
+    const char *name;
+    const char *element; ///< "mi" or "mo"
+    const char *text;    ///< UTF-8
 };
 
 // Control words that stand for one character.
 constexpr command_symbol symbols[] = {
-    {"alpha", "mi", "α"},   {"beta", "mi", "β"},      {"gamma", "mi", "γ"},    {"delta", "mi", "δ"},
-    {"epsilon", "mi", "ϵ"}, {"varepsilon", "mi", "ε"}, {"zeta", "mi", "ζ"},    {"eta", "mi", "η"},
-    {"theta", "mi", "θ"},   {"vartheta", "mi", "ϑ"},  {"iota", "mi", "ι"},     {"kappa", "mi", "κ"},
-    {"lambda", "mi", "λ"},  {"mu", "mi", "μ"},        {"nu", "mi", "ν"},       {"xi", "mi", "ξ"},
-    {"pi", "mi", "π"},      {"varpi", "mi", "ϖ"},     {"rho", "mi", "ρ"},      {"varrho", "mi", "ϱ"},
-    {"sigma", "mi", "σ"},   {"varsigma", "mi", "ς"},  {"tau", "mi", "τ"},      {"upsilon", "mi", "υ"},
-    {"phi", "mi", "ϕ"},     {"varphi", "mi", "φ"},    {"chi", "mi", "χ"},      {"psi", "mi", "ψ"},
-    {"omega", "mi", "ω"},   {"ell", "mi", "ℓ"},       {"infty", "mi", "∞"},    {"prime", "mo", "′"},
-    {"cdot", "mo", "⋅"},    {"times", "mo", "×"},     {"pm", "mo", "±"},       {"mp", "mo", "∓"},
-    {"le", "mo", "≤"},      {"leq", "mo", "≤"},       {"ge", "mo", "≥"},       {"geq", "mo", "≥"},
-    {"ne", "mo", "≠"},      {"neq", "mo", "≠"},       {"approx", "mo", "≈"},   {"to", "mo", "→"},
-    {"rightarrow", "mo", "→"}, {"ldots", "mo", "…"},  {"dots", "mo", "…"},     {"cdots", "mo", "⋯"},
-    {"int", "mo", "∫"},      {"sum", "mo", "∑"},
+    {"alpha", "mi", "α"},      {"beta", "mi", "β"},       {"gamma", "mi", "γ"},  {"delta", "mi", "δ"},
+    {"epsilon", "mi", "ϵ"},    {"varepsilon", "mi", "ε"}, {"zeta", "mi", "ζ"},   {"eta", "mi", "η"},
+    {"theta", "mi", "θ"},      {"vartheta", "mi", "ϑ"},   {"iota", "mi", "ι"},   {"kappa", "mi", "κ"},
+    {"lambda", "mi", "λ"},     {"mu", "mi", "μ"},         {"nu", "mi", "ν"},     {"xi", "mi", "ξ"},
+    {"pi", "mi", "π"},         {"varpi", "mi", "ϖ"},      {"rho", "mi", "ρ"},    {"varrho", "mi", "ϱ"},
+    {"sigma", "mi", "σ"},      {"varsigma", "mi", "ς"},   {"tau", "mi", "τ"},    {"upsilon", "mi", "υ"},
+    {"phi", "mi", "ϕ"},        {"varphi", "mi", "φ"},     {"chi", "mi", "χ"},    {"psi", "mi", "ψ"},
+    {"omega", "mi", "ω"},      {"ell", "mi", "ℓ"},        {"infty", "mi", "∞"},  {"prime", "mo", "′"},
+    {"cdot", "mo", "⋅"},       {"times", "mo", "×"},      {"pm", "mo", "±"},     {"mp", "mo", "∓"},
+    {"le", "mo", "≤"},         {"leq", "mo", "≤"},        {"ge", "mo", "≥"},     {"geq", "mo", "≥"},
+    {"ne", "mo", "≠"},         {"neq", "mo", "≠"},        {"approx", "mo", "≈"}, {"to", "mo", "→"},
+    {"rightarrow", "mo", "→"}, {"ldots", "mo", "…"},      {"dots", "mo", "…"},   {"cdots", "mo", "⋯"},
+    {"int", "mo", "∫"},        {"sum", "mo", "∑"},
 };
 
 // Function names TeX sets upright (\cos x): one multi-letter <mi>.
-constexpr const char* functions[] = {"cos", "sin", "tan", "arctan", "max", "min", "det"};
+constexpr const char *functions[] = {"cos", "sin", "tan", "arctan", "max", "min", "det"};
 
 // Upper-case Greek: upright, as TeX prints them.
 constexpr command_symbol upright_symbols[] = {
-    {"Gamma", "mi", "Γ"}, {"Delta", "mi", "Δ"}, {"Theta", "mi", "Θ"},   {"Lambda", "mi", "Λ"},
-    {"Xi", "mi", "Ξ"},    {"Pi", "mi", "Π"},    {"Sigma", "mi", "Σ"},   {"Upsilon", "mi", "Υ"},
+    {"Gamma", "mi", "Γ"}, {"Delta", "mi", "Δ"}, {"Theta", "mi", "Θ"}, {"Lambda", "mi", "Λ"},
+    {"Xi", "mi", "Ξ"},    {"Pi", "mi", "Π"},    {"Sigma", "mi", "Σ"}, {"Upsilon", "mi", "Υ"},
     {"Phi", "mi", "Φ"},   {"Psi", "mi", "Ψ"},   {"Omega", "mi", "Ω"},
 };
 
 // Horizontal space commands and their widths.
-constexpr std::pair<const char*, const char*> spaces[] = {
+constexpr std::pair<const char *, const char *> spaces[] = {
     {",", "0.1667em"}, {":", "0.2222em"}, {";", "0.2778em"}, {" ", "0.3333em"}, {"quad", "1em"}, {"qquad", "2em"},
 };
 
-std::string element(const std::string& tag, const std::string& content, const std::string& attributes = "")
+std::string element(const std::string &tag, const std::string &content, const std::string &attributes = "")
 {
     return "<" + tag + attributes + ">" + content + "</" + tag + ">";
 }
 
-std::string mo(const std::string& text, bool fixed = false)
+std::string mo(const std::string &text, bool fixed = false)
 {
     return element("mo", names::xml_text(text), fixed ? " stretchy=\"false\"" : "");
 }
@@ -70,46 +72,56 @@ std::string mo(const std::string& text, bool fixed = false)
 // A prime as a superscript. The prime character (U+2032) is drawn raised
 // already, and Chromium raises a script again: larger and lowered, it sits
 // where TeX puts x'.
-std::string prime() { return "<mpadded voffset=\"-0.3em\"><mo mathsize=\"130%\">′</mo></mpadded>"; }
+std::string prime()
+{
+    return "<mpadded voffset=\"-0.3em\"><mo mathsize=\"130%\">′</mo></mpadded>";
+}
 
 // Whether MathML is taller than a line of letters with scripts: a fraction,
 // a root, an accent or a stretched fence in it. Delimiters grow around it
 // only: Chromium stretches a delimiter to the exact height of its row, and
 // around v_{t1} that is a larger, wider glyph where TeX keeps the normal one.
-bool tall(const std::string& mathml)
+bool tall(const std::string &mathml)
 {
-    for (const char* t : {"<mfrac", "<msqrt", "<munder", "<mover", "stretchy=\"true\""})
+    for (const char *t : {"<mfrac", "<msqrt", "<munder", "<mover", "stretchy=\"true\""})
         if (mathml.find(t) != std::string::npos)
             return true;
     return false;
 }
 
 // One element for a list of them: the element itself, or an <mrow>.
-std::string row(const std::vector<std::string>& items)
+std::string row(const std::vector<std::string> &items)
 {
     if (items.size() == 1)
         return items.front();
     std::string out;
-    for (const std::string& s : items)
+    for (const std::string &s : items)
         out += s;
     return element("mrow", out);
 }
 
-bool is_letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
-bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+bool is_letter(char c)
+{
+    return std::isalpha(static_cast<unsigned char>(c)) != 0;
+}
+bool is_digit(char c)
+{
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+}
 
 const std::string opening_bar = "<mo form=\"prefix\" stretchy=\"false\">|</mo>";
 const std::string closing_bar = "<mo form=\"postfix\" stretchy=\"false\">|</mo>";
 
-class translator {
+class translator
+{
 public:
-    explicit translator(const std::string& tex) : tex_(tex) {}
+    explicit translator(const std::string &tex) : tex_(tex) {}
 
     std::string run()
     {
         std::vector<std::string> out = list(stop::end);
         std::string s;
-        for (const std::string& e : out)
+        for (const std::string &e : out)
             s += e;
         return s;
     }
@@ -125,11 +137,11 @@ private:
         bool has_sub = false, has_caret = false;
     };
 
-    const std::string& tex_;
+    const std::string &tex_;
     std::size_t i_ = 0;
     bool upright_ = false; ///< inside \mathrm or \operatorname: letters upright, runs joined
 
-    [[noreturn]] void fail(const std::string& what) const
+    [[noreturn]] void fail(const std::string &what) const
     {
         throw std::invalid_argument("TeX to MathML: " + what + " at offset " + std::to_string(i_) + " in \"" +
                                     names::display_text(tex_, 120) + "\"");
@@ -166,16 +178,16 @@ private:
     }
 
     /// Whether a + or - that follows these items is a prefix sign.
-    static bool sign_position(const std::vector<item>& items)
+    static bool sign_position(const std::vector<item> &items)
     {
         for (auto it = items.rbegin(); it != items.rend(); ++it) {
             if (it->base.compare(0, 7, "<mspace") == 0)
                 continue;
             if (it->has_sub || !it->sup.empty() || it->base.compare(0, 3, "<mo") != 0)
                 return false;
-            static const char* const before_sign[] = {"=", "≤", "≥", "&lt;", "&gt;", "≈", "→", "≠", "(", "[", ",", ";",
-                                                      ":", "+", "−", "×", "⋅", "±", "∓", "/"};
-            for (const char* op : before_sign)
+            static const char *const before_sign[] = {"=", "≤", "≥", "&lt;", "&gt;", "≈", "→", "≠", "(", "[",
+                                                      ",", ";", ":", "+",    "−",    "×", "⋅", "±", "∓", "/"};
+            for (const char *op : before_sign)
                 if (it->base == mo(op) || it->base == mo(op, true))
                     return true;
             return it->base == opening_bar;
@@ -183,7 +195,7 @@ private:
         return true;
     }
 
-    static std::string finish(const item& it)
+    static std::string finish(const item &it)
     {
         std::string base = it.base.empty() ? element("mrow", "") : it.base;
         std::string sup = it.sup.empty() ? "" : row(it.sup);
@@ -220,7 +232,7 @@ private:
             if (c == '_' || c == '^' || c == '\'') {
                 if (items.empty())
                     items.push_back({});
-                item& last = items.back();
+                item &last = items.back();
                 ++i_;
                 if (c == '\'') {
                     if (last.has_caret)
@@ -252,14 +264,14 @@ private:
                 items.push_back({a, "", {}, false, false});
         }
         std::vector<std::string> out;
-        for (const item& it : items)
+        for (const item &it : items)
             out.push_back(finish(it));
         return out;
     }
 
     /// The argument of a command or a script: a braced group, a command, or
     /// one character.
-    std::string argument(const std::string& of)
+    std::string argument(const std::string &of)
     {
         skip_spaces();
         if (at_end())
@@ -277,7 +289,7 @@ private:
     }
 
     /// The raw text of a braced group (for \text), its braces balanced.
-    std::string raw_group(const std::string& of)
+    std::string raw_group(const std::string &of)
     {
         skip_spaces();
         if (peek() != '{')
@@ -297,7 +309,7 @@ private:
     }
 
     /// Text mode (\text{...}): the escapes names::latex_text writes, read back.
-    std::string text_mode(const std::string& raw)
+    std::string text_mode(const std::string &raw)
     {
         std::string out;
         for (std::size_t k = 0; k < raw.size();) {
@@ -336,7 +348,8 @@ private:
             else if (name == "textbackslash")
                 out += "\\";
             else
-                fail("the unknown control sequence \\" + (name.empty() ? std::string(1, raw[k]) : name) + " inside \\text");
+                fail("the unknown control sequence \\" + (name.empty() ? std::string(1, raw[k]) : name) +
+                     " inside \\text");
         }
         // MathML trims the spaces at both ends of a token: keep them as no-break spaces.
         std::size_t lead = 0;
@@ -355,7 +368,7 @@ private:
     }
 
     /// The delimiter after \left or \right: its character, "" for none (".").
-    std::string delimiter(const std::string& of)
+    std::string delimiter(const std::string &of)
     {
         skip_spaces();
         if (at_end())
@@ -381,7 +394,7 @@ private:
     }
 
     /// One character that is not a letter, digit, brace, backslash or script sign.
-    std::string character(std::size_t& k)
+    std::string character(std::size_t &k)
     {
         const char c = tex_[k];
         const auto u = static_cast<unsigned char>(c);
@@ -391,18 +404,27 @@ private:
                 ++n;
             std::string ch = tex_.substr(k, n);
             k += n;
-            for (const char* op : {"≤", "≥", "≈", "×", "·", "⋅", "−", "→", "…", "±", "∓", "≠", "′", "∫"})
+            for (const char *op : {"≤", "≥", "≈", "×", "·", "⋅", "−", "→", "…", "±", "∓", "≠", "′", "∫"})
                 if (ch == op)
                     return mo(ch);
             return element("mi", names::xml_text(ch));
         }
         ++k;
         switch (c) {
-        case '-': return mo("−");
-        case '*': return mo("∗");
-        case '(': case ')': case '[': case ']': case '|': return mo(std::string(1, c), true);
-        case '~': return element("mspace", "", " width=\"0.3333em\"");
-        case '/': return element("mo", "/", " lspace=\"0\" rspace=\"0\""); // a/b: no space, as in TeX
+        case '-':
+            return mo("−");
+        case '*':
+            return mo("∗");
+        case '(':
+        case ')':
+        case '[':
+        case ']':
+        case '|':
+            return mo(std::string(1, c), true);
+        case '~':
+            return element("mspace", "", " width=\"0.3333em\"");
+        case '/':
+            return element("mo", "/", " lspace=\"0\" rspace=\"0\""); // a/b: no space, as in TeX
         default:
             if (u < 0x20 || u == 0x7F)
                 fail("a control character");
@@ -423,7 +445,8 @@ private:
         if (is_digit(c) || (c == '.' && i_ + 1 < tex_.size() && is_digit(tex_[i_ + 1]) && !single)) {
             std::size_t start = i_++;
             if (!single)
-                while (!at_end() && (is_digit(tex_[i_]) || (tex_[i_] == '.' && i_ + 1 < tex_.size() && is_digit(tex_[i_ + 1]))))
+                while (!at_end() &&
+                       (is_digit(tex_[i_]) || (tex_[i_] == '.' && i_ + 1 < tex_.size() && is_digit(tex_[i_ + 1]))))
                     ++i_;
             return element("mn", tex_.substr(start, i_ - start));
         }
@@ -442,18 +465,18 @@ private:
         return command(control_name());
     }
 
-    std::string command(const std::string& name)
+    std::string command(const std::string &name)
     {
-        for (const command_symbol& s : symbols)
+        for (const command_symbol &s : symbols)
             if (name == s.name)
                 return element(s.element, s.text);
-        for (const command_symbol& s : upright_symbols)
+        for (const command_symbol &s : upright_symbols)
             if (name == s.name)
                 return element(s.element, s.text, " mathvariant=\"normal\"");
-        for (const auto& [n, width] : spaces)
+        for (const auto &[n, width] : spaces)
             if (name == n)
                 return element("mspace", "", std::string(" width=\"") + width + "\"");
-        for (const char* f : functions)
+        for (const char *f : functions)
             if (name == f) { // \det K: a thin space after the name, none before a parenthesis
                 skip_spaces();
                 if (at_end() || peek() == '(' || peek() == '[' || tex_.compare(i_, 5, "\\left") == 0)
@@ -497,7 +520,7 @@ private:
             control_name(); // \right, seen by list()
             std::string close = delimiter("\\right");
             std::string body;
-            for (const std::string& e : inside)
+            for (const std::string &e : inside)
                 body += e;
             const std::string stretch = tall(body) ? " stretchy=\"true\"" : " stretchy=\"false\"";
             return element("mrow", (open.empty() ? "" : element("mo", open, stretch)) + body +
@@ -511,6 +534,9 @@ private:
 
 } // namespace
 
-std::string tex_to_mathml(const std::string& tex) { return translator(tex).run(); }
+std::string tex_to_mathml(const std::string &tex)
+{
+    return translator(tex).run();
+}
 
 } // namespace impactgen::print

@@ -28,10 +28,11 @@
 
 #include <string>
 
-namespace impactgen::print {
+namespace impactgen::print
+{
 
 /// MathML children for a <math> element (the caller writes <math ...> and
 /// </math>): a sequence of MathML elements, no wrapper.
-std::string tex_to_mathml(const std::string& tex);
+std::string tex_to_mathml(const std::string &tex);
 
 } // namespace impactgen::print

@@ -9,16 +9,17 @@
 
 #include <sstream>
 
-namespace impactgen {
+namespace impactgen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
 constexpr double unbounded = std::numeric_limits<double>::infinity();
 constexpr double log10_e = 0.43429448190325182765;
 
-
-double log10_abs(const numeric& x)
+double log10_abs(const numeric &x)
 {
     if (x.is_zero())
         return -unbounded;
@@ -28,10 +29,10 @@ double log10_abs(const numeric& x)
     return std::log10(a.to_double());
 }
 
-double bound(const ex& e, const exmap* values = nullptr)
+double bound(const ex &e, const exmap *values = nullptr)
 {
     if (is_a<numeric>(e)) {
-        const numeric& x = ex_to<numeric>(e);
+        const numeric &x = ex_to<numeric>(e);
         if (!x.is_real())
             return std::max(bound(x.real()), bound(x.imag())) + 0.5;
         if (x.is_rational() && (x.numer().int_length() > 4000 || x.denom().int_length() > 4000))
@@ -66,7 +67,7 @@ double bound(const ex& e, const exmap* values = nullptr)
         double b = bound(e.op(0), values);
         if (b == -unbounded)
             return -unbounded; // 0^x: zero (or a division by zero, which GiNaC reports)
-        const ex& x = e.op(1);
+        const ex &x = e.op(1);
         if (is_a<numeric>(x) && ex_to<numeric>(x).is_real()) {
             double xv = std::abs(ex_to<numeric>(x).to_double());
             if (!std::isfinite(xv) || xv > 1e6)
@@ -99,7 +100,7 @@ double bound(const ex& e, const exmap* values = nullptr)
     return unbounded;
 }
 
-decision sign_of(const numeric& x)
+decision sign_of(const numeric &x)
 {
     if (!x.is_real())
         return decision::not_real;
@@ -110,24 +111,24 @@ decision sign_of(const numeric& x)
 
 // One evaluation at P digits: real and imaginary parts, or false when the
 // value does not evaluate to a number (an unevaluated function, an overflow).
-bool evaluate(const ex& e, long digits, numeric& re, numeric& im)
+bool evaluate(const ex &e, long digits, numeric &re, numeric &im)
 {
     try {
         digits_scope guard(digits);
         ex v = e.evalf();
         if (!is_a<numeric>(v))
             return false;
-        const numeric& x = ex_to<numeric>(v);
+        const numeric &x = ex_to<numeric>(v);
         re = x.real();
         im = x.imag();
         return true;
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return false;
     }
 }
 
 // The sign of a part evaluated at two precisions, when both agree and stand clear of zero.
-decision stable_sign(const numeric& coarse, const numeric& fine, long digits)
+decision stable_sign(const numeric &coarse, const numeric &fine, long digits)
 {
     const numeric clear = pow(numeric(10), numeric(-digits / 2));
     if (abs(coarse) <= clear || abs(fine) <= clear)
@@ -139,11 +140,14 @@ decision stable_sign(const numeric& coarse, const numeric& fine, long digits)
     return fine.is_positive() ? decision::positive : decision::negative;
 }
 
-bool small(const numeric& x, long digits) { return abs(x) <= pow(numeric(10), numeric(-digits / 2)); }
+bool small(const numeric &x, long digits)
+{
+    return abs(x) <= pow(numeric(10), numeric(-digits / 2));
+}
 
 } // namespace
 
-bool is_constant(const ex& e)
+bool is_constant(const ex &e)
 {
     for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
         if (is_a<symbol>(*it))
@@ -151,9 +155,12 @@ bool is_constant(const ex& e)
     return true;
 }
 
-double log10_magnitude_bound(const ex& e, const exmap& values) { return bound(e, &values); }
+double log10_magnitude_bound(const ex &e, const exmap &values)
+{
+    return bound(e, &values);
+}
 
-decision decide(const ex& e)
+decision decide(const ex &e)
 {
     if (is_a<numeric>(e))
         return sign_of(ex_to<numeric>(e));
@@ -196,7 +203,7 @@ decision decide(const ex& e)
         numeric re1, im1;
         if (!evaluate(x, p, re1, im1))
             return decision::undecided;
-        if (!(small(im0, p0) && small(im1, p)) ) {
+        if (!(small(im0, p0) && small(im1, p))) {
             if (stable_sign(im0, im1, p0) != decision::undecided)
                 return decision::not_real;
         } else {
@@ -216,10 +223,10 @@ decision decide(const ex& e)
     return decision::undecided;
 }
 
-std::string constant_parts_problem(const ex& e)
+std::string constant_parts_problem(const ex &e)
 {
     if (is_a<numeric>(e)) {
-        const numeric& x = ex_to<numeric>(e);
+        const numeric &x = ex_to<numeric>(e);
         if (!x.is_real())
             return "it is not real";
         if (bound(e) <= 308.25)
@@ -231,10 +238,14 @@ std::string constant_parts_problem(const ex& e)
         return "";
     if (is_constant(e)) {
         switch (decide(e)) {
-        case decision::not_real: return "it is not real";
-        case decision::out_of_range: return "it is beyond the range of double: its magnitude, or a part's, is above about 1e308 or below 1e-308";
-        case decision::undecided: return "its value cannot be decided exactly (write it as a plain number or a simpler expression)";
-        default: return "";
+        case decision::not_real:
+            return "it is not real";
+        case decision::out_of_range:
+            return "it is beyond the range of double: its magnitude, or a part's, is above about 1e308 or below 1e-308";
+        case decision::undecided:
+            return "its value cannot be decided exactly (write it as a plain number or a simpler expression)";
+        default:
+            return "";
         }
     }
     for (std::size_t k = 0; k < e.nops(); ++k) {
@@ -245,10 +256,11 @@ std::string constant_parts_problem(const ex& e)
     return "";
 }
 
-namespace {
+namespace
+{
 
 // Node count up to a limit, and whether some power of a sum has |exponent| > 2.
-bool small_and_tame(const ex& e, int& budget)
+bool small_and_tame(const ex &e, int &budget)
 {
     if (--budget < 0)
         return false;
@@ -262,7 +274,7 @@ bool small_and_tame(const ex& e, int& budget)
 
 // The distinct irrational atoms of a constant (Pi, exp(1), 2^(1/2)): normal() treats
 // each as a variable, and its gcds grow fast with their number.
-std::size_t irrational_atoms(const ex& e)
+std::size_t irrational_atoms(const ex &e)
 {
     exset atoms;
     for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
@@ -274,11 +286,12 @@ std::size_t irrational_atoms(const ex& e)
 
 } // namespace
 
-namespace {
+namespace
+{
 
 // op(e) when it is cheap: a small expression without powers of sums beyond the
 // square, a constant within range (and, for normal(), with few irrationals).
-ex bounded(const ex& e, int symbolic_budget, bool normalise)
+ex bounded(const ex &e, int symbolic_budget, bool normalise)
 {
     const bool constant_value = is_constant(e);
     int budget = constant_value ? 300 : symbolic_budget; // nodes
@@ -288,21 +301,28 @@ ex bounded(const ex& e, int symbolic_budget, bool normalise)
         return e;
     try {
         return normalise ? e.normal() : e.expand();
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return e;
     }
 }
 
 } // namespace
 
-ex tidy(const ex& e) { return bounded(e, 80, true); }
+ex tidy(const ex &e)
+{
+    return bounded(e, 80, true);
+}
 
-ex tidy_expand(const ex& e) { return bounded(e, 200, false); }
+ex tidy_expand(const ex &e)
+{
+    return bounded(e, 200, false);
+}
 
-namespace {
+namespace
+{
 // For a rational q > 0 with numerator and denominator under 10^12: sqrt(a/b) = s sqrt(f) / b
 // with a b = s^2 f, f square-free (trial division by squares up to 10^6).
-bool square_free_root(const ex& q, numeric& outside, numeric& inside, numeric& below)
+bool square_free_root(const ex &q, numeric &outside, numeric &inside, numeric &below)
 {
     if (!is_a<numeric>(q) || !ex_to<numeric>(q).is_rational() || !ex_to<numeric>(q).is_positive())
         return false;
@@ -322,7 +342,7 @@ bool square_free_root(const ex& q, numeric& outside, numeric& inside, numeric& b
 }
 } // namespace
 
-ex root_of(const ex& q)
+ex root_of(const ex &q)
 {
     numeric outside, inside, below;
     if (!square_free_root(q, outside, inside, below))
@@ -330,7 +350,7 @@ ex root_of(const ex& q)
     return outside * sqrt(ex(inside)) / below; // sqrt(a/b) = sqrt(a b)/b
 }
 
-std::string scientific_text(const numeric& x, int significant)
+std::string scientific_text(const numeric &x, int significant)
 {
     const numeric ax = abs(x);
     long k = std::lround(std::floor(ex_to<numeric>((log(ex(ax)) / log(ex(numeric(10)))).evalf()).to_double()));
@@ -344,10 +364,10 @@ std::string scientific_text(const numeric& x, int significant)
     return buf;
 }
 
-ex merge_roots(const ex& e)
+ex merge_roots(const ex &e)
 {
     struct merger : map_function {
-        ex operator()(const ex& x) override
+        ex operator()(const ex &x) override
         {
             const ex y = x.map(*this);
             // a root on its own, its square taken out: sqrt(8) -> 2 sqrt(2)
@@ -360,7 +380,7 @@ ex merge_roots(const ex& e)
             int roots = 0;
             exvector rest;
             for (std::size_t k = 0; k < y.nops(); ++k) {
-                const ex& f = y.op(k);
+                const ex &f = y.op(k);
                 if (is_a<power>(f) && is_a<numeric>(f.op(0)) && ex_to<numeric>(f.op(0)).is_pos_integer() &&
                     f.op(1).is_equal(numeric(1, 2)) && ex_to<numeric>(f.op(0)) < numeric(1000000)) {
                     radicand *= ex_to<numeric>(f.op(0));
@@ -376,21 +396,22 @@ ex merge_roots(const ex& e)
     } m;
     try {
         return m(e);
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return e;
     }
 }
 
-namespace {
+namespace
+{
 // sqrt(k) of a positive integer k (below the bound merge_roots takes).
-bool is_integer_root(const ex& f)
+bool is_integer_root(const ex &f)
 {
     return is_a<power>(f) && is_a<numeric>(f.op(0)) && ex_to<numeric>(f.op(0)).is_pos_integer() &&
            f.op(1).is_equal(numeric(1, 2)) && ex_to<numeric>(f.op(0)) < numeric(1000000);
 }
 
 // Only rationals, + - * /, integer powers and square roots of positive integers.
-bool is_surd_constant(const ex& e)
+bool is_surd_constant(const ex &e)
 {
     if (is_a<numeric>(e))
         return ex_to<numeric>(e).is_rational();
@@ -406,10 +427,13 @@ bool is_surd_constant(const ex& e)
     return false;
 }
 
-ex merged_expanded(const ex& e) { return merge_roots(merge_roots(e.expand()).expand()).expand(); }
+ex merged_expanded(const ex &e)
+{
+    return merge_roots(merge_roots(e.expand()).expand()).expand();
+}
 } // namespace
 
-ex surd_form(const ex& x)
+ex surd_form(const ex &x)
 {
     if (!is_surd_constant(x))
         return x;
@@ -440,7 +464,7 @@ ex surd_form(const ex& x)
         // The merged form as it was, or the rationalised one when it has no more digits (its
         // integers grow with each conjugate: 1936 sqrt(3)(sqrt(3) + 2 sqrt(6))/(15 (179507 +
         // 8316 sqrt(2))) stays, 1/(1 + sqrt(2)) becomes sqrt(2) - 1).
-        auto digits = [](const ex& e) {
+        auto digits = [](const ex &e) {
             std::ostringstream os;
             os << e;
             const std::string t = os.str();
@@ -452,12 +476,12 @@ ex surd_form(const ex& x)
             return best;
         const ex rationalised = (merged_expanded(n) / d).expand();
         return digits(rationalised) <= digits(best) ? rationalised : best;
-    } catch (const std::exception&) {
+    } catch (const std::exception &) {
         return x;
     }
 }
 
-ex inverse_root_of(const ex& q)
+ex inverse_root_of(const ex &q)
 {
     numeric outside, inside, below;
     if (!square_free_root(q, outside, inside, below))
@@ -466,14 +490,14 @@ ex inverse_root_of(const ex& q)
     return outside * sqrt(ex(inside)) * below / (outside * outside * inside);
 }
 
-bool vanishes_at_random_points(const std::vector<symbol>& symbols, const std::function<ex(const lst&)>& value_at)
+bool vanishes_at_random_points(const std::vector<symbol> &symbols, const std::function<ex(const lst &)> &value_at)
 {
     std::mt19937_64 rng(20261123);
     std::uniform_int_distribution<long> num(1, 1000000);
     int zeros = 0;
     for (int attempt = 0; attempt < 24 && zeros < 6; ++attempt) {
         lst point;
-        for (const symbol& x : symbols)
+        for (const symbol &x : symbols)
             point.append(x == numeric(num(rng), 1000));
         try {
             decision d = decide(value_at(point));
@@ -481,14 +505,14 @@ bool vanishes_at_random_points(const std::vector<symbol>& symbols, const std::fu
                 return false;
             if (d == decision::zero || d == decision::undecided) // undecided counts against: refuse rather than guess
                 ++zeros;
-        } catch (const std::exception&) {
+        } catch (const std::exception &) {
             continue; // a pole at this point: try another
         }
     }
     return zeros > 0;
 }
 
-bool identically_zero(const ex& e)
+bool identically_zero(const ex &e)
 {
     if (is_constant(e))
         return decide(e) == decision::zero;
@@ -497,21 +521,29 @@ bool identically_zero(const ex& e)
         if (is_a<symbol>(*it))
             free.insert(*it);
     std::vector<symbol> symbols;
-    for (const ex& x : free)
+    for (const ex &x : free)
         symbols.push_back(ex_to<symbol>(x));
-    return vanishes_at_random_points(symbols, [&](const lst& point) { return e.subs(point); });
+    return vanishes_at_random_points(symbols, [&](const lst &point) { return e.subs(point); });
 }
 
-const char* decision_text(decision d)
+const char *decision_text(decision d)
 {
     switch (d) {
-    case decision::negative: return "is negative";
-    case decision::zero: return "is zero";
-    case decision::positive: return "is positive";
-    case decision::symbolic: return "is symbolic";
-    case decision::not_real: return "is not real";
-    case decision::out_of_range: return "is beyond the range of double (its magnitude, or a part's, is above about 1e308 or below 1e-308)";
-    case decision::undecided: return "cannot be decided exactly (its sign or whether it is zero is beyond what can be proven; write it as a plain number or a simpler expression)";
+    case decision::negative:
+        return "is negative";
+    case decision::zero:
+        return "is zero";
+    case decision::positive:
+        return "is positive";
+    case decision::symbolic:
+        return "is symbolic";
+    case decision::not_real:
+        return "is not real";
+    case decision::out_of_range:
+        return "is beyond the range of double (its magnitude, or a part's, is above about 1e308 or below 1e-308)";
+    case decision::undecided:
+        return "cannot be decided exactly (its sign or whether it is zero is beyond what can be proven; write it as a "
+               "plain number or a simpler expression)";
     }
     return "?";
 }

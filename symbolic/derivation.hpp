@@ -19,7 +19,8 @@
 #include <string>
 #include <vector>
 
-namespace impactgen {
+namespace impactgen
+{
 
 enum class principle {
     smooth_contact,   ///< no tangential impulse: tangential COM velocity unchanged
@@ -29,15 +30,15 @@ enum class principle {
     pivot_fixed,      ///< the pivot point does not move
     restitution       ///< Newton's law on the contact points' normal velocities
 };
-const char* principle_name(principle p);
+const char *principle_name(principle p);
 
 struct equation {
-    std::string label;                 ///< "1", "2", ... in the order derived
+    std::string label; ///< "1", "2", ... in the order derived
     ex lhs, rhs;
     principle why;
-    std::string reason;                ///< one sentence: why this equation holds (the same for every component)
-    std::vector<std::size_t> bodies;   ///< indices into problem::bodies
-    int component = -1;                ///< world axis of a vector equation's component, -1 for a scalar equation
+    std::string reason;              ///< one sentence: why this equation holds (the same for every component)
+    std::vector<std::size_t> bodies; ///< indices into problem::bodies
+    int component = -1;              ///< world axis of a vector equation's component, -1 for a scalar equation
 };
 
 enum class unknown_kind { velocity, angular_velocity, normal_impulse, pivot_impulse };
@@ -45,42 +46,42 @@ enum class unknown_kind { velocity, angular_velocity, normal_impulse, pivot_impu
 struct unknown {
     GiNaC::symbol sym;
     unknown_kind kind;
-    std::size_t owner = 0;  ///< body index, or pivot index for pivot impulses
-    int component = 0;      ///< world axis 0..2
+    std::size_t owner = 0; ///< body index, or pivot index for pivot impulses
+    int component = 0;     ///< world axis 0..2
     std::string meaning;
 };
 
 /// Why a principle gives no usable equation, or a body takes no part.
 enum class remark_kind {
-    momentum_infinite_mass, ///< system momentum along n: m (v'_n - v_n) is infinity times zero
-    infinite_mass_unchanged,///< an infinite mass keeps its velocities (no angular momentum equation)
-    particle_no_rotation,   ///< a particle has no angular velocity unknowns
-    pinned_particle,        ///< a particle pinned at a fixed point cannot move
-    uninvolved              ///< a body not in the contact
+    momentum_infinite_mass,  ///< system momentum along n: m (v'_n - v_n) is infinity times zero
+    infinite_mass_unchanged, ///< an infinite mass keeps its velocities (no angular momentum equation)
+    particle_no_rotation,    ///< a particle has no angular velocity unknowns
+    pinned_particle,         ///< a particle pinned at a fixed point cannot move
+    uninvolved               ///< a body not in the contact
 };
 
 struct remark {
     remark_kind kind;
-    std::size_t body;                  ///< the body it is about
-    std::string text;                  ///< one sentence in ASCII (for logs and tests)
+    std::size_t body; ///< the body it is about
+    std::string text; ///< one sentence in ASCII (for logs and tests)
 };
 
 struct derivation {
     problem prob;
-    bool impulse_form = false;         ///< true when a pivot makes the impulses unknowns
+    bool impulse_form = false; ///< true when a pivot makes the impulses unknowns
     std::vector<unknown> unknowns;
     std::vector<equation> equations;
-    std::vector<remark> remarks;       ///< principles that give no usable equation, and why
+    std::vector<remark> remarks; ///< principles that give no usable equation, and why
 
-    vec3 n_hat;                        ///< unit normal n / |n| (n itself when normal_assumed_unit)
-    ex normal_length;                  ///< |n| (1 when normal_assumed_unit)
-    bool normal_assumed_unit = false;  ///< derived with the normal taken as a unit vector (derive_options::unit_normal)
-    vec3 t_dir, b_dir;                 ///< tangent directions (b_dir zero in 2-D); not unit in general
+    vec3 n_hat;                       ///< unit normal n / |n| (n itself when normal_assumed_unit)
+    ex normal_length;                 ///< |n| (1 when normal_assumed_unit)
+    bool normal_assumed_unit = false; ///< derived with the normal taken as a unit vector (derive_options::unit_normal)
+    vec3 t_dir, b_dir;                ///< tangent directions (b_dir zero in 2-D); not unit in general
     /// The unit tangents, e_t = t_dir/|t_dir| and e_b = e_t × n_hat (zero in 2-D), with their
     /// roots as root_of writes them: the frame friction, explain's contact-frame view and its
     /// tables use.
     vec3 e_t, e_b;
-    bool frame_is_world = false;       ///< e_t, e_n, e_b are world axes (up to sign)
+    bool frame_is_world = false; ///< e_t, e_n, e_b are world axes (up to sign)
     /// derive_options::runtime_tangent_basis took effect: e_t and e_b are these symbols
     /// (e_t's three components, then e_b's), computed at run time from the normal by the
     /// generated code, not formulas in it (t_dir and b_dir stay the formulas).
@@ -89,9 +90,9 @@ struct derivation {
     /// Velocity, angular velocity after impact: unknown symbols, or the
     /// values before for bodies the impact does not change.
     std::vector<vec3> velocity_after, angular_velocity_after;
-    std::vector<vec3> pivot_impulse;   ///< in unknown symbols (impulse form only)
-    ex normal_impulse;                 ///< the unknown N (impulse form only), else 0
-    vec3 vA, vB, vA_after, vB_after;   ///< contact point velocities
+    std::vector<vec3> pivot_impulse; ///< in unknown symbols (impulse form only)
+    ex normal_impulse;               ///< the unknown N (impulse form only), else 0
+    vec3 vA, vB, vA_after, vB_after; ///< contact point velocities
 
     std::size_t count_equations() const { return equations.size(); }
     std::size_t count_unknowns() const { return unknowns.size(); }
@@ -113,11 +114,12 @@ struct derive_options {
     bool runtime_tangent_basis = false;
 };
 
-derivation derive(const problem& p, const derive_options& options = {});
+derivation derive(const problem &p, const derive_options &options = {});
 
 /// Names a symbol of a body's quantity for printing: base, axis, body label,
 /// e.g. ("v", "t", "1", true) -> v'_t1.
-std::string quantity_name(const std::string& base, const std::string& axis, const std::string& body_label, bool after);
-std::string quantity_tex(const std::string& base_tex, const std::string& axis, const std::string& body_label, bool after);
+std::string quantity_name(const std::string &base, const std::string &axis, const std::string &body_label, bool after);
+std::string quantity_tex(const std::string &base_tex, const std::string &axis, const std::string &body_label,
+                         bool after);
 
 } // namespace impactgen

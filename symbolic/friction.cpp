@@ -8,29 +8,43 @@
 #include <functional>
 #include <sstream>
 
-namespace impactgen {
+namespace impactgen
+{
 using namespace GiNaC;
 
-const char* regime_name(regime r)
+const char *regime_name(regime r)
 {
     switch (r) {
-    case regime::smooth: return "smooth";
-    case regime::stick: return "stick";
-    case regime::slide: return "slide";
+    case regime::smooth:
+        return "smooth";
+    case regime::stick:
+        return "stick";
+    case regime::slide:
+        return "slide";
     }
     return "?";
 }
 
-namespace {
+namespace
+{
 
-bool short_label(const std::string& l) { return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0])); }
-std::string sub(const std::string& label) { return short_label(label) ? label : "," + label; }
-std::string tsub(const std::string& label) { return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}"; }
+bool short_label(const std::string &l)
+{
+    return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0]));
+}
+std::string sub(const std::string &label)
+{
+    return short_label(label) ? label : "," + label;
+}
+std::string tsub(const std::string &label)
+{
+    return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
+}
 
 // One body of the contact: how a unit impulse at O moves the contact point.
 struct side {
     std::size_t index = 0;
-    int sign = 1;            // body 1 receives -P, body 2 +P
+    int sign = 1; // body 1 receives -P, body 2 +P
     bool movable = false, pinned = false, particle = true;
     vec3 lever = zero_vec(); // r = O - C (free) or rho = O - E (pinned)
     vec3 arm = zero_vec();   // C - E of a pinned body
@@ -39,7 +53,7 @@ struct side {
 };
 
 // Change of the contact point's velocity for the impulse P on this body.
-vec3 point_response(const side& sd, const vec3& P)
+vec3 point_response(const side &sd, const vec3 &P)
 {
     if (!sd.movable)
         return zero_vec();
@@ -59,28 +73,28 @@ vec3 unit_axis(int a)
 // The shared part: sides, K, u, u_n (steps in s).
 struct shared_part {
     side sides[2];
-    mat3 K = zero_mat();     // entries: steps or inline values
-    vec3 u = zero_vec();     // relative velocity of the contact points, world
-    ex un;                   // u . n_hat (step)
+    mat3 K = zero_mat(); // entries: steps or inline values
+    vec3 u = zero_vec(); // relative velocity of the contact points, world
+    ex un;               // u . n_hat (step)
 };
 
-shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
+shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     const int dim = p.dimension;
-    const vec3& O = p.contact.point;
+    const vec3 &O = p.contact.point;
     shared_part sh;
     sh.sides[0].index = p.contact.body1;
     sh.sides[0].sign = -1;
     sh.sides[1].index = p.contact.body2;
     sh.sides[1].sign = 1;
-    for (side& sd : sh.sides) {
-        const body& b = p.bodies[sd.index];
+    for (side &sd : sh.sides) {
+        const body &b = p.bodies[sd.index];
         sd.movable = !p.immovable(sd.index);
         if (!sd.movable)
             continue;
         const std::string L = b.label;
-        const pivot* pv = p.pivot_of(sd.index);
+        const pivot *pv = p.pivot_of(sd.index);
         sd.pinned = pv != nullptr;
         sd.particle = b.particle;
         sd.mass = b.mass;
@@ -96,10 +110,11 @@ shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
                     J[a][c] = J[a][c] + b.mass * ((a == c ? dd : ex(0)) - sd.arm[a] * sd.arm[c]);
         }
         if (dim == 2) {
-            ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}",
-                                       tidy(b.inertia[2][2] + b.mass * dot(sd.arm, sd.arm)),
-                                       "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
-                              : J[2][2];
+            ex Iz = sd.pinned
+                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}",
+                                 tidy(b.inertia[2][2] + b.mass * dot(sd.arm, sd.arm)),
+                                 "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
+                        : J[2][2];
             sd.inv[2][2] = 1 / Iz;
             continue;
         }
@@ -123,8 +138,8 @@ shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
             for (int c = a; c < 3; ++c) {
                 ex v = sb.add(step_role::inverse_inertia, sd.index, a, c, "J_" + p.axes[a] + p.axes[c] + sub(L),
                               "J_{" + p.axes[a] + p.axes[c] + tsub(L) + "}", adj[a][c] / D,
-                              "inverse inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : "") + ", entry " +
-                                  p.axes[a] + p.axes[c]);
+                              "inverse inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : "") +
+                                  ", entry " + p.axes[a] + p.axes[c]);
                 sd.inv[a][c] = v;
                 sd.inv[c][a] = v;
             }
@@ -151,12 +166,14 @@ shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
             normal_axis = a;
     for (int a = 0; a < dim; ++a)
         if (a == normal_axis)
-            sh.u[a] = sh.un = sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(d.vB[a] - d.vA[a]),
-                                     "normal velocity of approach u.n before impact (negative for an impact)", true);
+            sh.u[a] = sh.un =
+                sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(d.vB[a] - d.vA[a]),
+                       "normal velocity of approach u.n before impact (negative for an impact)", true);
         else
-            sh.u[a] = sb.add(step_role::relative_velocity, no_body, a, -1, "u_" + p.axes[a], "u_{" + p.axes[a] + "}",
-                             tidy(d.vB[a] - d.vA[a]),
-                             "relative velocity v_B - v_A of the contact points before impact, " + p.axes[a] + " component");
+            sh.u[a] =
+                sb.add(step_role::relative_velocity, no_body, a, -1, "u_" + p.axes[a], "u_{" + p.axes[a] + "}",
+                       tidy(d.vB[a] - d.vA[a]),
+                       "relative velocity v_B - v_A of the contact points before impact, " + p.axes[a] + " component");
     if (normal_axis < 0)
         sh.un = sb.add(step_role::approach_velocity, no_body, -1, -1, "u_n", "u_{n}", tidy(dot(sh.u, d.n_hat)),
                        "normal velocity of approach u.n before impact (negative for an impact)", true);
@@ -165,19 +182,19 @@ shared_part build_shared(const derivation& d, solution& s, step_builder& sb)
 }
 
 // Bodies after impact, pivot impulses and energies for the impulse P (world, on body 2).
-void finish_case(const derivation& d, const shared_part& sh, regime_case& c)
+void finish_case(const derivation &d, const shared_part &sh, regime_case &c)
 {
-    const problem& p = d.prob;
-    solution& s = c.sol;
+    const problem &p = d.prob;
+    solution &s = c.sol;
     s.after.resize(p.bodies.size());
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
     s.pivot_impulses.assign(p.pivots.size(), zero_vec());
-    for (const side& sd : sh.sides) {
-        const body& b = p.bodies[sd.index];
+    for (const side &sd : sh.sides) {
+        const body &b = p.bodies[sd.index];
         if (b.infinite_mass)
             continue;
-        const pivot* pv = p.pivot_of(sd.index);
+        const pivot *pv = p.pivot_of(sd.index);
         const vec3 Pi = ex(sd.sign) * c.impulse;
         vec3 dv = zero_vec(), dw = zero_vec();
         if (sd.movable) {
@@ -196,13 +213,21 @@ void finish_case(const derivation& d, const shared_part& sh, regime_case& c)
                 s.pivot_impulses[k][2] = 0;
         }
     }
-    for (const unknown& un : d.unknowns) {
+    for (const unknown &un : d.unknowns) {
         ex v;
         switch (un.kind) {
-        case unknown_kind::velocity: v = s.after[un.owner].velocity[un.component]; break;
-        case unknown_kind::angular_velocity: v = s.after[un.owner].angular_velocity[un.component]; break;
-        case unknown_kind::normal_impulse: v = s.normal_impulse; break;
-        case unknown_kind::pivot_impulse: v = s.pivot_impulses[un.owner][un.component]; break;
+        case unknown_kind::velocity:
+            v = s.after[un.owner].velocity[un.component];
+            break;
+        case unknown_kind::angular_velocity:
+            v = s.after[un.owner].angular_velocity[un.component];
+            break;
+        case unknown_kind::normal_impulse:
+            v = s.normal_impulse;
+            break;
+        case unknown_kind::pivot_impulse:
+            v = s.pivot_impulses[un.owner][un.component];
+            break;
         }
         s.unknown_values.append(un.sym == v);
     }
@@ -219,9 +244,9 @@ void finish_case(const derivation& d, const shared_part& sh, regime_case& c)
     s.energy_lost = s.energy_before - s.energy_after_direct;
 }
 
-void add_tangential(const derivation& d, regime_case& c, step_builder& sb, const ex& Pn)
+void add_tangential(const derivation &d, regime_case &c, step_builder &sb, const ex &Pn)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     for (int a = 0; a < 3; ++a)
         c.tangential_impulse[a] = 0;
     if (p.dimension == 2) {
@@ -230,14 +255,15 @@ void add_tangential(const derivation& d, regime_case& c, step_builder& sb, const
         return;
     }
     for (int a = 0; a < 3; ++a)
-        c.tangential_impulse[a] = sb.add(step_role::tangential_impulse, no_body, a, -1, "F_" + p.axes[a], "F_{" + p.axes[a] + "}",
-                                         c.impulse[a] - Pn * d.n_hat[a],
-                                         "tangential (friction) impulse P - N n on body 2, " + p.axes[a] + " component");
+        c.tangential_impulse[a] =
+            sb.add(step_role::tangential_impulse, no_body, a, -1, "F_" + p.axes[a], "F_{" + p.axes[a] + "}",
+                   c.impulse[a] - Pn * d.n_hat[a],
+                   "tangential (friction) impulse P - N n on body 2, " + p.axes[a] + " component");
 }
 
-regime_case stick_case(const derivation& d, const solution& shared_steps, const shared_part& sh, const ex& mu)
+regime_case stick_case(const derivation &d, const solution &shared_steps, const shared_part &sh, const ex &mu)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     const int dim = p.dimension;
     regime_case c;
     c.kind = regime::stick;
@@ -245,7 +271,7 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
     c.sol.steps = shared_steps.steps;
     step_builder sb(c.sol, p);
     const ex e = p.restitution;
-    const vec3& n = d.n_hat;
+    const vec3 &n = d.n_hat;
     // K P = -(u + e u_n n): u'_t = 0 and u'_n = -e u_n.
     vec3 rhs = zero_vec();
     for (int a = 0; a < dim; ++a)
@@ -256,9 +282,10 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
     const ex detK = det(K);
     const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
     if (vanishes_identically(c.sol, detK, where + ": the determinant of the contact response K"))
-        throw input_error(where + ".friction: the contact response K is singular (a body pinned at a fixed point against a body "
-                                  "that cannot move): the contact point can only move along a line, so the tangential "
-                                  "impulse is not determined; solve it without friction");
+        throw input_error(
+            where + ".friction: the contact response K is singular (a body pinned at a fixed point against a body "
+                    "that cannot move): the contact point can only move along a line, so the tangential "
+                    "impulse is not determined; solve it without friction");
     ex D = sb.add(step_role::response_determinant, no_body, -1, -1, "D_K", "D_{K}", detK,
                   "determinant of the contact response K (stick: K P = -(u + e u_n n))", true);
     const mat3 adj = adjugate(K);
@@ -278,8 +305,10 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
         c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", dot(P, d.t_dir),
                                      "tangential (friction) impulse P.e_t on body 2", true);
         add_tangential(d, c, sb, Pn);
-        c.conditions.push_back({mu * Pn - c.tangential_scalar, false, "mu N - F >= 0 (the impulse inside the friction cone)", condition_kind::cone_below});
-        c.conditions.push_back({mu * Pn + c.tangential_scalar, false, "mu N + F >= 0 (the impulse inside the friction cone)", condition_kind::cone_above});
+        c.conditions.push_back({mu * Pn - c.tangential_scalar, false,
+                                "mu N - F >= 0 (the impulse inside the friction cone)", condition_kind::cone_below});
+        c.conditions.push_back({mu * Pn + c.tangential_scalar, false,
+                                "mu N + F >= 0 (the impulse inside the friction cone)", condition_kind::cone_above});
     } else {
         c.tangential_scalar = 0;
         add_tangential(d, c, sb, Pn);
@@ -294,10 +323,10 @@ regime_case stick_case(const derivation& d, const solution& shared_steps, const 
 }
 
 // A slide along the unit tangent direction dir (world; may contain dir_c, dir_s).
-regime_case slide_case(const derivation& d, const solution& shared_steps, const shared_part& sh, const ex& mu,
-                       const vec3& dir, const std::string& name, int sign, bool needs_angle, const symbol* cs = nullptr)
+regime_case slide_case(const derivation &d, const solution &shared_steps, const shared_part &sh, const ex &mu,
+                       const vec3 &dir, const std::string &name, int sign, bool needs_angle, const symbol *cs = nullptr)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     const int dim = p.dimension;
     regime_case c;
     c.kind = regime::slide;
@@ -311,7 +340,7 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
     c.sol.steps = shared_steps.steps;
     step_builder sb(c.sol, p);
     const ex e = p.restitution;
-    const vec3& n = d.n_hat;
+    const vec3 &n = d.n_hat;
     c.direction = dir;
     vec3 m = zero_vec(); // n - mu d: the direction of P
     for (int a = 0; a < dim; ++a)
@@ -324,12 +353,13 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
     c.sol.normal_impulse = Pn;
     vec3 P = zero_vec();
     for (int a = 0; a < dim; ++a)
-        P[a] = sb.add(step_role::impulse_component, no_body, a, -1, "P_" + p.axes[a], "P_{" + p.axes[a] + "}", Pn * m[a],
-                      "contact impulse N (n - mu d) on body 2, " + p.axes[a] + " component", true);
+        P[a] = sb.add(step_role::impulse_component, no_body, a, -1, "P_" + p.axes[a], "P_{" + p.axes[a] + "}",
+                      Pn * m[a], "contact impulse N (n - mu d) on body 2, " + p.axes[a] + " component", true);
     c.impulse = P;
     if (dim == 2) {
-        c.tangential_scalar = sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", -ex(sign) * mu * Pn,
-                                     "tangential (friction) impulse on body 2 along e_t: -mu N times the sign of u'_t", true);
+        c.tangential_scalar =
+            sb.add(step_role::tangential_impulse, no_body, -1, -1, "F", "F", -ex(sign) * mu * Pn,
+                   "tangential (friction) impulse on body 2 along e_t: -mu N times the sign of u'_t", true);
         for (int a = 0; a < 3; ++a)
             c.tangential_impulse[a] = 0;
         for (int a = 0; a < 2; ++a)
@@ -345,7 +375,8 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
     c.sliding_speed = sb.add(step_role::separation_velocity, no_body, -1, -1, "lambda", "\\lambda", dot(after, dir),
                              "sliding speed u'.d after impact (must be > 0)", true);
     c.conditions.push_back({D, true, "D_s > 0 (the normal impulse N is positive)", condition_kind::slide_denominator});
-    c.conditions.push_back({c.sliding_speed, true, "lambda = u'_t.d > 0 (the contact slides along d after impact)", condition_kind::slides});
+    c.conditions.push_back({c.sliding_speed, true, "lambda = u'_t.d > 0 (the contact slides along d after impact)",
+                            condition_kind::slides});
     if (needs_angle) {
         // g = n.(h x d), h = D u + a K (n - mu d): u'_t parallel to d.
         const ex Dv = dot(n, Q);
@@ -363,7 +394,7 @@ regime_case slide_case(const derivation& d, const solution& shared_steps, const 
 // leaves double's range (a term of 10^-400 inside a condition of size 3, from a tiny mu);
 // a condition's value is never printed, only its sign: then CLN floats decide it, at 60
 // and 120 digits (their exponent range is unbounded), when both agree to 30 digits.
-decision condition_sign(const ex& v)
+decision condition_sign(const ex &v)
 {
     decision d = decide(v);
     if (d != decision::out_of_range && d != decision::undecided)
@@ -392,9 +423,9 @@ decision condition_sign(const ex& v)
 // problem) and decides its conditions; stops at the first denominator that is not
 // positive. Returns false when the case does not hold; throws when undecidable.
 // `values` receives the step values.
-bool holds(const regime_case& c, const ex& inputs, lst& values, const std::string& where, double margin_scale = 0)
+bool holds(const regime_case &c, const ex &inputs, lst &values, const std::string &where, double margin_scale = 0)
 {
-    for (const step& st : c.sol.steps) {
+    for (const step &st : c.sol.steps) {
         ex v = st.value.subs(inputs).subs(values);
         v = is_constant(v) ? tidy(v) : v;
         values.append(st.sym == v);
@@ -408,7 +439,7 @@ bool holds(const regime_case& c, const ex& inputs, lst& values, const std::strin
                 throw input_error(where + ": the sliding denominator D_s is too close to 0 to decide the regime");
         }
     }
-    for (const regime_condition& rc : c.conditions) {
+    for (const regime_condition &rc : c.conditions) {
         ex v = rc.value.subs(inputs).subs(values);
         v = tidy(v);
         if (margin_scale > 0) {
@@ -417,7 +448,8 @@ bool holds(const regime_case& c, const ex& inputs, lst& values, const std::strin
                 throw input_error(where + ": cannot evaluate the condition " + rc.meaning);
             double x = ex_to<numeric>(f).to_double();
             if (std::abs(x) <= margin_scale)
-                throw input_error(where + ": the condition " + rc.meaning + " is too close to its boundary to decide the regime");
+                throw input_error(where + ": the condition " + rc.meaning +
+                                  " is too close to its boundary to decide the regime");
             if (x < 0)
                 return false;
             continue;
@@ -432,25 +464,25 @@ bool holds(const regime_case& c, const ex& inputs, lst& values, const std::strin
 }
 
 // The case with every value replaced by its number (steps kept for the record).
-regime_case substituted(const regime_case& c, const ex& inputs, const lst& values, bool floats = false)
+regime_case substituted(const regime_case &c, const ex &inputs, const lst &values, bool floats = false)
 {
     regime_case r = c;
-    auto fix = [&](const ex& x) {
+    auto fix = [&](const ex &x) {
         ex v = x.subs(inputs).subs(values);
         if (floats)
             return v.evalf();
         return is_constant(v) ? tidy(v) : v;
     };
-    auto fixv = [&](vec3& v) {
-        for (ex& x : v)
+    auto fixv = [&](vec3 &v) {
+        for (ex &x : v)
             x = fix(x);
     };
-    for (body_state& bs : r.sol.after) {
+    for (body_state &bs : r.sol.after) {
         fixv(bs.velocity);
         fixv(bs.angular_velocity);
     }
     r.sol.normal_impulse = fix(r.sol.normal_impulse);
-    for (vec3& R : r.sol.pivot_impulses)
+    for (vec3 &R : r.sol.pivot_impulses)
         fixv(R);
     fixv(r.impulse);
     fixv(r.tangential_impulse);
@@ -462,7 +494,7 @@ regime_case substituted(const regime_case& c, const ex& inputs, const lst& value
     r.sol.energy_after_direct = fix(r.sol.energy_after_direct);
     r.sol.energy_lost = fix(r.sol.energy_lost);
     lst uv;
-    for (const ex& rel : r.sol.unknown_values)
+    for (const ex &rel : r.sol.unknown_values)
         uv.append(rel.lhs() == fix(rel.rhs()));
     r.sol.unknown_values = uv;
     return r;
@@ -470,9 +502,9 @@ regime_case substituted(const regime_case& c, const ex& inputs, const lst& value
 
 } // namespace
 
-friction_solution solve_friction(const derivation& d)
+friction_solution solve_friction(const derivation &d)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     friction_solution f;
     f.mu = p.contact.friction;
     f.n_hat = d.n_hat;
@@ -497,7 +529,7 @@ friction_solution solve_friction(const derivation& d)
     const ex tests[4] = {dot(d.t_dir, Kn), dot(d.b_dir, Kn), dot(d.t_dir, Kb),
                          dot(d.t_dir, Kt) * dot(d.b_dir, d.b_dir) - dot(d.b_dir, Kb) * dot(d.t_dir, d.t_dir)};
     f.isotropic = true;
-    for (const ex& t : tests)
+    for (const ex &t : tests)
         f.isotropic = f.isotropic && vanishes_identically(shared, t, where + ": the isotropy of the contact response");
     if (f.isotropic) {
         // Sliding keeps the direction of u_t: d = u_t / |u_t|.
@@ -528,31 +560,32 @@ friction_solution solve_friction(const derivation& d)
     return f;
 }
 
-std::vector<ex> condition_values(const regime_case& c, const ex& input_values)
+std::vector<ex> condition_values(const regime_case &c, const ex &input_values)
 {
     lst values;
-    for (const step& st : c.sol.steps)
+    for (const step &st : c.sol.steps)
         values.append(st.sym == st.value.subs(input_values).subs(values));
     std::vector<ex> r;
-    for (const regime_condition& rc : c.conditions)
+    for (const regime_condition &rc : c.conditions)
         r.push_back(rc.value.subs(input_values).subs(values));
     return r;
 }
 
-namespace {
+namespace
+{
 
 // The roots in [0, 2 pi) of g(t) = a0 + a1 cos t + b1 sin t + a2 cos 2t + b2 sin 2t, at the
 // current Digits. Each root is isolated with Lipschitz bounds (|g'| <= L1, |g''| <= L2): an
 // interval where |g(a)| + |g(b)| > L1 (b - a) holds no root; one where g changes sign and
 // |g'(a)| + |g'(b)| > L2 (b - a) holds exactly one, found by bisection. Throws when a root
 // cannot be isolated (a double root: the regimes meet there).
-std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
+std::vector<numeric> trig_roots(const numeric a[5], const std::string &where)
 {
     const numeric two_pi = numeric(2) * ex_to<numeric>(Pi.evalf());
-    auto g = [&](const numeric& t) {
+    auto g = [&](const numeric &t) {
         return a[0] + a[1] * cos(t) + a[2] * sin(t) + a[3] * cos(2 * t) + a[4] * sin(2 * t);
     };
-    auto dg = [&](const numeric& t) {
+    auto dg = [&](const numeric &t) {
         return -a[1] * sin(t) + a[2] * cos(t) - 2 * a[3] * sin(2 * t) + 2 * a[4] * cos(2 * t);
     };
     const numeric A1 = sqrt(a[1] * a[1] + a[2] * a[2]), A2 = sqrt(a[3] * a[3] + a[4] * a[4]);
@@ -564,8 +597,8 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
     // The angle to 10^-(Digits - 10) radians (1e-40 at 50 digits), whatever the scale of g.
     const numeric tiny = numeric(1, 10).power(static_cast<int>(Digits) - 10);
     std::vector<numeric> roots;
-    std::function<void(const numeric&, const numeric&, const numeric&, const numeric&, int)> isolate =
-        [&](const numeric& lo, const numeric& hi, const numeric& glo, const numeric& ghi, int depth) {
+    std::function<void(const numeric &, const numeric &, const numeric &, const numeric &, int)> isolate =
+        [&](const numeric &lo, const numeric &hi, const numeric &glo, const numeric &ghi, int depth) {
             const numeric w = hi - lo;
             if (abs(glo) + abs(ghi) > L1 * w)
                 return; // no root
@@ -640,16 +673,16 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string& where)
 
 } // namespace
 
-std::vector<regime_case> holding_regimes(const derivation& d, const friction_solution& f)
+std::vector<regime_case> holding_regimes(const derivation &d, const friction_solution &f)
 {
-    const problem& p = d.prob;
-    const std::string where = p.source.empty() ? std::string("contact.friction")
-                                               : names::display_text(p.source) + ": contact.friction";
+    const problem &p = d.prob;
+    const std::string where =
+        p.source.empty() ? std::string("contact.friction") : names::display_text(p.source) + ": contact.friction";
     if (!p.is_numeric())
         throw input_error(where + ": the regime of a problem with symbols depends on their values; "
                                   "'impactgen formulas' gives each regime with the inequalities that select it");
     std::vector<regime_case> holding;
-    for (const regime_case& c : f.cases) {
+    for (const regime_case &c : f.cases) {
         if (!c.needs_angle) {
             lst values;
             if (holds(c, lst{}, values, where))
@@ -664,12 +697,14 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
         {
             const ex m = f.mu.evalf();
             if (is_a<numeric>(m) && abs(ex_to<numeric>(m)) > 1)
-                digits += std::min(400L, 2 * static_cast<long>(std::ceil(std::log10(std::max(1.0, std::abs(ex_to<numeric>(m).to_double()))))) + 2);
+                digits += std::min(400L, 2 * static_cast<long>(std::ceil(
+                                                 std::log10(std::max(1.0, std::abs(ex_to<numeric>(m).to_double()))))) +
+                                             2);
         }
         Digits = digits;
         try {
             lst fixed; // the steps that do not depend on the direction, as floats
-            for (const step& st : c.sol.steps) {
+            for (const step &st : c.sol.steps) {
                 if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
                     break;
                 fixed.append(st.sym == st.value.subs(fixed).evalf());
@@ -689,11 +724,11 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
             // Margin: a condition within 10^-30 of the problem's scale (the largest step value
             // before the direction enters) is too close to its boundary to call.
             double scale = 1;
-            for (const ex& rel : fixed)
+            for (const ex &rel : fixed)
                 if (is_a<numeric>(rel.rhs()))
                     scale = std::max(scale, std::abs(ex_to<numeric>(rel.rhs()).to_double()));
             const double margin = scale * 1e-30;
-            for (const numeric& t : roots) {
+            for (const numeric &t : roots) {
                 // A direction along +-e_t or +-e_b (a motion in one plane: e.g. F3 of the hostile
                 // pass, a ball sliding along e_b) is taken exactly when the sliding equation
                 // vanishes there exactly: the answer is then exact, not floats with 1e-60 in
@@ -702,11 +737,11 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
                 bool exact = false;
                 if (p.is_numeric()) {
                     const numeric ct = cos(t), sn = sin(t);
-                    for (const auto& [c0, s0] : {std::pair<int, int>{1, 0}, {0, 1}, {-1, 0}, {0, -1}}) {
+                    for (const auto &[c0, s0] : {std::pair<int, int>{1, 0}, {0, 1}, {-1, 0}, {0, -1}}) {
                         if (abs(ct - c0) + abs(sn - s0) > numeric(1, 1000000))
                             continue;
                         lst exact_fixed;
-                        for (const step& st : c.sol.steps) {
+                        for (const step &st : c.sol.steps) {
                             if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
                                 break;
                             exact_fixed.append(st.sym == tidy(st.value.subs(exact_fixed)));
@@ -719,14 +754,15 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
                         }
                     }
                 }
-                const lst dirv = exact ? lst{c.dir_c == exact_c, c.dir_s == exact_s} : lst{c.dir_c == cos(t), c.dir_s == sin(t)};
+                const lst dirv =
+                    exact ? lst{c.dir_c == exact_c, c.dir_s == exact_s} : lst{c.dir_c == cos(t), c.dir_s == sin(t)};
                 lst vals;
-                for (const step& st : c.sol.steps) {
+                for (const step &st : c.sol.steps) {
                     const ex v = st.value.subs(dirv).subs(vals);
                     vals.append(st.sym == (exact ? tidy(v) : v.evalf()));
                 }
                 bool ok = true;
-                for (const regime_condition& rc : c.conditions) {
+                for (const regime_condition &rc : c.conditions) {
                     ex v = rc.value.subs(dirv).subs(vals).evalf();
                     if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
                         throw input_error(where + ": cannot evaluate the condition " + rc.meaning);
@@ -766,21 +802,23 @@ std::vector<regime_case> holding_regimes(const derivation& d, const friction_sol
     return holding;
 }
 
-regime_case select_regime(const derivation& d, const friction_solution& f)
+regime_case select_regime(const derivation &d, const friction_solution &f)
 {
-    const problem& p = d.prob;
-    const std::string where = p.source.empty() ? std::string("contact.friction")
-                                               : names::display_text(p.source) + ": contact.friction";
+    const problem &p = d.prob;
+    const std::string where =
+        p.source.empty() ? std::string("contact.friction") : names::display_text(p.source) + ": contact.friction";
     std::vector<regime_case> holding = holding_regimes(d, f);
     if (holding.size() == 1)
         return holding[0];
     std::string names;
-    for (const regime_case& c : (holding.empty() ? f.cases : holding))
+    for (const regime_case &c : (holding.empty() ? f.cases : holding))
         names += (names.empty() ? "" : ", ") + c.name;
     if (holding.empty())
-        throw input_error(where + ": the law of restitution with Coulomb friction has no solution here: none of the regimes (" +
-                          names + ") satisfies its conditions (strong coupling between the normal and tangential directions)");
-    throw input_error(where + ": the law of restitution with Coulomb friction has more than one solution here: the regimes " +
+        throw input_error(
+            where + ": the law of restitution with Coulomb friction has no solution here: none of the regimes (" +
+            names + ") satisfies its conditions (strong coupling between the normal and tangential directions)");
+    throw input_error(where +
+                      ": the law of restitution with Coulomb friction has more than one solution here: the regimes " +
                       names + " all hold (strong coupling between the normal and tangential directions with large mu)");
 }
 

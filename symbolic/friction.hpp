@@ -32,27 +32,28 @@
 #include <string>
 #include <vector>
 
-namespace impactgen {
+namespace impactgen
+{
 
 enum class regime { smooth, stick, slide };
 /// "smooth", "stick" or "slide": the answer's regime key.
-const char* regime_name(regime r);
+const char *regime_name(regime r);
 
 /// value > 0 (strict) or value >= 0, in the case's steps and the inputs.
 /// What a regime's inequality says (printers word it from this, never from `meaning`).
 enum class condition_kind {
-    cone_below,       ///< mu N - F >= 0: planar stick, inside the cone
-    cone_above,       ///< mu N + F >= 0: planar stick, inside the cone
-    pushes,           ///< N >= 0: the contact pushes
-    cone,             ///< mu^2 N^2 - |F|^2 >= 0: 3-D stick, inside the cone
-    slide_denominator,///< D_s > 0
-    slides            ///< lambda > 0: the contact slides along d after impact
+    cone_below,        ///< mu N - F >= 0: planar stick, inside the cone
+    cone_above,        ///< mu N + F >= 0: planar stick, inside the cone
+    pushes,            ///< N >= 0: the contact pushes
+    cone,              ///< mu^2 N^2 - |F|^2 >= 0: 3-D stick, inside the cone
+    slide_denominator, ///< D_s > 0
+    slides             ///< lambda > 0: the contact slides along d after impact
 };
 
 struct regime_condition {
     ex value;
     bool strict = true;
-    std::string meaning;  ///< plain text, e.g. "mu P_n - P_t >= 0 (inside the cone)"
+    std::string meaning; ///< plain text, e.g. "mu P_n - P_t >= 0 (inside the cone)"
     condition_kind kind = condition_kind::pushes;
 };
 
@@ -60,28 +61,28 @@ struct regime_condition {
 /// and the inequalities under which it is the answer.
 struct regime_case {
     regime kind = regime::stick;
-    int sign = 0;                 ///< planar slide: +1 when u'_t points along +e_t, -1 along -e_t
-    std::string name;             ///< "stick", "slide along +e_t", "slide along u_t", "slide"
-    bool has_angle = false;       ///< a 3-D slide whose angle was found (numeric problems)
-    double angle = 0;             ///< then: the sliding angle from e_t towards e_b, radians
-    solution sol;                 ///< steps (the shared ones first), bodies after, P_n, pivot impulses, energies
-    vec3 impulse;                 ///< P in world axes, on body 2
-    vec3 tangential_impulse;      ///< P_t = P - P_n n, world axes, on body 2
-    ex tangential_scalar;         ///< planar: P_t . e_t; 3-D: 0
-    vec3 direction;               ///< slide: the unit sliding direction d (world); stick: zero
-    ex sliding_speed;             ///< slide: lambda = u'_t . d; stick: 0
+    int sign = 0;            ///< planar slide: +1 when u'_t points along +e_t, -1 along -e_t
+    std::string name;        ///< "stick", "slide along +e_t", "slide along u_t", "slide"
+    bool has_angle = false;  ///< a 3-D slide whose angle was found (numeric problems)
+    double angle = 0;        ///< then: the sliding angle from e_t towards e_b, radians
+    solution sol;            ///< steps (the shared ones first), bodies after, P_n, pivot impulses, energies
+    vec3 impulse;            ///< P in world axes, on body 2
+    vec3 tangential_impulse; ///< P_t = P - P_n n, world axes, on body 2
+    ex tangential_scalar;    ///< planar: P_t . e_t; 3-D: 0
+    vec3 direction;          ///< slide: the unit sliding direction d (world); stick: zero
+    ex sliding_speed;        ///< slide: lambda = u'_t . d; stick: 0
     std::vector<regime_condition> conditions;
     /// 3-D slide without a closed form: d = c e_t + s e_b with these two symbols
     /// (cos and sin of the sliding angle), and the equation g(c, s) = 0 they solve.
     bool needs_angle = false;
     GiNaC::symbol dir_c{"c_d"}, dir_s{"s_d"};
-    ex angle_equation;            ///< g, in steps and dir_c, dir_s
+    ex angle_equation; ///< g, in steps and dir_c, dir_s
 };
 
 struct friction_solution {
     ex mu;
-    vec3 n_hat, e_t, e_b;         ///< the unit contact frame (e_b zero in 2-D)
-    bool isotropic = false;       ///< 3-D: K isotropic on the tangent plane and uncoupled from n
+    vec3 n_hat, e_t, e_b;           ///< the unit contact frame (e_b zero in 2-D)
+    bool isotropic = false;         ///< 3-D: K isotropic on the tangent plane and uncoupled from n
     std::vector<regime_case> cases; ///< stick first, then the slide cases
 };
 
@@ -89,20 +90,20 @@ struct friction_solution {
 /// with friction (mu may be symbolic). Throws input_error when the contact response K
 /// is singular (a pinned body struck by an immovable one: the tangential impulse is
 /// indeterminate).
-friction_solution solve_friction(const derivation& d);
+friction_solution solve_friction(const derivation &d);
 
 /// A numeric problem's answer: the one regime that holds, its values substituted
 /// (exact where the closed form is; for a 3-D slide without one, the sliding angle at
 /// 50 significant digits). Decided exactly or refused: input_error naming the regimes
 /// when none holds, several hold, or the decision is too close to call.
-regime_case select_regime(const derivation& d, const friction_solution& f);
+regime_case select_regime(const derivation &d, const friction_solution &f);
 
 /// Every regime that holds for a numeric problem (select_regime's candidates; a 3-D slide
 /// without closed form gives one case per sliding angle that holds). Throws input_error
 /// when a condition cannot be decided or the problem has symbols.
-std::vector<regime_case> holding_regimes(const derivation& d, const friction_solution& f);
+std::vector<regime_case> holding_regimes(const derivation &d, const friction_solution &f);
 
 /// The conditions of the case, as values (inputs substituted), for tests.
-std::vector<ex> condition_values(const regime_case& c, const ex& input_values = GiNaC::lst{});
+std::vector<ex> condition_values(const regime_case &c, const ex &input_values = GiNaC::lst{});
 
 } // namespace impactgen

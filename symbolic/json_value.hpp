@@ -9,15 +9,18 @@
 #include <utility>
 #include <vector>
 
-namespace impactgen {
+namespace impactgen
+{
 
 /// Bad input: the message names the problem and, where there is one, the key.
-class input_error : public std::runtime_error {
+class input_error : public std::runtime_error
+{
 public:
     using std::runtime_error::runtime_error;
 };
 
-class json_value {
+class json_value
+{
 public:
     enum class kind { null, boolean, number, string, array, object };
 
@@ -28,18 +31,18 @@ public:
     bool is_object() const { return kind_ == kind::object; }
 
     /// The literal text of a number, or the contents of a string.
-    const std::string& text() const { return text_; }
-    const std::vector<json_value>& items() const { return items_; }
+    const std::string &text() const { return text_; }
+    const std::vector<json_value> &items() const { return items_; }
     /// Object members in the order written.
-    const std::vector<std::pair<std::string, json_value>>& members() const { return members_; }
+    const std::vector<std::pair<std::string, json_value>> &members() const { return members_; }
     /// The member named key, or nullptr.
-    const json_value* find(const std::string& key) const;
+    const json_value *find(const std::string &key) const;
 
-    static const char* kind_name(kind k);
+    static const char *kind_name(kind k);
 
     /// Parses text; throws input_error naming the position of malformed JSON
     /// and any key written twice in one object.
-    static json_value parse(const std::string& text);
+    static json_value parse(const std::string &text);
 
 private:
     friend class json_builder;

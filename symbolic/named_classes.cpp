@@ -1,20 +1,25 @@
 #include "named_classes.hpp"
 
-namespace impactgen {
+namespace impactgen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
-ex S(const std::string& name, const std::string& tex = "") { return symbol_named(name, tex); }
+ex S(const std::string &name, const std::string &tex = "")
+{
+    return symbol_named(name, tex);
+}
 
 // Body "1" or "2" with the notes' symbols: m1, v_t1, v_n1, v_b1, w_t1, ..., position r_t1 ... of C1 relative to O.
-body free_body(const std::string& k, int dim, bool rigid, bool full_inertia)
+body free_body(const std::string &k, int dim, bool rigid, bool full_inertia)
 {
     body b;
     b.name = b.label = k;
     b.numbered = true;
     b.mass = S("m" + k);
-    const char* ax[3] = {"t", "n", "b"};
+    const char *ax[3] = {"t", "n", "b"};
     for (int c = 0; c < dim; ++c) {
         b.position[c] = S(std::string("r_") + ax[c] + k, std::string("r_{") + ax[c] + k + "}");
         b.velocity[c] = S(std::string("v_") + ax[c] + k, std::string("v_{") + ax[c] + k + "}");
@@ -41,7 +46,7 @@ body free_body(const std::string& k, int dim, bool rigid, bool full_inertia)
     return b;
 }
 
-problem base(const std::string& name, int dim)
+problem base(const std::string &name, int dim)
 {
     problem p;
     p.source = name;
@@ -137,16 +142,22 @@ problem pinned_planar()
 }
 
 // Past the notes: Coulomb friction at the contact (format version 2), coefficient mu.
-problem with_friction(problem p, const std::string& name)
+problem with_friction(problem p, const std::string &name)
 {
     p.source = name;
     p.contact.friction = S("mu", "\\mu");
     return p;
 }
 
-problem planar_friction() { return with_friction(planar(), "planar-friction"); }
+problem planar_friction()
+{
+    return with_friction(planar(), "planar-friction");
+}
 
-problem noncentral_3d_friction() { return with_friction(noncentral_3d(), "noncentral-3d-friction"); }
+problem noncentral_3d_friction()
+{
+    return with_friction(noncentral_3d(), "noncentral-3d-friction");
+}
 
 // The classic: a ball (radius R, mass m, I = 2 m R^2 / 5, spin w) strikes the
 // immovable floor obliquely (v_n < 0) and leaves rolling when mu is large enough.
@@ -173,17 +184,20 @@ problem ball_floor_friction()
 
 } // namespace
 
-const std::vector<named_class>& friction_classes()
+const std::vector<named_class> &friction_classes()
 {
     static const std::vector<named_class> all = {
         {"planar-friction", "planar impact of two free rigid bodies with Coulomb friction mu", planar_friction},
-        {"ball-floor-friction", "a spinning ball strikes the floor obliquely with friction: it sticks (leaves rolling) or slides", ball_floor_friction},
-        {"noncentral-3d-friction", "two free rigid bodies in 3-D with full inertia tensors and Coulomb friction mu", noncentral_3d_friction},
+        {"ball-floor-friction",
+         "a spinning ball strikes the floor obliquely with friction: it sticks (leaves rolling) or slides",
+         ball_floor_friction},
+        {"noncentral-3d-friction", "two free rigid bodies in 3-D with full inertia tensors and Coulomb friction mu",
+         noncentral_3d_friction},
     };
     return all;
 }
 
-const std::vector<named_class>& named_classes()
+const std::vector<named_class> &named_classes()
 {
     static const std::vector<named_class> all = {
         {"central-direct", "two particles, centres and velocities on the line of impact", central_direct},
@@ -191,17 +205,18 @@ const std::vector<named_class>& named_classes()
         {"noncentral-3d", "two free rigid bodies in 3-D with full inertia tensors", noncentral_3d},
         {"massive-3d", "a free rigid body strikes a moving body of infinite mass", massive_3d},
         {"planar", "smooth planar impact of two free rigid bodies (e_b a principal axis)", planar},
-        {"pinned-planar", "a ball strikes the end of a rod hinged at a fixed point (unknown pivot impulse)", pinned_planar},
+        {"pinned-planar", "a ball strikes the end of a rod hinged at a fixed point (unknown pivot impulse)",
+         pinned_planar},
     };
     return all;
 }
 
-const named_class* find_named_class(const std::string& name)
+const named_class *find_named_class(const std::string &name)
 {
-    for (const named_class& c : named_classes())
+    for (const named_class &c : named_classes())
         if (c.name == name)
             return &c;
-    for (const named_class& c : friction_classes())
+    for (const named_class &c : friction_classes())
         if (c.name == name)
             return &c;
     return nullptr;

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-namespace impactgen {
+namespace impactgen
+{
 
 struct named_class {
     std::string name;
@@ -16,10 +17,10 @@ struct named_class {
 };
 
 /// All named classes, in the order of the notes.
-const std::vector<named_class>& named_classes();
+const std::vector<named_class> &named_classes();
 /// Past the notes: the classes with Coulomb friction (format version 2).
-const std::vector<named_class>& friction_classes();
+const std::vector<named_class> &friction_classes();
 /// The class of that name (smooth or with friction), or nullptr.
-const named_class* find_named_class(const std::string& name);
+const named_class *find_named_class(const std::string &name);
 
 } // namespace impactgen

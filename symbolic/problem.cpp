@@ -4,29 +4,31 @@
 #include "names/escape.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cmath>
 #include <cctype>
 #include <cfloat>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 
-namespace impactgen {
+namespace impactgen
+{
 using namespace GiNaC;
 
-namespace {
+namespace
+{
 
-std::map<std::string, symbol>& symbol_registry()
+std::map<std::string, symbol> &symbol_registry()
 {
     static std::map<std::string, symbol> registry;
     return registry;
 }
 
 // "v_t1" -> "v_{t1}", "m1" -> "m_{1}", "omega" stays (GiNaC prints Greek names itself).
-std::string default_tex(const std::string& name)
+std::string default_tex(const std::string &name)
 {
     if (name == "omicron" || name == "Omicron") // GiNaC would write \omicron, which LaTeX lacks
         return name == "omicron" ? "o" : "O";
@@ -46,11 +48,17 @@ std::string default_tex(const std::string& name)
     return "";
 }
 
-bool is_ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool is_ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_ident_start(char c)
+{
+    return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool is_ident_char(char c)
+{
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 // Exact value of a decimal literal: 0.8 -> 4/5, 1e-3 -> 1/1000.
-numeric exact_decimal(const std::string& lit, const std::string& where)
+numeric exact_decimal(const std::string &lit, const std::string &where)
 {
     std::string mant = lit, expo;
     auto epos = lit.find_first_of("eE");
@@ -81,8 +89,9 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
         throw input_error(where + ": \"" + names::display_text(lit) + "\" is not a number");
     // A number below 10^-400 in magnitude underflows (it is not infinite): said so, apart.
     auto too_small = [&]() {
-        return input_error(where + ": " + names::display_text(lit) +
-                           " is too small: its magnitude is below 10^-400, the smallest non-zero number read (write 0 for zero)");
+        return input_error(
+            where + ": " + names::display_text(lit) +
+            " is too small: its magnitude is below 10^-400, the smallest non-zero number read (write 0 for zero)");
     };
     if (!expo.empty()) {
         // The exponent's sign, then its digits without leading zeros (1e-000003 is 1e-3).
@@ -100,7 +109,8 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
                 return numeric(0); // 0e-9999999 is 0
             if (expo[0] == '-')
                 throw too_small();
-            throw input_error(where + ": the exponent of " + names::display_text(lit) + " is out of range (non-finite number)");
+            throw input_error(where + ": the exponent of " + names::display_text(lit) +
+                              " is out of range (non-finite number)");
         }
         scale += std::stol(expo);
     }
@@ -114,7 +124,8 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
     if (magnitude <= -400)
         throw too_small();
     if (magnitude > 400)
-        throw input_error(where + ": " + names::display_text(lit) + " is out of the range of double (non-finite number)");
+        throw input_error(where + ": " + names::display_text(lit) +
+                          " is out of the range of double (non-finite number)");
     numeric value(digits.c_str());
     value *= pow(numeric(10), numeric(scale));
     return negative ? -value : value;
@@ -124,10 +135,10 @@ numeric exact_decimal(const std::string& lit, const std::string& where)
 // and registers every identifier as a shared symbol; returns the rewritten text.
 const std::string reserved_prefix = "impactgen_number_";
 
-std::string prepare_expression(const std::string& s, symtab& table, const std::string& where, lst& numbers)
+std::string prepare_expression(const std::string &s, symtab &table, const std::string &where, lst &numbers)
 {
     static const std::set<std::string> functions = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan",
-                                                    "exp", "log", "abs", "pow", "sinh", "cosh", "tanh"};
+                                                    "exp",  "log", "abs", "pow", "sinh", "cosh", "tanh"};
     if (s.size() > limits::expression_length)
         throw input_error(where + ": the expression is " + std::to_string(s.size()) + " characters long; at most " +
                           std::to_string(limits::expression_length) + " are read");
@@ -138,8 +149,8 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
         char c = s[i];
         if (c == '(') {
             if (++depth > limits::expression_depth)
-                throw input_error(where + ": parentheses nested deeper than " + std::to_string(limits::expression_depth) +
-                                  " levels");
+                throw input_error(where + ": parentheses nested deeper than " +
+                                  std::to_string(limits::expression_depth) + " levels");
         } else if (c == ')') {
             --depth;
         }
@@ -163,28 +174,33 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
                 ++k;
             bool call = k < s.size() && s[k] == '(';
             std::string lower = id;
-            std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+            std::transform(lower.begin(), lower.end(), lower.begin(),
+                           [](unsigned char ch) { return std::tolower(ch); });
             if (lower == "inf" || lower == "infinity" || lower == "nan")
-                throw input_error(where + ": \"" + names::display_text(s) +
-                                  "\" is not a finite value (an infinite mass is written as the whole value: \"mass\": \"inf\")");
+                throw input_error(
+                    where + ": \"" + names::display_text(s) +
+                    "\" is not a finite value (an infinite mass is written as the whole value: \"mass\": \"inf\")");
             if (id.rfind(reserved_prefix, 0) == 0)
                 throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
             if (call) {
                 if (!functions.count(id))
-                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + names::display_text(s) + "\"");
+                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + names::display_text(s) +
+                                      "\"");
                 std::size_t a = k + 1;
                 while (a < s.size() && std::isspace(static_cast<unsigned char>(s[a])))
                     ++a;
                 if (a >= s.size() || s[a] == ')')
                     throw input_error(where + ": the function " + id + "() needs an argument");
             } else if (id == "I") {
-                throw input_error(where + ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
+                throw input_error(where +
+                                  ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
             } else if (id != "Pi" && id != "Euler" && id != "Catalan") {
                 table[id] = symbol_named(id);
             }
             out += id;
             i = j;
-        } else if (std::isdigit(static_cast<unsigned char>(c)) || (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
+        } else if (std::isdigit(static_cast<unsigned char>(c)) ||
+                   (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
             std::size_t j = i;
             while (j < s.size() && (std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '.'))
                 ++j;
@@ -201,7 +217,8 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
             // One number: at most one decimal point, and not run into a name or another number
             // ("0.3.1", "0..3", "1e2e3", "2x" are refused, never read as something else).
             const std::string token = s.substr(i, j - i);
-            if (std::count(token.begin(), token.end(), '.') > 1 || (j < s.size() && (is_ident_char(s[j]) || s[j] == '.')))
+            if (std::count(token.begin(), token.end(), '.') > 1 ||
+                (j < s.size() && (is_ident_char(s[j]) || s[j] == '.')))
                 throw input_error(where + ": malformed number in \"" + names::display_text(s) +
                                   "\" (a number has at most one decimal point and an exponent like 1e-3, "
                                   "and a product is written with *)");
@@ -224,17 +241,17 @@ std::string prepare_expression(const std::string& s, symtab& table, const std::s
 // for a constant its sign known exactly (decide.hpp); otherwise refused.
 // The largest |integer exponent| on a non-numeric base in e (x^(2^20) would make
 // exact evaluation at a point, and any expansion, run without end).
-numeric largest_exponent(const ex& e)
+numeric largest_exponent(const ex &e)
 {
     numeric m = 0;
     if (is_a<power>(e) && !is_a<numeric>(e.op(0)) && is_a<numeric>(e.op(1)))
         m = abs(ex_to<numeric>(e.op(1)));
     for (std::size_t k = 0; k < e.nops(); ++k)
-        m = std::max(m, largest_exponent(e.op(k)), [](const numeric& a, const numeric& b) { return a < b; });
+        m = std::max(m, largest_exponent(e.op(k)), [](const numeric &a, const numeric &b) { return a < b; });
     return m;
 }
 
-void check_value(const ex& e, const std::string& where)
+void check_value(const ex &e, const std::string &where)
 {
     if (largest_exponent(e) > limits::exponent)
         throw input_error(where + ": an exponent larger than " + std::to_string(limits::exponent) +
@@ -255,7 +272,7 @@ void check_value(const ex& e, const std::string& where)
         throw input_error(where + ": in the expression, a constant part: " + why);
 }
 
-std::string show(const ex& e)
+std::string show(const ex &e)
 {
     std::ostringstream os;
     os << e;
@@ -267,22 +284,22 @@ std::string show(const ex& e)
 
 // ---- reading the JSON format -------------------------------------------------
 
-const json_value& require(const json_value& obj, const std::string& key, const std::string& where)
+const json_value &require(const json_value &obj, const std::string &key, const std::string &where)
 {
-    const json_value* v = obj.find(key);
+    const json_value *v = obj.find(key);
     if (!v)
         throw input_error(where + ": missing key \"" + key + "\"");
     return *v;
 }
 
-ex scalar(const json_value& v, const std::string& where)
+ex scalar(const json_value &v, const std::string &where)
 {
     if (v.is_number() || v.is_string())
         return parse_value(v.text(), v.is_string(), where);
     throw input_error(where + ": expected a number or an expression string, got " + json_value::kind_name(v.type()));
 }
 
-vec3 vector_of(const json_value& v, int dim, const std::string& where)
+vec3 vector_of(const json_value &v, int dim, const std::string &where)
 {
     if (!v.is_array())
         throw input_error(where + ": expected a list of " + std::to_string(dim) + " values, got " +
@@ -296,19 +313,20 @@ vec3 vector_of(const json_value& v, int dim, const std::string& where)
     return r;
 }
 
-void warn_unknown_keys(const json_value& obj, std::initializer_list<const char*> known, const std::string& where,
-                       std::vector<std::string>& warnings)
+void warn_unknown_keys(const json_value &obj, std::initializer_list<const char *> known, const std::string &where,
+                       std::vector<std::string> &warnings)
 {
-    for (const auto& m : obj.members()) {
+    for (const auto &m : obj.members()) {
         bool ok = false;
-        for (const char* k : known)
+        for (const char *k : known)
             ok = ok || m.first == k;
         if (!ok)
-            warnings.push_back(where + (where.empty() ? "" : ".") + names::display_text(m.first) + ": unknown key, ignored");
+            warnings.push_back(where + (where.empty() ? "" : ".") + names::display_text(m.first) +
+                               ": unknown key, ignored");
     }
 }
 
-std::size_t body_index(const problem& p, const json_value& v, const std::string& where)
+std::size_t body_index(const problem &p, const json_value &v, const std::string &where)
 {
     if (!v.is_string())
         throw input_error(where + ": expected a body name (a string), got " + json_value::kind_name(v.type()));
@@ -320,9 +338,9 @@ std::size_t body_index(const problem& p, const json_value& v, const std::string&
 
 } // namespace
 
-symbol symbol_named(const std::string& name, const std::string& tex_name)
+symbol symbol_named(const std::string &name, const std::string &tex_name)
 {
-    auto& reg = symbol_registry();
+    auto &reg = symbol_registry();
     auto it = reg.find(name);
     if (it != reg.end())
         return it->second;
@@ -332,7 +350,7 @@ symbol symbol_named(const std::string& name, const std::string& tex_name)
     return s;
 }
 
-ex parse_value(const std::string& text, bool is_string, const std::string& where)
+ex parse_value(const std::string &text, bool is_string, const std::string &where)
 {
     ex value;
     if (!is_string) {
@@ -348,21 +366,23 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
         try {
             ex shape = reader(prepared);
             exmap values;
-            for (const ex& rel : numbers)
+            for (const ex &rel : numbers)
                 values[rel.lhs()] = rel.rhs();
             if (log10_magnitude_bound(shape, values) > 400)
-                throw input_error(where + ": \"" + names::display_text(text) +
-                                  "\" is beyond what is read: its magnitude, or a part's, is above 10^400 or below 10^-400");
+                throw input_error(
+                    where + ": \"" + names::display_text(text) +
+                    "\" is beyond what is read: its magnitude, or a part's, is above 10^400 or below 10^-400");
             value = shape.subs(values);
-        } catch (const input_error&) {
+        } catch (const input_error &) {
             throw;
-        } catch (const std::exception& e) {
+        } catch (const std::exception &e) {
             std::string why = e.what();
             why = why.substr(0, why.find('\n'));
             // GiNaC quotes the rewritten text (decimals as exact symbols): not the user's, so not shown
             if (why.find("Illegal number syntax") != std::string::npos)
                 why = "a number is malformed";
-            throw input_error(where + ": cannot read the expression \"" + names::display_text(text) + "\" (" + names::display_text(why) + ")");
+            throw input_error(where + ": cannot read the expression \"" + names::display_text(text) + "\" (" +
+                              names::display_text(why) + ")");
         }
     }
     check_value(value, where);
@@ -372,20 +392,20 @@ ex parse_value(const std::string& text, bool is_string, const std::string& where
 std::vector<symbol> problem::parameters() const
 {
     exset found;
-    auto collect = [&](const ex& e) {
+    auto collect = [&](const ex &e) {
         for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
             if (is_a<symbol>(*it))
                 found.insert(*it);
     };
-    auto collect_v = [&](const vec3& v) {
-        for (const ex& e : v)
+    auto collect_v = [&](const vec3 &v) {
+        for (const ex &e : v)
             collect(e);
     };
     collect(restitution);
-    for (const body& b : bodies) {
+    for (const body &b : bodies) {
         if (!b.infinite_mass)
             collect(b.mass);
-        for (const auto& row : b.inertia)
+        for (const auto &row : b.inertia)
             collect_v(row);
         collect_v(b.position);
         collect_v(b.velocity);
@@ -394,31 +414,35 @@ std::vector<symbol> problem::parameters() const
     collect_v(contact.point);
     collect_v(contact.normal);
     collect(contact.friction);
-    for (const pivot& pv : pivots)
+    for (const pivot &pv : pivots)
         collect_v(pv.point);
     std::vector<symbol> r;
-    for (const ex& e : found)
+    for (const ex &e : found)
         r.push_back(ex_to<symbol>(e));
-    std::sort(r.begin(), r.end(), [](const symbol& a, const symbol& b) { return a.get_name() < b.get_name(); });
+    std::sort(r.begin(), r.end(), [](const symbol &a, const symbol &b) { return a.get_name() < b.get_name(); });
     return r;
 }
 
-std::string display_name(const body& b)
+std::string display_name(const body &b)
 {
-    bool digits = !b.name.empty() && std::all_of(b.name.begin(), b.name.end(), [](unsigned char c) { return std::isdigit(c); });
+    bool digits =
+        !b.name.empty() && std::all_of(b.name.begin(), b.name.end(), [](unsigned char c) { return std::isdigit(c); });
     return digits ? "body " + b.name : b.name;
 }
 
-vec3 point_velocity(const body& b, const vec3& q) { return point_velocity(b, b.velocity, b.angular_velocity, q); }
+vec3 point_velocity(const body &b, const vec3 &q)
+{
+    return point_velocity(b, b.velocity, b.angular_velocity, q);
+}
 
-vec3 point_velocity(const body& b, const vec3& v, const vec3& w, const vec3& q)
+vec3 point_velocity(const body &b, const vec3 &v, const vec3 &w, const vec3 &q)
 {
     return b.particle && !b.infinite_mass ? v : v + cross(w, q - b.position);
 }
 
-const pivot* problem::pivot_of(std::size_t b) const
+const pivot *problem::pivot_of(std::size_t b) const
 {
-    for (const pivot& pv : pivots)
+    for (const pivot &pv : pivots)
         if (pv.body == b)
             return &pv;
     return nullptr;
@@ -429,11 +453,12 @@ bool problem::immovable(std::size_t b) const
     return bodies[b].infinite_mass || (bodies[b].particle && pivot_of(b) != nullptr);
 }
 
-namespace {
+namespace
+{
 
 // The decided sign of a value or a quantity derived from values; refuses
 // what is not real, out of range or cannot be decided (decide.hpp).
-decision decided(const ex& e, const std::string& where, const std::string& what)
+decision decided(const ex &e, const std::string &where, const std::string &what)
 {
     decision d = decide(e);
     if (d == decision::not_real || d == decision::out_of_range || d == decision::undecided)
@@ -441,10 +466,13 @@ decision decided(const ex& e, const std::string& where, const std::string& what)
     return d;
 }
 
-bool negative_or_zero(decision d) { return d == decision::negative || d == decision::zero; }
+bool negative_or_zero(decision d)
+{
+    return d == decision::negative || d == decision::zero;
+}
 
 // Zero exactly: decided for constants, identically zero after expansion for symbols.
-bool vanishes(const ex& e, const std::string& where, const std::string& what)
+bool vanishes(const ex &e, const std::string &where, const std::string &what)
 {
     decision d = decided(e, where, what);
     if (d == decision::symbolic)
@@ -454,7 +482,7 @@ bool vanishes(const ex& e, const std::string& where, const std::string& what)
 
 } // namespace
 
-void validate(const problem& p)
+void validate(const problem &p)
 {
     if (p.dimension != 2 && p.dimension != 3)
         throw input_error("dimension: must be 2 or 3");
@@ -464,13 +492,15 @@ void validate(const problem& p)
         decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
         throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
     if (decided(p.contact.friction, "contact.friction", "mu") == decision::negative)
-        throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " + show(p.contact.friction));
+        throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " +
+                          show(p.contact.friction));
     std::set<std::string> seen;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         std::string where = "bodies[" + std::to_string(i) + "] (\"" + names::display_text(b.name) + "\")";
         if (!seen.insert(b.name).second)
-            throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + names::display_text(b.name) + "\"");
+            throw input_error("bodies[" + std::to_string(i) + "].name: repeated body \"" + names::display_text(b.name) +
+                              "\"");
         if (!b.infinite_mass && negative_or_zero(decided(b.mass, where + ".mass", "the mass")))
             throw input_error(where + ".mass: must be > 0 (or \"inf\"), got " + show(b.mass));
         if (b.particle)
@@ -482,19 +512,19 @@ void validate(const problem& p)
                     throw input_error(where + ".inertia: not symmetric (entry [" + std::to_string(r) + "][" +
                                       std::to_string(c) + "] is " + show(b.inertia[r][c]) + ", [" + std::to_string(c) +
                                       "][" + std::to_string(r) + "] is " + show(b.inertia[c][r]) + ")");
-        const mat3& J = b.inertia;
+        const mat3 &J = b.inertia;
         std::vector<ex> minors;
         if (p.dimension == 2) {
             minors = {J[2][2]};
         } else {
             minors = {J[0][0], J[0][0] * J[1][1] - J[0][1] * J[1][0], det(J)};
         }
-        for (const ex& m : minors)
+        for (const ex &m : minors)
             if (negative_or_zero(decided(m, where + ".inertia", "a leading principal minor")))
                 throw input_error(where + ".inertia: not positive-definite" +
                                   std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
     }
-    const contact_spec& c = p.contact;
+    const contact_spec &c = p.contact;
     if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
         throw input_error("contact.bodies: unknown body");
     if (c.body1 == c.body2)
@@ -504,18 +534,19 @@ void validate(const problem& p)
         throw input_error("contact.normal: the normal must not be zero");
     std::set<std::size_t> pinned;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
-        const pivot& pv = p.pivots[k];
+        const pivot &pv = p.pivots[k];
         std::string where = "pivots[" + std::to_string(k) + "]";
         if (pv.body >= p.bodies.size())
             throw input_error(where + ".body: unknown body");
-        const body& b = p.bodies[pv.body];
+        const body &b = p.bodies[pv.body];
         const std::string bname = names::display_text(b.name);
         if (!pinned.insert(pv.body).second)
             throw input_error(where + ".body: body \"" + bname +
                               "\" has a second pivot; the pivot impulses would be statically indeterminate "
                               "(at most one pivot per body)");
         if (b.infinite_mass)
-            throw input_error(where + ".body: body \"" + bname + "\" has infinite mass; a pivot on it takes no part in the impact");
+            throw input_error(where + ".body: body \"" + bname +
+                              "\" has infinite mass; a pivot on it takes no part in the impact");
         // The pivot point E of the body must be at rest: v + w x (E - C) = 0.
         vec3 vE = point_velocity(b, pv.point);
         for (int i = 0; i < 3; ++i)
@@ -530,8 +561,8 @@ void validate(const problem& p)
                           names::display_text(p.bodies[b2].name) +
                           "\" can move (infinite mass or pinned particle): no impulse can act");
     // Approach: (v_B - v_A) . n < 0 is an impact; >= 0 separates or rests.
-    const body& A = p.bodies[b1];
-    const body& B = p.bodies[b2];
+    const body &A = p.bodies[b1];
+    const body &B = p.bodies[b2];
     vec3 vA = point_velocity(A, c.point);
     vec3 vB = point_velocity(B, c.point);
     ex approach = tidy(dot(vB - vA, c.normal));
@@ -542,7 +573,7 @@ void validate(const problem& p)
                           " along the normal ((v_B - v_A).n = " + show(approach) + " >= 0)");
 }
 
-problem read_problem(const std::string& text, const std::string& source)
+problem read_problem(const std::string &text, const std::string &source)
 {
     if (text.size() > limits::file_bytes)
         throw input_error("problem: the text is " + std::to_string(text.size()) + " bytes; at most " +
@@ -552,38 +583,41 @@ problem read_problem(const std::string& text, const std::string& source)
         throw input_error(std::string("problem: expected a JSON object, got ") + json_value::kind_name(root.type()));
     problem p;
     p.source = source;
-    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description", "units"}, "",
-                      p.warnings);
-    if (const json_value* u = root.find("units")) {
+    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description", "units"},
+                      "", p.warnings);
+    if (const json_value *u = root.find("units")) {
         // Optional: the unit system of every number, for the prose of explain
         // (kg, m, s, N·s, J). Only "SI" is known; the values are not converted.
         if (!u->is_string() || u->text() != "SI")
-            throw input_error("units: the only unit system known is \"SI\" (kg, m, s), got " +
-                              (u->is_string() ? "\"" + names::display_text(u->text()) + "\"" : json_value::kind_name(u->type())));
+            throw input_error(
+                "units: the only unit system known is \"SI\" (kg, m, s), got " +
+                (u->is_string() ? "\"" + names::display_text(u->text()) + "\"" : json_value::kind_name(u->type())));
         p.units = "SI";
     }
 
-    const json_value& dim = require(root, "dimension", "problem");
+    const json_value &dim = require(root, "dimension", "problem");
     if (!dim.is_number() || (dim.text() != "2" && dim.text() != "3"))
-        throw input_error("dimension: must be 2 or 3, got " + (dim.text().empty() ? json_value::kind_name(dim.type()) : dim.text()));
+        throw input_error("dimension: must be 2 or 3, got " +
+                          (dim.text().empty() ? json_value::kind_name(dim.type()) : dim.text()));
     p.dimension = dim.text() == "2" ? 2 : 3;
     const int d = p.dimension;
     p.restitution = scalar(require(root, "restitution", "problem"), "restitution");
 
-    const json_value& bodies = require(root, "bodies", "problem");
+    const json_value &bodies = require(root, "bodies", "problem");
     if (!bodies.is_array())
         throw input_error(std::string("bodies: expected a list, got ") + json_value::kind_name(bodies.type()));
     if (bodies.items().size() > limits::bodies)
         throw input_error("bodies: " + std::to_string(bodies.items().size()) + " bodies; at most " +
                           std::to_string(limits::bodies) + " are read");
     for (std::size_t i = 0; i < bodies.items().size(); ++i) {
-        const json_value& jb = bodies.items()[i];
+        const json_value &jb = bodies.items()[i];
         std::string where = "bodies[" + std::to_string(i) + "]";
         if (!jb.is_object())
             throw input_error(where + ": expected an object, got " + json_value::kind_name(jb.type()));
-        warn_unknown_keys(jb, {"name", "mass", "inertia", "position", "velocity", "angular_velocity"}, where, p.warnings);
+        warn_unknown_keys(jb, {"name", "mass", "inertia", "position", "velocity", "angular_velocity"}, where,
+                          p.warnings);
         body b;
-        const json_value& name = require(jb, "name", where);
+        const json_value &name = require(jb, "name", where);
         if (!name.is_string() || name.text().empty())
             throw input_error(where + ".name: expected a non-empty string");
         if (name.text().size() > limits::name_length)
@@ -594,7 +628,7 @@ problem read_problem(const std::string& text, const std::string& source)
                                   "\" contains a control character (names are printed in documents and code)");
         b.name = b.label = name.text();
         where += " (\"" + names::display_text(b.name) + "\")";
-        const json_value& mass = require(jb, "mass", where);
+        const json_value &mass = require(jb, "mass", where);
         std::string lower = mass.text();
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
         if (mass.is_string() && (lower == "inf" || lower == "infinity" || lower == "+inf")) {
@@ -602,7 +636,7 @@ problem read_problem(const std::string& text, const std::string& source)
         } else {
             b.mass = scalar(mass, where + ".mass");
         }
-        if (const json_value* in = jb.find("inertia")) {
+        if (const json_value *in = jb.find("inertia")) {
             std::string w = where + ".inertia";
             if (d == 2) {
                 ex I = scalar(*in, w);
@@ -631,15 +665,15 @@ problem read_problem(const std::string& text, const std::string& source)
             }
             if (!b.particle) {
                 bool all_zero = true;
-                for (const auto& row : b.inertia)
-                    for (const ex& e : row)
+                for (const auto &row : b.inertia)
+                    for (const ex &e : row)
                         all_zero = all_zero && e.is_zero();
                 b.particle = all_zero;
             }
         }
         b.position = vector_of(require(jb, "position", where), d, where + ".position");
         b.velocity = vector_of(require(jb, "velocity", where), d, where + ".velocity");
-        if (const json_value* w = jb.find("angular_velocity")) {
+        if (const json_value *w = jb.find("angular_velocity")) {
             if (d == 2)
                 b.angular_velocity[2] = scalar(*w, where + ".angular_velocity");
             else
@@ -657,29 +691,29 @@ problem read_problem(const std::string& text, const std::string& source)
                                   names::display_text(p.bodies[i].name) + "\"");
     }
 
-    const json_value& jc = require(root, "contact", "problem");
+    const json_value &jc = require(root, "contact", "problem");
     if (!jc.is_object())
         throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
     warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, "contact", p.warnings);
-    const json_value& cb = require(jc, "bodies", "contact");
+    const json_value &cb = require(jc, "bodies", "contact");
     if (!cb.is_array() || cb.items().size() != 2)
         throw input_error("contact.bodies: expected a list of the two bodies that touch");
     p.contact.body1 = body_index(p, cb.items()[0], "contact.bodies[0]");
     p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
     p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
     p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
-    if (const json_value* jf = jc.find("friction")) {
+    if (const json_value *jf = jc.find("friction")) {
         p.contact.friction = scalar(*jf, "contact.friction");
         // mu = 0 (exactly, however written) is the smooth impact, unchanged
         if (is_constant(p.contact.friction) && decide(p.contact.friction) == decision::zero)
             p.contact.friction = 0;
     }
 
-    if (const json_value* jp = root.find("pivots")) {
+    if (const json_value *jp = root.find("pivots")) {
         if (!jp->is_array())
             throw input_error(std::string("pivots: expected a list, got ") + json_value::kind_name(jp->type()));
         for (std::size_t k = 0; k < jp->items().size(); ++k) {
-            const json_value& jv = jp->items()[k];
+            const json_value &jv = jp->items()[k];
             std::string where = "pivots[" + std::to_string(k) + "]";
             if (!jv.is_object())
                 throw input_error(where + ": expected an object, got " + json_value::kind_name(jv.type()));
@@ -698,7 +732,7 @@ problem read_problem(const std::string& text, const std::string& source)
     return p;
 }
 
-problem load_problem_file(const std::string& path)
+problem load_problem_file(const std::string &path)
 {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
@@ -713,19 +747,19 @@ problem load_problem_file(const std::string& path)
     ss << text;
     try {
         return read_problem(ss.str(), path);
-    } catch (const input_error& e) {
+    } catch (const input_error &e) {
         throw input_error(names::display_text(path) + ": " + e.what());
     }
 }
 
-problem substitute(const problem& p, const ex& values)
+problem substitute(const problem &p, const ex &values)
 {
     problem q = p;
-    auto sv = [&](vec3& v) { v = subs(v, values); };
+    auto sv = [&](vec3 &v) { v = subs(v, values); };
     q.restitution = p.restitution.subs(values);
-    for (body& b : q.bodies) {
+    for (body &b : q.bodies) {
         b.mass = b.mass.subs(values);
-        for (auto& row : b.inertia)
+        for (auto &row : b.inertia)
             sv(row);
         sv(b.position);
         sv(b.velocity);
@@ -734,7 +768,7 @@ problem substitute(const problem& p, const ex& values)
     sv(q.contact.point);
     sv(q.contact.normal);
     q.contact.friction = p.contact.friction.subs(values);
-    for (pivot& pv : q.pivots)
+    for (pivot &pv : q.pivots)
         sv(pv.point);
     return q;
 }

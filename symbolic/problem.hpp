@@ -9,36 +9,38 @@
 #include <string>
 #include <vector>
 
-namespace impactgen {
+namespace impactgen
+{
 
 /// What the problem reader accepts (anything larger is refused with a message
 /// naming the key, before any work is done on it): every subcommand then
 /// finishes in well under a second.
-namespace limits {
-inline constexpr std::size_t file_bytes = 64 * 1024;     ///< a problem file or text
-inline constexpr std::size_t expression_length = 1000;   ///< characters of one expression string
-inline constexpr int expression_depth = 32;              ///< nested parentheses in one expression
-inline constexpr int sign_run = 3;                       ///< + or - signs in a row
-inline constexpr std::size_t name_length = 64;           ///< bytes of a body name
-inline constexpr std::size_t bodies = 64;                ///< bodies in one problem
-inline constexpr std::size_t symbols = 64;               ///< distinct symbols in one problem
-inline constexpr int exponent = 64;                      ///< |exponent| on a symbol or an expression (x^64)
+namespace limits
+{
+inline constexpr std::size_t file_bytes = 64 * 1024;   ///< a problem file or text
+inline constexpr std::size_t expression_length = 1000; ///< characters of one expression string
+inline constexpr int expression_depth = 32;            ///< nested parentheses in one expression
+inline constexpr int sign_run = 3;                     ///< + or - signs in a row
+inline constexpr std::size_t name_length = 64;         ///< bytes of a body name
+inline constexpr std::size_t bodies = 64;              ///< bodies in one problem
+inline constexpr std::size_t symbols = 64;             ///< distinct symbols in one problem
+inline constexpr int exponent = 64;                    ///< |exponent| on a symbol or an expression (x^64)
 } // namespace limits
 
 /// The one symbol of a given name, shared by every problem in the process
 /// (GiNaC compares symbols by identity, not by name).
-GiNaC::symbol symbol_named(const std::string& name, const std::string& tex_name = "");
+GiNaC::symbol symbol_named(const std::string &name, const std::string &tex_name = "");
 
 struct body {
     std::string name;
-    std::string label;           ///< short label used in symbol names ("1", "2", or the name)
-    bool numbered = false;       ///< a named class's body 1 or 2 (prose says "body 1", not its name)
-    bool infinite_mass = false;  ///< an immovable-by-impulse body (wall, ground, bat)
-    ex mass = 0;                 ///< m > 0; unused when infinite_mass
-    bool particle = true;        ///< no rotational inertia: angular velocity is left unchanged
-    mat3 inertia = zero_mat();   ///< about the centre of mass, world axes; planar: only [2][2]
-    vec3 position = zero_vec();  ///< centre of mass C
-    vec3 velocity = zero_vec();  ///< of C, just before impact
+    std::string label;                  ///< short label used in symbol names ("1", "2", or the name)
+    bool numbered = false;              ///< a named class's body 1 or 2 (prose says "body 1", not its name)
+    bool infinite_mass = false;         ///< an immovable-by-impulse body (wall, ground, bat)
+    ex mass = 0;                        ///< m > 0; unused when infinite_mass
+    bool particle = true;               ///< no rotational inertia: angular velocity is left unchanged
+    mat3 inertia = zero_mat();          ///< about the centre of mass, world axes; planar: only [2][2]
+    vec3 position = zero_vec();         ///< centre of mass C
+    vec3 velocity = zero_vec();         ///< of C, just before impact
     vec3 angular_velocity = zero_vec(); ///< planar: only [2]
     /// Velocity and angular velocity exactly zero before impact.
     bool at_rest() const
@@ -51,8 +53,8 @@ struct body {
 };
 
 struct pivot {
-    std::size_t body = 0;        ///< index into problem::bodies
-    vec3 point = zero_vec();     ///< the fixed point E
+    std::size_t body = 0;    ///< index into problem::bodies
+    vec3 point = zero_vec(); ///< the fixed point E
 };
 
 struct contact_spec {
@@ -63,14 +65,14 @@ struct contact_spec {
 };
 
 struct problem {
-    std::string source;               ///< named class or file it came from
-    int dimension = 3;                ///< 2 (planar) or 3
+    std::string source; ///< named class or file it came from
+    int dimension = 3;  ///< 2 (planar) or 3
     ex restitution = 0;
     std::vector<body> bodies;
     contact_spec contact;
     std::vector<pivot> pivots;
     std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
-    std::string units;                ///< "" (none given) or "SI": the unit system of every number (prose only)
+    std::string units;                 ///< "" (none given) or "SI": the unit system of every number (prose only)
     std::vector<std::string> warnings; ///< e.g. keys that were ignored
 
     /// Every symbol the problem's values contain, sorted by name.
@@ -79,7 +81,7 @@ struct problem {
     /// True when the contact has a friction coefficient that is not identically 0.
     bool has_friction() const { return !contact.friction.is_zero(); }
     /// The pivot of a body, or nullptr.
-    const pivot* pivot_of(std::size_t body) const;
+    const pivot *pivot_of(std::size_t body) const;
     /// True when the impulse cannot move the body (infinite mass, or a pinned particle).
     bool immovable(std::size_t body) const;
 };
@@ -87,25 +89,25 @@ struct problem {
 /// Checks everything the problem format requires that can be decided for the
 /// values at hand (numbers are checked exactly; symbols are assumed valid).
 /// Throws input_error naming the key.
-void validate(const problem& p);
+void validate(const problem &p);
 
 /// Reads a problem in the format of shared/problem-format.md; validates it.
-problem read_problem(const std::string& json_text, const std::string& source);
-problem load_problem_file(const std::string& path);
+problem read_problem(const std::string &json_text, const std::string &source);
+problem load_problem_file(const std::string &path);
 
 /// Parses one value of the problem format (a JSON number's text or an
 /// expression string) into an exact expression; `where` names the key.
-ex parse_value(const std::string& text, bool is_string, const std::string& where);
+ex parse_value(const std::string &text, bool is_string, const std::string &where);
 
 /// The body as prose names it: "body 1" for the named classes' numbered bodies, else its name.
-std::string display_name(const body& b);
+std::string display_name(const body &b);
 
 /// Velocity of a point q of body b: v + w x (q - C); a particle is a point,
 /// so its spin does not move it (its velocity is v everywhere).
-vec3 point_velocity(const body& b, const vec3& q);
-vec3 point_velocity(const body& b, const vec3& v, const vec3& w, const vec3& q);
+vec3 point_velocity(const body &b, const vec3 &q);
+vec3 point_velocity(const body &b, const vec3 &v, const vec3 &w, const vec3 &q);
 
 /// The problem with every symbol replaced (symbol == value list).
-problem substitute(const problem& p, const GiNaC::ex& symbol_values);
+problem substitute(const problem &p, const GiNaC::ex &symbol_values);
 
 } // namespace impactgen

@@ -10,14 +10,15 @@
 #include <set>
 #include <sstream>
 
-namespace impactgen {
+namespace impactgen
+{
 using namespace GiNaC;
 
-ex kinetic_energy(const problem& p, const std::vector<vec3>& v, const std::vector<vec3>& w)
+ex kinetic_energy(const problem &p, const std::vector<vec3> &v, const std::vector<vec3> &w)
 {
     ex T = 0;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body& b = p.bodies[i];
+        const body &b = p.bodies[i];
         if (b.infinite_mass)
             continue;
         T += b.mass * dot(v[i], v[i]) / 2;
@@ -27,29 +28,40 @@ ex kinetic_energy(const problem& p, const std::vector<vec3>& v, const std::vecto
     return T;
 }
 
-namespace {
-
-bool atomic(const ex& e)
+namespace
 {
-    return is_a<numeric>(e) || is_a<symbol>(e) || (is_a<GiNaC::mul>(e) && e.nops() == 2 && is_a<numeric>(e.op(1)) && is_a<symbol>(e.op(0)));
+
+bool atomic(const ex &e)
+{
+    return is_a<numeric>(e) || is_a<symbol>(e) ||
+           (is_a<GiNaC::mul>(e) && e.nops() == 2 && is_a<numeric>(e.op(1)) && is_a<symbol>(e.op(0)));
 }
 
-bool short_label(const std::string& l) { return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0])); }
-std::string sub(const std::string& label) { return short_label(label) ? label : "," + label; }
-std::string tsub(const std::string& label) { return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}"; }
+bool short_label(const std::string &l)
+{
+    return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0]));
+}
+std::string sub(const std::string &label)
+{
+    return short_label(label) ? label : "," + label;
+}
+std::string tsub(const std::string &label)
+{
+    return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
+}
 
 } // namespace
 
-step_builder::step_builder(solution& s, const problem& p) : s_(s)
+step_builder::step_builder(solution &s, const problem &p) : s_(s)
 {
-    for (const symbol& x : p.parameters())
+    for (const symbol &x : p.parameters())
         taken_.insert(x.get_name());
-    for (const step& st : s.steps)
+    for (const step &st : s.steps)
         taken_.insert(st.sym.get_name());
 }
 
-ex step_builder::add(step_role role, std::size_t body, int row, int column, const std::string& name, const std::string& tex,
-                     const ex& value, const std::string& meaning, bool force)
+ex step_builder::add(step_role role, std::size_t body, int row, int column, const std::string &name,
+                     const std::string &tex, const ex &value, const std::string &meaning, bool force)
 {
     if (!force && atomic(value))
         return value;
@@ -64,21 +76,21 @@ ex step_builder::add(step_role role, std::size_t body, int row, int column, cons
     return sym;
 }
 
-const step* solution::find(step_role role, std::size_t body, int row, int column) const
+const step *solution::find(step_role role, std::size_t body, int row, int column) const
 {
-    for (const step& st : steps)
+    for (const step &st : steps)
         if (st.role == role && (body == no_body || st.body == body) && (row < 0 || st.row == row) &&
             (column < 0 || st.column == column))
             return &st;
     return nullptr;
 }
 
-step* solution::find(step_role role, std::size_t body, int row, int column)
+step *solution::find(step_role role, std::size_t body, int row, int column)
 {
-    return const_cast<step*>(static_cast<const solution&>(*this).find(role, body, row, column));
+    return const_cast<step *>(static_cast<const solution &>(*this).find(role, body, row, column));
 }
 
-ex solution::expand_steps(const ex& e) const
+ex solution::expand_steps(const ex &e) const
 {
     ex r = e;
     for (auto it = steps.rbegin(); it != steps.rend(); ++it)
@@ -86,49 +98,50 @@ ex solution::expand_steps(const ex& e) const
     return r;
 }
 
-lst solution::step_values(const ex& input_values) const
+lst solution::step_values(const ex &input_values) const
 {
     lst values;
-    for (const step& st : steps) {
+    for (const step &st : steps) {
         ex v = st.value.subs(input_values).subs(values);
         values.append(st.sym == v);
     }
     return values;
 }
 
-solution solve(const derivation& d)
+solution solve(const derivation &d)
 {
-    const problem& p = d.prob;
+    const problem &p = d.prob;
     if (p.has_friction()) {
         std::ostringstream mu;
         mu << p.contact.friction;
-        throw input_error((p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
-                          ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
-                          ") is solved by 'impactgen solve' (numbers) and 'impactgen formulas'");
+        throw input_error(
+            (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
+            ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
+            ") is solved by 'impactgen solve' (numbers) and 'impactgen formulas'");
     }
     solution s;
     step_builder sb(s, p);
     const int dim = p.dimension;
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
-    const vec3& n = d.n_hat;
-    const vec3& O = p.contact.point;
+    const vec3 &n = d.n_hat;
+    const vec3 &O = p.contact.point;
 
     struct side {
         std::size_t index;
         ex sign;
-        ex w = 0;          // effective inverse mass at the contact point along n
-        vec3 g = zero_vec(); // angular velocity change per unit impulse along s n: I^{-1} (r x n)
+        ex w = 0;              // effective inverse mass at the contact point along n
+        vec3 g = zero_vec();   // angular velocity change per unit impulse along s n: I^{-1} (r x n)
         vec3 arm = zero_vec(); // d = C - E of a pinned body
         bool pinned = false;
     };
     side sides[2] = {{i1, -1}, {i2, 1}};
 
-    for (side& sd : sides) {
-        const body& b = p.bodies[sd.index];
+    for (side &sd : sides) {
+        const body &b = p.bodies[sd.index];
         const std::string L = b.label;
         if (p.immovable(sd.index))
             continue;
-        const pivot* pv = p.pivot_of(sd.index);
+        const pivot *pv = p.pivot_of(sd.index);
         sd.pinned = pv != nullptr;
         // Lever of the contact normal about C (free) or about E (pinned).
         vec3 r = sd.pinned ? O - pv->point : O - b.position;
@@ -146,24 +159,33 @@ solution solve(const derivation& d)
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
             if (dim == 2) {
-                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tidy(tau[2]),
-                              "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
-                ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", tidy(J[2][2]),
-                                           "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
-                                  : J[2][2];
+                ex t =
+                    sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tidy(tau[2]),
+                           "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
+                ex Iz =
+                    sd.pinned
+                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}",
+                                 tidy(J[2][2]),
+                                 "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
+                        : J[2][2];
                 sd.g = {0, 0, t / Iz};
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + t * t / Iz;
             } else {
                 vec3 t;
                 for (int c = 0; c < 3; ++c)
-                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L), "\\tau_{" + p.axes[c] + tsub(L) + "}", tidy(tau[c]),
-                                  "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " + p.axes[c] + " component");
+                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L),
+                                  "\\tau_{" + p.axes[c] + tsub(L) + "}", tidy(tau[c]),
+                                  "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " +
+                                      p.axes[c] + " component");
                 mat3 Js = J;
                 if (sd.pinned)
                     for (int a = 0; a < 3; ++a)
                         for (int c = a; c < 3; ++c) {
-                            ex v = sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + sub(L), "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}",
-                                          tidy(J[a][c]), "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                            ex v =
+                                sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + sub(L),
+                                       "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}", tidy(J[a][c]),
+                                       "inertia tensor of " + display_name(b) +
+                                           " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
@@ -179,14 +201,19 @@ solution solve(const derivation& d)
                 ex D = 1;
                 if (!diagonal) {
                     mat3 adj = adjugate(Js);
-                    D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+                    D = sb.add(
+                        step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js),
+                        "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
                     at = mul(adj, t);
                 }
                 for (int c = 0; c < 3; ++c)
-                    sd.g[c] = sb.add(step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L), "g_{" + p.axes[c] + tsub(L) + "}",
-                                     diagonal ? t[c] / Js[c][c] : at[c] / D,
-                                     "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] + " component: change of angular velocity per unit impulse" +
-                                         (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)") : std::string()));
+                    sd.g[c] = sb.add(
+                        step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L),
+                        "g_{" + p.axes[c] + tsub(L) + "}", diagonal ? t[c] / Js[c][c] : at[c] / D,
+                        "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] +
+                            " component: change of angular velocity per unit impulse" +
+                            (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)")
+                                      : std::string()));
                 sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
             }
         } else {
@@ -202,10 +229,12 @@ solution solve(const derivation& d)
     const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
     if (vanishes_identically(s, k_value, where + ": the effective inverse mass k = w_1 + w_2"))
         throw input_error(where + ": no impulse can act: neither body can move along the normal at the contact point "
-                          "(the line of impact passes through the pivot of a body that cannot otherwise move)");
+                                  "(the line of impact passes through the pivot of a body that cannot otherwise move)");
     const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
-    ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value, "effective inverse mass of the contact: " + wsum);
-    ex N = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + p.restitution) * u / k, "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
+    ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value,
+                  "effective inverse mass of the contact: " + wsum);
+    ex N = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + p.restitution) * u / k,
+                  "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
     s.normal_impulse = N;
 
     // Every body after impact.
@@ -213,11 +242,11 @@ solution solve(const derivation& d)
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
     s.pivot_impulses.assign(p.pivots.size(), zero_vec());
-    for (const side& sd : sides) {
-        const body& b = p.bodies[sd.index];
+    for (const side &sd : sides) {
+        const body &b = p.bodies[sd.index];
         if (b.infinite_mass)
             continue;
-        const pivot* pv = p.pivot_of(sd.index);
+        const pivot *pv = p.pivot_of(sd.index);
         vec3 dv = zero_vec(), dw = zero_vec();
         if (!p.immovable(sd.index)) {
             dw = (sd.sign * N) * sd.g;
@@ -236,13 +265,21 @@ solution solve(const derivation& d)
     }
 
     // Unknown == value, in the derivation's unknowns.
-    for (const unknown& un : d.unknowns) {
+    for (const unknown &un : d.unknowns) {
         ex v;
         switch (un.kind) {
-        case unknown_kind::velocity: v = s.after[un.owner].velocity[un.component]; break;
-        case unknown_kind::angular_velocity: v = s.after[un.owner].angular_velocity[un.component]; break;
-        case unknown_kind::normal_impulse: v = N; break;
-        case unknown_kind::pivot_impulse: v = s.pivot_impulses[un.owner][un.component]; break;
+        case unknown_kind::velocity:
+            v = s.after[un.owner].velocity[un.component];
+            break;
+        case unknown_kind::angular_velocity:
+            v = s.after[un.owner].angular_velocity[un.component];
+            break;
+        case unknown_kind::normal_impulse:
+            v = N;
+            break;
+        case unknown_kind::pivot_impulse:
+            v = s.pivot_impulses[un.owner][un.component];
+            break;
         }
         s.unknown_values.append(un.sym == v);
     }
@@ -260,12 +297,12 @@ solution solve(const derivation& d)
     // fixed points and do no work.
     // When both bodies move this is -N u - N^2 k / 2 = (1 - e^2) u^2 / (2 k).
     ex lost = 0;
-    const vec3* contact_velocity[2] = {&d.vA, &d.vB};
+    const vec3 *contact_velocity[2] = {&d.vA, &d.vB};
     if (!p.immovable(i1) && !p.immovable(i2)) {
         lost = -N * u - N * N * k / 2;
     } else {
         for (int side_index = 0; side_index < 2; ++side_index) {
-            const side& sd = sides[side_index];
+            const side &sd = sides[side_index];
             if (p.immovable(sd.index))
                 continue;
             ex a = dot(*contact_velocity[side_index], n);
@@ -273,24 +310,25 @@ solution solve(const derivation& d)
         }
     }
     s.energy_before = kinetic_energy(p, v0, w0);
-    s.energy_lost = sb.add(step_role::energy_lost, no_body, -1, -1, "T_lost", "T_{\\mathrm{lost}}", lost, "kinetic energy lost, T - T' (bodies of finite mass)", true);
+    s.energy_lost = sb.add(step_role::energy_lost, no_body, -1, -1, "T_lost", "T_{\\mathrm{lost}}", lost,
+                           "kinetic energy lost, T - T' (bodies of finite mass)", true);
     s.energy_after = s.energy_before - s.energy_lost;
     s.energy_after_direct = kinetic_energy(p, v1, w1);
     return s;
 }
 
-bool vanishes_identically(const solution& s, const ex& value, const std::string& what)
+bool vanishes_identically(const solution &s, const ex &value, const std::string &what)
 {
     exset free;
-    auto collect = [&](const ex& e) {
+    auto collect = [&](const ex &e) {
         for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
             if (is_a<symbol>(*it))
                 free.insert(*it);
     };
     collect(value);
-    for (const step& st : s.steps)
+    for (const step &st : s.steps)
         collect(st.value);
-    for (const step& st : s.steps)
+    for (const step &st : s.steps)
         free.erase(st.sym);
     if (free.empty()) {
         ex v = value.subs(s.step_values(lst{}));
@@ -302,18 +340,19 @@ bool vanishes_identically(const solution& s, const ex& value, const std::string&
         return d == decision::zero;
     }
     std::vector<symbol> symbols;
-    for (const ex& x : free)
+    for (const ex &x : free)
         symbols.push_back(ex_to<symbol>(x));
-    return vanishes_at_random_points(symbols, [&](const lst& point) { return value.subs(point).subs(s.step_values(point)); });
+    return vanishes_at_random_points(symbols,
+                                     [&](const lst &point) { return value.subs(point).subs(s.step_values(point)); });
 }
 
-namespace {
-
+namespace
+{
 
 // A constant residual that normal() left non-zero because GiNaC keeps unlike roots apart
 // (sqrt(2) sqrt(3) - sqrt(6) with a normal (sqrt(2), 1)): its roots merged; if it is still
 // not 0, its value in 60-digit floats, for the caller's test of 40 digits.
-ex settled_constant(const ex& r)
+ex settled_constant(const ex &r)
 {
     if (r.is_zero() || is_a<numeric>(r) || !is_constant(r))
         return r;
@@ -326,16 +365,16 @@ ex settled_constant(const ex& r)
 
 } // namespace
 
-std::vector<ex> residuals(const derivation& d, const solution& s, const ex& input_values)
+std::vector<ex> residuals(const derivation &d, const solution &s, const ex &input_values)
 {
     std::vector<ex> r;
     const bool numeric_inputs = !(is_a<lst>(input_values) && input_values.nops() == 0);
     if (numeric_inputs) {
         lst steps = s.step_values(input_values);
         lst unknowns;
-        for (const ex& rel : s.unknown_values)
+        for (const ex &rel : s.unknown_values)
             unknowns.append(rel.lhs() == rel.rhs().subs(input_values).subs(steps));
-        for (const equation& eq : d.equations)
+        for (const equation &eq : d.equations)
             r.push_back(settled_constant(tidy((eq.lhs - eq.rhs).subs(input_values).subs(unknowns))));
         return r;
     }
@@ -346,10 +385,10 @@ std::vector<ex> residuals(const derivation& d, const solution& s, const ex& inpu
     if (d.prob.is_numeric()) {
         lst steps = s.step_values(lst{});
         bool exact = true;
-        for (const ex& rel : steps)
+        for (const ex &rel : steps)
             exact = exact && is_a<numeric>(rel.rhs()) && ex_to<numeric>(rel.rhs()).is_rational();
         if (exact) { // rational inputs: every residual is an exact number
-            for (const equation& eq : d.equations)
+            for (const equation &eq : d.equations)
                 r.push_back(tidy((eq.lhs - eq.rhs).subs(s.unknown_values).subs(steps)));
             return r;
         }
@@ -357,12 +396,12 @@ std::vector<ex> residuals(const derivation& d, const solution& s, const ex& inpu
         // exact values nest every earlier step; evaluating them as trees is exponential).
         digits_scope digits(60);
         lst floats;
-        for (const step& st : s.steps)
+        for (const step &st : s.steps)
             floats.append(st.sym == st.value.subs(floats).evalf());
         lst unknowns;
-        for (const ex& rel : s.unknown_values)
+        for (const ex &rel : s.unknown_values)
             unknowns.append(rel.lhs() == rel.rhs().subs(floats).evalf());
-        for (const equation& eq : d.equations) {
+        for (const equation &eq : d.equations) {
             // exact where simplification is cheap (one or two irrationals: sqrt(2)), else the float
             ex exact_residual = tidy((eq.lhs - eq.rhs).subs(s.unknown_values).subs(steps));
             r.push_back(exact_residual.is_zero() ? ex(0) : (eq.lhs - eq.rhs).subs(unknowns).evalf());
@@ -372,7 +411,7 @@ std::vector<ex> residuals(const derivation& d, const solution& s, const ex& inpu
     // Symbolic: back-substitute the steps from the last to the first,
     // normalising after each; most residuals vanish before the large
     // definitions (inverse inertia) are ever expanded.
-    for (const equation& eq : d.equations) {
+    for (const equation &eq : d.equations) {
         ex res = (eq.lhs - eq.rhs).subs(s.unknown_values).normal();
         for (auto it = s.steps.rbegin(); it != s.steps.rend() && !res.is_zero(); ++it)
             if (res.has(it->sym))

@@ -29,13 +29,16 @@
 #define IMPACTGEN_FUNC inline
 #endif
 
-namespace impactgen::eigen {
+namespace impactgen::eigen
+{
 
 /// The scalar type of a view (without const).
 template <typename View>
-using scalar_of = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(std::declval<const View&>().entry[0])>>>;
+using scalar_of =
+    std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(std::declval<const View &>().entry[0])>>>;
 
-namespace detail {
+namespace detail
+{
 /// A fixed entry (long double) in the scalar type: directly for the floating-point
 /// types, through double for others (autodiff scalars are built on double).
 template <typename T> IMPACTGEN_FUNC T fixed_value(long double x)
@@ -50,7 +53,7 @@ template <typename T> IMPACTGEN_FUNC T fixed_value(long double x)
 /// Writes m into the members the view points to; false when m disagrees with an
 /// entry the header fixed (that entry is then not written: it has no member).
 template <typename View, typename Derived>
-IMPACTGEN_FUNC bool assign(const View& v, const Eigen::MatrixBase<Derived>& m)
+IMPACTGEN_FUNC bool assign(const View &v, const Eigen::MatrixBase<Derived> &m)
 {
     using T = scalar_of<View>;
     static_assert(Derived::RowsAtCompileTime == View::rows && Derived::ColsAtCompileTime == View::cols,
@@ -60,7 +63,7 @@ IMPACTGEN_FUNC bool assign(const View& v, const Eigen::MatrixBase<Derived>& m)
         for (int c = 0; c < View::cols; ++c) {
             const int k = r * View::cols + c;
             const T x = T(m(r, c));
-            T* p = v.entry[k];
+            T *p = v.entry[k];
             if (p == nullptr) {
                 agrees = agrees && x == detail::fixed_value<T>(v.fixed[k]);
                 continue;
@@ -81,8 +84,7 @@ IMPACTGEN_FUNC bool assign(const View& v, const Eigen::MatrixBase<Derived>& m)
 }
 
 /// The members the view points to (and the fixed entries) as an Eigen matrix.
-template <typename View>
-IMPACTGEN_FUNC Eigen::Matrix<scalar_of<View>, View::rows, View::cols> to_eigen(const View& v)
+template <typename View> IMPACTGEN_FUNC Eigen::Matrix<scalar_of<View>, View::rows, View::cols> to_eigen(const View &v)
 {
     using T = scalar_of<View>;
     Eigen::Matrix<T, View::rows, View::cols> m;
