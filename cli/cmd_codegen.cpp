@@ -59,8 +59,7 @@ int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
     cli::split_wrt(a.wrt, o.wrt);
     codegen::header h;
     try {
-        // With Coulomb friction (mu not 0 once --set is folded in): the regime-selecting header.
-        h = codegen::has_friction(p, o) ? codegen::generate_friction(p, o) : codegen::generate(p, o);
+        h = codegen::generate(p, o);
     } catch (const codegen::option_error &e) {
         // The library names the option by kind; here it becomes its flag.
         std::string message = std::string("--") + codegen::option_error::option_name(e.which) + ": " + e.what();

@@ -29,16 +29,9 @@ void register_explain(CLI::App &app, std::function<int()> &action)
         action = [opt] {
             problem p = load(opt->what);
             derivation d = derive(p);
-            print::document doc;
-            if (p.has_friction()) {
-                // Stick, then slide, and which holds; solve_friction refuses a singular K.
-                doc = print::explain_friction(d, solve_friction(d));
-            } else {
-                solution s = solve(d);
-                print::worked_example example;
-                bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
-                doc = print::explain(d, s, has_example ? &example : nullptr);
-            }
+            print::worked_example example;
+            const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
+            const print::document doc = print::explain(d, solve_impact(d), has_example ? &example : nullptr);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

@@ -66,30 +66,17 @@ int cmd_solve(const std::string &what, bool json)
                           impactgen::names::display_text(names, 120) + "); use 'impactgen formulas' for closed forms");
     }
     derivation d = derive(p);
-    if (p.has_friction()) {
-        friction_solution f = solve_friction(d);
-        regime_case c = select_regime(d, f);
-        if (json)
-            std::cout << print::answer_json(d, c, false).dump(2) << "\n";
-        else
-            std::cout << print::answer_text(d, c);
-        return 0;
-    }
-    solution s = solve(d);
+    const regime_case c = select_candidate(d, solve_impact(d));
     if (json)
-        std::cout << print::answer_json(d, s, false).dump(2) << "\n";
+        std::cout << print::answer_json(d, c, false).dump(2) << "\n";
     else
-        std::cout << print::answer_text(d, s);
+        std::cout << print::answer_text(d, c);
     return 0;
 }
 
 int cmd_formulas(const std::string &what, const std::string &format, bool jacobian, const std::string &wrt)
 {
     problem p = load(what);
-    if (jacobian && p.has_friction())
-        throw input_error(
-            what +
-            ": --jacobian is not available with friction (the impact map is piecewise: one closed form per regime)");
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {
@@ -104,19 +91,9 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
         return 0;
     }
     derivation d = derive(p);
-    if (p.has_friction()) {
-        friction_solution f = solve_friction(d);
-        if (format == "json")
-            std::cout << print::formulas_json(d, f).dump(2) << "\n";
-        else if (format == "latex")
-            std::cout << print::formulas_latex(d, f);
-        else
-            std::cout << print::formulas_text(d, f);
-        return 0;
-    }
-    solution s = solve(d);
+    const impact_solution s = solve_impact(d);
     if (format == "json")
-        std::cout << print::answer_json(d, s, true).dump(2) << "\n";
+        std::cout << print::formulas_json(d, s).dump(2) << "\n";
     else if (format == "latex")
         std::cout << print::formulas_latex(d, s);
     else

@@ -1,9 +1,11 @@
 #include "codegen.hpp"
+#include "friction.hpp"
 #include "text.hpp"
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
 #include "symbolic/decide.hpp"
+#include "symbolic/response.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -419,15 +421,11 @@ mat3 tensor_in_use(const problem &q, const solution &s, std::size_t i)
     const pivot *pv = q.pivot_of(i);
     if (!pv)
         return b.inertia;
-    mat3 J = zero_mat();
-    const vec3 d = b.position - pv->point;
-    const ex dd = dot(d, d);
+    mat3 J = inertia_about(b, pv->point);
     for (int r = 0; r < 3; ++r)
-        for (int c = r; c < 3; ++c) {
-            const step *st = s.find(step_role::pivot_inertia, i, r, c);
-            J[r][c] = J[c][r] =
-                st ? ex(st->sym) : tidy(b.inertia[r][c] + b.mass * ((r == c ? dd : ex(0)) - d[r] * d[c]));
-        }
+        for (int c = r; c < 3; ++c)
+            if (const step *st = s.find(step_role::pivot_inertia, i, r, c))
+                J[r][c] = J[c][r] = st->sym;
     return J;
 }
 
@@ -1295,6 +1293,9 @@ header generate(const problem &p, const options &o)
                 "not a keyword or a reserved name)");
     if (std::string why = names::namespace_problem(o.ns); !why.empty())
         throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
+    // Coulomb friction (mu not 0 once --set is folded in): the regime-selecting header.
+    if (has_friction(p, o))
+        return generate_friction(p, o);
     return writer(p, o).run();
 }
 

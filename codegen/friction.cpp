@@ -41,6 +41,7 @@
 #include "symbolic/decide.hpp"
 #include "symbolic/friction.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/response.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -1411,18 +1412,10 @@ private:
                 const step *ie = s.find(step_role::pivot_inertia, i, 2, 2);
                 ex Iz = bd.inertia[2][2];
                 if (pv)
-                    Iz = ie ? ex(ie->sym)
-                            : bd.inertia[2][2] + bd.mass * dot(bd.position - pv->point, bd.position - pv->point);
+                    Iz = ie ? ex(ie->sym) : inertia_about(bd, pv->point)[2][2];
                 inv[2][2] = 1 / Iz;
             } else {
-                mat3 J = bd.inertia;
-                if (pv) {
-                    const vec3 arm = bd.position - pv->point;
-                    const ex dd = dot(arm, arm);
-                    for (std::size_t r = 0; r < 3; ++r)
-                        for (std::size_t c = 0; c < 3; ++c)
-                            J[r][c] = J[r][c] + bd.mass * ((r == c ? dd : ex(0)) - arm[r] * arm[c]);
-                }
+                const mat3 J = pv ? inertia_about(bd, pv->point) : bd.inertia;
                 bool diagonal = true;
                 for (std::size_t r = 0; r < 3; ++r)
                     for (std::size_t c = r + 1; c < 3; ++c)
@@ -1719,14 +1712,8 @@ private:
             const body &b = q.bodies[i];
             if (q.dimension != 3 || b.particle || b.infinite_mass)
                 continue;
-            mat3 J = b.inertia;
-            if (const pivot *pv = q.pivot_of(i)) {
-                const vec3 arm = b.position - pv->point;
-                const ex dd = dot(arm, arm);
-                for (std::size_t r = 0; r < 3; ++r)
-                    for (std::size_t c = 0; c < 3; ++c)
-                        J[r][c] = tidy(J[r][c] + b.mass * ((r == c ? dd : ex(0)) - arm[r] * arm[c]));
-            }
+            const pivot *pv = q.pivot_of(i);
+            const mat3 J = pv ? inertia_about(b, pv->point) : b.inertia;
             const std::string what =
                 "inertia tensor of " + b.name + (q.pivot_of(i) ? " about its pivot" : "") + " positive definite: ";
             for (const auto &[minor, text] : positive_definite_minors(J, q.axes, false))

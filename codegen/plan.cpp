@@ -685,6 +685,9 @@ plan make_plan(const problem &p, const options &o)
 {
     plan pl;
     pl.prob = specialise(p, o);
+    if ((o.jacobian || !o.wrt.empty()) && pl.prob.has_friction())
+        throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
+                                                   "selection makes the impact map piecewise)");
     if (o.unit_normal)
         check_unit_normal(pl.prob);
     derive_options how;

@@ -94,6 +94,8 @@ nlohmann::ordered_json answer_json(const derivation &d, const solution &s, bool 
 
 nlohmann::ordered_json answer_json(const derivation &d, const regime_case &c, bool symbolic)
 {
+    if (!d.prob.has_friction()) // a smooth contact's one candidate: its closed form as it is
+        return answer_json(d, c.sol, symbolic);
     nlohmann::ordered_json out = answer_json(d, c.sol, symbolic);
     valuer val{c.sol, symbolic};
     nlohmann::ordered_json t = nlohmann::ordered_json::array();
@@ -111,7 +113,7 @@ std::string answer_text(const derivation &d, const solution &s)
 
 std::string answer_text(const derivation &d, const regime_case &c)
 {
-    return answer_text(d, c.sol, &c);
+    return answer_text(d, c.sol, d.prob.has_friction() ? &c : nullptr);
 }
 
 std::string answer_text(const derivation &d, const solution &s, const regime_case *friction)

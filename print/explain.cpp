@@ -1573,4 +1573,11 @@ document explain(const derivation &d, const solution &s, const worked_example *e
     return explain_document(d, s, example);
 }
 
+document explain(const derivation &d, const impact_solution &s, const worked_example *example)
+{
+    if (!d.prob.has_friction())
+        return explain(d, s.cases.front().sol, example);
+    return explain_friction(d, s);
+}
+
 } // namespace impactgen::print

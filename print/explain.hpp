@@ -151,6 +151,11 @@ document explain(const derivation &d, const solution &s, const worked_example *e
 /// regime that holds (or why none or several do).
 document explain_friction(const derivation &d, const friction_solution &f);
 
+/// The explanation of an impact whatever its contact law: the smooth document for a smooth
+/// contact's one candidate (`example` as above), the friction document when the law has
+/// several candidates.
+document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr);
+
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)
 std::string explain_latex(const document &doc);    ///< a complete amsmath document for pdflatex

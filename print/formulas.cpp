@@ -1,5 +1,6 @@
 #include "formulas.hpp"
 
+#include "answer.hpp"
 #include "canonical.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
@@ -141,6 +142,8 @@ ex stick_threshold(const derivation &d, const friction_solution &f)
 
 std::string formulas_text(const derivation &d, const friction_solution &f)
 {
+    if (!d.prob.has_friction()) // a smooth contact: its one candidate
+        return formulas_text(d, f.cases.front().sol);
     std::ostringstream os;
     const problem &p = d.prob;
     os << p.source << ": impact with Coulomb friction mu = " << canonical_text(f.mu) << ", " << f.cases.size()
@@ -187,6 +190,8 @@ std::string formulas_text(const derivation &d, const friction_solution &f)
 
 std::string formulas_latex(const derivation &d, const friction_solution &f)
 {
+    if (!d.prob.has_friction()) // a smooth contact: its one candidate
+        return formulas_latex(d, f.cases.front().sol);
     std::ostringstream os;
     const problem &p = d.prob;
     os << "% impactgen formulas -- " << p.source << ": impact with Coulomb friction\n";
@@ -220,6 +225,8 @@ std::string formulas_latex(const derivation &d, const friction_solution &f)
 
 nlohmann::ordered_json formulas_json(const derivation &d, const friction_solution &f)
 {
+    if (!d.prob.has_friction()) // a smooth contact: its one candidate, as solve --json writes it
+        return answer_json(d, f.cases.front().sol, true);
     const problem &p = d.prob;
     nlohmann::ordered_json out;
     out["friction"] = canonical_parser(f.mu);

@@ -2,6 +2,7 @@
 
 #include "decide.hpp"
 #include "names/escape.hpp"
+#include "response.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -41,26 +42,18 @@ std::string tsub(const std::string &label)
     return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
 }
 
-// One body of the contact: how a unit impulse at O moves the contact point.
+// One body of the contact: its response (response.hpp) with the inverse inertia as the
+// steps keep it.
 struct side {
-    std::size_t index = 0;
-    int sign = 1; // body 1 receives -P, body 2 +P
-    bool movable = false, pinned = false, particle = true;
-    vec3 lever = zero_vec(); // r = O - C (free) or rho = O - E (pinned)
-    vec3 arm = zero_vec();   // C - E of a pinned body
-    mat3 inv = zero_mat();   // inverse inertia about C (free) or E (pinned); planar: [2][2] only
-    ex mass = 0;
+    body_response r;
+    int sign = 1;          // body 1 receives -P, body 2 +P
+    mat3 inv = zero_mat(); // inverse inertia about C (free) or E (pinned); planar: [2][2] only
 };
 
 // Change of the contact point's velocity for the impulse P on this body.
 vec3 point_response(const side &sd, const vec3 &P)
 {
-    if (!sd.movable)
-        return zero_vec();
-    vec3 r = sd.pinned ? zero_vec() : (1 / sd.mass) * P;
-    if (!sd.particle)
-        r = r + cross(mul(sd.inv, cross(sd.lever, P)), sd.lever);
-    return r;
+    return point_velocity_change(sd.r, sd.inv, P);
 }
 
 vec3 unit_axis(int a)
@@ -84,35 +77,20 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
     const int dim = p.dimension;
     const vec3 &O = p.contact.point;
     shared_part sh;
-    sh.sides[0].index = p.contact.body1;
+    sh.sides[0].r = response_of(p, p.contact.body1, O);
     sh.sides[0].sign = -1;
-    sh.sides[1].index = p.contact.body2;
+    sh.sides[1].r = response_of(p, p.contact.body2, O);
     sh.sides[1].sign = 1;
     for (side &sd : sh.sides) {
-        const body &b = p.bodies[sd.index];
-        sd.movable = !p.immovable(sd.index);
-        if (!sd.movable)
+        const std::size_t index = sd.r.index;
+        const body &b = p.bodies[index];
+        if (!sd.r.movable || sd.r.particle)
             continue;
         const std::string L = b.label;
-        const pivot *pv = p.pivot_of(sd.index);
-        sd.pinned = pv != nullptr;
-        sd.particle = b.particle;
-        sd.mass = b.mass;
-        sd.lever = sd.pinned ? O - pv->point : O - b.position;
-        if (sd.particle)
-            continue;
-        mat3 J = b.inertia;
-        if (sd.pinned) {
-            sd.arm = b.position - pv->point;
-            const ex dd = dot(sd.arm, sd.arm);
-            for (int a = 0; a < 3; ++a)
-                for (int c = 0; c < 3; ++c)
-                    J[a][c] = J[a][c] + b.mass * ((a == c ? dd : ex(0)) - sd.arm[a] * sd.arm[c]);
-        }
+        const mat3 &J = sd.r.inertia;
         if (dim == 2) {
-            ex Iz = sd.pinned
-                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}",
-                                 tidy(b.inertia[2][2] + b.mass * dot(sd.arm, sd.arm)),
+            ex Iz = sd.r.pinned
+                        ? sb.add(step_role::pivot_inertia, index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2],
                                  "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                         : J[2][2];
             sd.inv[2][2] = 1 / Iz;
@@ -132,13 +110,13 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
             for (int c = 0; c < 3; ++c)
                 Js[a][c] = tidy(J[a][c]);
         const mat3 adj = adjugate(Js);
-        ex D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js),
-                      "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+        ex D = sb.add(step_role::inertia_determinant, sd.r.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js),
+                      "determinant of the inertia tensor of " + display_name(b) + (sd.r.pinned ? " about E" : ""));
         for (int a = 0; a < 3; ++a)
             for (int c = a; c < 3; ++c) {
-                ex v = sb.add(step_role::inverse_inertia, sd.index, a, c, "J_" + p.axes[a] + p.axes[c] + sub(L),
+                ex v = sb.add(step_role::inverse_inertia, sd.r.index, a, c, "J_" + p.axes[a] + p.axes[c] + sub(L),
                               "J_{" + p.axes[a] + p.axes[c] + tsub(L) + "}", adj[a][c] / D,
-                              "inverse inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : "") +
+                              "inverse inertia tensor of " + display_name(b) + (sd.r.pinned ? " about E" : "") +
                                   ", entry " + p.axes[a] + p.axes[c]);
                 sd.inv[a][c] = v;
                 sd.inv[c][a] = v;
@@ -191,24 +169,19 @@ void finish_case(const derivation &d, const shared_part &sh, regime_case &c)
         s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
     s.pivot_impulses.assign(p.pivots.size(), zero_vec());
     for (const side &sd : sh.sides) {
-        const body &b = p.bodies[sd.index];
+        const body &b = p.bodies[sd.r.index];
         if (b.infinite_mass)
             continue;
-        const pivot *pv = p.pivot_of(sd.index);
+        const pivot *pv = p.pivot_of(sd.r.index);
         const vec3 Pi = ex(sd.sign) * c.impulse;
-        vec3 dv = zero_vec(), dw = zero_vec();
-        if (sd.movable) {
-            if (!sd.particle)
-                dw = mul(sd.inv, cross(sd.lever, Pi));
-            dv = sd.pinned ? cross(dw, sd.arm) : (1 / sd.mass) * Pi;
-        }
+        const vec3 dw = spin_change(sd.r, sd.inv, Pi), dv = centre_velocity_change(sd.r, Pi, dw);
         for (int a = 0; a < 3; ++a) {
-            s.after[sd.index].velocity[a] = b.velocity[a] + dv[a];
-            s.after[sd.index].angular_velocity[a] = b.angular_velocity[a] + dw[a];
+            s.after[sd.r.index].velocity[a] = b.velocity[a] + dv[a];
+            s.after[sd.r.index].angular_velocity[a] = b.angular_velocity[a] + dw[a];
         }
         if (pv) {
             const std::size_t k = static_cast<std::size_t>(pv - p.pivots.data());
-            s.pivot_impulses[k] = b.mass * dv - Pi;
+            s.pivot_impulses[k] = pivot_impulse(sd.r, Pi, dv);
             if (p.dimension == 2)
                 s.pivot_impulses[k][2] = 0;
         }
@@ -261,11 +234,12 @@ void add_tangential(const derivation &d, regime_case &c, step_builder &sb, const
                    "tangential (friction) impulse P - N n on body 2, " + p.axes[a] + " component");
 }
 
-regime_case stick_case(const derivation &d, const solution &shared_steps, const shared_part &sh, const ex &mu)
+// The stick candidate, or false with `why` set when the contact response K is singular.
+bool stick_case(const derivation &d, const solution &shared_steps, const shared_part &sh, const ex &mu, regime_case &c,
+                std::string &why)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    regime_case c;
     c.kind = regime::stick;
     c.name = "stick";
     c.sol.steps = shared_steps.steps;
@@ -281,11 +255,12 @@ regime_case stick_case(const derivation &d, const solution &shared_steps, const 
         K[2][2] = 1; // the 2x2 block: det and adjugate of diag(K2, 1)
     const ex detK = det(K);
     const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
-    if (vanishes_identically(c.sol, detK, where + ": the determinant of the contact response K"))
-        throw input_error(
-            where + ".friction: the contact response K is singular (a body pinned at a fixed point against a body "
-                    "that cannot move): the contact point can only move along a line, so the tangential "
-                    "impulse is not determined; solve it without friction");
+    if (vanishes_identically(c.sol, detK, where + ": the determinant of the contact response K")) {
+        why = "the contact response K is singular (a body pinned at a fixed point against a body that cannot "
+              "move: its contact point can only move across the line from the pivot), so no impulse stops the "
+              "tangential slip while the normal velocity obeys restitution: sticking is not a candidate";
+        return false;
+    }
     ex D = sb.add(step_role::response_determinant, no_body, -1, -1, "D_K", "D_{K}", detK,
                   "determinant of the contact response K (stick: K P = -(u + e u_n n))", true);
     const mat3 adj = adjugate(K);
@@ -319,7 +294,7 @@ regime_case stick_case(const derivation &d, const solution &shared_steps, const 
     c.direction = zero_vec();
     c.sliding_speed = 0;
     finish_case(d, sh, c);
-    return c;
+    return true;
 }
 
 // A slide along the unit tangent direction dir (world; may contain dir_c, dir_s).
@@ -513,7 +488,10 @@ friction_solution solve_friction(const derivation &d)
     shared_part sh = build_shared(d, shared, sb);
     const int dim = p.dimension;
     const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
-    f.cases.push_back(stick_case(d, shared, sh, f.mu));
+    f.shared = shared;
+    regime_case stick;
+    if (stick_case(d, shared, sh, f.mu, stick, f.no_stick))
+        f.cases.push_back(stick);
     if (dim == 2) {
         f.e_t = d.t_dir;
         f.e_b = zero_vec();
@@ -558,6 +536,46 @@ friction_solution solve_friction(const derivation &d)
         dir[a] = cs[0] * f.e_t[a] + cs[1] * f.e_b[a];
     f.cases.push_back(slide_case(d, shared, sh, f.mu, dir, "slide", 0, true, cs));
     return f;
+}
+
+const regime_case *impact_solution::stick() const
+{
+    for (const regime_case &c : cases)
+        if (c.kind == regime::stick)
+            return &c;
+    return nullptr;
+}
+
+impact_solution solve_impact(const derivation &d)
+{
+    if (d.prob.has_friction())
+        return solve_friction(d);
+    impact_solution s;
+    s.mu = 0;
+    s.n_hat = d.n_hat;
+    s.e_t = d.e_t;
+    s.e_b = d.e_b;
+    regime_case c;
+    c.kind = regime::smooth;
+    c.name = "smooth";
+    c.sol = solve(d);
+    s.shared = c.sol;
+    for (int a = 0; a < 3; ++a) {
+        c.impulse[a] = c.sol.normal_impulse * d.n_hat[a];
+        c.tangential_impulse[a] = 0;
+        c.direction[a] = 0;
+    }
+    c.tangential_scalar = 0;
+    c.sliding_speed = 0;
+    s.cases.push_back(c);
+    return s;
+}
+
+regime_case select_candidate(const derivation &d, const impact_solution &s)
+{
+    if (s.cases.size() == 1 && s.cases.front().kind == regime::smooth && s.cases.front().conditions.empty())
+        return s.cases.front();
+    return select_regime(d, s);
 }
 
 std::vector<ex> condition_values(const regime_case &c, const ex &input_values)

@@ -79,17 +79,37 @@ struct regime_case {
     ex angle_equation; ///< g, in steps and dir_c, dir_s
 };
 
-struct friction_solution {
-    ex mu;
+/// The one solution type of an impact, whatever the contact's law: the steps every
+/// candidate shares, then the candidates, each with its own steps, impulse and the typed
+/// conditions that select it. A smooth contact has one candidate (regime::smooth, no
+/// conditions: the closed form of solution.hpp); Coulomb friction has stick (unless the
+/// contact response K is singular: then `no_stick` says why) and the slides.
+struct impact_solution {
+    ex mu;                          ///< the coefficient of friction (0 for a smooth contact)
+    solution shared;                ///< the steps every candidate starts with (K, u, u_n, ...)
+    std::string no_stick;           ///< why there is no stick candidate (K singular), or empty
     vec3 n_hat, e_t, e_b;           ///< the unit contact frame (e_b zero in 2-D)
     bool isotropic = false;         ///< 3-D: K isotropic on the tangent plane and uncoupled from n
-    std::vector<regime_case> cases; ///< stick first, then the slide cases
+    std::vector<regime_case> cases; ///< the candidates: stick first (when there is one), then the slides
+
+    /// The stick candidate, or nullptr (a smooth contact, or K singular).
+    const regime_case *stick() const;
 };
+/// The name the friction printers and writers still use for it.
+using friction_solution = impact_solution;
+
+/// Every candidate of the contact's law in closed form: one for a smooth contact, stick and
+/// slides with Coulomb friction (solve_friction).
+impact_solution solve_impact(const derivation &d);
+
+/// A numeric problem's answer: the smooth candidate as it is (its printer substitutes), or
+/// the one candidate of the law that holds (select_regime).
+regime_case select_candidate(const derivation &d, const impact_solution &s);
 
 /// The closed forms of every regime. The derivation must have been made for a problem
-/// with friction (mu may be symbolic). Throws input_error when the contact response K
-/// is singular (a pinned body struck by an immovable one: the tangential impulse is
-/// indeterminate).
+/// with friction (mu may be symbolic). When the contact response K is singular (a pinned
+/// body struck by an immovable one: the contact point can only move along a line), there
+/// is no stick candidate (no_stick says why) and the slides are the candidates.
 friction_solution solve_friction(const derivation &d);
 
 /// A numeric problem's answer: the one regime that holds, its values substituted

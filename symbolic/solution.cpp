@@ -5,6 +5,7 @@
 #include <cctype>
 
 #include "decide.hpp"
+#include "response.hpp"
 
 #include <random>
 #include <set>
@@ -129,33 +130,23 @@ solution solve(const derivation &d)
     struct side {
         std::size_t index;
         ex sign;
-        ex w = 0;              // effective inverse mass at the contact point along n
-        vec3 g = zero_vec();   // angular velocity change per unit impulse along s n: I^{-1} (r x n)
-        vec3 arm = zero_vec(); // d = C - E of a pinned body
+        ex w = 0;            // effective inverse mass at the contact point along n
+        vec3 g = zero_vec(); // angular velocity change per unit impulse along s n: I^{-1} (r x n)
+        body_response r;     // lever (about C or E), arm d = C - E, inertia about C or E
         bool pinned = false;
     };
-    side sides[2] = {{i1, -1}, {i2, 1}};
+    side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};
 
     for (side &sd : sides) {
         const body &b = p.bodies[sd.index];
         const std::string L = b.label;
         if (p.immovable(sd.index))
             continue;
-        const pivot *pv = p.pivot_of(sd.index);
-        sd.pinned = pv != nullptr;
+        sd.r = response_of(p, sd.index, O);
+        sd.pinned = sd.r.pinned;
         // Lever of the contact normal about C (free) or about E (pinned).
-        vec3 r = sd.pinned ? O - pv->point : O - b.position;
-        vec3 tau = cross(r, n);
-        mat3 J = b.inertia;
-        if (sd.pinned) {
-            sd.arm = b.position - pv->point;
-            ex dd = dot(sd.arm, sd.arm);
-            for (int a = 0; a < 3; ++a)
-                for (int c = 0; c < 3; ++c)
-                    J[a][c] = J[a][c] + b.mass * ((a == c ? dd : ex(0)) - sd.arm[a] * sd.arm[c]);
-            if (dim == 2)
-                J[2][2] = b.inertia[2][2] + b.mass * dd;
-        }
+        vec3 tau = cross(sd.r.lever, n);
+        const mat3 &J = sd.r.inertia;
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
             if (dim == 2) {
@@ -250,7 +241,7 @@ solution solve(const derivation &d)
         vec3 dv = zero_vec(), dw = zero_vec();
         if (!p.immovable(sd.index)) {
             dw = (sd.sign * N) * sd.g;
-            dv = sd.pinned ? cross(dw, sd.arm) : (sd.sign * N / b.mass) * n;
+            dv = centre_velocity_change(sd.r, (sd.sign * N) * n, dw);
         }
         for (int c = 0; c < 3; ++c) {
             s.after[sd.index].velocity[c] = b.velocity[c] + dv[c];
@@ -258,7 +249,7 @@ solution solve(const derivation &d)
         }
         if (pv) {
             std::size_t k_index = static_cast<std::size_t>(pv - p.pivots.data());
-            s.pivot_impulses[k_index] = b.mass * dv - (sd.sign * N) * n;
+            s.pivot_impulses[k_index] = pivot_impulse(sd.r, (sd.sign * N) * n, dv);
             if (dim == 2)
                 s.pivot_impulses[k_index][2] = 0;
         }

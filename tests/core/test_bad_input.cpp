@@ -951,7 +951,7 @@ TEST(Friction, StickingThresholdIsOnlyPrintedWhenTheStickImpulsePushes)
 // along (-1/2, 1), so restitution fixes w' = 3 and u'_t = -3; sticking is impossible and
 // the slide along -e_t holds (D_s = 6/5 > 0, lambda = 3 > 0), the other slide does not
 // (lambda = -3): N = 5/4, F = (0, 3/8) on the wall, the pivot impulse R = P = (5/4, 3/8).
-TEST(Friction, DISABLED_PinnedBodyStruckByAnImmovableOneSlides)
+TEST(Friction, PinnedBodyStruckByAnImmovableOneSlides)
 {
     const std::string text = R"({"dimension": 2, "restitution": 0.5, "bodies": [
         {"name": "wall", "mass": "inf", "position": [2, 0], "velocity": [-1, 0]},
