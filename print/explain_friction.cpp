@@ -270,10 +270,13 @@ struct context {
     // x with the problem's numbers for the twin's symbols
     ex at_inputs(const ex &x) const { return inputs.nops() ? x.subs(inputs) : x; }
 
-    const regime_case &stick() const { return f.cases.front(); }
+    // The stick candidate (absent when K is singular) and the index of the first slide.
+    const regime_case &stick() const { return *f.stick(); }
+    bool has_stick() const { return f.stick() != nullptr; }
+    std::size_t first_slide() const { return has_stick() ? 1 : 0; }
     ex un() const
     {
-        const step *s = stick().sol.find(step_role::approach_velocity);
+        const step *s = f.shared.find(step_role::approach_velocity);
         return s ? ex(s->sym) : ex(0);
     }
     // The relative velocity u of the contact points in world components: steps, or inline values.
@@ -281,7 +284,7 @@ struct context {
     {
         vec3 u = zero_vec();
         for (int a = 0; a < dim; ++a) {
-            const step *s = stick().sol.find(step_role::relative_velocity, no_body, a);
+            const step *s = f.shared.find(step_role::relative_velocity, no_body, a);
             // along a normal +e_a, u's component is the approach step u_n (symbolic/friction.cpp)
             u[a] = s ? ex(s->sym) : n[a].is_equal(1) ? un() : tidy(d.vB[a] - d.vA[a]);
         }
@@ -289,7 +292,7 @@ struct context {
     }
     ex K(int a, int b) const
     {
-        const step *s = stick().sol.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
+        const step *s = f.shared.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
         return s ? ex(s->sym) : ex(0);
     }
     // x.K y in world steps.
@@ -610,12 +613,20 @@ section response_section(const context &c)
                                 ": a free rigid body, translation plus the rotation the moment $~r_i × ~P$ gives")));
     }
     sec.rows(rows);
-    sec.para(paragraph().t(
-        "$K$ is symmetric and positive definite (each $K_i$ is the velocity response of a body to an impulse: "
-        "$P·K P > 0$ is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
-        "the relative velocity before impact, through named steps:"));
+    if (c.has_stick())
+        sec.para(paragraph().t(
+            "$K$ is symmetric and positive definite (each $K_i$ is the velocity response of a body to an impulse: "
+            "$P·K P > 0$ is twice the kinetic energy a unit impulse gives). Its entries in world components, then "
+            "the relative velocity before impact, through named steps:"));
+    else
+        sec.para(paragraph().t(
+            "$K$ is symmetric and positive semi-definite ($P·K P ≥ 0$ is twice the kinetic energy a unit impulse "
+            "gives). Here it is singular, $det K = 0$: the only body that can move turns about a fixed pivot, so its "
+            "contact point can only move across the line from the pivot, and an impulse along that line moves "
+            "nothing. Its entries in world components, then the relative velocity before impact, through named "
+            "steps:"));
     std::vector<math_row> steps;
-    const auto &st = c.stick().sol.steps;
+    const auto &st = c.f.shared.steps;
     for (std::size_t k = 0; k < c.shared; ++k)
         steps.push_back(srow(c.p, st[k]));
     sec.rows(steps);
@@ -773,11 +784,30 @@ section stick_section(const context &c)
     return sec;
 }
 
+// Section 5 when K is singular: no impulse makes the contact stick.
+section no_stick_section(const context &)
+{
+    section sec{"5. Sticking is impossible", {}};
+    sec.para(paragraph().t(
+        "Textbooks try sticking first: $u′_t = 0$ and $u′_n = -e u_n$, so $u′ = -e u_n e_n$, and $u′ = u + K P$ "
+        "would be a linear system for $P$:"));
+    sec.rows({formula_row(
+        "K P = -(u + e u_n e_n)",
+        "\\underline{\\underline{K}}\\,\\underline{P} = -(\\underline{u} + e\\,u_n\\,\\hat{\\underline{e}}_n)",
+        "$K$ is singular here: the system has no solution")});
+    sec.para(paragraph().t(
+        "But $K$ is singular: whatever the impulse, the contact point of the pinned body changes its velocity only "
+        "across the line from its pivot, so the relative velocity cannot be brought to $-e u_n e_n$ (stopped "
+        "along the tangent while it separates along the normal). Sticking is not a solution for any $μ$: the "
+        "contact slides, and the slides below are the candidates."));
+    return sec;
+}
+
 // ---------------------------------------------------------------- 6. slide
 
 section slide_section(const context &c)
 {
-    section sec{"6. If the test fails: sliding", {}};
+    section sec{c.has_stick() ? "6. If the test fails: sliding" : "6. Sliding", {}};
     sec.para(paragraph().t(
         "A sliding contact has friction at its limit, opposite to the sliding: $F = -μN d$, where $d$ is the unit "
         "direction of $u′_t$. The impulse $P = N (e_n - μ d)$ then has one unknown $N$ (once $d$ is known), and "
@@ -793,7 +823,10 @@ section slide_section(const context &c)
                           "$D_s$ must be positive, else $N$ would not be")});
     sec.para(paragraph().t(
         "Then check that the contact really slides along $d$ after impact: $λ = u′·d > 0$ (the sliding speed)."));
-    if (c.dim == 2)
+    if (c.dim == 2 && !c.has_stick())
+        sec.para(paragraph().t("In the plane $d = +e_t$ or $d = -e_t$, two closed forms; the check $λ > 0$ (with "
+                               "$D_s > 0$) decides which holds."));
+    else if (c.dim == 2)
         sec.para(paragraph().t(
             "In the plane $d = +e_t$ or $d = -e_t$, two closed forms. The one to try is opposite to the friction the "
             "stick "
@@ -809,7 +842,7 @@ section slide_section(const context &c)
             "Here $K$ couples the tangent directions with each other and with the normal, so the contact does not "
             "in general keep sliding the way it came: the sliding direction $d = c_d e_t + s_d e_b$ "
             "$(c_d = cos θ$, $s_d = sin θ)$ is itself unknown, and $u′_t$ along $d$ is one more equation for $θ$."));
-    for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
+    for (std::size_t ci = c.first_slide(); ci < c.f.cases.size(); ++ci) {
         const regime_case &sc = c.f.cases[ci];
         paragraph head;
         if (c.dim == 2)
@@ -880,7 +913,7 @@ bool identically_zero(const solution &s, const ex &value)
 // A solution holding the stick case's steps and then the slide case's own: both at once.
 solution merged(const context &c, const regime_case &sc)
 {
-    solution m = c.stick().sol;
+    solution m = c.has_stick() ? c.stick().sol : c.f.shared;
     for (std::size_t k = c.shared; k < sc.sol.steps.size(); ++k)
         m.steps.push_back(sc.sol.steps[k]);
     return m;
@@ -903,6 +936,48 @@ ex energy_lost_formula(const context &c, const regime_case &rc)
     return N * (c.mu * (tidy(dot(rc.direction, u)) + rc.sliding_speed) - (1 - c.e) * c.un()) / 2;
 }
 
+// Section 7 without a stick candidate: the slides' conditions, and the energy.
+section slide_regimes_section(const context &c)
+{
+    section sec{"7. The regimes, and the energy", {}};
+    std::vector<paragraph> items;
+    for (const regime_case &sc : c.f.cases) {
+        paragraph item = regime_words(sc);
+        item.t(": ");
+        bool first = true;
+        for (const regime_condition &rc : sc.conditions) {
+            if (!first)
+                item.t(", ");
+            item.m(rc.value).t(rc.strict ? " $> 0$" : " $≥ 0$");
+            first = false;
+        }
+        item.t(".");
+        items.push_back(item);
+    }
+    sec.para(paragraph().t("Without a stick candidate the regimes are the slides, each holding under its own "
+                           "conditions:"));
+    sec.list(items);
+    sec.para(paragraph().t(
+        "Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
+        "mean relative velocity of the contact points; while sliding $(u′ = λ d - e u_n e_n)$ it is"));
+    sec.rows({formula_row("slide:   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2",
+                          "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + "
+                          "\\lambda) - (1 - e)\\,u_n)/2",
+                          "negative when a moving body of infinite mass does work on the others")});
+    std::vector<math_row> energy;
+    for (const regime_case &rc : c.f.cases) {
+        const ex lost = energy_lost_formula(c, rc);
+        if (!rc.needs_angle && !identically_zero(rc.sol, lost - rc.sol.energy_lost))
+            continue;
+        math_row r = srow(symbol("T_lost", "T_{\\text{lost}}"), lost);
+        r.note = regime_words(rc);
+        energy.push_back(r);
+    }
+    if (!energy.empty())
+        sec.rows(energy);
+    return sec;
+}
+
 section regimes_section(const context &c)
 {
     section sec{"7. The regimes as conditions on μ, and the energy", {}};
@@ -916,7 +991,7 @@ section regimes_section(const context &c)
                                "put into $λ$, and $F$, $N$, $D_K$ "
                                "those of the stick impulse (section 5):"));
         std::vector<math_row> rows;
-        for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
+        for (std::size_t ci = c.first_slide(); ci < c.f.cases.size(); ++ci) {
             const regime_case &sc = c.f.cases[ci];
             const step *Ds = sc.sol.find(step_role::slide_denominator);
             const step *DK = st.sol.find(step_role::response_determinant);
@@ -1009,7 +1084,19 @@ section regimes_section(const context &c)
 section existence_section(const context &c)
 {
     section sec{"8. One regime, none, or several?", {}};
-    if (c.dim == 2) {
+    if (!c.has_stick()) {
+        if (c.dim == 2)
+            sec.para(paragraph().t(
+                "In the plane at most one slide holds: the impulse moves the contact point along one line only, so "
+                "restitution fixes its velocity after impact whichever way friction acts. $u′_t$ is the same for "
+                "both slides, and $λ = u′·d$ is positive for one direction of $d$ only; that slide holds if its "
+                "$D_s > 0$."));
+        else
+            sec.para(paragraph().t(
+                "Without sticking, a sliding direction holds where its conditions do; the numbers decide which, and "
+                "with strong coupling none or several may hold (then the law of impulses does not decide the "
+                "outcome, and the impact has to be followed through its duration)."));
+    } else if (c.dim == 2) {
         sec.para(paragraph().t(
             "In the plane, with $K$ positive definite and $u_n < 0$, the law has exactly one solution for every $μ ≥ "
             "0$. "
@@ -1170,10 +1257,46 @@ std::string interval_text(const mu_interval &iv)
     return "for " + lo + (iv.lo_closed ? " ≤ μ " : " < μ ") + (iv.hi_closed ? "≤ " : "< ") + hi;
 }
 
+// The stick candidate's numbers in section 9: its steps, its conditions, the threshold mu*.
+void stick_numbers(const context &c, section &sec, const case_numbers &cn, const std::vector<math_row> &stick_rows,
+                   ex &Nst, ex &mu_star)
+{
+    const regime_case &st = c.stick();
+    sec.para(paragraph().w("Assume sticking (section 5):"));
+    sec.rows(stick_rows);
+    std::vector<math_row> conds;
+    for (std::size_t k = 0; k < st.conditions.size() && k < cn.verdicts.size(); ++k) {
+        const ex v = tidy(c.at_inputs(st.conditions[k].value).subs(cn.values));
+        math_row r = row(st.conditions[k].value, v);
+        r.note = condition_note(st.conditions[k]);
+        r.note.w(": " + verdict_word(cn.verdicts[k], st.conditions[k].strict));
+        r.has_then = false;
+        conds.push_back(r);
+    }
+    sec.rows(conds);
+    const ex mu_star_sym = symbol("μ*", "\\mu^{*}");
+    Nst = tidy(c.at_inputs(st.sol.normal_impulse).subs(cn.values));
+    if (decide(Nst) == decision::positive) {
+        mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(cn.values));
+        sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
+        paragraph q;
+        q.t("$μ =$ ")
+            .m(c.at_inputs(c.mu))
+            .w(cn.holds ? ": μ ≥ μ*, the stick test passes." : ": μ < μ*, the stick test fails -- the contact slides.");
+        sec.para(q);
+    } else {
+        sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact "
+                               "cannot stick for any $μ$."));
+    }
+}
+
 void numbers_section(context &c, document &doc)
 {
     section sec{"9. The numbers", {}};
-    const regime_case &st = c.stick();
+    if (c.f.cases.empty())
+        return;
+    // The shared steps are the first candidate's first steps (stick's, or a slide's without it).
+    const regime_case &first = c.f.cases.front();
     if (c.inputs.nops()) {
         std::vector<math_row> given;
         for (std::size_t k = 0; k < c.inputs.nops(); ++k) {
@@ -1208,40 +1331,13 @@ void numbers_section(context &c, document &doc)
         }
         return rows;
     };
-    sec.rows(step_rows(st, nums[0], 0, c.shared));
+    sec.rows(step_rows(first, nums[0], 0, c.shared));
 
-    // Stick.
-    sec.para(paragraph().w("Assume sticking (section 5):"));
-    sec.rows(step_rows(st, nums[0], c.shared, st.sol.steps.size()));
-    std::vector<math_row> conds;
-    for (std::size_t k = 0; k < st.conditions.size() && k < nums[0].verdicts.size(); ++k) {
-        const ex v = tidy(c.at_inputs(st.conditions[k].value).subs(nums[0].values));
-        math_row r = row(st.conditions[k].value, v);
-        r.note = condition_note(st.conditions[k]);
-        r.note.w(": " + verdict_word(nums[0].verdicts[k], st.conditions[k].strict));
-        r.has_then = false;
-        conds.push_back(r);
-    }
-    sec.rows(conds);
-    const ex mu_star_sym = symbol("μ*", "\\mu^{*}");
-    const ex Nst = tidy(c.at_inputs(st.sol.normal_impulse).subs(nums[0].values));
-    ex mu_star;
-    if (decide(Nst) == decision::positive) {
-        mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(nums[0].values));
-        sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
-        paragraph q;
-        q.t("$μ =$ ")
-            .m(c.at_inputs(c.mu))
-            .w(nums[0].holds ? ": μ ≥ μ*, the stick test passes."
-                             : ": μ < μ*, the stick test fails -- the contact slides.");
-        sec.para(q);
-    } else {
-        sec.para(paragraph().t("The stick impulse has $N ≤ 0$: it would pull the bodies together, so the contact "
-                               "cannot stick for any $μ$."));
-    }
-
+    ex Nst, mu_star;
+    if (c.has_stick())
+        stick_numbers(c, sec, nums[0], step_rows(first, nums[0], c.shared, first.sol.steps.size()), Nst, mu_star);
     // Slides.
-    for (std::size_t ci = 1; ci < c.f.cases.size(); ++ci) {
+    for (std::size_t ci = c.first_slide(); ci < c.f.cases.size(); ++ci) {
         const regime_case &sc = c.f.cases[ci];
         const case_numbers &cn = nums[ci];
         if (sc.needs_angle) {
@@ -1286,7 +1382,8 @@ void numbers_section(context &c, document &doc)
     }
 
     // Planar: the regimes along the mu axis for this problem.
-    if (c.dim == 2 && c.f.cases.size() == 3) {
+    if (c.dim == 2 && c.has_stick() && c.f.cases.size() == 3) {
+        const regime_case &st = c.stick();
         const step *DK = st.sol.find(step_role::response_determinant);
         std::vector<ex> vals;
         const vec3 &et = c.d.t_dir;
@@ -1420,7 +1517,14 @@ void numbers_section(context &c, document &doc)
     ans.rows({value_row(symbol("T", "T"), T0, "before impact"), value_row(symbol("T'", "T'"), T1, "after impact"),
               value_row(symbol("T_lost", "T_{\\text{lost}}"), Tl, "lost")});
     const decision loss = decide(is_float(Tl) ? Tl : tidy(Tl));
-    if (loss == decision::negative)
+    bool driven = false; // a moving body of infinite mass does work on the others
+    for (const body &b : c.p.bodies)
+        driven = driven || (b.infinite_mass && !b.at_rest());
+    if (loss == decision::negative && driven)
+        ans.para(paragraph().t("The kinetic energy of the bodies of finite mass rises: $T_lost < 0$. A moving body of "
+                               "infinite mass does work on them through the contact impulse; that is physics, not a "
+                               "fault of the law."));
+    else if (loss == decision::negative)
         ans.para(paragraph().t(
             "The kinetic energy rises in this impact: $T_lost < 0$. Newton's restitution law with friction can do that "
             "in "
@@ -1490,11 +1594,7 @@ document friction_document(const derivation &d, const friction_solution &f, cons
         c.tangents = {f.e_t, f.e_b};
         c.tnames = {"t", "b"};
     }
-    for (const step &st : c.stick().sol.steps) {
-        if (st.role == step_role::response_determinant)
-            break;
-        ++c.shared;
-    }
+    c.shared = f.shared.steps.size();
     const std::string n_name = d.impulse_form ? ex_to<symbol>(d.normal_impulse).get_name() : fresh_name(d, "N");
     c.N = d.impulse_form ? d.normal_impulse : ex(symbol(n_name, tex_of(n_name, "N")));
     if (c.dim == 2) {
@@ -1532,9 +1632,9 @@ document friction_document(const derivation &d, const friction_solution &f, cons
     doc.sections.push_back(law_section(c));
     doc.sections.push_back(equations_section(c));
     doc.sections.push_back(response_section(c));
-    doc.sections.push_back(stick_section(c));
+    doc.sections.push_back(c.has_stick() ? stick_section(c) : no_stick_section(c));
     doc.sections.push_back(slide_section(c));
-    doc.sections.push_back(regimes_section(c));
+    doc.sections.push_back(c.has_stick() ? regimes_section(c) : slide_regimes_section(c));
     doc.sections.push_back(existence_section(c));
     if (c.numeric)
         numbers_section(c, doc);

@@ -256,6 +256,18 @@ bool stick_case(const derivation &d, const solution &shared_steps, const shared_
     const ex detK = det(K);
     const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
     if (vanishes_identically(c.sol, detK, where + ": the determinant of the contact response K")) {
+        // K P = rhs solvable (rhs in the range of K: adj(K) rhs = 0): sticking holds with an
+        // impulse that is not determined (the pivot takes any friction impulse in the cone).
+        const vec3 residue = mul(adjugate(K), rhs);
+        bool consistent = true;
+        for (int a = 0; a < dim && consistent; ++a)
+            consistent = vanishes_identically(c.sol, residue[a], where + ": the stick system");
+        if (consistent)
+            throw input_error(where + ".friction: the contact response K is singular (a body pinned at a fixed point "
+                                      "against a body that cannot move) and the contact point cannot move "
+                                      "tangentially: the velocities after impact are those without friction, but "
+                                      "the tangential impulse is not determined (the pivot takes any friction "
+                                      "impulse inside the cone); solve it without friction");
         why = "the contact response K is singular (a body pinned at a fixed point against a body that cannot "
               "move: its contact point can only move across the line from the pivot), so no impulse stops the "
               "tangential slip while the normal velocity obeys restitution: sticking is not a candidate";

@@ -965,6 +965,17 @@ TEST(Friction, PinnedBodyStruckByAnImmovableOneSlides)
     EXPECT_NEAR(number_at(a, {"normal_impulse"}), 1.25, 1e-15);
     EXPECT_NEAR(number_at(a, {"tangential_impulse"}, 1), 0.375, 1e-15);
     EXPECT_NEAR(number_at(a, {"bodies", "rod", "angular_velocity"}), 3, 1e-15);
+    EXPECT_NEAR(a.at("pivot_impulses").at(0).at(0).get<double>(), 1.25, 1e-15); // R = P on the rod side
+    // formulas: the two slides are the candidates (no stick); explain teaches it.
+    const run_result f = run_on(text, "formulas --format json", "f");
+    ASSERT_EQ(f.code, 0) << f.err;
+    const json j = json::parse(f.out);
+    ASSERT_EQ(j.at("regimes").size(), 2u);
+    for (const auto &r : j.at("regimes"))
+        EXPECT_EQ(r.at("regime"), "slide");
+    const run_result x = run_on(text, "explain", "x");
+    ASSERT_EQ(x.code, 0) << x.err;
+    EXPECT_NE(x.out.find("Sticking is impossible"), std::string::npos);
 }
 
 // mu = 10^308 on the rod above: a slide with N = 3 / (52/25 + 36/25 10^308) = 2.083e-308

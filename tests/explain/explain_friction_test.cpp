@@ -400,21 +400,47 @@ TEST(FrictionGolden, ByteStableAcrossProcesses)
         }
 }
 
-// A contact response K that is singular (a pinned rod against a wall): the tangential
-// impulse is not determined. explain refuses it like solve: one line, exit 1.
-TEST(FrictionExplain, SingularResponseIsRefusedInOneLine)
+// A contact response K that is singular (a pinned rod against a wall): there is no stick
+// candidate (no impulse stops the tangential slip while restitution holds). explain teaches
+// that and the slides, and names the one that holds; it was refused before.
+TEST(FrictionExplain, SingularResponseHasNoStickCandidate)
 {
     fs::path file = fs::temp_directory_path() / ("impactgen-singular-" + std::to_string(::getpid()) + ".json");
+    std::ofstream(file) << R"({"dimension": 2, "restitution": 0.5, "bodies": [
+        {"name": "wall", "mass": "inf", "position": [2, 0], "velocity": [-1, 0]},
+        {"name": "rod", "mass": 1, "inertia": "1/12", "position": [0, 0], "velocity": [0, 0]}],
+      "contact": {"bodies": ["rod", "wall"], "point": [1, 0.5], "normal": [1, 0], "friction": 0.3},
+      "pivots": [{"body": "rod", "point": [0, 0]}]})";
+    int status = 0;
+    const std::string out = run(std::string(IMPACTGEN_CLI) + " explain " + file.string() + " 2>&1", status);
+    EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+    EXPECT_NE(out.find("Sticking is impossible"), std::string::npos) << out;
+    EXPECT_EQ(out.find("Assume sticking"), std::string::npos) << out;
+    EXPECT_EQ(out.find("positive definite"), std::string::npos) << out;
+    EXPECT_NE(out.find("The regime that holds: slide"), std::string::npos) << out;
+    EXPECT_NE(out.find("every equation (1)-"), std::string::npos) << out; // the residuals vanish
+    fs::remove(file);
+}
+
+// A singular K whose contact point cannot move tangentially at all (the line from the pivot
+// is the normal): the velocities are determined, the friction impulse is not. explain refuses
+// it like solve: one line naming K, exit 1.
+TEST(FrictionExplain, IndeterminateFrictionImpulseIsRefusedInOneLine)
+{
+    fs::path file = fs::temp_directory_path() / ("impactgen-indeterminate-" + std::to_string(::getpid()) + ".json");
     std::ofstream(file) << R"({ "dimension": 2, "restitution": "1/2",
   "bodies": [ { "name": "wall", "mass": "inf", "position": [1, -1], "velocity": [0, 0] },
               { "name": "rod", "mass": 2, "inertia": "1/6", "position": [0, "-1/2"], "velocity": ["1/2", 0], "angular_velocity": 1 } ],
   "contact": { "bodies": ["wall", "rod"], "point": [0, -1], "normal": [-1, 0], "friction": "1/2" },
   "pivots": [ { "body": "rod", "point": [0, 0] } ] })";
-    int status = 0;
-    std::string err = run(std::string(IMPACTGEN_CLI) + " explain " + file.string() + " 2>&1 >/dev/null", status);
-    EXPECT_EQ(WEXITSTATUS(status), 1);
-    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-    EXPECT_NE(err.find("singular"), std::string::npos) << err;
+    for (const char *cmd : {" explain ", " solve "}) {
+        int status = 0;
+        std::string err = run(std::string(IMPACTGEN_CLI) + cmd + file.string() + " 2>&1 >/dev/null", status);
+        EXPECT_EQ(WEXITSTATUS(status), 1) << cmd;
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        EXPECT_NE(err.find("singular"), std::string::npos) << err;
+        EXPECT_NE(err.find("not determined"), std::string::npos) << err;
+    }
     fs::remove(file);
 }
 
