@@ -57,15 +57,24 @@ double expanded_terms(const ex &x)
     return 1;
 }
 
-// "..., x component" -> "..., t component": the derivation's meanings end with the world axis.
-std::string frame_meaning(const std::string &world_meaning, const std::string &axis)
+// What a contact-frame component of a body's vector is, written from its kind and owner
+// (never from the derivation's world-axis sentence): "velocity of the centre of mass of
+// puck after impact, t component".
+std::string frame_meaning(const problem &p, unknown_kind kind, std::size_t body, bool after, const std::string &axis)
 {
-    const std::string tail = " component";
-    const std::size_t comma = world_meaning.rfind(", ");
-    if (comma == std::string::npos || world_meaning.size() < tail.size() ||
-        world_meaning.compare(world_meaning.size() - tail.size(), tail.size(), tail) != 0)
-        return world_meaning + ", " + axis + " component";
-    return world_meaning.substr(0, comma) + ", " + axis + " component";
+    const std::string who = display_name(p.bodies[body]), tail = ", " + axis + " component";
+    const std::string when = after ? " after impact" : " before impact";
+    switch (kind) {
+    case unknown_kind::velocity:
+        return "velocity of the centre of mass of " + who + when + tail;
+    case unknown_kind::angular_velocity:
+        return "angular velocity of " + who + when + tail;
+    case unknown_kind::pivot_impulse:
+        return "impulse of the pivot on " + who + tail;
+    case unknown_kind::normal_impulse:
+        break;
+    }
+    return "normal impulse" + tail; // not a vector: the view never names its components
 }
 
 // The last three equations of v (a body's angular momentum along e_t, e_n, e_b) have
@@ -224,15 +233,15 @@ contact_frame_view contact_frame_view_of(const derivation &d)
             continue;
         }
         vec3 world = zero_vec();
+        const std::size_t owner_body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
         std::vector<std::string> meanings;
         for (int c = 0; c < dim; ++c) {
             const unknown &uc = d.unknowns[i + static_cast<std::size_t>(c)];
             if (uc.kind != u.kind || uc.owner != u.owner || uc.component != c)
                 return world_only();
             world[c] = uc.sym;
-            meanings.push_back(frame_meaning(uc.meaning, frame_axes[c]));
+            meanings.push_back(frame_meaning(p, u.kind, owner_body, true, frame_axes[c]));
         }
-        const std::size_t owner_body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
         const std::string &label = p.bodies[owner_body].label;
         const bool ok = u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
                         : u.kind == unknown_kind::angular_velocity
@@ -248,16 +257,14 @@ contact_frame_view contact_frame_view_of(const derivation &d)
     // Inputs before impact given as plain symbols.
     for (std::size_t i : {p.contact.body1, p.contact.body2}) {
         const body &b = p.bodies[i];
-        const std::string who = display_name(b);
         std::vector<std::string> meanings;
         for (int k = 0; k < dim; ++k)
-            meanings.push_back("velocity of the centre of mass of " + who + " before impact, " + frame_axes[k] +
-                               " component");
+            meanings.push_back(frame_meaning(p, unknown_kind::velocity, i, false, frame_axes[k]));
         rename(b.velocity, "v", "v", b.label, false, meanings, v.inputs);
         if (dim == 3) {
             meanings.clear();
             for (int k = 0; k < dim; ++k)
-                meanings.push_back("angular velocity of " + who + " before impact, " + frame_axes[k] + " component");
+                meanings.push_back(frame_meaning(p, unknown_kind::angular_velocity, i, false, frame_axes[k]));
             if (rename(b.angular_velocity, "w", "\\omega", b.label, false, meanings, v.inputs))
                 spin_before[i] = frame;
         }
