@@ -233,8 +233,10 @@ void settle(exmap &known, const ex &e, double target, double fallback)
 
 /// The named classes' symbols (symbolic/named_classes.cpp): bodies on their
 /// own side of the tangent plane, centres off the line of impact for the
-/// non-central classes, velocities that approach.
-double named_class_value(const std::string &name)
+/// non-central classes, velocities that approach. A symbol the table lacks is
+/// placed by what it is in the problem (a spin 0, an inertia entry 1 on the
+/// diagonal and 0 off it), never by its name; anything else 1.
+double named_class_value(const problem &p, const symbol &s)
 {
     static const std::map<std::string, double> table = {
         {"m1", 1},      {"m2", 1.5},     {"m", 1},      {"e", 0.8},     {"mu", 0.3},    {"R1", 1},      {"R2", 0.8},
@@ -242,14 +244,17 @@ double named_class_value(const std::string &name)
         {"r_n2", 1.0},  {"r_b2", -0.25}, {"v_t1", 0.5}, {"v_n1", 1.0},  {"v_b1", 0.3},  {"v_t2", -0.4}, {"v_n2", -0.6},
         {"v_b2", -0.2}, {"v_t", 1.0},    {"v_n", -1.2}, {"I1", 0.25},   {"I2", 0.25},
     };
-    const auto it = table.find(name);
+    const auto it = table.find(s.get_name());
     if (it != table.end())
         return it->second;
-    // I1_tt (a diagonal moment) 1, I1_tn (a product of inertia) 0; spins w_* 0.
-    if (name.size() > 3 && name[0] == 'I' && name[name.size() - 3] == '_')
-        return name[name.size() - 2] == name[name.size() - 1] ? 1 : 0;
-    if (!name.empty() && name[0] == 'w')
-        return 0;
+    for (const body &b : p.bodies)
+        for (std::size_t r = 0; r < 3; ++r) {
+            if (b.angular_velocity[r].is_equal(s))
+                return 0;
+            for (std::size_t c = 0; c < 3; ++c)
+                if (b.inertia[r][c].is_equal(s))
+                    return r == c ? 1 : 0;
+        }
     return 1;
 }
 
@@ -261,7 +266,7 @@ exmap illustrative_values(const problem &p)
         return known;
     if (find_named_class(p.source)) {
         for (const symbol &s : all)
-            known[s] = numeric(named_class_value(s.get_name()));
+            known[s] = numeric(named_class_value(p, s));
         return known;
     }
     const bool planar = p.dimension == 2;

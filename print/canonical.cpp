@@ -512,7 +512,7 @@ printed print_ex_uncached(const ex &e, syntax sx)
             // abs(x) as |x|; others f(x, y) with a function application (U+2061).
             for (std::size_t i = 0; i < e.nops(); ++i)
                 args += (i ? mo(",") : "") + one(print_ex(e.op(i), sx).s);
-            if (f.get_name() == "abs")
+            if (is_ex_the_function(e, abs))
                 return {fenced("|", args, "|"), p_atom};
             return {tag("mrow", tag("mi", names::xml_text(f.get_name())) + mo("&#x2061;") + fenced("(", args, ")")),
                     p_atom};

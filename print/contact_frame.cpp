@@ -57,15 +57,24 @@ double expanded_terms(const ex &x)
     return 1;
 }
 
-// "..., x component" -> "..., t component": the derivation's meanings end with the world axis.
-std::string frame_meaning(const std::string &world_meaning, const std::string &axis)
+// What a contact-frame component of a body's vector is, written from its kind and owner
+// (never from the derivation's world-axis sentence): "velocity of the centre of mass of
+// puck after impact, t component".
+std::string frame_meaning(const problem &p, unknown_kind kind, std::size_t body, bool after, const std::string &axis)
 {
-    const std::string tail = " component";
-    const std::size_t comma = world_meaning.rfind(", ");
-    if (comma == std::string::npos || world_meaning.size() < tail.size() ||
-        world_meaning.compare(world_meaning.size() - tail.size(), tail.size(), tail) != 0)
-        return world_meaning + ", " + axis + " component";
-    return world_meaning.substr(0, comma) + ", " + axis + " component";
+    const std::string who = display_name(p.bodies[body]), tail = ", " + axis + " component";
+    const std::string when = after ? " after impact" : " before impact";
+    switch (kind) {
+    case unknown_kind::velocity:
+        return "velocity of the centre of mass of " + who + when + tail;
+    case unknown_kind::angular_velocity:
+        return "angular velocity of " + who + when + tail;
+    case unknown_kind::pivot_impulse:
+        return "impulse of the pivot on " + who + tail;
+    case unknown_kind::normal_impulse:
+        break;
+    }
+    return "normal impulse" + tail; // not a vector: the view never names its components
 }
 
 // The last three equations of v (a body's angular momentum along e_t, e_n, e_b) have
@@ -134,6 +143,135 @@ ex factored(const ex &x)
 {
     return is_a<add>(x) ? collect_common_factors(x) : x;
 }
+
+// A world vector to write through frame components: base, TeX base, body label, after impact.
+struct framed_vector {
+    const vec3 &world;
+    const std::string &base, &base_tex, &label;
+    bool after;
+};
+
+// Names x's frame components (v′_t1 = e_t · v′_1, ...) into `into` and writes x's world
+// symbols through them in v.to_frame; frame gets the new symbols. False (nothing named)
+// unless x is dim distinct plain symbols not named already.
+bool name_in_frame(contact_frame_view &v, int dim, const framed_vector &x, const std::vector<std::string> &meanings,
+                   std::vector<frame_component> &into, std::vector<symbol> &frame)
+{
+    const vec3 &world = x.world;
+    frame.clear();
+    for (int c = 0; c < dim; ++c)
+        if (!is_a<symbol>(world[c]) || v.to_frame.count(world[c]))
+            return false;
+    for (int c = 0; c < dim; ++c)
+        for (int k = 0; k < c; ++k)
+            if (world[c].is_equal(world[k]))
+                return false;
+    for (int k = 0; k < dim; ++k) {
+        frame.emplace_back(quantity_name(x.base, frame_axes[k], x.label, x.after),
+                           quantity_tex(x.base_tex, frame_axes[k], x.label, x.after));
+        ex combination = 0;
+        for (int c = 0; c < dim; ++c)
+            combination += v.e[k][c] * world[c];
+        into.push_back({frame.back(), combination, meanings[static_cast<std::size_t>(k)]});
+    }
+    for (int c = 0; c < dim; ++c) {
+        ex combination = 0;
+        for (int k = 0; k < dim; ++k)
+            combination += v.e[k][c] * frame[static_cast<std::size_t>(k)];
+        v.to_frame[world[c]] = combination;
+    }
+    return true;
+}
+
+// The derivation's equations into v: scalar ones rewritten, each vector equation projected
+// on e_t, e_n, e_b (a body's inertia entries in the frame named). False when a vector
+// equation's components are not the frame's to project; before and after count the nodes.
+bool project_equations(contact_frame_view &v, const derivation &d, const ex &inv_t_len,
+                       std::map<std::size_t, std::vector<symbol>> &spin_after,
+                       std::map<std::size_t, std::vector<symbol>> &spin_before, int &before, int &after)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    for (std::size_t k = 0; k < d.equations.size();) {
+        const equation &first = d.equations[k];
+        if (first.component < 0) {
+            // The smooth-contact equations are along e_t and e_b as the derivation's
+            // directions, not of length 1 in general: written for the unit vectors here.
+            const ex scale = first.why == principle::smooth_contact ? inv_t_len : ex(1);
+            framed_equation f{&first, rewritten(v, first.lhs * scale), rewritten(v, first.rhs * scale), ""};
+            before += nodes(first.lhs) + nodes(first.rhs);
+            after += nodes(f.lhs) + nodes(f.rhs);
+            v.equations.push_back(f);
+            ++k;
+            continue;
+        }
+        std::size_t j = k;
+        std::set<int> components;
+        while (j < d.equations.size() && d.equations[j].why == first.why && d.equations[j].bodies == first.bodies &&
+               d.equations[j].component >= 0)
+            components.insert(d.equations[j++].component);
+        if (dim == 2 && components == std::set<int>{2}) { // a spin in plane motion: along z = e_b
+            for (; k < j; ++k) {
+                const equation &eq = d.equations[k];
+                framed_equation f{&eq, rewritten(v, eq.lhs), rewritten(v, eq.rhs), p.axes[2]};
+                before += nodes(eq.lhs) + nodes(eq.rhs);
+                after += nodes(f.lhs) + nodes(f.rhs);
+                v.equations.push_back(f);
+            }
+            continue;
+        }
+        if (j - k != static_cast<std::size_t>(dim) || static_cast<int>(components.size()) != dim ||
+            *components.begin() != 0 || *components.rbegin() != dim - 1)
+            return false;
+        vec3 lhs = zero_vec(), rhs = zero_vec();
+        for (std::size_t q = k; q < j; ++q) {
+            const equation &eq = d.equations[q];
+            lhs[static_cast<std::size_t>(eq.component)] = eq.lhs;
+            rhs[static_cast<std::size_t>(eq.component)] = eq.rhs;
+            before += nodes(eq.lhs) + nodes(eq.rhs);
+        }
+        for (int a = 0; a < dim; ++a) {
+            ex l = 0, r = 0;
+            for (int c = 0; c < dim; ++c) {
+                l += v.e[a][c] * lhs[static_cast<std::size_t>(c)];
+                r += v.e[a][c] * rhs[static_cast<std::size_t>(c)];
+            }
+            // The equations keep their numbers (the steps cite them): the a-th of the group.
+            v.equations.push_back(
+                {&d.equations[k + static_cast<std::size_t>(a)], rewritten(v, l), rewritten(v, r), frame_axes[a]});
+        }
+        if (first.why == principle::angular_momentum && first.bodies.size() == 1 && spin_after.count(first.bodies[0]))
+            name_inertia(v, d, first.bodies[0], spin_after[first.bodies[0]], spin_before[first.bodies[0]]);
+        for (std::size_t q = v.equations.size() - static_cast<std::size_t>(dim); q < v.equations.size(); ++q)
+            after += nodes(v.equations[q].lhs) + nodes(v.equations[q].rhs);
+        k = j;
+    }
+    return true;
+}
+
+// Each equation as the derivation writes it, "after = before", and common factors taken out.
+void knowns_to_the_right(contact_frame_view &v)
+{
+    for (framed_equation &f : v.equations) {
+        // "after = before" as the derivation writes it: where the projection left knowns
+        // beside the unknowns on the left of "= 0" (a pinned body's partner), they go right.
+        if (f.rhs.is_zero() && is_a<add>(f.lhs)) {
+            ex unknown_part = 0, known_part = 0;
+            for (const ex &term : f.lhs) {
+                bool has_unknown = false;
+                for (const frame_component &u : v.unknowns)
+                    has_unknown = has_unknown || term.has(u.sym);
+                (has_unknown ? unknown_part : known_part) += term;
+            }
+            if (!unknown_part.is_zero() && !known_part.is_zero()) {
+                f.lhs = unknown_part;
+                f.rhs = -known_part;
+            }
+        }
+        f.lhs = factored(f.lhs);
+        f.rhs = factored(f.rhs);
+    }
+}
 } // namespace
 
 lst contact_frame_view::with_inputs(const ex &values) const
@@ -187,29 +325,7 @@ contact_frame_view contact_frame_view_of(const derivation &d)
     std::vector<symbol> frame;
     auto rename = [&](const vec3 &world, const std::string &base, const std::string &base_tex, const std::string &label,
                       bool after, const std::vector<std::string> &meanings, std::vector<frame_component> &into) {
-        frame.clear();
-        for (int c = 0; c < dim; ++c)
-            if (!is_a<symbol>(world[c]) || v.to_frame.count(world[c]))
-                return false;
-        for (int c = 0; c < dim; ++c)
-            for (int k = 0; k < c; ++k)
-                if (world[c].is_equal(world[k]))
-                    return false;
-        for (int k = 0; k < dim; ++k) {
-            frame.emplace_back(quantity_name(base, frame_axes[k], label, after),
-                               quantity_tex(base_tex, frame_axes[k], label, after));
-            ex combination = 0;
-            for (int c = 0; c < dim; ++c)
-                combination += v.e[k][c] * world[c];
-            into.push_back({frame.back(), combination, meanings[static_cast<std::size_t>(k)]});
-        }
-        for (int c = 0; c < dim; ++c) {
-            ex combination = 0;
-            for (int k = 0; k < dim; ++k)
-                combination += v.e[k][c] * frame[static_cast<std::size_t>(k)];
-            v.to_frame[world[c]] = combination;
-        }
-        return true;
+        return name_in_frame(v, dim, {world, base, base_tex, label, after}, meanings, into, frame);
     };
 
     // Unknowns, in the derivation's order: the world components of one vector are
@@ -224,15 +340,15 @@ contact_frame_view contact_frame_view_of(const derivation &d)
             continue;
         }
         vec3 world = zero_vec();
+        const std::size_t owner_body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
         std::vector<std::string> meanings;
         for (int c = 0; c < dim; ++c) {
             const unknown &uc = d.unknowns[i + static_cast<std::size_t>(c)];
             if (uc.kind != u.kind || uc.owner != u.owner || uc.component != c)
                 return world_only();
             world[c] = uc.sym;
-            meanings.push_back(frame_meaning(uc.meaning, frame_axes[c]));
+            meanings.push_back(frame_meaning(p, u.kind, owner_body, true, frame_axes[c]));
         }
-        const std::size_t owner_body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
         const std::string &label = p.bodies[owner_body].label;
         const bool ok = u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
                         : u.kind == unknown_kind::angular_velocity
@@ -248,16 +364,14 @@ contact_frame_view contact_frame_view_of(const derivation &d)
     // Inputs before impact given as plain symbols.
     for (std::size_t i : {p.contact.body1, p.contact.body2}) {
         const body &b = p.bodies[i];
-        const std::string who = display_name(b);
         std::vector<std::string> meanings;
         for (int k = 0; k < dim; ++k)
-            meanings.push_back("velocity of the centre of mass of " + who + " before impact, " + frame_axes[k] +
-                               " component");
+            meanings.push_back(frame_meaning(p, unknown_kind::velocity, i, false, frame_axes[k]));
         rename(b.velocity, "v", "v", b.label, false, meanings, v.inputs);
         if (dim == 3) {
             meanings.clear();
             for (int k = 0; k < dim; ++k)
-                meanings.push_back("angular velocity of " + who + " before impact, " + frame_axes[k] + " component");
+                meanings.push_back(frame_meaning(p, unknown_kind::angular_velocity, i, false, frame_axes[k]));
             if (rename(b.angular_velocity, "w", "\\omega", b.label, false, meanings, v.inputs))
                 spin_before[i] = frame;
         }
@@ -269,85 +383,15 @@ contact_frame_view contact_frame_view_of(const derivation &d)
         if (expanded_terms(eq.lhs.subs(v.to_frame)) + expanded_terms(eq.rhs.subs(v.to_frame)) > 4000)
             return world_only();
     int before = 0, after = 0;
-    for (std::size_t k = 0; k < d.equations.size();) {
-        const equation &first = d.equations[k];
-        if (first.component < 0) {
-            // The smooth-contact equations are along e_t and e_b as the derivation's
-            // directions, not of length 1 in general: written for the unit vectors here.
-            const ex scale = first.why == principle::smooth_contact ? inv_t_len : ex(1);
-            framed_equation f{&first, rewritten(v, first.lhs * scale), rewritten(v, first.rhs * scale), ""};
-            before += nodes(first.lhs) + nodes(first.rhs);
-            after += nodes(f.lhs) + nodes(f.rhs);
-            v.equations.push_back(f);
-            ++k;
-            continue;
-        }
-        std::size_t j = k;
-        std::set<int> components;
-        while (j < d.equations.size() && d.equations[j].why == first.why && d.equations[j].bodies == first.bodies &&
-               d.equations[j].component >= 0)
-            components.insert(d.equations[j++].component);
-        if (dim == 2 && components == std::set<int>{2}) { // a spin in plane motion: along z = e_b
-            for (; k < j; ++k) {
-                const equation &eq = d.equations[k];
-                framed_equation f{&eq, rewritten(v, eq.lhs), rewritten(v, eq.rhs), p.axes[2]};
-                before += nodes(eq.lhs) + nodes(eq.rhs);
-                after += nodes(f.lhs) + nodes(f.rhs);
-                v.equations.push_back(f);
-            }
-            continue;
-        }
-        if (j - k != static_cast<std::size_t>(dim) || static_cast<int>(components.size()) != dim ||
-            *components.begin() != 0 || *components.rbegin() != dim - 1)
-            return world_only();
-        vec3 lhs = zero_vec(), rhs = zero_vec();
-        for (std::size_t q = k; q < j; ++q) {
-            const equation &eq = d.equations[q];
-            lhs[static_cast<std::size_t>(eq.component)] = eq.lhs;
-            rhs[static_cast<std::size_t>(eq.component)] = eq.rhs;
-            before += nodes(eq.lhs) + nodes(eq.rhs);
-        }
-        for (int a = 0; a < dim; ++a) {
-            ex l = 0, r = 0;
-            for (int c = 0; c < dim; ++c) {
-                l += v.e[a][c] * lhs[static_cast<std::size_t>(c)];
-                r += v.e[a][c] * rhs[static_cast<std::size_t>(c)];
-            }
-            // The equations keep their numbers (the steps cite them): the a-th of the group.
-            v.equations.push_back(
-                {&d.equations[k + static_cast<std::size_t>(a)], rewritten(v, l), rewritten(v, r), frame_axes[a]});
-        }
-        if (first.why == principle::angular_momentum && first.bodies.size() == 1 && spin_after.count(first.bodies[0]))
-            name_inertia(v, d, first.bodies[0], spin_after[first.bodies[0]], spin_before[first.bodies[0]]);
-        for (std::size_t q = v.equations.size() - static_cast<std::size_t>(dim); q < v.equations.size(); ++q)
-            after += nodes(v.equations[q].lhs) + nodes(v.equations[q].rhs);
-        k = j;
-    }
+    if (!project_equations(v, d, inv_t_len, spin_after, spin_before, before, after))
+        return world_only();
     // Unlike radicals in the frame may not cancel: keep the world components when the
     // equations come out more than half as long again
     // (a rational frame shortens them; an irrational one such as that of (2, 3, 6), whose e_t
     // has sqrt(5), lengthens them a little; unlike radicals that do not cancel, several times)
     if (2 * after > 3 * before)
         return world_only();
-    for (framed_equation &f : v.equations) {
-        // "after = before" as the derivation writes it: where the projection left knowns
-        // beside the unknowns on the left of "= 0" (a pinned body's partner), they go right.
-        if (f.rhs.is_zero() && is_a<add>(f.lhs)) {
-            ex unknown_part = 0, known_part = 0;
-            for (const ex &term : f.lhs) {
-                bool has_unknown = false;
-                for (const frame_component &u : v.unknowns)
-                    has_unknown = has_unknown || term.has(u.sym);
-                (has_unknown ? unknown_part : known_part) += term;
-            }
-            if (!unknown_part.is_zero() && !known_part.is_zero()) {
-                f.lhs = unknown_part;
-                f.rhs = -known_part;
-            }
-        }
-        f.lhs = factored(f.lhs);
-        f.rhs = factored(f.rhs);
-    }
+    knowns_to_the_right(v);
     v.active = true;
     return v;
 }

@@ -482,6 +482,18 @@ ex expand_some(const solution &s, const ex &e, const std::vector<step_role> &rol
 
 // ---------------------------------------------------------------- sections
 
+// "Coulomb's coefficient of friction between the bodies is μ (μ ≥ 0).", with the name the
+// problem gives it when the document writes it otherwise.
+paragraph friction_coefficient(const friction_setup &fr)
+{
+    if (!is_a<symbol>(fr.mu))
+        return paragraph().t("Coulomb's coefficient of friction between the bodies is $μ$ = ").m(fr.mu).w(".");
+    paragraph q;
+    q.w("Coulomb's coefficient of friction between the bodies is ").m(fr.mu);
+    if (fr.mu_in_problem)
+        q.w(", written ").n(fr.mu_in_problem->text, fr.mu_in_problem->tex).w(" in the problem");
+    return q.t(" ($μ ≥ 0$).");
+}
 } // namespace
 
 section detail::setup_section(const derivation &d, const friction_setup *fr)
@@ -508,13 +520,8 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
         sec.para(paragraph().t("Newton's coefficient of restitution is ").m(p.restitution).t(" ($0 ≤ e ≤ 1$)."));
     else
         sec.para(paragraph().t("Newton's coefficient of restitution is $e$ = ").m(p.restitution).w("."));
-    if (fr) {
-        if (is_a<symbol>(fr->mu))
-            sec.para(
-                paragraph().w("Coulomb's coefficient of friction between the bodies is ").m(fr->mu).t(" ($μ ≥ 0$)."));
-        else
-            sec.para(paragraph().t("Coulomb's coefficient of friction between the bodies is $μ$ = ").m(fr->mu).w("."));
-    }
+    if (fr)
+        sec.para(friction_coefficient(*fr));
     if (!p.units.empty())
         sec.para(paragraph().w("Units: " + units_key(p) + "."));
 
@@ -1495,7 +1502,7 @@ problem detail::symbolized(const problem &p, lst &values, std::vector<std::strin
         q.restitution = e;
     }
     if (!q.contact.friction.is_zero()) {
-        symbol mu("mu", "\\mu"); // printed μ (explain_friction renames a symbol named mu)
+        symbol mu("mu", "\\mu"); // printed μ (explain_friction writes Coulomb's coefficient so)
         values.append(mu == q.contact.friction);
         units.push_back("");
         q.contact.friction = mu;

@@ -46,6 +46,9 @@ std::string units_key(const problem &p);
 /// that become unknowns: N (unless the derivation has it already) and F.
 struct friction_setup {
     GiNaC::ex mu;
+    /// The coefficient's own name, when the document writes it otherwise (μ for a
+    /// coefficient the problem names f).
+    std::optional<notation> mu_in_problem;
     std::vector<std::pair<GiNaC::ex, paragraph>> impulses; ///< unknown symbol, meaning
 };
 

@@ -1538,7 +1538,48 @@ void numbers_section(context &c, document &doc)
     doc.sections.push_back(ans);
 }
 
-// Prints mu and lambda as μ and λ in text (their TeX names are \mu and \lambda already).
+// How the document writes Coulomb's coefficient and the sliding speed: as the prose does,
+// μ and λ.
+const symbol mu_shown("μ", "\\mu"), lambda_shown("λ", "\\lambda");
+
+// Whether x prints as `shown` does, in text or in TeX (a problem's symbol mu is \mu in TeX).
+bool prints_as(const ex &x, const symbol &shown)
+{
+    return canonical_text(x) == canonical_text(shown) || canonical_latex(x) == canonical_latex(shown);
+}
+
+// Whether a symbol of the problem, or an unknown, other than `self` prints as `shown`
+// does: then writing `self` so would make two symbols look alike.
+bool shown_elsewhere(const derivation &d, const ex &self, const symbol &shown)
+{
+    for (const symbol &s : d.prob.parameters())
+        if (!self.is_equal(s) && prints_as(s, shown))
+            return true;
+    for (const unknown &u : d.unknowns)
+        if (prints_as(u.sym, shown))
+            return true;
+    return false;
+}
+
+// Coulomb's coefficient (friction_solution::mu, whatever its name in the problem) as μ,
+// and each slide's sliding speed (the step regime_case::sliding_speed names) as λ, where
+// that makes no two symbols look alike.
+exmap display_names(const derivation &d, const friction_solution &f)
+{
+    exmap m;
+    if (is_a<symbol>(f.mu) && !shown_elsewhere(d, f.mu, mu_shown))
+        m[f.mu] = mu_shown;
+    for (const regime_case &rc : f.cases) {
+        const bool named_step = std::any_of(rc.sol.steps.begin(), rc.sol.steps.end(), [&](const step &st) {
+            return st.role == step_role::separation_velocity && rc.sliding_speed.is_equal(st.sym);
+        });
+        if (named_step && !shown_elsewhere(d, rc.sliding_speed, lambda_shown))
+            m[rc.sliding_speed] = lambda_shown;
+    }
+    return m;
+}
+
+// Writes the symbols of m as m gives them, in every expression of the document.
 void rename(document &doc, const exmap &m)
 {
     if (m.empty())
@@ -1610,8 +1651,11 @@ document friction_document(const derivation &d, const friction_solution &f, cons
     }
     build_equations(c);
 
+    const exmap shown = display_names(d, f);
     friction_setup fs;
     fs.mu = f.mu;
+    if (shown.count(f.mu) && !prints_as(f.mu, mu_shown))
+        fs.mu_in_problem = notation{canonical_text(f.mu), canonical_latex(f.mu)};
     const std::string body2 = display_name(p.bodies[c.i2]), body1 = display_name(p.bodies[c.i1]);
     if (!d.impulse_form)
         fs.impulses.push_back({c.N, paragraph()
@@ -1639,14 +1683,7 @@ document friction_document(const derivation &d, const friction_solution &f, cons
     if (c.numeric)
         numbers_section(c, doc);
 
-    exmap m;
-    if (is_a<symbol>(f.mu) && ex_to<symbol>(f.mu).get_name() == "mu")
-        m[f.mu] = symbol("μ", "\\mu");
-    const symbol lambda("λ", "\\lambda");
-    for (const regime_case &rc : f.cases)
-        if (is_a<symbol>(rc.sliding_speed) && ex_to<symbol>(rc.sliding_speed).get_name() == "lambda")
-            m[rc.sliding_speed] = lambda;
-    rename(doc, m);
+    rename(doc, shown);
     return doc;
 }
 

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <string>
 
@@ -186,3 +187,30 @@ TEST(ContactFrame, ExplainPrintsTheSmoothContactEquationAsTheNotesDo)
 }
 
 } // namespace
+
+// The view writes the meaning of each contact-frame component from the unknown's kind,
+// body and axis, not by editing the derivation's sentence: a body named like the end of
+// one (", x component") reads as its name.
+TEST(ContactFrame, ComponentMeaningsFromTheUnknownsKind)
+{
+    const problem p = read_problem(
+        R"({"dimension": 2, "restitution": "e", "bodies": [
+          {"name": "ball, x component", "mass": "m1", "position": [0.5, -1], "velocity": ["p", "q"]},
+          {"name": "rod", "mass": "m2", "inertia": "I2", "position": [0, -0.5], "velocity": [0, 0], "angular_velocity": 0}],
+        "contact": {"bodies": ["ball, x component", "rod"], "point": [0.5, -1], "normal": [5, 12]},
+        "pivots": [{"body": "rod", "point": [0, 0]}]})",
+        "named-like-a-component");
+    const derivation d = derive(p);
+    const contact_frame_view v = contact_frame_view_of(d);
+    ASSERT_TRUE(v.active);
+    std::vector<std::string> meanings;
+    for (const frame_component& u : v.unknowns)
+        meanings.push_back(u.meaning);
+    for (const char* expected : {"velocity of the centre of mass of ball, x component after impact, t component",
+                                 "velocity of the centre of mass of ball, x component after impact, n component",
+                                 "impulse of the pivot on rod, t component", "impulse of the pivot on rod, n component"})
+        EXPECT_NE(std::find(meanings.begin(), meanings.end(), expected), meanings.end()) << expected;
+    ASSERT_EQ(v.inputs.size(), 2u);
+    EXPECT_EQ(v.inputs[0].meaning, "velocity of the centre of mass of ball, x component before impact, t component");
+    EXPECT_EQ(v.inputs[1].meaning, "velocity of the centre of mass of ball, x component before impact, n component");
+}

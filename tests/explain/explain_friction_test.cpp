@@ -477,3 +477,50 @@ TEST(FrictionExplain, StickImpulseWritesOnePlusE)
         EXPECT_GE(seen, 2u) << name;
     }
 }
+
+// Coulomb's coefficient and the sliding speed are found by what they are
+// (friction_solution::mu, regime_case::sliding_speed), never by their names.
+namespace {
+std::string ball_on_floor(const std::string& mass, const std::string& friction)
+{
+    return R"({"dimension": 2, "restitution": "e", "bodies": [
+      {"name": "floor", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+      {"name": "ball", "mass": ")" + mass + R"(", "inertia": "2/5", "position": [0, 1], "velocity": ["v_t", "v_n"],
+       "angular_velocity": 0}],
+    "contact": {"bodies": ["floor", "ball"], "point": [0, 0], "normal": [0, 1], "friction": ")" + friction + R"("}})";
+}
+} // namespace
+
+// A coefficient the problem names f is the μ the prose speaks of: the document is the
+// one of a coefficient named mu, but for the words that give its name in the problem.
+TEST(FrictionExplain, CoefficientIsMuWhateverItsName)
+{
+    const std::string as_mu = explain_text(explain_problem(read_problem(ball_on_floor("m", "mu"), "ball.json")).doc);
+    std::string as_f = explain_text(explain_problem(read_problem(ball_on_floor("m", "f"), "ball.json")).doc);
+    const std::string alias = ", written f in the problem";
+    const std::size_t at = as_f.find(alias);
+    ASSERT_NE(at, std::string::npos) << as_f.substr(0, 2000);
+    as_f.erase(at, alias.size());
+    EXPECT_EQ(flat(as_f), flat(as_mu));
+}
+
+// A symbol of the problem named lambda (here the ball's mass) is not the sliding speed,
+// and the sliding speed is not written λ where the mass already reads λ (TeX \lambda):
+// it keeps its own name, lambda_. Likewise a coefficient f beside a mass named mu (TeX
+// \mu) keeps its name.
+TEST(FrictionExplain, SymbolsNamedLambdaOrMuAreNotTheLawsSymbols)
+{
+    const explained lam = explain_problem(read_problem(ball_on_floor("lambda", "mu"), "ball.json"));
+    const std::string text = explain_text(lam.doc), tex = explain_latex(lam.doc);
+    EXPECT_NE(text.find("lambda_"), std::string::npos);
+    EXPECT_NE(tex.find("\\lambda{}'"), std::string::npos);
+    for (const regime_case& rc : lam.f.cases)
+        if (rc.kind == regime::slide) {
+            EXPECT_FALSE(rc.sliding_speed.is_equal(lam.d.prob.bodies[1].mass));
+        }
+
+    const explained mu = explain_problem(read_problem(ball_on_floor("mu", "f"), "ball.json"));
+    const std::string mu_text = flat(explain_text(mu.doc));
+    EXPECT_NE(mu_text.find("Coulomb's coefficient of friction between the bodies is f (μ ≥ 0)."), std::string::npos)
+        << mu_text.substr(0, 3000);
+}

@@ -537,6 +537,21 @@ TEST(FigureGeometry, ShapesFollowTheProblem)
         }
 }
 
+// A named class's symbols take their illustrative values by what they are in the problem,
+// not by their names: a velocity named like a spin (w...) is drawn as the velocity it is
+// (the fallback 1, not a spin's 0).
+TEST(FigureGeometry, SymbolsOfANamedClassPlacedByWhatTheyAre)
+{
+    problem p = find_named_class("planar")->build();
+    p.bodies[0].velocity[0] = symbol_named("w_slip"); // body 1 moves along e_t at "w_slip" = 1
+    const drawing g = draw(derive(p));
+    const item* v1 = find_item(g, "v1", item::arrow);
+    ASSERT_NE(v1, nullptr);
+    // v1 = (1, v_n1 = 1): at 45 degrees, not along e_n.
+    const double angle = std::atan2(v1->points[1].y - v1->points[0].y, v1->points[1].x - v1->points[0].x);
+    EXPECT_NEAR(angle, std::atan2(1.0, 1.0), 1e-9);
+}
+
 TEST(FigureGeometry, DescribeNamesBodiesShapesAndNormal)
 {
     auto text = [](const std::string& file) {
