@@ -283,6 +283,17 @@ std::string ok_flag(const std::string &ind, const emitted &form, const std::vect
     return text;
 }
 
+// The options of a branchless form (fast, batch, Jacobian): one flag, outputs as locals.
+emit_options branchless_form(bool share_divisions, int optional_output)
+{
+    emit_options o;
+    o.outputs = output_placement::local;
+    o.branchless = true;
+    o.share_divisions = share_divisions;
+    o.optional_output = optional_output;
+    return o;
+}
+
 const char *const tparams = "template <typename T, bool with_energy_lost = true>\n";
 
 // A body's 3-D inertia tensor as the closed form inverts it: about its centre of mass
@@ -586,8 +597,8 @@ private:
             if (pl_.outputs[k].kind == output_value::energy_lost)
                 energy = static_cast<int>(k);
         em_ = emit_cpp(prog_, outs_, checks_, var_names_, taken);
-        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, false, energy);
-        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, true, energy);
+        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, branchless_form(false, energy));
+        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, branchless_form(true, energy));
         unchanged_ = emit_cpp(prog_, unchanged_outs_, {}, {}, taken);
         // Inputs the outputs do not depend on still count for the finiteness check.
         std::set<std::string> reached;
@@ -700,7 +711,7 @@ private:
         if (pl_.has_jacobian) {
             std::vector<std::pair<std::string, int>> all = outs_local_;
             all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
-            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, true);
+            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, branchless_form(false, -1));
             jac_terms_ = finite_terms(jac_, false);
             for (const auto &[local, id] : jac_outs_)
                 if (needs_check(id))

@@ -165,60 +165,6 @@ std::string indent(const std::string &code, const std::string &by)
     return r;
 }
 
-// How a stage's outputs (emit_cpp writes `out.X = value;`) become code of the function.
-enum class output_as { locals, assign, result };
-
-// The emitted code with its output lines rewritten: `const T X = value;` (locals),
-// `X = value;` (assign: X declared before), or as written (result). energy: the output
-// field that is left 0 under with_energy_lost = false ("" for none).
-std::string place_outputs(const std::string &code, output_as how, const std::string &energy = "")
-{
-    std::istringstream lines(code);
-    std::string line, r;
-    const std::string prefix = "    out.";
-    while (std::getline(lines, line)) {
-        if (line.rfind(prefix, 0) == 0) {
-            const std::size_t eq = line.find(" = ");
-            const std::string field = line.substr(prefix.size(), eq - prefix.size());
-            std::string rhs = line.substr(eq + 3, line.size() - eq - 4);
-            if (!energy.empty() && field == energy)
-                rhs = (rhs.find(' ') != std::string::npos ? "with_energy_lost ? (" + rhs + ")"
-                                                          : "with_energy_lost ? " + rhs) +
-                      " : T(0)";
-            switch (how) {
-            case output_as::locals:
-                line = "    const T " + field + " = " + rhs + ";";
-                break;
-            case output_as::assign:
-                line = "    " + field + " = " + rhs + ";";
-                break;
-            case output_as::result:
-                line = prefix + field + " = " + rhs + ";";
-                break;
-            }
-        }
-        r += line + "\n";
-    }
-    return r;
-}
-
-// The names a piece of emitted code declares (`const T name = ...`).
-std::vector<std::string> declared(const std::string &code)
-{
-    std::vector<std::string> r;
-    std::istringstream lines(code);
-    std::string line;
-    const std::string key = "const T ";
-    while (std::getline(lines, line)) {
-        const std::size_t at = line.find(key);
-        if (at == std::string::npos)
-            continue;
-        const std::size_t end = line.find(' ', at + key.size());
-        r.push_back(line.substr(at + key.size(), end - at - key.size()));
-    }
-    return r;
-}
-
 // The leading principal minors that make a symmetric tensor positive definite, block by
 // block (as the smooth headers check them: codegen.cpp), with the determinant of a block
 // of all three axes only when with_determinant.
@@ -1140,25 +1086,36 @@ private:
             u_.output(outs_[k].field, outs_[k].tangential ? ex(0) : pl_.unchanged[outs_[k].smooth]);
     }
 
-    void emit_one(stage &s)
+    // A stage's code with its outputs placed as the function uses them; the names it
+    // declares are claimed.
+    void emit_one(stage &s, const emit_options &how)
     {
-        s.em = emit_cpp(s.prog, s.outs, s.checks, s.names, scope_.names());
-        for (const std::string &nm : declared(s.em.code))
+        s.em = emit_cpp(s.prog, s.outs, s.checks, s.names, scope_.names(), how);
+        for (const std::string &nm : s.em.declared)
             if (!scope_.taken(nm))
                 scope_.claim(nm);
         add_counts(total_, s.em.formula);
     }
 
+    // Stages A, B and the normal's basis declare their outputs as locals; stage S assigns
+    // the selected impulse (declared before it); stage C writes the result, the energy
+    // lost under with_energy_lost.
     void emit_stages()
     {
+        emit_options locals, assign, result;
+        locals.outputs = output_placement::local;
+        assign.outputs = output_placement::assign;
+        for (std::size_t k = 0; k < outs_.size(); ++k)
+            if (outs_[k].kind == output_value::energy_lost)
+                result.energy_output = static_cast<int>(k);
         if (!basis_names_.empty())
-            nb_.em = emit_cpp(nb_.prog, nb_.outs, {}, {}, scope_.names());
-        emit_one(a_);
+            nb_.em = emit_cpp(nb_.prog, nb_.outs, {}, {}, scope_.names(), locals);
+        emit_one(a_, locals);
         if (angle_ >= 0)
-            emit_one(b_);
+            emit_one(b_, locals);
         if (!mu_name_.empty())
-            emit_one(s_);
-        emit_one(c_);
+            emit_one(s_, assign);
+        emit_one(c_, result);
         u_.em = emit_cpp(u_.prog, u_.outs, {}, {}, scope_.names());
         count_name_ = scope_.claim("n_holding");
         stick_holds_name_ = scope_.claim("stick_holds");
@@ -1328,16 +1285,16 @@ private:
         }
         h_ << "// This problem, step by step, as the code below computes it (shared steps, checks, candidates):\n";
         for (const auto &[lhs, rhs] : a_.em.assignments)
-            h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
+            h_ << wrap_comment(lhs, rhs);
         if (angle_ >= 0) {
             h_ << "// The slide along d = " << dir_c_name_ << " e_t + " << dir_s_name_ << " e_b, at each root of g:\n";
             for (const auto &[lhs, rhs] : b_.em.assignments)
-                h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
+                h_ << wrap_comment(lhs, rhs);
         }
         if (!mu_name_.empty()) {
             h_ << "// mu = 0:\n";
             for (const auto &[lhs, rhs] : s_.em.assignments)
-                h_ << wrap_comment(lhs.rfind("out.", 0) == 0 ? lhs.substr(4) : lhs, rhs);
+                h_ << wrap_comment(lhs, rhs);
         }
         h_ << "// The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the "
               "regime:\n";
@@ -1432,7 +1389,7 @@ private:
             h_ << mu_check;
         if (!basis_names_.empty()) {
             h_ << "    // The unit tangent basis e_t, e_b of the contact plane for this normal (any direction).\n";
-            h_ << place_outputs(nb_.em.code, output_as::locals);
+            h_ << nb_.em.code;
             h_ << "    T " << basis_t_name_ << "[3], " << basis_b_name_ << "[3];\n";
             h_ << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", "
                << nb_.outs[2].first << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
@@ -1441,7 +1398,7 @@ private:
                    << k % 3 << "];\n";
         }
         h_ << "    // Shared steps, checks, the candidates and their conditions.\n";
-        h_ << place_outputs(a_.em.code, output_as::locals);
+        h_ << a_.em.code;
         if (!mu_input && !mu_name_.empty())
             h_ << mu_check;
         h_ << "    // The regime that holds: its impulse (world axes, on "
@@ -1453,7 +1410,7 @@ private:
         std::string ind = "    ";
         if (!mu_name_.empty()) {
             h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
-            h_ << indent(place_outputs(s_.em.code, output_as::assign), "    ");
+            h_ << indent(s_.em.code, "    ");
             h_ << "    } else {\n";
             ind = "        ";
         } else {
@@ -1555,7 +1512,7 @@ private:
                << loop_name_ << ") {\n";
             h_ << i2 << "const T " << dir_c_name_ << " = " << roots_c_name_ << "[" << loop_name_ << "];\n";
             h_ << i2 << "const T " << dir_s_name_ << " = " << roots_s_name_ << "[" << loop_name_ << "];\n";
-            h_ << indent(place_outputs(b_.em.code, output_as::locals), ind);
+            h_ << indent(b_.em.code, ind);
             std::vector<std::string> slide_values = cn.cond;
             slide_values.push_back(cn.N);
             h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
@@ -1620,11 +1577,7 @@ private:
         h_ << ind << "}\n";
         h_ << "    }\n";
         h_ << "    // The post-impact state.\n";
-        std::string energy;
-        for (const out_field &of : outs_)
-            if (of.kind == output_value::energy_lost)
-                energy = of.field;
-        h_ << place_outputs(c_.em.code, output_as::result, energy);
+        h_ << c_.em.code;
         h_ << "    out.regime = " << regime_name_ << ";\n";
         std::vector<std::string> terms;
         for (const out_field &of : outs_)
