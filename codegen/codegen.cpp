@@ -1,5 +1,6 @@
 #include "codegen.hpp"
 #include "friction.hpp"
+#include "runtime.hpp"
 #include "text.hpp"
 
 #include "names/escape.hpp"
@@ -9,8 +10,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -286,129 +285,16 @@ std::string ok_flag(const std::string &ind, const emitted &form, const std::vect
     return text;
 }
 
-const char *const preamble_body = R"(// Hooks the user may define before including a generated header:
-//   IMPACTGEN_FUNC  what every function is declared with (default inline;
-//                   e.g. __host__ __device__ inline for nvcc or hipcc)
-//   IMPACTGEN_MEMBER  what the structs' member functions are declared with
-//                   (default nothing; e.g. __host__ __device__)
-//   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
-//                   (default __restrict with GCC, clang, MSVC)
-//   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
-//                   path that classifies failures
-//   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math or -ffinite-math-only
-//                   anyway (its NaN and infinity checks may then pass a NaN
-//                   input as ok)
-#ifndef IMPACTGEN_FUNC
-#define IMPACTGEN_FUNC inline
-#endif
-#ifndef IMPACTGEN_MEMBER
-#define IMPACTGEN_MEMBER
-#endif
-#ifndef IMPACTGEN_RESTRICT
-#if defined(__GNUC__) || defined(_MSC_VER)
-#define IMPACTGEN_RESTRICT __restrict
-#else
-#define IMPACTGEN_RESTRICT
-#endif
-#endif
-#ifndef IMPACTGEN_COLD
-#if defined(__GNUC__)
-#define IMPACTGEN_COLD __attribute__((noinline, cold))
-#else
-#define IMPACTGEN_COLD
-#endif
-#endif
-#ifndef IMPACTGEN_HOT
-#if defined(__GNUC__)
-#define IMPACTGEN_HOT __attribute__((always_inline))
-#else
-#define IMPACTGEN_HOT
-#endif
-#endif
-#if (defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
-#error "impactgen: -ffast-math and -ffinite-math-only remove the NaN and infinity checks of this header (a NaN input would return ok); compile it without them (or with -fno-finite-math-only), or define IMPACTGEN_ALLOW_FAST_MATH"
-#endif
-
-/// Why a call computed no post-impact state. On any status but ok the result
-/// holds the state unchanged: the velocities as before the impact, every
-/// impulse, the approach velocity and the energy lost zero (so an engine that
-/// writes the result back unconditionally keeps its bodies' velocities).
-enum class impact_status : int {
-    ok = 0,
-    non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
-    invalid_restitution, ///< e outside [0, 1]
-    not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
-    invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the effective inverse mass k = w_1 + w_2 is not positive and finite
-    overflow             ///< finite inputs whose result overflows
-};
-
-IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
+// The options of a branchless form (fast, batch, Jacobian): one flag, outputs as locals.
+emit_options branchless_form(bool share_divisions, int optional_output)
 {
-    switch (s) {
-    case impact_status::ok: return "ok";
-    case impact_status::non_finite_input: return "non-finite input";
-    case impact_status::invalid_mass: return "invalid mass";
-    case impact_status::invalid_inertia: return "invalid inertia";
-    case impact_status::invalid_restitution: return "invalid restitution";
-    case impact_status::not_approaching: return "not approaching";
-    case impact_status::invalid_normal: return "invalid normal";
-    case impact_status::singular: return "singular effective mass";
-    case impact_status::overflow: return "overflow";
-    }
-    return "?";
+    emit_options o;
+    o.outputs = output_placement::local;
+    o.branchless = true;
+    o.share_divisions = share_divisions;
+    o.optional_output = optional_output;
+    return o;
 }
-
-/// Members of an input or result struct that form a vector (Cols = 1) or a
-/// matrix, row-major, for adapters such as impactgen/eigen.hpp: entry[k] points
-/// to the member, or is null where the header fixed the value (then fixed[k]).
-/// A symmetric tensor's entries (r, c) and (c, r) point to the same member.
-template <typename S, int Rows, int Cols> struct view {
-    static constexpr int rows = Rows, cols = Cols;
-    S* entry[Rows * Cols];
-    long double fixed[Rows * Cols];
-};
-
-/// Floating-point operations of one call of a generated function.
-struct op_count {
-    int add, mul, div, sqrt;
-};
-
-namespace detail {
-template <typename T> IMPACTGEN_FUNC constexpr bool finite(T x) noexcept { return x - x == T(0); }
-template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T x, U... y) noexcept
-{
-    return (finite(x) && ... && finite(y));
-}
-/// A number of the header (a long double literal) in the scalar type: directly for
-/// float, double and long double; through double for other types (autodiff
-/// scalars such as Eigen's AutoDiffScalar or ceres::Jet are built on double), so
-/// that no implicit long double conversion is left for -Wconversion to flag.
-template <typename T> struct constant_of {
-    IMPACTGEN_MEMBER static T from(long double x) noexcept { return T(static_cast<double>(x)); }
-};
-template <> struct constant_of<float> {
-    IMPACTGEN_MEMBER static constexpr float from(long double x) noexcept { return static_cast<float>(x); }
-};
-template <> struct constant_of<double> {
-    IMPACTGEN_MEMBER static constexpr double from(long double x) noexcept { return static_cast<double>(x); }
-};
-template <> struct constant_of<long double> {
-    IMPACTGEN_MEMBER static constexpr long double from(long double x) noexcept { return x; }
-};
-template <typename T> IMPACTGEN_FUNC T constant(long double x) noexcept { return constant_of<T>::from(x); }
-template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
-/// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
-template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
-{
-    return min_of(y < x ? y : x, z...);
-}
-} // namespace detail
-#endif
-
-)";
 
 const char *const tparams = "template <typename T, bool with_energy_lost = true>\n";
 
@@ -709,8 +595,8 @@ private:
             if (pl_.outputs[k].kind == output_value::energy_lost)
                 energy = static_cast<int>(k);
         em_ = emit_cpp(prog_, outs_, checks_, var_names_, taken);
-        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, false, energy);
-        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, true, true, energy);
+        fast_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, branchless_form(false, energy));
+        batch_ = emit_cpp(prog_, outs_local_, checks_, var_names_, taken, branchless_form(true, energy));
         unchanged_ = emit_cpp(prog_, unchanged_outs_, {}, {}, taken);
         // Inputs the outputs do not depend on still count for the finiteness check.
         std::set<std::string> reached;
@@ -823,7 +709,7 @@ private:
         if (pl_.has_jacobian) {
             std::vector<std::pair<std::string, int>> all = outs_local_;
             all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
-            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, true);
+            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, branchless_form(false, -1));
             jac_terms_ = finite_terms(jac_, false);
             for (const auto &[local, id] : jac_outs_)
                 if (needs_check(id))
@@ -875,21 +761,9 @@ private:
             h_ << "\n";
     }
 
-    // The status enum and helpers, once per namespace (a guard unique to it).
-    void preamble()
-    {
-        // The guard names the preamble's own text too: headers from an impactgen whose
-        // preamble differs do not skip this one (they clash loudly instead).
-        std::uint32_t hash = 2166136261u;
-        for (unsigned char c : std::string(preamble_body))
-            hash = (hash ^ c) * 16777619u;
-        char tag[32];
-        std::snprintf(tag, sizeof tag, "PREAMBLE_%08X", static_cast<unsigned>(hash));
-        const std::string guard = names::guard_macro(tag, o_.ns);
-        h_ << "namespace " << o_.ns << " {\n\n";
-        h_ << "#ifndef " << guard << "\n#define " << guard << "\n";
-        h_ << preamble_body;
-    }
+    // The status enum and helpers (codegen/runtime/impact_runtime.hpp), once per
+    // namespace (a guard unique to it and to the text).
+    void preamble() { h_ << impact_preamble(o_.ns); }
 
     // A view's two member functions (mutable and const) for one group.
     void view_functions(const std::string &name, const group &g)

@@ -13,7 +13,8 @@
 // the frictionless impact for mu = 0 (a third); and the post-impact state for the
 // impulse of the regime that holds (a fourth). The header's preamble shares the smooth
 // headers' (impact_status, view, detail helpers: one copy per namespace) and adds
-// friction_status, impact_regime and the root finder under a guard of its own.
+// friction_status, impact_regime and the root finder under a guard of its own: the files
+// codegen/runtime/impact_runtime.hpp and friction_runtime.hpp, emitted verbatim.
 #pragma once
 
 #include "codegen.hpp"

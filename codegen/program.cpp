@@ -436,12 +436,15 @@ class emitter
 public:
     emitter(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
             const std::vector<check> &checks, const std::map<int, std::string> &names,
-            const std::vector<std::string> &taken, bool branchless, bool share_divisions, int optional_output)
-        : prog_(prog), outputs_(outputs), checks_(checks), names_(names), branchless_(branchless),
-          share_divisions_(share_divisions), optional_output_(optional_output), n_(prog.size()), reach_(n_, false),
-          materialised_(n_, false), covered_(n_, false), needed_(n_, false), emitted_(n_, false), refs_(n_, 0),
-          used_names_(taken.begin(), taken.end())
+            const std::vector<std::string> &taken, const emit_options &options)
+        : prog_(prog), outputs_(outputs), checks_(checks), names_(names), placement_(options.outputs),
+          branchless_(options.branchless), share_divisions_(options.share_divisions),
+          optional_output_(options.optional_output), energy_output_(options.energy_output), n_(prog.size()),
+          reach_(n_, false), materialised_(n_, false), covered_(n_, false), needed_(n_, false), emitted_(n_, false),
+          refs_(n_, 0), used_names_(taken.begin(), taken.end())
     {
+        if (branchless_ && placement_ != output_placement::local)
+            throw std::logic_error("code generation: a branchless form places its outputs as locals");
     }
 
     emitted run()
@@ -831,6 +834,13 @@ private:
         return "(T(" + std::to_string(d + sign) + ") / T(" + std::to_string(d) + "))";
     }
 
+    // `    const T name = text;` with its comment, and name among the declared.
+    void declare(const std::string &name, const std::string &text, const std::string &comment = "")
+    {
+        out_.code += "    const T " + name + " = " + text + ";" + comment + "\n";
+        out_.declared.push_back(name);
+    }
+
     std::string fresh(const std::string &base)
     {
         std::string nm = unique_name(used_names_, base);
@@ -859,7 +869,7 @@ private:
                 continue;
             }
             std::string nm = fresh("rcp_q" + std::to_string(q.size() + 1));
-            code += "    const T " + nm + " = " + den(pair[0]) + " * " + den(pair[1]) + ";\n";
+            declare(nm, den(pair[0]) + " * " + den(pair[1]));
             ++out_.formula.mul;
             out_.normal_terms.push_back(nm);
             q.push_back(nm);
@@ -867,16 +877,16 @@ private:
         std::vector<std::string> s;
         if (q.size() == 1) {
             std::string r = fresh("rcp_r");
-            code += "    const T " + r + " = T(1) / " + q[0] + ";\n";
+            declare(r, "T(1) / " + q[0]);
             ++out_.formula.div;
             out_.finite_terms.push_back(q[0]);
             s.push_back(r);
         } else {
             std::string pq = fresh("rcp_p"), r = fresh("rcp_r"), s1 = fresh("rcp_s1"), s2 = fresh("rcp_s2");
-            code += "    const T " + pq + " = " + q[0] + " * " + q[1] + ";\n";
-            code += "    const T " + r + " = T(1) / " + pq + ";\n";
-            code += "    const T " + s1 + " = " + q[1] + " * " + r + "; // 1/" + q[0] + "\n";
-            code += "    const T " + s2 + " = " + q[0] + " * " + r + "; // 1/" + q[1] + "\n";
+            declare(pq, q[0] + " * " + q[1]);
+            declare(r, "T(1) / " + pq);
+            declare(s1, q[1] + " * " + r, " // 1/" + q[0]);
+            declare(s2, q[0] + " * " + r, " // 1/" + q[1]);
             out_.formula.mul += 3;
             ++out_.formula.div;
             out_.normal_terms.push_back(pq);
@@ -885,11 +895,11 @@ private:
         }
         for (std::size_t j = 0; j < pairs.size(); ++j) {
             if (pairs[j].size() == 1) {
-                code += "    const T " + var_[pairs[j][0]] + " = " + s[j] + ";\n";
+                declare(var_[pairs[j][0]], s[j]);
                 continue;
             }
-            code += "    const T " + var_[pairs[j][0]] + " = " + den(pairs[j][1]) + " * " + s[j] + ";\n";
-            code += "    const T " + var_[pairs[j][1]] + " = " + den(pairs[j][0]) + " * " + s[j] + ";\n";
+            declare(var_[pairs[j][0]], den(pairs[j][1]) + " * " + s[j]);
+            declare(var_[pairs[j][1]], den(pairs[j][0]) + " * " + s[j]);
             out_.formula.mul += 2;
         }
         for (int id : members) {
@@ -901,7 +911,7 @@ private:
     void emit_value(int id)
     {
         int p;
-        out_.code += "    const T " + var_[id] + " = " + printer_().text(id, p, true) + ";\n";
+        declare(var_[id], printer_().text(id, p, true));
         if (!branchless_)
             out_.assignments.push_back({var_[id], math_().text(id, p, true)});
         emitted_[static_cast<std::size_t>(id)] = true;
@@ -955,16 +965,31 @@ private:
                 throw std::logic_error("code generation: a checked value was never emitted");
     }
 
+    // The outputs as placed: `out.F = v;`, `const T F = v;` or `F = v;`, the energy
+    // output as `with_energy_lost ? v : T(0)`.
     void emit_outputs()
     {
-        for (auto &[field, id] : outputs_) {
+        for (std::size_t k = 0; k < outputs_.size(); ++k) {
+            const auto &[field, id] = outputs_[k];
             int p;
-            if (branchless_) {
-                out_.code += "    const T " + field + " = " + printer_().text(id, p) + ";\n";
-                continue;
+            std::string v = printer_().text(id, p);
+            if (static_cast<int>(k) == energy_output_)
+                v = (v.find(' ') != std::string::npos ? "with_energy_lost ? (" + v + ")" : "with_energy_lost ? " + v) +
+                    " : T(0)";
+            switch (placement_) {
+            case output_placement::result:
+                out_.code += "    out." + field + " = " + v + ";\n";
+                break;
+            case output_placement::local:
+                declare(field, v);
+                break;
+            case output_placement::assign:
+                out_.code += "    " + field + " = " + v + ";\n";
+                break;
             }
-            out_.code += "    out." + field + " = " + printer_().text(id, p) + ";\n";
-            out_.assignments.push_back({"out." + field, math_().text(id, p)});
+            if (!branchless_)
+                out_.assignments.push_back(
+                    {placement_ == output_placement::result ? "out." + field : field, math_().text(id, p)});
         }
     }
 
@@ -978,8 +1003,9 @@ private:
     const std::vector<std::pair<std::string, int>> &outputs_;
     const std::vector<check> &checks_;
     const std::map<int, std::string> &names_;
+    const output_placement placement_;
     const bool branchless_, share_divisions_;
-    const int optional_output_;
+    const int optional_output_, energy_output_;
     const std::size_t n_;
     std::vector<bool> reach_, materialised_, covered_, needed_, emitted_;
     std::vector<int> refs_;
@@ -998,9 +1024,9 @@ private:
 
 emitted emit_cpp(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
                  const std::vector<check> &checks, const std::map<int, std::string> &names,
-                 const std::vector<std::string> &taken, bool branchless, bool share_divisions, int optional_output)
+                 const std::vector<std::string> &taken, const emit_options &options)
 {
-    return emitter(prog, outputs, checks, names, taken, branchless, share_divisions, optional_output).run();
+    return emitter(prog, outputs, checks, names, taken, options).run();
 }
 
 } // namespace impactgen::codegen

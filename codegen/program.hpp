@@ -112,22 +112,42 @@ struct emitted {
     /// from the same printer as the code (numbers written as in mathematics):
     /// the header's formula comments, which therefore cannot disagree with the code.
     std::vector<std::pair<std::string, std::string>> assignments;
+    /// The names the code declares (`const T name`: values, shared reciprocals, outputs
+    /// placed as locals), in the order of the code.
+    std::vector<std::string> declared;
 };
 
-/// Emits straight-line C++ for the outputs (field name, op) with the checks
-/// placed right after the values they test. `names` gives ops their variable
-/// names (the solution's step names, unique). `taken` are the names already declared
-/// (parameters, steps, the caller's locals): new names avoid them.
-/// branchless: checks accumulate into `ok` and outputs become `const T o_<field>`
-/// share_divisions (branchless only): reciprocals of positive inputs share one division
-/// (fewer divisions for the throughput of a vectorised loop; a longer chain of latency)
-/// (the body of a vectorisable batch loop).
-/// optional_output: the index in outputs of a value the form may leave 0 instead of
-/// computing it (energy_lost under with_energy_lost = false), or -1: its finiteness then
-/// implies nothing about the values it is made of (they are checked in their own right).
+/// How emit_cpp writes an output value v of field F.
+enum class output_placement {
+    result, ///< `out.F = v;`: into the caller's result struct (assignments name it out.F)
+    local,  ///< `const T F = v;`: a new local
+    assign  ///< `F = v;`: into a variable the caller declared
+};
+
+struct emit_options {
+    output_placement outputs = output_placement::result;
+    /// Checks accumulate into `ok` instead of returning (the fast form; the body of a
+    /// vectorisable batch loop); outputs then must be placed as locals, and no
+    /// assignments are listed.
+    bool branchless = false;
+    /// Branchless only: reciprocals of positive inputs share one division (fewer divisions
+    /// for the throughput of a vectorised loop; a longer chain of latency).
+    bool share_divisions = false;
+    /// The index in outputs of a value the form may leave 0 instead of computing it
+    /// (energy_lost under with_energy_lost = false), or -1: its finiteness then implies
+    /// nothing about the values it is made of (they are checked in their own right).
+    int optional_output = -1;
+    /// The index in outputs of a value written `with_energy_lost ? v : T(0)` (the energy
+    /// lost, computed only when the function's template parameter asks), or -1.
+    int energy_output = -1;
+};
+
+/// Emits straight-line C++ for the outputs (field name, op), placed as the options say,
+/// with the checks placed right after the values they test. `names` gives ops their
+/// variable names (the solution's step names, unique). `taken` are the names already
+/// declared (parameters, steps, the caller's locals): new names avoid them.
 emitted emit_cpp(const program &prog, const std::vector<std::pair<std::string, int>> &outputs,
                  const std::vector<check> &checks, const std::map<int, std::string> &names,
-                 const std::vector<std::string> &taken, bool branchless = false, bool share_divisions = false,
-                 int optional_output = -1);
+                 const std::vector<std::string> &taken, const emit_options &options = {});
 
 } // namespace impactgen::codegen
