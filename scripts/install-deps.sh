@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Installs what impactgen needs from Debian's packages, only what is missing.
 #   install-deps.sh          build and run dependencies
-#   install-deps.sh --tests  also GoogleTest, Google Benchmark, pdflatex, TikZ and Chromium for the test suite
+#   install-deps.sh --tests  also GoogleTest, Google Benchmark, pdflatex, TikZ, Chromium and clang-format for the test suite
 set -euo pipefail
 packages=(cmake make g++ pkg-config libginac-dev libcln-dev libeigen3-dev nlohmann-json3-dev libcli11-dev)
 if [[ "${1:-}" == "--tests" ]]; then
   # clang: the second compiler of the header tests and the compiler of the sanitizer pass
   # (libclang-rt-14-dev has its ASan and UBSan runtimes, only recommended by clang; llvm-14
   # its llvm-symbolizer: without it every sanitized program warns on stderr at exit).
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev llvm-14 chromium zlib1g-dev)
+  # clang-format: scripts/check-format.sh, the library against the committed .clang-format.
+  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev llvm-14 chromium zlib1g-dev
+             clang-format)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: install what is missing; build with g++ (warnings as errors) and run the
+# Every test: install what is missing; check the library's formatting (scripts/check-format.sh,
+# before anything is built: it fails in seconds); build with g++ (warnings as errors) and run the
 # tests of the generated code, the package, the adapters, the HTML pages and the Eigen
 # reference; then build the library's own tests with clang++ (warnings as errors) and
 # run them under ASan + UBSan. Each test program is built once, by the pass where it
@@ -11,6 +12,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --tests
+bash scripts/check-format.sh
 jobs=$(nproc)
 start=$(date +%s)
 
