@@ -306,10 +306,10 @@ derivation derive(const problem &p, const derive_options &options)
             if (p.immovable(i))
                 continue;
             if (b.particle) {
-                d.remarks.push_back(
-                    {remark_kind::particle_no_rotation, i,
-                     display_name(b) + " is a particle (no rotational inertia): it has no angular velocity unknowns "
-                                       "and its angular momentum about O gives no new equation."});
+                d.remarks.push_back({remark_kind::particle_no_rotation, i,
+                                     display_name(b) +
+                                         " is a particle (no rotational inertia): it has no angular velocity unknowns "
+                                         "and its angular momentum about O gives no new equation."});
                 continue;
             }
             vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
@@ -359,10 +359,10 @@ derivation derive(const problem &p, const derive_options &options)
                                  false);
             }
             if (pv && b.particle)
-                d.remarks.push_back(
-                    {remark_kind::pinned_particle, i,
-                     display_name(b) + " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, "
-                                       "and its pivot takes the whole contact impulse."});
+                d.remarks.push_back({remark_kind::pinned_particle, i,
+                                     display_name(b) +
+                                         " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, "
+                                         "and its pivot takes the whole contact impulse."});
         }
         for (std::size_t i : contact_bodies)
             if (p.bodies[i].infinite_mass)
