@@ -23,8 +23,11 @@
 //      several ambiguous -- but at the stick/slide boundary within rounding, where the
 //      stick candidate and a slide are one solution (impulses equal to within eps^(2/3)
 //      relative): there the answer is stick when nothing else holds; and a candidate or
-//      condition that is not finite makes the status overflow;
-//   4. the post-impact state for the impulse of that candidate (stage C), the energy lost
+//      condition that is not finite makes the status overflow. Without a stick candidate
+//      (K singular identically: a body pinned at a fixed point struck by one that cannot
+//      move) the slides are the candidates: regime slide, no det K check, no boundary merge;
+//   4. the post-impact state for the impulse of that candidate (stage C, linear in it: the
+//      stick candidate's formulas, or without one symbolic/response.hpp's), the energy lost
 //      as minus the work of the contact impulse (1/2 P.(a + a') per free body), the
 //      finiteness of the result.
 // Values stages B, C and S need from stage A (its steps, and for B and C the powers with
@@ -256,6 +259,11 @@ struct stage {
 
 // ---------------------------------------------------------------------------
 // The writer
+
+// The state after the selected impulse: per body, per pivot (world axes).
+struct after_state {
+    std::vector<vec3> velocity, angular_velocity, pivot_impulses;
+};
 
 struct case_names {
     std::string prefix;         // "stick_", "slide_pos_", "slide_neg_", "slide_"
@@ -496,14 +504,13 @@ private:
     {
         const problem &q = q_;
         const int dim = q.dimension;
-        const regime_case &stick = f_.cases.front();
         for (std::size_t i = 0; i < f_.cases.size(); ++i)
             if (f_.cases[i].needs_angle)
                 angle_ = static_cast<int>(i);
         // Steps: stage A (every step of every case that does not depend on the sliding
         // angle, each once) and stage B (the angle case's own steps).
         exset shared;
-        for (const step &st : stick.sol.steps) {
+        for (const step &st : f_.cases.front().sol.steps) {
             bool everywhere = true;
             for (const regime_case &c : f_.cases) {
                 bool found = false;
@@ -545,7 +552,7 @@ private:
         // overflows where the sum does not).
         for (step &st : a_steps_)
             if (st.role == step_role::contact_response)
-                st.value = response_entry(stick, st.row, st.column);
+                st.value = response_entry(f_.shared, st.row, st.column);
 
         // The selected impulse (world, on body 2), normal impulse and tangential impulse.
         for (int a = 0; a < dim; ++a) {
@@ -562,13 +569,11 @@ private:
         }
         local_.insert(sel_N_);
 
-        // Stage C: the state after the impulse sel_P (the stick case's formulas with its
-        // impulse replaced), the impulses, the approach velocity and the energy lost.
-        lst to_sel;
-        for (int a = 0; a < dim; ++a)
-            to_sel.append(stick.impulse[static_cast<std::size_t>(a)] == sel_P_[static_cast<std::size_t>(a)]);
+        // Stage C: the state after the impulse sel_P, the impulses, the approach velocity and
+        // the energy lost.
+        const after_state after = state_after_selected();
         const step *un = nullptr;
-        for (const step &st : stick.sol.steps)
+        for (const step &st : f_.shared.steps)
             if (st.role == step_role::approach_velocity)
                 un = &st;
         if (!un)
@@ -582,13 +587,13 @@ private:
             }
             switch (of.kind) {
             case output_value::velocity:
-                c_values[k] = stick.sol.after[of.index].velocity[of.component].subs(to_sel);
+                c_values[k] = after.velocity[of.index][of.component];
                 break;
             case output_value::angular_velocity:
-                c_values[k] = stick.sol.after[of.index].angular_velocity[of.component].subs(to_sel);
+                c_values[k] = after.angular_velocity[of.index][of.component];
                 break;
             case output_value::pivot_impulse:
-                c_values[k] = stick.sol.pivot_impulses[of.index][of.component].subs(to_sel);
+                c_values[k] = after.pivot_impulses[of.index][of.component];
                 break;
             case output_value::normal_impulse:
                 c_values[k] = sel_N_;
@@ -597,14 +602,14 @@ private:
                 c_values[k] = un->sym;
                 break;
             case output_value::energy_lost:
-                c_values[k] = energy_lost(stick, to_sel);
+                c_values[k] = energy_lost(after);
                 break;
             }
         }
         // Stage S: mu = 0, the frictionless impact: N = -(1 + e) u_n / (n.K n), P = N n.
         const vec3 &n = d_.n_hat;
         mat3 K = zero_mat();
-        for (const step &st : stick.sol.steps)
+        for (const step &st : f_.shared.steps)
             if (st.role == step_role::contact_response)
                 K[static_cast<std::size_t>(st.row)][static_cast<std::size_t>(st.column)] =
                     K[static_cast<std::size_t>(st.column)][static_cast<std::size_t>(st.row)] = st.sym;
@@ -651,10 +656,9 @@ private:
     // opposite on body 1): K_i P = P/m_i + (I_i^{-1} (r_i x P)) x r_i (a pinned body: about
     // its pivot, without the first term), with the inverse inertia as the solution has it
     // (its steps for a full tensor, 1/I for a diagonal one).
-    ex response_entry(const regime_case &stick, int a, int b) const
+    ex response_entry(const solution &s, int a, int b) const
     {
         const problem &q = q_;
-        const solution &s = stick.sol;
         ex k = 0;
         for (std::size_t i : {q.contact.body1, q.contact.body2}) {
             if (q.immovable(i))
@@ -666,39 +670,7 @@ private:
                 k += 1 / bd.mass;
             if (bd.particle)
                 continue;
-            mat3 inv = zero_mat();
-            if (q.dimension == 2) {
-                const step *ie = s.find(step_role::pivot_inertia, i, 2, 2);
-                ex Iz = bd.inertia[2][2];
-                if (pv)
-                    Iz = ie ? ex(ie->sym) : inertia_about(bd, pv->point)[2][2];
-                inv[2][2] = 1 / Iz;
-            } else {
-                const mat3 J = pv ? inertia_about(bd, pv->point) : bd.inertia;
-                bool diagonal = true;
-                for (std::size_t r = 0; r < 3; ++r)
-                    for (std::size_t c = r + 1; c < 3; ++c)
-                        diagonal = diagonal && tidy(J[r][c]).is_zero() && tidy(J[c][r]).is_zero();
-                for (std::size_t r = 0; r < 3; ++r)
-                    for (std::size_t c = 0; c < 3; ++c) {
-                        if (diagonal) {
-                            inv[r][c] = r == c ? 1 / tidy(J[r][r]) : ex(0);
-                            continue;
-                        }
-                        const step *js = s.find(step_role::inverse_inertia, i, static_cast<int>(std::min(r, c)),
-                                                static_cast<int>(std::max(r, c)));
-                        if (js) {
-                            inv[r][c] = js->sym;
-                            continue;
-                        }
-                        // A number too simple to be a step (a numeric tensor): adj(J) / det(J) itself.
-                        mat3 Jt;
-                        for (std::size_t a2 = 0; a2 < 3; ++a2)
-                            for (std::size_t c2 = 0; c2 < 3; ++c2)
-                                Jt[a2][c2] = tidy(J[a2][c2]);
-                        inv[r][c] = tidy(adjugate(Jt)[r][c] / det(Jt));
-                    }
-            }
+            const mat3 inv = inverse_inertia(s, i);
             vec3 e = zero_vec();
             e[static_cast<std::size_t>(b)] = 1;
             k += cross(mul(inv, cross(lever, e)), lever)[static_cast<std::size_t>(a)];
@@ -706,11 +678,108 @@ private:
         return k;
     }
 
+    // The inverse inertia of movable body i, not a particle (about its pivot when pinned), as
+    // the solution s has it: its steps for a full tensor (or adj(J) / det(J) itself for a
+    // tensor too simple to be a step), 1/I for a diagonal one.
+    mat3 inverse_inertia(const solution &s, std::size_t i) const
+    {
+        const problem &q = q_;
+        const body &bd = q.bodies[i];
+        const pivot *pv = q.pivot_of(i);
+        mat3 inv = zero_mat();
+        if (q.dimension == 2) {
+            const step *ie = s.find(step_role::pivot_inertia, i, 2, 2);
+            ex Iz = bd.inertia[2][2];
+            if (pv)
+                Iz = ie ? ex(ie->sym) : inertia_about(bd, pv->point)[2][2];
+            inv[2][2] = 1 / Iz;
+            return inv;
+        }
+        const mat3 J = pv ? inertia_about(bd, pv->point) : bd.inertia;
+        bool diagonal = true;
+        for (std::size_t r = 0; r < 3; ++r)
+            for (std::size_t c = r + 1; c < 3; ++c)
+                diagonal = diagonal && tidy(J[r][c]).is_zero() && tidy(J[c][r]).is_zero();
+        for (std::size_t r = 0; r < 3; ++r)
+            for (std::size_t c = 0; c < 3; ++c) {
+                if (diagonal) {
+                    inv[r][c] = r == c ? 1 / tidy(J[r][r]) : ex(0);
+                    continue;
+                }
+                const step *js = s.find(step_role::inverse_inertia, i, static_cast<int>(std::min(r, c)),
+                                        static_cast<int>(std::max(r, c)));
+                if (js) {
+                    inv[r][c] = js->sym;
+                    continue;
+                }
+                mat3 Jt;
+                for (std::size_t a2 = 0; a2 < 3; ++a2)
+                    for (std::size_t c2 = 0; c2 < 3; ++c2)
+                        Jt[a2][c2] = tidy(J[a2][c2]);
+                inv[r][c] = tidy(adjugate(Jt)[r][c] / det(Jt));
+            }
+        return inv;
+    }
+
+    // The bodies' velocities and the pivots' impulses after the impulse sel_P (on body 2;
+    // -sel_P on body 1), linear in it: the stick candidate's formulas with its impulse
+    // replaced when there is one, else the response layer's (symbolic/response.hpp, as
+    // symbolic/friction.cpp finishes every candidate) with the shared steps' inverse inertia.
+    after_state state_after_selected() const
+    {
+        const problem &q = q_;
+        after_state r;
+        if (const regime_case *stick = f_.stick()) {
+            lst to_sel;
+            for (std::size_t a = 0; a < sel_P_.size(); ++a)
+                to_sel.append(stick->impulse[a] == sel_P_[a]);
+            auto subs = [&](const vec3 &v) {
+                vec3 x;
+                for (std::size_t a = 0; a < 3; ++a)
+                    x[a] = v[a].subs(to_sel);
+                return x;
+            };
+            for (const auto &b : stick->sol.after) {
+                r.velocity.push_back(subs(b.velocity));
+                r.angular_velocity.push_back(subs(b.angular_velocity));
+            }
+            for (const vec3 &R : stick->sol.pivot_impulses)
+                r.pivot_impulses.push_back(subs(R));
+            return r;
+        }
+        for (const body &b : q.bodies) {
+            r.velocity.push_back(b.velocity);
+            r.angular_velocity.push_back(b.angular_velocity);
+        }
+        r.pivot_impulses.assign(q.pivots.size(), zero_vec());
+        vec3 P = zero_vec();
+        for (std::size_t a = 0; a < sel_P_.size(); ++a)
+            P[a] = sel_P_[a];
+        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+            const body &b = q.bodies[i];
+            if (b.infinite_mass)
+                continue;
+            const body_response br = response_of(q, i, q.contact.point);
+            const vec3 Pi = ex(i == q.contact.body1 ? -1 : 1) * P;
+            const mat3 inv = br.movable && !br.particle ? inverse_inertia(f_.shared, i) : zero_mat();
+            const vec3 dw = spin_change(br, inv, Pi), dv = centre_velocity_change(br, Pi, dw);
+            r.velocity[i] = b.velocity + dv;
+            r.angular_velocity[i] = b.angular_velocity + dw;
+            if (const pivot *pv = q.pivot_of(i)) {
+                vec3 &R = r.pivot_impulses[static_cast<std::size_t>(pv - q.pivots.data())];
+                R = pivot_impulse(br, Pi, dv);
+                if (q.dimension == 2)
+                    R[2] = 0;
+            }
+        }
+        return r;
+    }
+
     // The energy lost by the bodies of finite mass for the impulse sel_P: minus the work
     // of the contact impulse, 1/2 Pi.(a + a') for a free body (Pi its impulse, a and a'
     // the velocities of its material point at O before and after), and for a pinned body
     // 1/2 m dv.(v + v') + 1/2 dw.I (w + w') (its pivot's impulse may work too).
-    ex energy_lost(const regime_case &stick, const lst &to_sel) const
+    ex energy_lost(const after_state &after) const
     {
         const problem &q = q_;
         ex work = 0;
@@ -719,11 +788,7 @@ private:
             if (b.infinite_mass || q.immovable(i))
                 continue;
             const ex s = i == q.contact.body1 ? ex(-1) : ex(1);
-            vec3 v1, w1;
-            for (std::size_t a = 0; a < 3; ++a) {
-                v1[a] = stick.sol.after[i].velocity[a].subs(to_sel);
-                w1[a] = stick.sol.after[i].angular_velocity[a].subs(to_sel);
-            }
+            const vec3 &v1 = after.velocity[i], &w1 = after.angular_velocity[i];
             if (q.pivot_of(i)) {
                 const vec3 dv = v1 - b.velocity, dw = w1 - b.angular_velocity;
                 work += b.mass * dot(dv, v1 + b.velocity) / 2 + dot(dw, mul(b.inertia, w1 + b.angular_velocity)) / 2;
@@ -793,10 +858,12 @@ private:
         auto collect = [&](const ex &e) { collect_symbols(e, used); };
         for (const ex &v : c_values_)
             collect(v);
-        collect(s_D0_);
-        collect(s_N0_value_);
-        for (const ex &v : s_P0_)
-            collect(v);
+        if (!is_a<numeric>(q_.contact.friction)) { // stage S is written only when mu may be 0
+            collect(s_D0_);
+            collect(s_N0_value_);
+            for (const ex &v : s_P0_)
+                collect(v);
+        }
         for (const step &st : b_steps_linked_)
             collect(st.value);
         collect(b_N_);
@@ -888,10 +955,9 @@ private:
             // The filter: lambda D = D (u.d) + a (Q.d), Q = K (n - mu d), D = n.Q, a = -(1 + e) u_n,
             // of the same form; a slide holds only where it is > 0 (lambda > 0 and D > 0), so
             // the root finder may leave out the arcs where it is negative throughout.
-            const regime_case &st = f_.cases.front();
             mat3 K = zero_mat();
             ex un;
-            for (const step &x : st.sol.steps) {
+            for (const step &x : f_.shared.steps) {
                 if (x.role == step_role::contact_response)
                     K[static_cast<std::size_t>(x.row)][static_cast<std::size_t>(x.column)] =
                         K[static_cast<std::size_t>(x.column)][static_cast<std::size_t>(x.row)] = x.sym;
@@ -1242,7 +1308,11 @@ private:
         h_ << "// body 1), u the relative velocity v_B - v_A of the contact points, u_n = u.n < 0, and\n";
         h_ << "// u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law\n";
         h_ << "// u'.n = -e u_n and Coulomb's |P_t| <= mu P_n give the candidates\n";
-        h_ << "//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;\n";
+        if (f_.stick())
+            h_ << "//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;\n";
+        else
+            h_ << "//   (not stick: K is singular here -- a body pinned at a fixed point struck by one that cannot\n"
+               << "//   move -- so no impulse stops the tangential slip while restitution holds)\n";
         h_ << "//   slide along a unit tangent d: P = N (n - mu d), D = n.K(n - mu d), N = -(1 + e) u_n / D,\n";
         h_ << "//          holding when D > 0 and u'_t = lambda d with lambda > 0;\n";
         if (angle_ >= 0) {
@@ -1260,9 +1330,13 @@ private:
             h_ << "//   d = u_t / |u_t| (K isotropic on the tangent plane and uncoupled from n).\n";
         }
         h_ << "// mu = 0 is the smooth impact. Exactly one candidate holding is the answer; none: no_solution;\n";
-        h_ << "// several: ambiguous, except at the stick/slide boundary within rounding: when a slide's impulse\n";
-        h_ << "// is the stick candidate's to within eps^(2/3) relative (detail::boundary_tolerance) and no\n";
-        h_ << "// candidate apart from them holds, the answer is stick (the two are one solution).\n";
+        if (f_.stick()) {
+            h_ << "// several: ambiguous, except at the stick/slide boundary within rounding: when a slide's impulse\n";
+            h_ << "// is the stick candidate's to within eps^(2/3) relative (detail::boundary_tolerance) and no\n";
+            h_ << "// candidate apart from them holds, the answer is stick (the two are one solution).\n";
+        } else {
+            h_ << "// several: ambiguous.\n";
+        }
         h_ << "// The conditions of each candidate:\n";
         for (std::size_t i = 0; i < f_.cases.size(); ++i) {
             const regime_case &c = f_.cases[i];
@@ -1348,9 +1422,213 @@ private:
         return r;
     }
 
-    void main_function()
+    // The stick/slide boundary within rounding: a slide whose impulse is the stick
+    // candidate's to within boundary_tolerance times its size is the same solution.
+    std::string merge_text() const
     {
         const case_names &sn = names_.front();
+        std::string size = "detail::abs_of(" + sn.P[0] + ")";
+        for (std::size_t a = 1; a < sn.P.size(); ++a)
+            size = "detail::max_of(" + size + ", detail::abs_of(" + sn.P[a] + "))";
+        return "detail::boundary_tolerance<T>() * " + size;
+    }
+    std::string near_text(const case_names &cn) const
+    {
+        const case_names &sn = names_.front();
+        std::vector<std::string> parts;
+        for (std::size_t a = 0; a < cn.P.size(); ++a)
+            parts.push_back("detail::abs_of(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
+        return join(parts, " && ");
+    }
+
+    // Counting the closed-form candidates that hold; they are selected without a branch (the
+    // first that holds: stick when there is one, then the slides; the last when none does:
+    // replaced below). Only the rare boundary and failure cases branch.
+    void emit_closed_forms(const std::string &ind)
+    {
+        const bool stick = f_.stick() != nullptr;
+        for (std::size_t i = 0; i < f_.cases.size(); ++i)
+            if (static_cast<int>(i) != angle_) {
+                closed_.push_back(i);
+                holds_.push_back(stick && i == 0 ? stick_holds_name_ : scope_.claim(names_[i].prefix + "holds"));
+                h_ << ind << "const bool " << holds_.back() << " = " << holds_text(names_[i], f_.cases[i]) << "; // "
+                   << names::comment_text(f_.cases[i].name) << "\n";
+            }
+        for (const std::string &hname : holds_)
+            counted_.push_back("static_cast<int>(" + hname + ")");
+        h_ << ind << "int " << count_name_ << " = " << counted_text() << ";\n";
+        if (stick)
+            h_ << ind << regime_name_ << " = " << stick_holds_name_
+               << " ? impact_regime::stick : impact_regime::slide;\n";
+        else
+            h_ << ind << regime_name_ << " = impact_regime::slide; // no stick candidate (K singular)\n";
+        if (closed_.empty())
+            return; // the slides of the angle search select themselves
+        auto first_of = [&](auto field) {
+            std::string r = field(names_[closed_.back()]);
+            for (std::size_t k = closed_.size() - 1; k-- > 0;)
+                r = holds_[k] + " ? " + field(names_[closed_[k]]) + " : " + r;
+            return r;
+        };
+        h_ << ind << sel_N_name_ << " = " << first_of([](const case_names &cn) { return cn.N; }) << ";\n";
+        for (std::size_t a = 0; a < sel_P_names_.size(); ++a) {
+            h_ << ind << sel_P_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.P[a]; }) << ";\n";
+            h_ << ind << sel_F_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.F[a]; }) << ";\n";
+        }
+    }
+    std::string counted_text() const { return counted_.empty() ? std::string("0") : join(counted_, " + "); }
+
+    // The 3-D slide without closed form: its directions (pass 0: the one direction when the
+    // solution is provably unique; pass 1: every root of g), each a candidate.
+    void emit_angle_search(const std::string &ind)
+    {
+        const bool stick = f_.stick() != nullptr;
+        const std::string i2 = ind + "    ", j2 = i2 + "    ";
+        if (stick) {
+            h_ << ind << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
+            h_ << ind << "bool " << at_stick_name_ << " = " << stick_holds_name_
+               << "; // some candidate is the stick solution\n";
+            h_ << ind << "const T " << merge_name_ << " = " << merge_text() << ";\n";
+        }
+        h_ << ind << "// The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),\n";
+        h_ << ind << "// only where lambda D may be > 0 (the filter keep_*).\n";
+        h_ << ind << "T " << roots_c_name_ << "[4];\n" << ind << "T " << roots_s_name_ << "[4];\n";
+        h_ << ind << "const T " << keep_array_name_ << "[5] = {" << join(keep_names_, ", ") << "};\n";
+        h_ << ind << "// At most one solution when M + M^T is positive definite (with a margin;\n";
+        if (stick)
+            h_ << ind << "// detail::slide_direction): then pass 0 takes the stick candidate when it\n"
+               << ind << "// holds, else the one slide; pass 1 (not unique, or the slide not confirmed within\n"
+               << ind << "// rounding) searches every direction and counts what holds.\n";
+        else
+            h_ << ind << "// detail::slide_direction): then pass 0 takes the one slide; pass 1 (not unique,\n"
+               << ind << "// or the slide not confirmed within rounding) searches every direction and counts\n"
+               << ind << "// what holds.\n";
+        h_ << ind << "const bool " << unique_name_ << " = ((static_cast<unsigned>(" << fast_names_[0]
+           << " > T(0)) & static_cast<unsigned>(" << fast_names_[6] << " > T(0))) != 0u);\n";
+        h_ << ind << "bool " << slides_finite_name_ << " = true;\n";
+        h_ << ind << "for (int " << pass_name_ << " = " << unique_name_ << " ? 0 : 1; " << pass_name_ << " < 2; ++"
+           << pass_name_ << ") {\n";
+        h_ << i2 << "int " << n_roots_name_ << " = 0;\n";
+        h_ << i2 << "if (" << pass_name_ << " == 0) {\n";
+        h_ << j2 << "if (" << (stick ? "!" + stick_holds_name_ + " && " : std::string()) << "!detail::slide_direction("
+           << fast_names_[0] << ", " << fast_names_[1] << ", " << fast_names_[2] << ", " << fast_names_[3] << ", "
+           << fast_names_[4] << ", " << fast_names_[5] << ", " << roots_c_name_ << "[0], " << roots_s_name_
+           << "[0]))\n";
+        h_ << j2 << "    continue;\n";
+        h_ << j2 << n_roots_name_ << " = " << (stick ? stick_holds_name_ + " ? 0 : 1" : std::string("1")) << ";\n";
+        h_ << i2 << "} else {\n";
+        h_ << j2 << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", " << keep_array_name_
+           << ", " << roots_c_name_ << ", " << roots_s_name_ << ");\n";
+        h_ << i2 << "}\n";
+        h_ << i2 << "if (" << n_roots_name_ << " == -2) // a coefficient of g overflowed\n"
+           << j2 << "return fail(friction_status::overflow);\n";
+        h_ << i2 << "// g = 0 identically: every direction satisfies it; a slide that holds in any of\n";
+        h_ << i2 << "// these four is one of infinitely many (ambiguous)\n";
+        h_ << i2 << "const bool " << every_name_ << " = " << n_roots_name_ << " == -1;\n";
+        h_ << i2 << "if (" << every_name_ << ") {\n";
+        const char *cs[4][2] = {{"T(1)", "T(0)"}, {"T(0)", "T(1)"}, {"T(-1)", "T(0)"}, {"T(0)", "T(-1)"}};
+        for (int k = 0; k < 4; ++k)
+            h_ << j2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n"
+               << j2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
+        h_ << j2 << n_roots_name_ << " = 4;\n" << i2 << "}\n";
+        emit_root_loop(i2);
+        // Pass 0 found the one solution, or starts over with every direction.
+        h_ << i2 << "if (" << pass_name_ << " == 0) {\n";
+        h_ << j2 << "if (" << count_name_ << " == 1)\n" << j2 << "    break;\n";
+        h_ << j2 << count_name_ << " = " << counted_text() << ";\n";
+        if (stick) {
+            h_ << j2 << apart_name_ << " = 0;\n";
+            h_ << j2 << at_stick_name_ << " = " << stick_holds_name_ << ";\n";
+        }
+        h_ << j2 << slides_finite_name_ << " = true;\n";
+        h_ << i2 << "}\n";
+        h_ << ind << "}\n";
+    }
+
+    // The loop over the roots of g (inside the passes): the slide along each, counted when
+    // it holds, the first selected.
+    void emit_root_loop(const std::string &ind)
+    {
+        const bool stick = f_.stick() != nullptr;
+        const case_names &cn = names_[static_cast<std::size_t>(angle_)];
+        const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
+        const std::string i2 = ind + "    ";
+        h_ << ind << "for (int " << loop_name_ << " = 0; " << loop_name_ << " < " << n_roots_name_ << "; ++"
+           << loop_name_ << ") {\n";
+        h_ << i2 << "const T " << dir_c_name_ << " = " << roots_c_name_ << "[" << loop_name_ << "];\n";
+        h_ << i2 << "const T " << dir_s_name_ << " = " << roots_s_name_ << "[" << loop_name_ << "];\n";
+        h_ << indent(b_.em.code, ind);
+        std::vector<std::string> slide_values = cn.cond;
+        slide_values.push_back(cn.N);
+        h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
+           << balanced_sum(slide_values) << ");\n";
+        const std::string step = "(" + every_name_ + " ? 2 : 1)";
+        if (stick) {
+            h_ << i2 << "const bool " << near_name_ << " = " << near_text(cn) << ";\n";
+            h_ << i2 << at_stick_name_ << " = " << at_stick_name_ << " || " << near_name_ << ";\n";
+        }
+        h_ << i2 << "if (" << holds_text(cn, c) << ") {\n";
+        if (stick)
+            h_ << i2 << "    " << apart_name_ << " += " << near_name_ << " ? 0 : " << step << ";\n";
+        h_ << i2 << "    " << count_name_ << " += " << step << ";\n";
+        h_ << i2 << "    if (" << count_name_ << " == " << step << ") {\n"
+           << select_text(cn, "slide", i2 + "        ") << i2 << "    }\n";
+        h_ << i2 << "}\n";
+        h_ << ind << "}\n";
+    }
+
+    // Not exactly one candidate holding: at the stick/slide boundary within rounding (the
+    // stick candidate holding or a slide with its impulse, and nothing else holding) the
+    // stick solution; else overflow when a candidate or condition is not finite (it decides
+    // nothing), no_solution or ambiguous.
+    void emit_unresolved(const std::string &ind)
+    {
+        const bool stick = f_.stick() != nullptr;
+        const std::string i2 = ind + "    ";
+        std::vector<std::string> values;
+        for (std::size_t i = 0; i < names_.size(); ++i) {
+            if (static_cast<int>(i) == angle_)
+                continue;
+            const case_names &cn = names_[i];
+            values.push_back(cn.N);
+            values.insert(values.end(), cn.P.begin(), cn.P.end());
+            values.insert(values.end(), cn.cond.begin(), cn.cond.end());
+        }
+        values.insert(values.end(), trig_names_.begin(), trig_names_.end());
+        const std::string finite = "if (!detail::finite(" + balanced_sum(values) + ")" +
+                                   (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) + ")\n";
+        const std::string verdict =
+            "return fail(" + count_name_ + " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
+        h_ << ind << "if (" << count_name_ << " != 1) {\n";
+        if (!stick) {
+            h_ << i2 << finite << i2 << "    return fail(friction_status::overflow);\n" << i2 << verdict;
+            h_ << ind << "}\n";
+            return;
+        }
+        h_ << i2 << "// On the stick/slide boundary within rounding (the stick candidate holding or a slide\n";
+        h_ << i2 << "// with its impulse, and nothing else holding): the stick solution.\n";
+        if (angle_ < 0) {
+            h_ << i2 << "const T " << merge_name_ << " = " << merge_text() << ";\n";
+            h_ << i2 << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
+            h_ << i2 << "bool " << at_stick_name_ << " = " << stick_holds_name_
+               << "; // some candidate is the stick solution\n";
+        }
+        for (std::size_t k = 1; k < closed_.size(); ++k) {
+            const std::string nr = scope_.claim(names_[closed_[k]].prefix + "near");
+            h_ << i2 << "const bool " << nr << " = " << near_text(names_[closed_[k]]) << ";\n";
+            h_ << i2 << at_stick_name_ << " = " << at_stick_name_ << " || " << nr << ";\n";
+            h_ << i2 << apart_name_ << " += " << holds_[k] << " && !" << nr << " ? 1 : 0;\n";
+        }
+        h_ << i2 << "if (" << apart_name_ << " == 0 && " << at_stick_name_ << ") {\n";
+        h_ << i2 << "    " << count_name_ << " = 1;\n"
+           << select_text(names_.front(), "stick", i2 + "    ") << i2 << "} else {\n";
+        h_ << i2 << "    " << finite << i2 << "        return fail(friction_status::overflow);\n";
+        h_ << i2 << "    " << verdict << i2 << "}\n";
+        h_ << ind << "}\n";
+    }
+
+    void main_function()
+    {
         h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
         h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
         h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
@@ -1405,164 +1683,10 @@ private:
             h_ << "    {\n";
             ind = "        ";
         }
-        std::string i2 = ind + "    ";
-        // Counting the candidates that hold; a slide whose impulse is the stick candidate's
-        // within rounding is the same solution (at the stick/slide boundary). The closed
-        // forms are selected without a branch (the first that holds: stick, then the
-        // slides); only the rare boundary and failure cases branch.
-        std::vector<std::string> sizes;
-        for (const std::string &P : sn.P)
-            sizes.push_back("detail::abs_of(" + P + ")");
-        std::string size = sizes[0];
-        for (std::size_t a = 1; a < sizes.size(); ++a)
-            size = "detail::max_of(" + size + ", " + sizes[a] + ")";
-        const std::string merge_text = "detail::boundary_tolerance<T>() * " + size;
-        auto near_text = [&](const case_names &cn) {
-            std::vector<std::string> parts;
-            for (std::size_t a = 0; a < cn.P.size(); ++a)
-                parts.push_back("detail::abs_of(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
-            return join(parts, " && ");
-        };
-        std::vector<std::size_t> closed; // the closed-form candidates, stick first
-        std::vector<std::string> holds;  // their flags
-        for (std::size_t i = 0; i < f_.cases.size(); ++i)
-            if (static_cast<int>(i) != angle_) {
-                closed.push_back(i);
-                holds.push_back(i == 0 ? stick_holds_name_ : scope_.claim(names_[i].prefix + "holds"));
-                h_ << ind << "const bool " << holds.back() << " = " << holds_text(names_[i], f_.cases[i]) << "; // "
-                   << names::comment_text(f_.cases[i].name) << "\n";
-            }
-        std::vector<std::string> counted;
-        for (const std::string &hname : holds)
-            counted.push_back("static_cast<int>(" + hname + ")");
-        h_ << ind << "int " << count_name_ << " = " << join(counted, " + ") << ";\n";
-        // the first closed form that holds (or the last, when none does: replaced below)
-        auto first_of = [&](auto field) {
-            std::string r = field(names_[closed.back()]);
-            for (std::size_t k = closed.size() - 1; k-- > 0;)
-                r = holds[k] + " ? " + field(names_[closed[k]]) + " : " + r;
-            return r;
-        };
-        h_ << ind << regime_name_ << " = " << stick_holds_name_ << " ? impact_regime::stick : impact_regime::slide;\n";
-        h_ << ind << sel_N_name_ << " = " << first_of([](const case_names &cn) { return cn.N; }) << ";\n";
-        for (std::size_t a = 0; a < sn.P.size(); ++a) {
-            h_ << ind << sel_P_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.P[a]; }) << ";\n";
-            h_ << ind << sel_F_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.F[a]; }) << ";\n";
-        }
-        if (angle_ >= 0) {
-            const case_names &cn = names_[static_cast<std::size_t>(angle_)];
-            const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
-            h_ << ind << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
-            h_ << ind << "bool " << at_stick_name_ << " = " << stick_holds_name_
-               << "; // some candidate is the stick solution\n";
-            h_ << ind << "const T " << merge_name_ << " = " << merge_text << ";\n";
-            h_ << ind << "// The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),\n";
-            h_ << ind << "// only where lambda D may be > 0 (the filter keep_*).\n";
-            h_ << ind << "T " << roots_c_name_ << "[4];\n" << ind << "T " << roots_s_name_ << "[4];\n";
-            h_ << ind << "const T " << keep_array_name_ << "[5] = {" << join(keep_names_, ", ") << "};\n";
-            h_ << ind << "// At most one solution when M + M^T is positive definite (with a margin;\n";
-            h_ << ind << "// detail::slide_direction): then pass 0 takes the stick candidate when it\n";
-            h_ << ind << "// holds, else the one slide; pass 1 (not unique, or the slide not confirmed within\n";
-            h_ << ind << "// rounding) searches every direction and counts what holds.\n";
-            h_ << ind << "const bool " << unique_name_ << " = ((static_cast<unsigned>(" << fast_names_[0]
-               << " > T(0)) & static_cast<unsigned>(" << fast_names_[6] << " > T(0))) != 0u);\n";
-            h_ << ind << "bool " << slides_finite_name_ << " = true;\n";
-            h_ << ind << "for (int " << pass_name_ << " = " << unique_name_ << " ? 0 : 1; " << pass_name_ << " < 2; ++"
-               << pass_name_ << ") {\n";
-            const std::string j2 = i2 + "    ";
-            h_ << i2 << "int " << n_roots_name_ << " = 0;\n";
-            h_ << i2 << "if (" << pass_name_ << " == 0) {\n";
-            h_ << j2 << "if (!" << stick_holds_name_ << " && !detail::slide_direction(" << fast_names_[0] << ", "
-               << fast_names_[1] << ", " << fast_names_[2] << ", " << fast_names_[3] << ", " << fast_names_[4] << ", "
-               << fast_names_[5] << ", " << roots_c_name_ << "[0], " << roots_s_name_ << "[0]))\n";
-            h_ << j2 << "    continue;\n";
-            h_ << j2 << n_roots_name_ << " = " << stick_holds_name_ << " ? 0 : 1;\n";
-            h_ << i2 << "} else {\n";
-            h_ << j2 << n_roots_name_ << " = detail::trig2_roots(" << join(trig_names_, ", ") << ", "
-               << keep_array_name_ << ", " << roots_c_name_ << ", " << roots_s_name_ << ");\n";
-            h_ << i2 << "}\n";
-            h_ << i2 << "if (" << n_roots_name_ << " == -2) // a coefficient of g overflowed\n"
-               << j2 << "return fail(friction_status::overflow);\n";
-            h_ << i2 << "// g = 0 identically: every direction satisfies it; a slide that holds in any of\n";
-            h_ << i2 << "// these four is one of infinitely many (ambiguous)\n";
-            h_ << i2 << "const bool " << every_name_ << " = " << n_roots_name_ << " == -1;\n";
-            h_ << i2 << "if (" << every_name_ << ") {\n";
-            const char *cs[4][2] = {{"T(1)", "T(0)"}, {"T(0)", "T(1)"}, {"T(-1)", "T(0)"}, {"T(0)", "T(-1)"}};
-            for (int k = 0; k < 4; ++k)
-                h_ << j2 << roots_c_name_ << "[" << k << "] = " << cs[k][0] << ";\n"
-                   << j2 << roots_s_name_ << "[" << k << "] = " << cs[k][1] << ";\n";
-            h_ << j2 << n_roots_name_ << " = 4;\n" << i2 << "}\n";
-            // the loop over the roots, one level deeper (inside the passes)
-            const std::string ind_outer = ind, i2_outer = i2;
-            ind = i2;
-            i2 = j2;
-            h_ << ind << "for (int " << loop_name_ << " = 0; " << loop_name_ << " < " << n_roots_name_ << "; ++"
-               << loop_name_ << ") {\n";
-            h_ << i2 << "const T " << dir_c_name_ << " = " << roots_c_name_ << "[" << loop_name_ << "];\n";
-            h_ << i2 << "const T " << dir_s_name_ << " = " << roots_s_name_ << "[" << loop_name_ << "];\n";
-            h_ << indent(b_.em.code, ind);
-            std::vector<std::string> slide_values = cn.cond;
-            slide_values.push_back(cn.N);
-            h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
-               << balanced_sum(slide_values) << ");\n";
-            const std::string step = "(" + every_name_ + " ? 2 : 1)";
-            h_ << i2 << "const bool " << near_name_ << " = " << near_text(cn) << ";\n";
-            h_ << i2 << at_stick_name_ << " = " << at_stick_name_ << " || " << near_name_ << ";\n";
-            h_ << i2 << "if (" << holds_text(cn, c) << ") {\n";
-            h_ << i2 << "    " << apart_name_ << " += " << near_name_ << " ? 0 : " << step << ";\n";
-            h_ << i2 << "    " << count_name_ << " += " << step << ";\n";
-            h_ << i2 << "    if (" << count_name_ << " == " << step << ") {\n"
-               << select_text(cn, "slide", i2 + "        ") << i2 << "    }\n";
-            h_ << i2 << "}\n";
-            h_ << ind << "}\n";
-            // Pass 0 found the one solution, or starts over with every direction.
-            h_ << ind << "if (" << pass_name_ << " == 0) {\n";
-            h_ << i2 << "if (" << count_name_ << " == 1)\n" << i2 << "    break;\n";
-            h_ << i2 << count_name_ << " = " << join(counted, " + ") << ";\n";
-            h_ << i2 << apart_name_ << " = 0;\n";
-            h_ << i2 << at_stick_name_ << " = " << stick_holds_name_ << ";\n";
-            h_ << i2 << slides_finite_name_ << " = true;\n";
-            h_ << ind << "}\n";
-            h_ << ind_outer << "}\n";
-            ind = ind_outer;
-            i2 = i2_outer;
-        }
-        // A candidate or condition that is not finite (overflow in a square, say) decides
-        // nothing: then the status is overflow rather than no_solution or ambiguous.
-        std::vector<std::string> values;
-        for (std::size_t i = 0; i < names_.size(); ++i) {
-            if (static_cast<int>(i) == angle_)
-                continue;
-            const case_names &cn = names_[i];
-            values.push_back(cn.N);
-            values.insert(values.end(), cn.P.begin(), cn.P.end());
-            values.insert(values.end(), cn.cond.begin(), cn.cond.end());
-        }
-        values.insert(values.end(), trig_names_.begin(), trig_names_.end());
-        h_ << ind << "if (" << count_name_ << " != 1) {\n";
-        h_ << i2 << "// On the stick/slide boundary within rounding (the stick candidate holding or a slide\n";
-        h_ << i2 << "// with its impulse, and nothing else holding): the stick solution.\n";
-        if (angle_ < 0) {
-            h_ << i2 << "const T " << merge_name_ << " = " << merge_text << ";\n";
-            h_ << i2 << "int " << apart_name_ << " = 0; // slides holding that are not the stick solution\n";
-            h_ << i2 << "bool " << at_stick_name_ << " = " << stick_holds_name_
-               << "; // some candidate is the stick solution\n";
-        }
-        for (std::size_t k = 1; k < closed.size(); ++k) {
-            const std::string nr = scope_.claim(names_[closed[k]].prefix + "near");
-            h_ << i2 << "const bool " << nr << " = " << near_text(names_[closed[k]]) << ";\n";
-            h_ << i2 << at_stick_name_ << " = " << at_stick_name_ << " || " << nr << ";\n";
-            h_ << i2 << apart_name_ << " += " << holds[k] << " && !" << nr << " ? 1 : 0;\n";
-        }
-        h_ << i2 << "if (" << apart_name_ << " == 0 && " << at_stick_name_ << ") {\n";
-        h_ << i2 << "    " << count_name_ << " = 1;\n" << select_text(sn, "stick", i2 + "    ") << i2 << "} else {\n";
-        h_ << i2 << "    if (!detail::finite(" << balanced_sum(values) << ")"
-           << (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) << ")\n";
-        h_ << i2 << "        return fail(friction_status::overflow);\n";
-        h_ << i2 << "    return fail(" << count_name_
-           << " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
-        h_ << i2 << "}\n";
-        h_ << ind << "}\n";
+        emit_closed_forms(ind);
+        if (angle_ >= 0)
+            emit_angle_search(ind);
+        emit_unresolved(ind);
         h_ << "    }\n";
         h_ << "    // The post-impact state.\n";
         h_ << c_.em.code;
@@ -1696,6 +1820,9 @@ private:
     std::map<ex, ex, ex_is_less> link_value_;
     std::vector<ex> link_order_;
     std::vector<case_names> names_;
+    std::vector<std::size_t> closed_;  // the closed-form candidates, stick first (when there is one)
+    std::vector<std::string> holds_;   // their flags
+    std::vector<std::string> counted_; // the flags as ints
     std::vector<std::string> trig_names_, keep_names_, fast_names_;
     std::string mu_name_, dir_c_name_, dir_s_name_;
     std::string keep_array_name_, unique_name_, pass_name_;
