@@ -23,37 +23,6 @@ using namespace GiNaC;
 namespace
 {
 
-// Names the emitted code itself uses inside the functions (keywords and
-// reserved C++ names never come out of names::mangle).
-const std::set<std::string> &reserved()
-{
-    static const std::set<std::string> r = {"out",
-                                            "fail",
-                                            "why",
-                                            "T",
-                                            "in",
-                                            "detail",
-                                            "check_sum",
-                                            "ok",
-                                            "status",
-                                            "failed",
-                                            "with_energy_lost",
-                                            "impact_status",
-                                            "op_count",
-                                            "to_string",
-                                            "finite",
-                                            "all_finite",
-                                            "min_of",
-                                            "sqrt",
-                                            "std",
-                                            "i",
-                                            "n",
-                                            "r",
-                                            "a",
-                                            "view"};
-    return r;
-}
-
 std::string counts_text(const op_counts &c)
 {
     return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +

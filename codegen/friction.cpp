@@ -62,45 +62,6 @@ namespace
 // ---------------------------------------------------------------------------
 // Helpers
 
-// Names the emitted code itself uses (never handed to an input, a step or a local).
-const std::set<std::string> &reserved()
-{
-    static const std::set<std::string> r = {"out",
-                                            "fail",
-                                            "why",
-                                            "T",
-                                            "in",
-                                            "detail",
-                                            "check_sum",
-                                            "ok",
-                                            "status",
-                                            "failed",
-                                            "with_energy_lost",
-                                            "impact_status",
-                                            "op_count",
-                                            "to_string",
-                                            "finite",
-                                            "all_finite",
-                                            "min_of",
-                                            "max_of",
-                                            "abs_of",
-                                            "sqrt",
-                                            "std",
-                                            "i",
-                                            "n",
-                                            "r",
-                                            "a",
-                                            "view",
-                                            "friction_status",
-                                            "impact_regime",
-                                            "friction_status_of",
-                                            "boundary_tolerance",
-                                            "trig2_roots",
-                                            "slide_direction",
-                                            "constant"};
-    return r;
-}
-
 std::string counts_text(const op_counts &c)
 {
     return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +

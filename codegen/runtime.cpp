@@ -30,4 +30,42 @@ std::string friction_preamble(const std::string &ns)
     return guarded_runtime("FRICTION_PREAMBLE", ns, friction_runtime);
 }
 
+const std::set<std::string> &reserved()
+{
+    static const std::set<std::string> r = {"out",
+                                            "fail",
+                                            "why",
+                                            "T",
+                                            "in",
+                                            "detail",
+                                            "check_sum",
+                                            "ok",
+                                            "status",
+                                            "failed",
+                                            "with_energy_lost",
+                                            "impact_status",
+                                            "op_count",
+                                            "to_string",
+                                            "finite",
+                                            "all_finite",
+                                            "min_of",
+                                            "max_of",
+                                            "abs_of",
+                                            "sqrt",
+                                            "std",
+                                            "i",
+                                            "n",
+                                            "r",
+                                            "a",
+                                            "view",
+                                            "friction_status",
+                                            "impact_regime",
+                                            "friction_status_of",
+                                            "boundary_tolerance",
+                                            "trig2_roots",
+                                            "slide_direction",
+                                            "constant"};
+    return r;
+}
+
 } // namespace impactgen::codegen

@@ -7,6 +7,7 @@
 // its own (tests/codegen/runtime_compile.cpp).
 #pragma once
 
+#include <set>
 #include <string>
 
 namespace impactgen::codegen
@@ -32,5 +33,10 @@ std::string impact_preamble(const std::string &ns);
 /// What a header with friction writes after impact_preamble: friction_runtime under a
 /// guard of its own ("FRICTION_PREAMBLE").
 std::string friction_preamble(const std::string &ns);
+
+/// The names the emitted code and the runtime use in a header's functions and namespace
+/// (never handed to an input, a step or a local; keywords and reserved C++ names never come
+/// out of names::mangle): one list for the smooth and the friction writer.
+const std::set<std::string> &reserved();
 
 } // namespace impactgen::codegen

@@ -37,6 +37,16 @@ bool single_char_label(const std::string &s)
 }
 } // namespace
 
+std::string label_subscript(const std::string &label)
+{
+    return single_char_label(label) ? label : "," + label;
+}
+
+std::string label_subscript_tex(const std::string &label)
+{
+    return single_char_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
+}
+
 std::string quantity_name(const std::string &base, const std::string &axis, const std::string &label, bool after)
 {
     std::string sub = single_char_label(label) ? axis + label : axis + "," + label;

@@ -116,6 +116,11 @@ struct derive_options {
 
 derivation derive(const problem &p, const derive_options &options = {});
 
+/// A body label as a subscript after another one: "1" stays "1", a longer label gets a comma
+/// (",ball"); the TeX form sets a long label as text.
+std::string label_subscript(const std::string &label);
+std::string label_subscript_tex(const std::string &label);
+
 /// Names a symbol of a body's quantity for printing: base, axis, body label,
 /// e.g. ("v", "t", "1", true) -> v'_t1.
 std::string quantity_name(const std::string &base, const std::string &axis, const std::string &body_label, bool after);

@@ -29,19 +29,6 @@ const char *regime_name(regime r)
 namespace
 {
 
-bool short_label(const std::string &l)
-{
-    return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0]));
-}
-std::string sub(const std::string &label)
-{
-    return short_label(label) ? label : "," + label;
-}
-std::string tsub(const std::string &label)
-{
-    return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
-}
-
 // One body of the contact: its response (response.hpp) with the inverse inertia as the
 // steps keep it.
 struct side {
@@ -90,7 +77,8 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
         const mat3 &J = sd.r.inertia;
         if (dim == 2) {
             ex Iz = sd.r.pinned
-                        ? sb.add(step_role::pivot_inertia, index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}", J[2][2],
+                        ? sb.add(step_role::pivot_inertia, index, 2, 2, "I_E" + label_subscript(L),
+                                 "I_{E" + label_subscript_tex(L) + "}", J[2][2],
                                  "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                         : J[2][2];
             sd.inv[2][2] = 1 / Iz;
@@ -110,12 +98,14 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
             for (int c = 0; c < 3; ++c)
                 Js[a][c] = tidy(J[a][c]);
         const mat3 adj = adjugate(Js);
-        ex D = sb.add(step_role::inertia_determinant, sd.r.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js),
+        ex D = sb.add(step_role::inertia_determinant, sd.r.index, -1, -1, "D_" + L,
+                      "D_{" + label_subscript_tex(L) + "}", det(Js),
                       "determinant of the inertia tensor of " + display_name(b) + (sd.r.pinned ? " about E" : ""));
         for (int a = 0; a < 3; ++a)
             for (int c = a; c < 3; ++c) {
-                ex v = sb.add(step_role::inverse_inertia, sd.r.index, a, c, "J_" + p.axes[a] + p.axes[c] + sub(L),
-                              "J_{" + p.axes[a] + p.axes[c] + tsub(L) + "}", adj[a][c] / D,
+                ex v = sb.add(step_role::inverse_inertia, sd.r.index, a, c,
+                              "J_" + p.axes[a] + p.axes[c] + label_subscript(L),
+                              "J_{" + p.axes[a] + p.axes[c] + label_subscript_tex(L) + "}", adj[a][c] / D,
                               "inverse inertia tensor of " + display_name(b) + (sd.r.pinned ? " about E" : "") +
                                   ", entry " + p.axes[a] + p.axes[c]);
                 sd.inv[a][c] = v;

@@ -38,19 +38,6 @@ bool atomic(const ex &e)
            (is_a<GiNaC::mul>(e) && e.nops() == 2 && is_a<numeric>(e.op(1)) && is_a<symbol>(e.op(0)));
 }
 
-bool short_label(const std::string &l)
-{
-    return l.size() == 1 && std::isalnum(static_cast<unsigned char>(l[0]));
-}
-std::string sub(const std::string &label)
-{
-    return short_label(label) ? label : "," + label;
-}
-std::string tsub(const std::string &label)
-{
-    return short_label(label) ? label : "\\text{" + names::latex_text(label) + "}";
-}
-
 } // namespace
 
 step_builder::step_builder(solution &s, const problem &p) : s_(s)
@@ -150,13 +137,13 @@ solution solve(const derivation &d)
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
             if (dim == 2) {
-                ex t =
-                    sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + tsub(L) + "}", tidy(tau[2]),
-                           "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
+                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L,
+                              "\\tau_{" + label_subscript_tex(L) + "}", tidy(tau[2]),
+                              "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
                 ex Iz =
                     sd.pinned
-                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + sub(L), "I_{E" + tsub(L) + "}",
-                                 tidy(J[2][2]),
+                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + label_subscript(L),
+                                 "I_{E" + label_subscript_tex(L) + "}", tidy(J[2][2]),
                                  "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
                         : J[2][2];
                 sd.g = {0, 0, t / Iz};
@@ -164,19 +151,19 @@ solution solve(const derivation &d)
             } else {
                 vec3 t;
                 for (int c = 0; c < 3; ++c)
-                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + sub(L),
-                                  "\\tau_{" + p.axes[c] + tsub(L) + "}", tidy(tau[c]),
+                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + label_subscript(L),
+                                  "\\tau_{" + p.axes[c] + label_subscript_tex(L) + "}", tidy(tau[c]),
                                   "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " +
                                       p.axes[c] + " component");
                 mat3 Js = J;
                 if (sd.pinned)
                     for (int a = 0; a < 3; ++a)
                         for (int c = a; c < 3; ++c) {
-                            ex v =
-                                sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + sub(L),
-                                       "I_{E," + p.axes[a] + p.axes[c] + tsub(L) + "}", tidy(J[a][c]),
-                                       "inertia tensor of " + display_name(b) +
-                                           " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                            ex v = sb.add(step_role::pivot_inertia, sd.index, a, c,
+                                          "I_E" + p.axes[a] + p.axes[c] + label_subscript(L),
+                                          "I_{E," + p.axes[a] + p.axes[c] + label_subscript_tex(L) + "}", tidy(J[a][c]),
+                                          "inertia tensor of " + display_name(b) +
+                                              " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
                             Js[a][c] = v;
                             Js[c][a] = v;
                         }
@@ -192,15 +179,16 @@ solution solve(const derivation &d)
                 ex D = 1;
                 if (!diagonal) {
                     mat3 adj = adjugate(Js);
-                    D = sb.add(
-                        step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + tsub(L) + "}", det(Js),
-                        "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+                    D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L,
+                               "D_{" + label_subscript_tex(L) + "}", det(Js),
+                               "determinant of the inertia tensor of " + display_name(b) +
+                                   (sd.pinned ? " about E" : ""));
                     at = mul(adj, t);
                 }
                 for (int c = 0; c < 3; ++c)
                     sd.g[c] = sb.add(
-                        step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + sub(L),
-                        "g_{" + p.axes[c] + tsub(L) + "}", diagonal ? t[c] / Js[c][c] : at[c] / D,
+                        step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + label_subscript(L),
+                        "g_{" + p.axes[c] + label_subscript_tex(L) + "}", diagonal ? t[c] / Js[c][c] : at[c] / D,
                         "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] +
                             " component: change of angular velocity per unit impulse" +
                             (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)")
@@ -210,8 +198,9 @@ solution solve(const derivation &d)
         } else {
             sd.w = 1 / b.mass;
         }
-        sd.w = sb.add(step_role::effective_inverse_mass, sd.index, -1, -1, "w_" + L, "w_{" + tsub(L) + "}", sd.w,
-                      "effective inverse mass of " + display_name(b) + " at the contact point along n");
+        sd.w =
+            sb.add(step_role::effective_inverse_mass, sd.index, -1, -1, "w_" + L, "w_{" + label_subscript_tex(L) + "}",
+                   sd.w, "effective inverse mass of " + display_name(b) + " at the contact point along n");
     }
 
     ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", tidy(dot(d.vB - d.vA, n)),

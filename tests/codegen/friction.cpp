@@ -1087,6 +1087,29 @@ TEST_P(friction_class, agrees_with_the_closed_form_in_cln)
     EXPECT_LE(too_close, n / 100 + 5); // the fast path decides almost every sample
 }
 
+// The header's outputs as the Eigen reference gives them, in the header's order.
+std::vector<double> reference_outputs(const class_model& m, const nm::problem<double>& p,
+                                      const nm::friction_answer<double>& ref)
+{
+    const nm::vec<double> n_hat = p.normal.normalized();
+    std::vector<double> expect(m.outs.size());
+    for (std::size_t k = 0; k < m.outs.size(); ++k) {
+        const auto& o = m.outs[k];
+        switch (o.kind) {
+        case class_model::out_ref::velocity: expect[k] = ref.velocity[o.body][o.axis]; break;
+        case class_model::out_ref::angular: expect[k] = ref.angular_velocity[o.body][o.axis]; break;
+        case class_model::out_ref::normal: expect[k] = ref.normal_impulse; break;
+        case class_model::out_ref::tangential: expect[k] = ref.tangential_impulse[o.axis]; break;
+        case class_model::out_ref::approach: expect[k] = ref.relative_velocity_before.dot(n_hat); break;
+        case class_model::out_ref::energy:
+            expect[k] = nm::kinetic_energy(p) - nm::kinetic_energy(p, ref.velocity, ref.angular_velocity);
+            break;
+        case class_model::out_ref::pivot: expect[k] = ref.pivot_impulses[o.body][o.axis]; break;
+        }
+    }
+    return expect;
+}
+
 TEST_P(friction_class, agrees_with_the_eigen_reference)
 {
     const class_model& m = model(GetParam());
@@ -1184,21 +1207,7 @@ TEST_P(friction_class, agrees_with_the_eigen_reference)
         const int ref_regime = ref.regime == nm::friction_regime::stick ? stick : ref.regime == nm::friction_regime::slide ? slide : smooth;
         EXPECT_EQ(r.regime, ref_regime) << c.name << " sample " << i;
         ++regime_checked;
-        std::vector<double> expect(r.out.size());
-        for (std::size_t k = 0; k < r.out.size(); ++k) {
-            const auto& o = m.outs[k];
-            switch (o.kind) {
-            case class_model::out_ref::velocity: expect[k] = ref.velocity[o.body][o.axis]; break;
-            case class_model::out_ref::angular: expect[k] = ref.angular_velocity[o.body][o.axis]; break;
-            case class_model::out_ref::normal: expect[k] = ref.normal_impulse; break;
-            case class_model::out_ref::tangential: expect[k] = ref.tangential_impulse[o.axis]; break;
-            case class_model::out_ref::approach: expect[k] = ref.relative_velocity_before.dot(n_hat); break;
-            case class_model::out_ref::energy:
-                expect[k] = nm::kinetic_energy(p) - nm::kinetic_energy(p, ref.velocity, ref.angular_velocity);
-                break;
-            case class_model::out_ref::pivot: expect[k] = ref.pivot_impulses[o.body][o.axis]; break;
-            }
-        }
+        const std::vector<double> expect = reference_outputs(m, p, ref);
         std::string which;
         const double d = worst_difference(m, x, r.out, expect, which);
         if (d > worst) {
@@ -1301,22 +1310,7 @@ TEST(friction_normals, every_direction_of_a_normal_given_as_inputs)
             const nm::friction_answer<double> ref = nm::solve_friction(p);
             if (ref.status != nm::friction_status::ok || eps * kappa > 1e-6)
                 continue;
-            const nm::vec<double> n_hat = p.normal.normalized();
-            std::vector<double> expect(r.out.size());
-            for (std::size_t o = 0; o < r.out.size(); ++o) {
-                const auto& ref_out = m.outs[o];
-                switch (ref_out.kind) {
-                case class_model::out_ref::velocity: expect[o] = ref.velocity[ref_out.body][ref_out.axis]; break;
-                case class_model::out_ref::angular: expect[o] = ref.angular_velocity[ref_out.body][ref_out.axis]; break;
-                case class_model::out_ref::normal: expect[o] = ref.normal_impulse; break;
-                case class_model::out_ref::tangential: expect[o] = ref.tangential_impulse[ref_out.axis]; break;
-                case class_model::out_ref::approach: expect[o] = ref.relative_velocity_before.dot(n_hat); break;
-                case class_model::out_ref::energy:
-                    expect[o] = nm::kinetic_energy(p) - nm::kinetic_energy(p, ref.velocity, ref.angular_velocity);
-                    break;
-                case class_model::out_ref::pivot: expect[o] = ref.pivot_impulses[ref_out.body][ref_out.axis]; break;
-                }
-            }
+            const std::vector<double> expect = reference_outputs(m, p, ref);
             std::string which;
             EXPECT_LE(worst_difference(m, x, r.out, expect, which), std::max(reference_tol, 1e3 * eps * kappa)) << where << ": " << which;
             ++compared;
