@@ -292,12 +292,12 @@ private:
         problem p0 = p;
         // --params mu with a numeric coefficient: mu becomes the parameter.
         if (o_.params_given && std::find(o_.params.begin(), o_.params.end(), "mu") != o_.params.end() &&
-            is_a<numeric>(p0.contact.friction)) {
+            is_a<numeric>(p0.contact.friction())) {
             bool taken = false;
             for (const symbol &s : p0.parameters())
                 taken = taken || s.get_name() == "mu";
             if (!taken)
-                p0.contact.friction = symbol_named("mu", "\\mu");
+                p0.contact.set_friction(symbol_named("mu", "\\mu"));
         }
         q_ = specialise(p0, o_);
         if (!q_.has_friction())
@@ -308,12 +308,12 @@ private:
         // headers' order with their meanings, the outputs, the vector views, the state a
         // failed call returns.
         problem sq = q_;
-        sq.contact.friction = 0;
+        sq.contact.set_friction(0);
         std::set<std::string> rest;
         for (const symbol &s : sq.parameters())
             rest.insert(s.get_name());
         exset fsyms;
-        collect_symbols(q_.contact.friction, fsyms);
+        collect_symbols(q_.contact.friction(), fsyms);
         std::set<std::string> friction_only;
         for (const ex &s : fsyms)
             if (!rest.count(ex_to<symbol>(s).get_name()))
@@ -336,7 +336,7 @@ private:
         std::map<std::string, symbol> by_name;
         for (const symbol &s : q_.parameters())
             by_name.emplace(s.get_name(), s);
-        const std::string mu_meaning = is_a<symbol>(q_.contact.friction)
+        const std::string mu_meaning = is_a<symbol>(q_.contact.friction())
                                            ? "coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)"
                                            : "appears in the coefficient of friction mu";
         auto smooth_meaning = [&](const symbol &s) -> std::string {
@@ -819,7 +819,7 @@ private:
         auto collect = [&](const ex &e) { collect_symbols(e, used); };
         for (const ex &v : c_values_)
             collect(v);
-        if (!is_a<numeric>(q_.contact.friction)) { // stage S is written only when mu may be 0
+        if (!is_a<numeric>(q_.contact.friction())) { // stage S is written only when mu may be 0
             collect(s_D0_);
             collect(s_N0_value_);
             for (const ex &v : s_P0_)
@@ -862,7 +862,7 @@ private:
             a_.bind_step(a_steps_[i], a_step_names_[i]);
         add_checks();
         // mu as a value (when it is not simply an input or a number)
-        const ex &mu = q.contact.friction;
+        const ex &mu = q.contact.friction();
         if (is_a<symbol>(mu) && input_ident_.count(mu)) {
             mu_name_ = input_ident_.at(mu);
         } else if (is_a<numeric>(mu)) {
@@ -929,7 +929,7 @@ private:
             for (std::size_t a = 0; a < 3; ++a) {
                 u[a] = tidy(d_.vB[a] - d_.vA[a]);
                 dir[a] = c.dir_c * f_.e_t[a] + c.dir_s * f_.e_b[a];
-                m[a] = d_.n_hat[a] - q.contact.friction * dir[a];
+                m[a] = d_.n_hat[a] - q.contact.friction() * dir[a];
             }
             const vec3 Q = mul(K, m);
             const ex Lambda = dot(d_.n_hat, Q) * dot(u, dir) - (1 + q.restitution) * un * dot(Q, dir);
@@ -958,7 +958,7 @@ private:
             const ex Knn = Kdot(nh, nh), Knt = Kdot(f_.e_t, nh), Knb = Kdot(f_.e_b, nh);
             const ex Ktt = Kdot(f_.e_t, f_.e_t), Ktb = Kdot(f_.e_t, f_.e_b), Kbb = Kdot(f_.e_b, f_.e_b);
             const ex ut = dot(u, f_.e_t), ub = dot(u, f_.e_b);
-            const ex &mu = q.contact.friction;
+            const ex &mu = q.contact.friction();
             const ex M11 = a * Ktt + ut * Knt, M12 = a * Ktb + ut * Knb, M21 = a * Ktb + ub * Knt,
                      M22 = a * Kbb + ub * Knb;
             const ex fast[7] = {mu * M11,
@@ -1607,7 +1607,7 @@ private:
             h_ << "        return detail::all_finite(" << join(input_names_, ", ")
                << ") ? detail::friction_status_of(why) : friction_status::non_finite_input;\n";
         h_ << "    };\n";
-        const ex &mu = q_.contact.friction;
+        const ex &mu = q_.contact.friction();
         const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
         const std::string mu_check =
             "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +

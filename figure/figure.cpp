@@ -280,7 +280,7 @@ exmap illustrative_values(const problem &p)
                 settle(known, b.inertia[r][c], r == c ? (planar ? 0.2 : 1.0) : 0.0, r == c ? 1.0 : 0.0);
     }
     settle(known, p.restitution, 0.5, 0.5);
-    settle(known, p.contact.friction, 0.3, 0.3);
+    settle(known, p.contact.friction(), 0.3, 0.3);
     // The normal (a symbolic component 1), the contact point (0).
     for (int c = 0; c < dim; ++c)
         settle(known, p.contact.normal[c], 1, 1);

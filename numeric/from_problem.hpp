@@ -47,7 +47,7 @@ template <typename T> problem<T> from_problem(const impactgen::problem &p)
     q.body2 = p.contact.body2;
     q.point = to_float<T>(p.contact.point);
     q.normal = to_float<T>(p.contact.normal);
-    q.friction = to_float<T>(p.contact.friction);
+    q.friction = to_float<T>(p.contact.friction());
     for (const impactgen::pivot &pv : p.pivots)
         q.pivots.push_back({pv.body, to_float<T>(pv.point)});
     return q;

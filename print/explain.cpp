@@ -1501,11 +1501,11 @@ problem detail::symbolized(const problem &p, lst &values, std::vector<std::strin
         units.push_back("");
         q.restitution = e;
     }
-    if (!q.contact.friction.is_zero()) {
+    if (!q.contact.friction().is_zero()) {
         symbol mu("mu", "\\mu"); // printed μ (explain_friction writes Coulomb's coefficient so)
-        values.append(mu == q.contact.friction);
+        values.append(mu == q.contact.friction());
         units.push_back("");
-        q.contact.friction = mu;
+        q.contact.set_friction(mu);
     }
     return q;
 }

@@ -483,7 +483,7 @@ friction_solution solve_friction(const derivation &d)
 {
     const problem &p = d.prob;
     friction_solution f;
-    f.mu = p.contact.friction;
+    f.mu = p.contact.friction();
     f.n_hat = d.n_hat;
     solution shared;
     step_builder sb(shared, p);

@@ -1,6 +1,6 @@
-// Impact with Coulomb friction (problem format version 2, contact.friction = mu).
+// Impact with Coulomb friction (problem format version 2, contact.set_friction(mu).
 //
-// The contact impulse on body 2 is P = P_n n + P_t (P_t normal to n; on body 1 it is -P).
+// The contact impulse on body 2 is P = P_n n + P_t (P_t normal to n); on body 1 it is -P).
 // Each body's impulse-momentum equations are linear in P, so the relative velocity
 // of the contact points after impact is
 //

@@ -145,7 +145,7 @@ problem pinned_planar()
 problem with_friction(problem p, const std::string &name)
 {
     p.source = name;
-    p.contact.friction = S("mu", "\\mu");
+    p.contact.set_friction(S("mu", "\\mu"));
     return p;
 }
 

@@ -413,7 +413,7 @@ std::vector<symbol> problem::parameters() const
     }
     collect_v(contact.point);
     collect_v(contact.normal);
-    collect(contact.friction);
+    collect(contact.friction());
     for (const pivot &pv : pivots)
         collect_v(pv.point);
     std::vector<symbol> r;
@@ -491,9 +491,9 @@ void validate(const problem &p)
     if (decided(p.restitution, "restitution", "e") == decision::negative ||
         decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
         throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
-    if (decided(p.contact.friction, "contact.friction", "mu") == decision::negative)
+    if (decided(p.contact.friction(), "contact.friction", "mu") == decision::negative)
         throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " +
-                          show(p.contact.friction));
+                          show(p.contact.friction()));
     std::set<std::string> seen;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         const body &b = p.bodies[i];
@@ -703,10 +703,10 @@ problem read_problem(const std::string &text, const std::string &source)
     p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
     p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
     if (const json_value *jf = jc.find("friction")) {
-        p.contact.friction = scalar(*jf, "contact.friction");
+        p.contact.set_friction(scalar(*jf, "contact.friction"));
         // mu = 0 (exactly, however written) is the smooth impact, unchanged
-        if (is_constant(p.contact.friction) && decide(p.contact.friction) == decision::zero)
-            p.contact.friction = 0;
+        if (is_constant(p.contact.friction()) && decide(p.contact.friction()) == decision::zero)
+            p.contact.set_friction(0);
     }
 
     if (const json_value *jp = root.find("pivots")) {
@@ -767,7 +767,7 @@ problem substitute(const problem &p, const ex &values)
     }
     sv(q.contact.point);
     sv(q.contact.normal);
-    q.contact.friction = p.contact.friction.subs(values);
+    q.contact.set_friction(p.contact.friction().subs(values));
     for (pivot &pv : q.pivots)
         sv(pv.point);
     return q;

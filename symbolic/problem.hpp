@@ -7,6 +7,7 @@
 #include "vector_algebra.hpp"
 
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace impactgen
@@ -57,11 +58,30 @@ struct pivot {
     vec3 point = zero_vec(); ///< the fixed point E
 };
 
+/// The laws a contact can obey. Each is a type; a law that needs more than these (another
+/// restitution law, a friction law) is one more alternative of contact_law.
+struct frictionless {
+};
+/// Coulomb's law: |P_t| <= mu P_n, P_t opposing the slip (format version 2).
+struct coulomb {
+    ex mu; ///< mu >= 0, a number or an expression
+};
+using contact_law = std::variant<frictionless, coulomb>;
+
 struct contact_spec {
     std::size_t body1 = 0, body2 = 1; ///< A is on body 1, B on body 2
     vec3 point = zero_vec();          ///< the contact point O
     vec3 normal = zero_vec();         ///< from body 1 into body 2; any non-zero length
-    ex friction = 0;                  ///< Coulomb's coefficient mu >= 0 (format version 2); 0: smooth
+    contact_law law = frictionless{}; ///< the contact's law
+
+    /// Coulomb's coefficient of the law, 0 for a frictionless contact.
+    ex friction() const
+    {
+        const coulomb *c = std::get_if<coulomb>(&law);
+        return c ? c->mu : ex(0);
+    }
+    /// The law for a coefficient of friction: frictionless when mu is identically 0, else Coulomb's.
+    void set_friction(const ex &mu) { law = mu.is_zero() ? contact_law(frictionless{}) : contact_law(coulomb{mu}); }
 };
 
 struct problem {
@@ -79,7 +99,7 @@ struct problem {
     std::vector<GiNaC::symbol> parameters() const;
     bool is_numeric() const { return parameters().empty(); }
     /// True when the contact has a friction coefficient that is not identically 0.
-    bool has_friction() const { return !contact.friction.is_zero(); }
+    bool has_friction() const { return !contact.friction().is_zero(); }
     /// The pivot of a body, or nullptr.
     const pivot *pivot_of(std::size_t body) const;
     /// True when the impulse cannot move the body (infinite mass, or a pinned particle).

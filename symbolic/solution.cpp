@@ -101,7 +101,7 @@ solution solve(const derivation &d)
     const problem &p = d.prob;
     if (p.has_friction()) {
         std::ostringstream mu;
-        mu << p.contact.friction;
+        mu << p.contact.friction();
         throw input_error(
             (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
             ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +

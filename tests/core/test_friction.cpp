@@ -91,7 +91,7 @@ void check_law(const problem& p, const regime_case& c, const std::string& tag)
     const vec3& O = p.contact.point;
     const ex len = sqrt(dot(p.contact.normal, p.contact.normal));
     const vec3 n = (1 / len) * p.contact.normal;
-    const ex N = c.sol.normal_impulse, mu = p.contact.friction, e = p.restitution;
+    const ex N = c.sol.normal_impulse, mu = p.contact.friction(), e = p.restitution;
     const vec3& F = c.tangential_impulse;
     const vec3 P = N * n + F;
     double scale = mag(N) + mag(F) + 1e-300;
@@ -296,7 +296,7 @@ problem random_problem(sampler& rnd, int kind)
     p.dimension = kind <= 1 ? 2 : 3;
     p.restitution = rnd.restitution();
     std::uniform_int_distribution<int> mu(1, 40);
-    p.contact.friction = numeric(mu(rnd.engine()), 20);
+    p.contact.set_friction(numeric(mu(rnd.engine()), 20));
     auto vec = [&](int bound) {
         vec3 v = zero_vec();
         for (int a = 0; a < p.dimension; ++a)
@@ -679,7 +679,7 @@ TEST(Continuity, StickAndSlideMeetAtTheThreshold)
                 continue;
             }
             // The stick impulse does not depend on mu: solve once with mu = 1 to read mu*.
-            q.contact.friction = 1;
+            q.contact.set_friction(1);
             derivation d1 = derive(q);
             friction_solution f1 = solve_friction(d1);
             const regime_case& st = f1.cases[0];
@@ -690,7 +690,7 @@ TEST(Continuity, StickAndSlideMeetAtTheThreshold)
             if (decide(F2) == decision::zero || decide(N) != decision::positive)
                 continue; // no friction needed to stick (mu* = 0), or a stick impulse that pulls (never sticks)
             const ex mu_star = sqrt(F2) / N;
-            q.contact.friction = mu_star;
+            q.contact.set_friction(mu_star);
             derivation d = derive(q);
             friction_solution f = solve_friction(d);
             lst stick_values = f.cases[0].sol.step_values(lst{});
