@@ -938,6 +938,9 @@ section equations_section(const derivation &d)
                   "times "
                   "their velocity of approach.");
             break;
+        case principle::stick:
+        case principle::slide: // Coulomb's law: not an equation of the smooth impact
+            break;
         }
         sec.para(why);
         if (first.why == principle::angular_momentum) {

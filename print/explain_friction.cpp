@@ -26,29 +26,6 @@ using namespace detail;
 namespace
 {
 
-// A name for a print-only symbol that no symbol of the problem (nor an unknown) has.
-std::string fresh_name(const derivation &d, const std::string &base)
-{
-    std::set<std::string> taken;
-    for (const symbol &s : d.prob.parameters())
-        taken.insert(s.get_name());
-    for (const unknown &u : d.unknowns)
-        taken.insert(u.sym.get_name());
-    std::string name = base;
-    while (taken.count(name))
-        name += "_";
-    return name;
-}
-
-std::string tex_of(const std::string &name, const std::string &tex_base)
-{
-    // a name made unique with trailing underscores keeps them in TeX: N_ -> N\_
-    std::string extra;
-    for (std::size_t k = name.size(); k > 0 && name[k - 1] == '_'; --k)
-        extra += "\\_";
-    return tex_base + extra;
-}
-
 // |r| split over the factors of a product: numbers by their absolute value, even
 // powers as they are, (1 + e) and e (e >= 0 the restitution) as they are.
 ex abs_split(const ex &r, const ex &e)
@@ -304,16 +281,6 @@ struct context {
                 r += x[a] * K(a, b) * y[b];
         return tidy(r);
     }
-    vec3 impulse_vector() const
-    {
-        vec3 P = zero_vec();
-        for (int a = 0; a < dim; ++a) {
-            P[a] = N * n[a];
-            for (std::size_t k = 0; k < F.size(); ++k)
-                P[a] += F[k] * tangents[k][a];
-        }
-        return P;
-    }
 };
 
 // ---------------------------------------------------------------- 2. the law
@@ -373,84 +340,6 @@ section law_section(const context &c)
 }
 
 // ---------------------------------------------------------------- 3. the equations
-
-void build_equations(context &c)
-{
-    const problem &p = c.p;
-    const derivation &d = c.d;
-    const int dim = c.dim;
-    int label = 0;
-    auto add = [&](std::vector<equation> &to, const ex &lhs, const ex &rhs, principle why, const std::string &reason,
-                   std::vector<std::size_t> bodies, int component) {
-        to.push_back({std::to_string(++label), lhs, rhs, why, reason, std::move(bodies), component});
-    };
-    const vec3 P = c.impulse_vector();
-    for (std::size_t i : {c.i1, c.i2}) {
-        const body &b = p.bodies[i];
-        if (b.infinite_mass)
-            continue;
-        const int s = i == c.i1 ? -1 : 1;
-        const pivot *pv = p.pivot_of(i);
-        vec3 R = zero_vec();
-        if (pv)
-            R = d.pivot_impulse[static_cast<std::size_t>(pv - p.pivots.data())];
-        const vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
-        const std::string name = display_name(b);
-        std::string reason = "the change of linear momentum of " + name +
-                             " equals the impulses on it: " + (s < 0 ? "-P = -(N e_n + F)" : "P = N e_n + F") +
-                             (pv ? " and the pivot impulse R" : "") +
-                             "; with friction the tangential components change too";
-        for (int a = 0; a < dim; ++a)
-            add(c.eqs, tidy_expand(dp[a]), tidy_expand(ex(s) * P[a] + R[a]), principle::linear_impulse, reason, {i}, a);
-        if (!b.particle) {
-            const int first = dim == 2 ? 2 : 0;
-            if (pv) {
-                const vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) +
-                                cross(b.position - pv->point, dp);
-                const vec3 moment = cross(p.contact.point - pv->point, ex(s) * P);
-                for (int a = first; a < 3; ++a)
-                    add(c.eqs, tidy_expand(dH[a]), tidy_expand(moment[a]), principle::angular_momentum,
-                        "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change "
-                        "of angular "
-                        "momentum of " +
-                            name +
-                            " about E is the moment (O - E) × P of the contact impulse, its friction part included",
-                        {i}, a);
-            } else {
-                const vec3 r = b.position - p.contact.point;
-                const vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
-                const vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
-                for (int a = first; a < 3; ++a)
-                    add(c.eqs, tidy_expand(Ha[a]), tidy_expand(Hb[a]), principle::angular_momentum,
-                        "the whole contact impulse on " + name +
-                            ", normal and friction part alike, acts at O, which is fixed in "
-                            "the inertial frame: it has no moment about O, so the angular momentum of " +
-                            name + " about O is conserved, with friction as without",
-                        {i}, a);
-            }
-        }
-    }
-    for (const equation &eq : d.equations)
-        if (eq.why == principle::pivot_fixed)
-            add(c.eqs, eq.lhs, eq.rhs, eq.why, eq.reason, eq.bodies, eq.component);
-    for (const equation &eq : d.equations)
-        if (eq.why == principle::restitution)
-            add(c.eqs, eq.lhs, eq.rhs, eq.why, eq.reason, eq.bodies, eq.component);
-    // Coulomb's law: one equation per tangent, different in each regime.
-    const int base = label;
-    for (std::size_t k = 0; k < c.tangents.size(); ++k) {
-        const std::string tag = std::to_string(base + 1 + static_cast<int>(k));
-        c.stick_law.push_back({tag,
-                               tidy_expand(dot(d.vB_after - d.vA_after, c.tangents[k])),
-                               0,
-                               principle::restitution,
-                               "stick",
-                               {c.i1, c.i2},
-                               -1});
-        ex rhs = dim == 2 ? ex(-c.mu * c.N) : ex(-c.mu * c.N * c.slide_d[k]);
-        c.slide_law.push_back({tag + "'", c.F[k], rhs, principle::restitution, "slide", {c.i1, c.i2}, -1});
-    }
-}
 
 section equations_section(const context &c)
 {
@@ -1628,28 +1517,16 @@ document friction_document(const derivation &d, const friction_solution &f, cons
         c.inputs = numbers->values;
         c.units = numbers->units;
     }
-    if (c.dim == 2) {
-        c.tangents = {d.t_dir};
-        c.tnames = {"t"};
-    } else {
-        c.tangents = {f.e_t, f.e_b};
-        c.tnames = {"t", "b"};
-    }
+    c.tnames = c.dim == 2 ? std::vector<std::string>{"t"} : std::vector<std::string>{"t", "b"};
     c.shared = f.shared.steps.size();
-    const std::string n_name = d.impulse_form ? ex_to<symbol>(d.normal_impulse).get_name() : fresh_name(d, "N");
-    c.N = d.impulse_form ? d.normal_impulse : ex(symbol(n_name, tex_of(n_name, "N")));
-    if (c.dim == 2) {
-        const std::string fn = fresh_name(d, "F");
-        c.F = {symbol(fn, tex_of(fn, "F"))};
-    } else {
-        for (const std::string t : {"t", "b"}) {
-            const std::string fn = fresh_name(d, "F_" + t);
-            c.F.push_back(symbol(fn, tex_of(fn, "F_{" + t + "}")));
-            const std::string dn = fresh_name(d, "d_" + t);
-            c.slide_d.push_back(symbol(dn, tex_of(dn, "d_{" + t + "}")));
-        }
-    }
-    build_equations(c);
+    // The equations and the impulse's unknowns are the derivation's (derive() writes them).
+    c.tangents = d.friction.tangents;
+    c.N = d.friction.N;
+    c.F = d.friction.F;
+    c.slide_d = d.friction.slide_d;
+    c.eqs = d.friction.equations;
+    c.stick_law = d.friction.stick_law;
+    c.slide_law = d.friction.slide_law;
 
     const exmap shown = display_names(d, f);
     friction_setup fs;

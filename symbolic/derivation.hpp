@@ -28,7 +28,9 @@ enum class principle {
     angular_momentum, ///< about O (or the pivot), where the impulsive moment vanishes
     linear_impulse,   ///< impulse-momentum of one body with the unknown impulses
     pivot_fixed,      ///< the pivot point does not move
-    restitution       ///< Newton's law on the contact points' normal velocities
+    restitution,      ///< Newton's law on the contact points' normal velocities
+    stick,            ///< Coulomb's law, sticking: no tangential relative velocity after impact
+    slide             ///< Coulomb's law, sliding: the friction impulse at the cone's edge, against the slip
 };
 const char *principle_name(principle p);
 
@@ -66,12 +68,31 @@ struct remark {
     std::string text; ///< one sentence in ASCII (for logs and tests)
 };
 
+/// With Coulomb friction: the contact impulse P = N e_n + sum_k F_k t_k on body 2 (-P on body
+/// 1) with its unknowns, and the equations the law implies: impulse-momentum of each body with
+/// the whole impulse P (and the pivot impulse), angular momentum about the pivot or about O,
+/// the pivots' fixedness, restitution; then Coulomb's law, one equation per tangent, in each of
+/// its two forms (stick: the tangential relative velocity after impact is 0; slide: F = -mu N d).
+struct friction_equations {
+    ex N;                                       ///< the normal impulse (the unknown in impulse form, else a symbol)
+    std::vector<ex> F;                          ///< the friction impulse along each tangent (symbols)
+    std::vector<vec3> tangents;                 ///< planar: t_dir; 3-D: e_t, e_b
+    std::vector<ex> slide_d;                    ///< 3-D: the sliding direction's components along e_t, e_b (symbols)
+    std::vector<equation> equations;            ///< numbered 1, 2, ...: impulse-momentum, pivots, restitution
+    std::vector<equation> stick_law, slide_law; ///< per tangent: (k) and (k') after the last of `equations`
+    /// P in world components, in N and F.
+    vec3 impulse(int dimension, const vec3 &n_hat) const;
+};
+
 struct derivation {
     problem prob;
     bool impulse_form = false; ///< true when a pivot makes the impulses unknowns
     std::vector<unknown> unknowns;
     std::vector<equation> equations;
     std::vector<remark> remarks; ///< principles that give no usable equation, and why
+    /// With friction (problem::has_friction): the equations of its law (`equations` above are
+    /// those of the smooth impact, which the friction solution reduces to for mu = 0).
+    friction_equations friction;
 
     vec3 n_hat;                       ///< unit normal n / |n| (n itself when normal_assumed_unit)
     ex normal_length;                 ///< |n| (1 when normal_assumed_unit)

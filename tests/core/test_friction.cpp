@@ -83,6 +83,42 @@ double mag(const ex& e)
 
 double mag(const vec3& v) { return std::max({mag(v[0]), mag(v[1]), mag(v[2])}); }
 
+// The equations derive() writes for the law (derivation::friction: impulse-momentum with the
+// whole contact impulse, pivots, restitution, and Coulomb's law in the candidate's regime)
+// hold for the candidate's answer: its unknowns, N, F along each tangent and (sliding) d.
+void check_derived_equations(const derivation& d, const regime_case& c, double scale, const std::string& tag)
+{
+    const friction_equations& fe = d.friction;
+    ASSERT_FALSE(fe.equations.empty()) << tag;
+    ASSERT_EQ(fe.stick_law.size(), fe.tangents.size()) << tag;
+    ASSERT_EQ(fe.slide_law.size(), fe.tangents.size()) << tag;
+    lst values = c.sol.unknown_values;
+    if (!d.impulse_form)
+        values.append(fe.N == c.sol.normal_impulse);
+    for (std::size_t k = 0; k < fe.F.size(); ++k) {
+        const vec3& t = fe.tangents[k];
+        values.append(fe.F[k] == dot(c.tangential_impulse, t) / dot(t, t));
+        if (k < fe.slide_d.size())
+            values.append(fe.slide_d[k] == dot(c.direction, t) / dot(t, t));
+    }
+    for (const equation& eq : fe.equations)
+        EXPECT_TRUE(zero((eq.lhs - eq.rhs).subs(values), scale, tag + ": equation (" + eq.label + ")"));
+    if (c.kind == regime::stick)
+        for (const equation& eq : fe.stick_law) {
+            EXPECT_EQ(eq.why, principle::stick);
+            EXPECT_TRUE(zero((eq.lhs - eq.rhs).subs(values), scale, tag + ": stick law (" + eq.label + ")"));
+        }
+    if (c.kind == regime::slide && d.prob.dimension == 3)
+        for (const equation& eq : fe.slide_law) {
+            EXPECT_EQ(eq.why, principle::slide);
+            EXPECT_TRUE(zero((eq.lhs - eq.rhs).subs(values), scale, tag + ": slide law (" + eq.label + ")"));
+        }
+    if (c.kind == regime::slide && d.prob.dimension == 2) { // F = -mu N along the sliding direction d = +-e_t
+        const ex sign = dot(c.direction, fe.tangents[0]) / dot(fe.tangents[0], fe.tangents[0]);
+        EXPECT_TRUE(zero((fe.slide_law[0].lhs - sign * fe.slide_law[0].rhs).subs(values), scale, tag + ": slide law"));
+    }
+}
+
 // The law on a numeric problem's answer, from the bodies alone.
 void check_law(const problem& p, const regime_case& c, const std::string& tag)
 {
@@ -252,6 +288,12 @@ TEST_P(FrictionClass, ExactAnswersObeyTheLaw)
         ++regimes[static_cast<int>(c.kind)];
         check_law(q, c, GetParam() + " sample " + std::to_string(k));
         agree_with_reference(q, c, GetParam() + " sample " + std::to_string(k));
+        if (q.has_friction()) {
+            double scale = mag(c.sol.normal_impulse) + mag(c.tangential_impulse) + 1e-300;
+            for (const body& b : q.bodies)
+                scale = std::max({scale, mag(b.velocity), mag(b.angular_velocity), mag(b.mass)});
+            check_derived_equations(d, c, scale, GetParam() + " sample " + std::to_string(k));
+        }
         if (!q.has_friction()) { // mu = 0: the smooth impact, exactly
             EXPECT_EQ(c.kind, regime::smooth);
             solution s = solve(d);
