@@ -277,16 +277,16 @@ friction_equations derive_friction(const derivation &d)
 
 } // namespace
 
-derivation derive(const problem &p, const derive_options &options)
+namespace
 {
-    validate(p);
-    derivation d;
-    d.prob = p;
+
+// The unit normal n_hat (n/|n|, or n as given when declared unit) and the tangents e_t, e_b
+// (symbols for a normal of inputs when the code computes the basis at run time).
+void unit_normal_and_frame(derivation &d, const derive_options &options)
+{
+    const problem &p = d.prob;
     const int dim = p.dimension;
     const auto &ax = p.axes;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
-    d.impulse_form = !p.pivots.empty();
-
     d.normal_assumed_unit = options.unit_normal;
     if (options.unit_normal) {
         d.normal_length = 1;
@@ -334,7 +334,16 @@ derivation derive(const problem &p, const derive_options &options)
             d.e_b[a] = d.tangent_basis_symbols[static_cast<std::size_t>(a + 3)];
         }
     }
+}
 
+// The unknowns (velocities and spins after impact of the movable bodies in contact; with a
+// pivot the normal impulse and the pivot impulses too) and the velocities after impact in them.
+void unknowns_of(derivation &d)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    const auto &ax = p.axes;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     // Unknowns and post-impact velocities.
     d.velocity_after.resize(p.bodies.size());
     d.angular_velocity_after.resize(p.bodies.size());
@@ -388,6 +397,160 @@ derivation derive(const problem &p, const derive_options &options)
     } else {
         d.normal_impulse = 0;
     }
+}
+
+// Numbers the equations in the order written; a vector equation gives its world components.
+struct equation_writer {
+    derivation &d;
+    int label = 0;
+    void add(ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies, int component = -1)
+    {
+        d.equations.push_back(
+            {std::to_string(++label), lhs, rhs, why, std::move(reason), std::move(bodies), component});
+    }
+    void world_components(const vec3 &lhs, const vec3 &rhs, principle why, const std::string &reason,
+                          std::vector<std::size_t> bodies, bool angular)
+    {
+        const int dim = d.prob.dimension;
+        const int first = angular && dim == 2 ? 2 : 0, last = angular || dim == 3 ? 3 : 2;
+        for (int c = first; c < last; ++c)
+            add(lhs[c], rhs[c], why, reason, bodies, c);
+    }
+};
+
+// Free bodies (the notes' unconstrained impact): smooth contact, the system's momentum along n,
+// angular momentum about O.
+void free_body_equations(derivation &d, equation_writer &w)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t contact_bodies[2] = {i1, i2};
+    // (a) Smooth contact: no impulse along e_t, e_b.
+    for (std::size_t i : contact_bodies) {
+        if (p.immovable(i))
+            continue;
+        const body &b = p.bodies[i];
+        w.add(dot(d.velocity_after[i], d.t_dir), dot(b.velocity, d.t_dir), principle::smooth_contact,
+              "the bodies are smooth, so no impulse acts on " + display_name(b) +
+                  " along e_t: its centre-of-mass velocity along e_t is unchanged",
+              {i});
+        if (dim == 3)
+            w.add(dot(d.velocity_after[i], d.b_dir), dot(b.velocity, d.b_dir), principle::smooth_contact,
+                  "no impulse acts on " + display_name(b) +
+                      " along e_b: its centre-of-mass velocity along e_b is unchanged",
+                  {i});
+    }
+    // (b) Linear momentum of the system along n.
+    if (!p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass) {
+        ex before = 0, after = 0;
+        for (std::size_t i : contact_bodies) {
+            before += p.bodies[i].mass * dot(p.bodies[i].velocity, d.n_hat);
+            after += p.bodies[i].mass * dot(d.velocity_after[i], d.n_hat);
+        }
+        w.add(after, before, principle::system_momentum,
+              "the impulse N n is internal to the system of both bodies, so their linear momentum along n is "
+              "conserved",
+              {i1, i2});
+    } else {
+        std::size_t inf = p.bodies[i1].infinite_mass ? i1 : i2;
+        d.remarks.push_back(
+            {remark_kind::momentum_infinite_mass, inf,
+             "Linear momentum of the system along n is not useful: " + display_name(p.bodies[inf]) +
+                 " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero)."});
+        d.remarks.push_back({remark_kind::infinite_mass_unchanged, inf,
+                             "The velocities of " + display_name(p.bodies[inf]) +
+                                 " are unchanged: a finite impulse cannot change the motion of an infinite mass, "
+                                 "so it gives no angular momentum equation either."});
+    }
+    // (c) Angular momentum about O, each body separately.
+    for (std::size_t i : contact_bodies) {
+        const body &b = p.bodies[i];
+        if (p.immovable(i))
+            continue;
+        if (b.particle) {
+            d.remarks.push_back({remark_kind::particle_no_rotation, i,
+                                 display_name(b) +
+                                     " is a particle (no rotational inertia): it has no angular velocity unknowns "
+                                     "and its angular momentum about O gives no new equation."});
+            continue;
+        }
+        vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
+        vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
+        vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
+        w.world_components(Ha, Hb, principle::angular_momentum,
+                           "the impulse on " + display_name(b) +
+                               " passes through O, which is fixed in the inertial frame, so its angular momentum "
+                               "about O is conserved",
+                           {i}, true);
+    }
+}
+
+// The constrained collision (a pivot): impulse-momentum with N and R unknown, angular momentum
+// about the pivot (or O), the pivots' fixedness.
+void constrained_equations(derivation &d, equation_writer &w)
+{
+    const problem &p = d.prob;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t contact_bodies[2] = {i1, i2};
+    // Constrained collision: impulse-momentum with N and R unknown.
+    for (std::size_t i : contact_bodies) {
+        const body &b = p.bodies[i];
+        if (b.infinite_mass)
+            continue;
+        const ex s = i == i1 ? -1 : 1;
+        const pivot *pv = p.pivot_of(i);
+        vec3 R = zero_vec();
+        if (pv)
+            R = d.pivot_impulse[static_cast<std::size_t>(pv - p.pivots.data())];
+        vec3 impulse = (s * d.normal_impulse) * d.n_hat + R;
+        vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
+        w.world_components(dp, impulse, principle::linear_impulse,
+                           "the change of linear momentum of " + display_name(b) + " equals the impulses on it: " +
+                               (i == i1 ? "-N n" : "+N n") + (pv ? " and the pivot impulse R" : ""),
+                           {i}, false);
+        if (!b.particle) {
+            vec3 ref = pv ? pv->point : p.contact.point;
+            vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) + cross(b.position - ref, dp);
+            vec3 moment = pv ? cross(p.contact.point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
+            w.world_components(dH, moment, principle::angular_momentum,
+                               pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no "
+                                    "moment: the change of angular momentum of " +
+                                        display_name(b) + " about E is the moment of the contact impulse"
+                                  : "the impulse on " + display_name(b) +
+                                        " passes through O, fixed in the inertial frame, so its angular momentum "
+                                        "about O is conserved",
+                               {i}, true);
+        }
+        if (pv && !b.particle) {
+            vec3 vE = d.velocity_after[i] + cross(d.angular_velocity_after[i], pv->point - b.position);
+            w.world_components(vE, zero_vec(), principle::pivot_fixed,
+                               "the pivot E of " + display_name(b) + " is fixed: v'_C + w' x r_{E C} = 0", {i}, false);
+        }
+        if (pv && b.particle)
+            d.remarks.push_back({remark_kind::pinned_particle, i,
+                                 display_name(b) +
+                                     " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, "
+                                     "and its pivot takes the whole contact impulse."});
+    }
+    for (std::size_t i : contact_bodies)
+        if (p.bodies[i].infinite_mass)
+            d.remarks.push_back({remark_kind::infinite_mass_unchanged, i,
+                                 "The velocities of " + display_name(p.bodies[i]) +
+                                     " (infinite mass) are unchanged by the finite impulse."});
+}
+
+} // namespace
+
+derivation derive(const problem &p, const derive_options &options)
+{
+    validate(p);
+    derivation d;
+    d.prob = p;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    d.impulse_form = !p.pivots.empty();
+    unit_normal_and_frame(d, options);
+    unknowns_of(d);
 
     // Contact point velocities, v_A = v_C1 + w_1 x r_{A C1}.
     const body &A = p.bodies[i1];
@@ -397,131 +560,14 @@ derivation derive(const problem &p, const derive_options &options)
     d.vA_after = point_velocity(A, d.velocity_after[i1], d.angular_velocity_after[i1], p.contact.point);
     d.vB_after = point_velocity(B, d.velocity_after[i2], d.angular_velocity_after[i2], p.contact.point);
 
-    int label = 0;
-    auto add = [&](ex lhs, ex rhs, principle why, std::string reason, std::vector<std::size_t> bodies,
-                   int component = -1) {
-        d.equations.push_back(
-            {std::to_string(++label), lhs, rhs, why, std::move(reason), std::move(bodies), component});
-    };
-    auto world_components = [&](const vec3 &lhs, const vec3 &rhs, principle why, const std::string &reason,
-                                std::vector<std::size_t> bodies, bool angular) {
-        int first = angular && dim == 2 ? 2 : 0;
-        int last = angular || dim == 3 ? 3 : 2;
-        for (int c = first; c < last; ++c)
-            add(lhs[c], rhs[c], why, reason, bodies, c);
-    };
-    const std::size_t contact_bodies[2] = {i1, i2};
-
-    if (!d.impulse_form) {
-        // (a) Smooth contact: no impulse along e_t, e_b.
-        for (std::size_t i : contact_bodies) {
-            if (p.immovable(i))
-                continue;
-            const body &b = p.bodies[i];
-            add(dot(d.velocity_after[i], d.t_dir), dot(b.velocity, d.t_dir), principle::smooth_contact,
-                "the bodies are smooth, so no impulse acts on " + display_name(b) +
-                    " along e_t: its centre-of-mass velocity along e_t is unchanged",
-                {i});
-            if (dim == 3)
-                add(dot(d.velocity_after[i], d.b_dir), dot(b.velocity, d.b_dir), principle::smooth_contact,
-                    "no impulse acts on " + display_name(b) +
-                        " along e_b: its centre-of-mass velocity along e_b is unchanged",
-                    {i});
-        }
-        // (b) Linear momentum of the system along n.
-        if (!p.bodies[i1].infinite_mass && !p.bodies[i2].infinite_mass) {
-            ex before = 0, after = 0;
-            for (std::size_t i : contact_bodies) {
-                before += p.bodies[i].mass * dot(p.bodies[i].velocity, d.n_hat);
-                after += p.bodies[i].mass * dot(d.velocity_after[i], d.n_hat);
-            }
-            add(after, before, principle::system_momentum,
-                "the impulse N n is internal to the system of both bodies, so their linear momentum along n is "
-                "conserved",
-                {i1, i2});
-        } else {
-            std::size_t inf = p.bodies[i1].infinite_mass ? i1 : i2;
-            d.remarks.push_back(
-                {remark_kind::momentum_infinite_mass, inf,
-                 "Linear momentum of the system along n is not useful: " + display_name(p.bodies[inf]) +
-                     " has infinite mass, so m (v'_n - v_n) on its side is finite but unknown (infinity times zero)."});
-            d.remarks.push_back({remark_kind::infinite_mass_unchanged, inf,
-                                 "The velocities of " + display_name(p.bodies[inf]) +
-                                     " are unchanged: a finite impulse cannot change the motion of an infinite mass, "
-                                     "so it gives no angular momentum equation either."});
-        }
-        // (c) Angular momentum about O, each body separately.
-        for (std::size_t i : contact_bodies) {
-            const body &b = p.bodies[i];
-            if (p.immovable(i))
-                continue;
-            if (b.particle) {
-                d.remarks.push_back({remark_kind::particle_no_rotation, i,
-                                     display_name(b) +
-                                         " is a particle (no rotational inertia): it has no angular velocity unknowns "
-                                         "and its angular momentum about O gives no new equation."});
-                continue;
-            }
-            vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
-            vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
-            vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
-            world_components(Ha, Hb, principle::angular_momentum,
-                             "the impulse on " + display_name(b) +
-                                 " passes through O, which is fixed in the inertial frame, so its angular momentum "
-                                 "about O is conserved",
-                             {i}, true);
-        }
-    } else {
-        // Constrained collision: impulse-momentum with N and R unknown.
-        for (std::size_t i : contact_bodies) {
-            const body &b = p.bodies[i];
-            if (b.infinite_mass)
-                continue;
-            const ex s = i == i1 ? -1 : 1;
-            const pivot *pv = p.pivot_of(i);
-            vec3 R = zero_vec();
-            if (pv)
-                R = d.pivot_impulse[static_cast<std::size_t>(pv - p.pivots.data())];
-            vec3 impulse = (s * d.normal_impulse) * d.n_hat + R;
-            vec3 dp = b.mass * (d.velocity_after[i] - b.velocity);
-            world_components(dp, impulse, principle::linear_impulse,
-                             "the change of linear momentum of " + display_name(b) + " equals the impulses on it: " +
-                                 (i == i1 ? "-N n" : "+N n") + (pv ? " and the pivot impulse R" : ""),
-                             {i}, false);
-            if (!b.particle) {
-                vec3 ref = pv ? pv->point : p.contact.point;
-                vec3 dH =
-                    mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) + cross(b.position - ref, dp);
-                vec3 moment = pv ? cross(p.contact.point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
-                world_components(dH, moment, principle::angular_momentum,
-                                 pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no "
-                                      "moment: the change of angular momentum of " +
-                                          display_name(b) + " about E is the moment of the contact impulse"
-                                    : "the impulse on " + display_name(b) +
-                                          " passes through O, fixed in the inertial frame, so its angular momentum "
-                                          "about O is conserved",
-                                 {i}, true);
-            }
-            if (pv && !b.particle) {
-                vec3 vE = d.velocity_after[i] + cross(d.angular_velocity_after[i], pv->point - b.position);
-                world_components(vE, zero_vec(), principle::pivot_fixed,
-                                 "the pivot E of " + display_name(b) + " is fixed: v'_C + w' x r_{E C} = 0", {i},
-                                 false);
-            }
-            if (pv && b.particle)
-                d.remarks.push_back({remark_kind::pinned_particle, i,
-                                     display_name(b) +
-                                         " is a particle pinned at a fixed point: it cannot rotate, so it cannot move, "
-                                         "and its pivot takes the whole contact impulse."});
-        }
-        for (std::size_t i : contact_bodies)
-            if (p.bodies[i].infinite_mass)
-                d.remarks.push_back({remark_kind::infinite_mass_unchanged, i,
-                                     "The velocities of " + display_name(p.bodies[i]) +
-                                         " (infinite mass) are unchanged by the finite impulse."});
-    }
+    equation_writer w{d};
+    if (!d.impulse_form)
+        free_body_equations(d, w);
+    else
+        constrained_equations(d, w);
     // (d) Newton's restitution law on the contact points.
-    add(dot(d.vB_after - d.vA_after, d.n_hat), -p.restitution * dot(d.vB - d.vA, d.n_hat), principle::restitution,
+    w.add(
+        dot(d.vB_after - d.vA_after, d.n_hat), -p.restitution * dot(d.vB - d.vA, d.n_hat), principle::restitution,
         "Newton's coefficient of restitution: the normal velocity of separation of the contact points is e times their "
         "velocity of approach",
         {i1, i2});
