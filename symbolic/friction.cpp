@@ -176,33 +176,8 @@ void finish_case(const derivation &d, const shared_part &sh, regime_case &c)
                 s.pivot_impulses[k][2] = 0;
         }
     }
-    for (const unknown &un : d.unknowns) {
-        ex v;
-        switch (un.kind) {
-        case unknown_kind::velocity:
-            v = s.after[un.owner].velocity[un.component];
-            break;
-        case unknown_kind::angular_velocity:
-            v = s.after[un.owner].angular_velocity[un.component];
-            break;
-        case unknown_kind::normal_impulse:
-            v = s.normal_impulse;
-            break;
-        case unknown_kind::pivot_impulse:
-            v = s.pivot_impulses[un.owner][un.component];
-            break;
-        }
-        s.unknown_values.append(un.sym == v);
-    }
-    std::vector<vec3> v0, w0, v1, w1;
-    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        v0.push_back(p.bodies[i].velocity);
-        w0.push_back(p.bodies[i].angular_velocity);
-        v1.push_back(s.after[i].velocity);
-        w1.push_back(s.after[i].angular_velocity);
-    }
-    s.energy_before = kinetic_energy(p, v0, w0);
-    s.energy_after_direct = kinetic_energy(p, v1, w1);
+    s.unknown_values = unknown_values(d, s);
+    set_energies(p, s);
     s.energy_after = s.energy_after_direct;
     s.energy_lost = s.energy_before - s.energy_after_direct;
 }

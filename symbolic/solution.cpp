@@ -96,6 +96,124 @@ lst solution::step_values(const ex &input_values) const
     return values;
 }
 
+namespace
+{
+
+// One body of the contact in the smooth closed form.
+struct smooth_side {
+    std::size_t index;
+    ex sign;
+    ex w = 0;            // effective inverse mass at the contact point along n
+    vec3 g = zero_vec(); // angular velocity change per unit impulse along s n: I^{-1} (r x n)
+    body_response r;     // lever (about C or E), arm d = C - E, inertia about C or E
+    bool pinned = false;
+};
+
+// Planar: the lever arm tau = (r x n)_z, I about C or E, g = tau / I, w = 1/m + tau^2 / I.
+void planar_response(const problem &p, step_builder &sb, smooth_side &sd, const vec3 &tau, const std::string &where)
+{
+    const body &b = p.bodies[sd.index];
+    const std::string L = b.label;
+    const mat3 &J = sd.r.inertia;
+    ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L, "\\tau_{" + label_subscript_tex(L) + "}",
+                  tidy(tau[2]), "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
+    ex Iz = sd.pinned ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + label_subscript(L),
+                               "I_{E" + label_subscript_tex(L) + "}", tidy(J[2][2]),
+                               "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
+                      : J[2][2];
+    sd.g = {0, 0, t / Iz};
+    sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + t * t / Iz;
+}
+
+// 3-D: the lever arm tau = r x n, I about C or E (steps when pinned), g = I^{-1} tau,
+// w = 1/m + tau.g.
+void spatial_response(const problem &p, step_builder &sb, smooth_side &sd, const vec3 &tau, const std::string &where)
+{
+    const body &b = p.bodies[sd.index];
+    const std::string L = b.label;
+    const mat3 &J = sd.r.inertia;
+    vec3 t;
+    for (int c = 0; c < 3; ++c)
+        t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + label_subscript(L),
+                      "\\tau_{" + p.axes[c] + label_subscript_tex(L) + "}", tidy(tau[c]),
+                      "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " + p.axes[c] +
+                          " component");
+    mat3 Js = J;
+    if (sd.pinned)
+        for (int a = 0; a < 3; ++a)
+            for (int c = a; c < 3; ++c) {
+                ex v =
+                    sb.add(step_role::pivot_inertia, sd.index, a, c, "I_E" + p.axes[a] + p.axes[c] + label_subscript(L),
+                           "I_{E," + p.axes[a] + p.axes[c] + label_subscript_tex(L) + "}", tidy(J[a][c]),
+                           "inertia tensor of " + display_name(b) + " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
+                Js[a][c] = v;
+                Js[c][a] = v;
+            }
+    // A diagonal tensor (every off-diagonal entry identically zero) is inverted
+    // entry by entry: g_c = t_c / J_cc, with no determinant (J_xx J_yy J_zz, whose
+    // cube of the scale leaves float's range at I ~ 1e13 or 4e-15); otherwise
+    // g = adj(J) t / det(J).
+    bool diagonal = true;
+    for (int a = 0; a < 3; ++a)
+        for (int c = a + 1; c < 3; ++c)
+            diagonal = diagonal && tidy(Js[a][c]).is_zero() && tidy(Js[c][a]).is_zero();
+    vec3 at = t;
+    ex D = 1;
+    if (!diagonal) {
+        mat3 adj = adjugate(Js);
+        D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L, "D_{" + label_subscript_tex(L) + "}",
+                   det(Js), "determinant of the inertia tensor of " + display_name(b) + (sd.pinned ? " about E" : ""));
+        at = mul(adj, t);
+    }
+    for (int c = 0; c < 3; ++c)
+        sd.g[c] = sb.add(step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + label_subscript(L),
+                         "g_{" + p.axes[c] + label_subscript_tex(L) + "}", diagonal ? t[c] / Js[c][c] : at[c] / D,
+                         "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] +
+                             " component: change of angular velocity per unit impulse" +
+                             (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)")
+                                       : std::string()));
+    sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
+}
+
+} // namespace
+
+lst unknown_values(const derivation &d, const solution &s)
+{
+    lst values;
+    for (const unknown &un : d.unknowns) {
+        ex v;
+        switch (un.kind) {
+        case unknown_kind::velocity:
+            v = s.after[un.owner].velocity[un.component];
+            break;
+        case unknown_kind::angular_velocity:
+            v = s.after[un.owner].angular_velocity[un.component];
+            break;
+        case unknown_kind::normal_impulse:
+            v = s.normal_impulse;
+            break;
+        case unknown_kind::pivot_impulse:
+            v = s.pivot_impulses[un.owner][un.component];
+            break;
+        }
+        values.append(un.sym == v);
+    }
+    return values;
+}
+
+void set_energies(const problem &p, solution &s)
+{
+    std::vector<vec3> v0, w0, v1, w1;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        v0.push_back(p.bodies[i].velocity);
+        w0.push_back(p.bodies[i].angular_velocity);
+        v1.push_back(s.after[i].velocity);
+        w1.push_back(s.after[i].angular_velocity);
+    }
+    s.energy_before = kinetic_energy(p, v0, w0);
+    s.energy_after_direct = kinetic_energy(p, v1, w1);
+}
+
 solution solve(const derivation &d)
 {
     const problem &p = d.prob;
@@ -114,17 +232,9 @@ solution solve(const derivation &d)
     const vec3 &n = d.n_hat;
     const vec3 &O = p.contact.point;
 
-    struct side {
-        std::size_t index;
-        ex sign;
-        ex w = 0;            // effective inverse mass at the contact point along n
-        vec3 g = zero_vec(); // angular velocity change per unit impulse along s n: I^{-1} (r x n)
-        body_response r;     // lever (about C or E), arm d = C - E, inertia about C or E
-        bool pinned = false;
-    };
-    side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};
+    smooth_side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};
 
-    for (side &sd : sides) {
+    for (smooth_side &sd : sides) {
         const body &b = p.bodies[sd.index];
         const std::string L = b.label;
         if (p.immovable(sd.index))
@@ -133,68 +243,12 @@ solution solve(const derivation &d)
         sd.pinned = sd.r.pinned;
         // Lever of the contact normal about C (free) or about E (pinned).
         vec3 tau = cross(sd.r.lever, n);
-        const mat3 &J = sd.r.inertia;
         const std::string where = sd.pinned ? "the pivot E" : "the centre of mass";
         if (!b.particle) {
-            if (dim == 2) {
-                ex t = sb.add(step_role::lever_arm, sd.index, 2, -1, "tau_" + L,
-                              "\\tau_{" + label_subscript_tex(L) + "}", tidy(tau[2]),
-                              "lever arm of the normal about " + where + " of " + display_name(b) + ": (r x n)_z");
-                ex Iz =
-                    sd.pinned
-                        ? sb.add(step_role::pivot_inertia, sd.index, 2, 2, "I_E" + label_subscript(L),
-                                 "I_{E" + label_subscript_tex(L) + "}", tidy(J[2][2]),
-                                 "moment of inertia of " + display_name(b) + " about its pivot E: I_C + m |C - E|^2")
-                        : J[2][2];
-                sd.g = {0, 0, t / Iz};
-                sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + t * t / Iz;
-            } else {
-                vec3 t;
-                for (int c = 0; c < 3; ++c)
-                    t[c] = sb.add(step_role::lever_arm, sd.index, c, -1, "tau_" + p.axes[c] + label_subscript(L),
-                                  "\\tau_{" + p.axes[c] + label_subscript_tex(L) + "}", tidy(tau[c]),
-                                  "lever arm r x n of the normal about " + where + " of " + display_name(b) + ", " +
-                                      p.axes[c] + " component");
-                mat3 Js = J;
-                if (sd.pinned)
-                    for (int a = 0; a < 3; ++a)
-                        for (int c = a; c < 3; ++c) {
-                            ex v = sb.add(step_role::pivot_inertia, sd.index, a, c,
-                                          "I_E" + p.axes[a] + p.axes[c] + label_subscript(L),
-                                          "I_{E," + p.axes[a] + p.axes[c] + label_subscript_tex(L) + "}", tidy(J[a][c]),
-                                          "inertia tensor of " + display_name(b) +
-                                              " about its pivot E: I_C + m (|d|^2 1 - d d^T)");
-                            Js[a][c] = v;
-                            Js[c][a] = v;
-                        }
-                // A diagonal tensor (every off-diagonal entry identically zero) is inverted
-                // entry by entry: g_c = t_c / J_cc, with no determinant (J_xx J_yy J_zz, whose
-                // cube of the scale leaves float's range at I ~ 1e13 or 4e-15); otherwise
-                // g = adj(J) t / det(J).
-                bool diagonal = true;
-                for (int a = 0; a < 3; ++a)
-                    for (int c = a + 1; c < 3; ++c)
-                        diagonal = diagonal && tidy(Js[a][c]).is_zero() && tidy(Js[c][a]).is_zero();
-                vec3 at = t;
-                ex D = 1;
-                if (!diagonal) {
-                    mat3 adj = adjugate(Js);
-                    D = sb.add(step_role::inertia_determinant, sd.index, -1, -1, "D_" + L,
-                               "D_{" + label_subscript_tex(L) + "}", det(Js),
-                               "determinant of the inertia tensor of " + display_name(b) +
-                                   (sd.pinned ? " about E" : ""));
-                    at = mul(adj, t);
-                }
-                for (int c = 0; c < 3; ++c)
-                    sd.g[c] = sb.add(
-                        step_role::angular_response, sd.index, c, -1, "g_" + p.axes[c] + label_subscript(L),
-                        "g_{" + p.axes[c] + label_subscript_tex(L) + "}", diagonal ? t[c] / Js[c][c] : at[c] / D,
-                        "I^{-1} (r x n) for " + display_name(b) + ", " + p.axes[c] +
-                            " component: change of angular velocity per unit impulse" +
-                            (diagonal ? std::string(" (a diagonal tensor: (r x n) component over the diagonal entry)")
-                                      : std::string()));
-                sd.w = (sd.pinned ? ex(0) : 1 / b.mass) + dot(t, sd.g);
-            }
+            if (dim == 2)
+                planar_response(p, sb, sd, tau, where);
+            else
+                spatial_response(p, sb, sd, tau, where);
         } else {
             sd.w = 1 / b.mass;
         }
@@ -222,7 +276,7 @@ solution solve(const derivation &d)
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
     s.pivot_impulses.assign(p.pivots.size(), zero_vec());
-    for (const side &sd : sides) {
+    for (const smooth_side &sd : sides) {
         const body &b = p.bodies[sd.index];
         if (b.infinite_mass)
             continue;
@@ -244,33 +298,7 @@ solution solve(const derivation &d)
         }
     }
 
-    // Unknown == value, in the derivation's unknowns.
-    for (const unknown &un : d.unknowns) {
-        ex v;
-        switch (un.kind) {
-        case unknown_kind::velocity:
-            v = s.after[un.owner].velocity[un.component];
-            break;
-        case unknown_kind::angular_velocity:
-            v = s.after[un.owner].angular_velocity[un.component];
-            break;
-        case unknown_kind::normal_impulse:
-            v = N;
-            break;
-        case unknown_kind::pivot_impulse:
-            v = s.pivot_impulses[un.owner][un.component];
-            break;
-        }
-        s.unknown_values.append(un.sym == v);
-    }
-
-    std::vector<vec3> v0, w0, v1, w1;
-    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        v0.push_back(p.bodies[i].velocity);
-        w0.push_back(p.bodies[i].angular_velocity);
-        v1.push_back(s.after[i].velocity);
-        w1.push_back(s.after[i].angular_velocity);
-    }
+    s.unknown_values = unknown_values(d, s);
     // Energy lost, through the work of the contact impulse: a body that moves
     // under the impulse s N n at its contact point gains s N (a + a')/2 with
     // a the normal velocity of that point, a' = a + s N w; pivot impulses act at
@@ -282,18 +310,17 @@ solution solve(const derivation &d)
         lost = -N * u - N * N * k / 2;
     } else {
         for (int side_index = 0; side_index < 2; ++side_index) {
-            const side &sd = sides[side_index];
+            const smooth_side &sd = sides[side_index];
             if (p.immovable(sd.index))
                 continue;
             ex a = dot(*contact_velocity[side_index], n);
             lost -= sd.sign * N * a + N * N * sd.w / 2;
         }
     }
-    s.energy_before = kinetic_energy(p, v0, w0);
+    set_energies(p, s);
     s.energy_lost = sb.add(step_role::energy_lost, no_body, -1, -1, "T_lost", "T_{\\mathrm{lost}}", lost,
                            "kinetic energy lost, T - T' (bodies of finite mass)", true);
     s.energy_after = s.energy_before - s.energy_lost;
-    s.energy_after_direct = kinetic_energy(p, v1, w1);
     return s;
 }
 

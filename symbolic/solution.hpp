@@ -114,6 +114,13 @@ std::vector<ex> residuals(const derivation &d, const solution &s, const ex &inpu
 /// form, whose size grows fast in 3-D.
 bool vanishes_identically(const solution &s, const ex &value, const std::string &what);
 
+/// unknown == value for every unknown of the derivation, read from the solution's bodies after
+/// impact, normal impulse and pivot impulses.
+GiNaC::lst unknown_values(const derivation &d, const solution &s);
+
+/// The solution's energy_before and energy_after_direct, from the bodies before and after.
+void set_energies(const problem &p, solution &s);
+
 /// Kinetic energy of the bodies of finite mass (1/2 m v.v + 1/2 w.I w).
 ex kinetic_energy(const problem &p, const std::vector<vec3> &v, const std::vector<vec3> &w);
 
