@@ -1179,53 +1179,29 @@ void stick_numbers(const context &c, section &sec, const case_numbers &cn, const
     }
 }
 
-void numbers_section(context &c, document &doc)
+// The rows of a candidate's steps from..to with their numbers (formula, then value).
+std::vector<math_row> step_rows(const context &c, const regime_case &rc, const case_numbers &cn, std::size_t from,
+                                std::size_t to)
 {
-    section sec{"9. The numbers", {}};
-    if (c.f.cases.empty())
-        return;
-    // The shared steps are the first candidate's first steps (stick's, or a slide's without it).
-    const regime_case &first = c.f.cases.front();
-    if (c.inputs.nops()) {
-        std::vector<math_row> given;
-        for (std::size_t k = 0; k < c.inputs.nops(); ++k) {
-            math_row r = value_row(c.inputs.op(k).lhs(), c.inputs.op(k).rhs());
-            if (k < c.units.size() && !c.units[k].empty())
-                r.note.w(r.note.spans.empty() ? "in" + c.units[k] : "," + c.units[k]);
-            given.push_back(r);
+    std::vector<math_row> rows;
+    for (std::size_t k = from; k < to && k < cn.values.nops(); ++k) {
+        const step &s = rc.sol.steps[k];
+        const ex v = cn.values.op(k).rhs();
+        const ex formula = c.at_inputs(s.value); // in the earlier steps, whose numbers are above
+        math_row r = value_row(s.sym, v);
+        if (!is_constant(formula) && printable(formula, 120) && !is_float(v)) {
+            r.rhs = formula;
+            r.has_then = true;
+            r.then = v;
         }
-        sec.para(paragraph().w("The problem's numbers: substitute"));
-        sec.rows(given);
-        sec.para(paragraph().w("Every step above is then a number, exact where the closed form is. The shared steps:"));
-    } else {
-        sec.para(paragraph().w(
-            "The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
+        rows.push_back(r);
     }
-    std::vector<case_numbers> nums;
-    for (const regime_case &rc : c.f.cases)
-        nums.push_back(rc.needs_angle ? case_numbers{} : evaluate(c, rc));
-    auto step_rows = [&](const regime_case &rc, const case_numbers &cn, std::size_t from, std::size_t to) {
-        std::vector<math_row> rows;
-        for (std::size_t k = from; k < to && k < cn.values.nops(); ++k) {
-            const step &s = rc.sol.steps[k];
-            const ex v = cn.values.op(k).rhs();
-            const ex formula = c.at_inputs(s.value); // in the earlier steps, whose numbers are above
-            math_row r = value_row(s.sym, v);
-            if (!is_constant(formula) && printable(formula, 120) && !is_float(v)) {
-                r.rhs = formula;
-                r.has_then = true;
-                r.then = v;
-            }
-            rows.push_back(r);
-        }
-        return rows;
-    };
-    sec.rows(step_rows(first, nums[0], 0, c.shared));
+    return rows;
+}
 
-    ex Nst, mu_star;
-    if (c.has_stick())
-        stick_numbers(c, sec, nums[0], step_rows(first, nums[0], c.shared, first.sol.steps.size()), Nst, mu_star);
-    // Slides.
+// The slides' numbers in section 9: steps and conditions, or the sliding equation (3-D general).
+void slide_numbers(const context &c, section &sec, const std::vector<case_numbers> &nums)
+{
     for (std::size_t ci = c.first_slide(); ci < c.f.cases.size(); ++ci) {
         const regime_case &sc = c.f.cases[ci];
         const case_numbers &cn = nums[ci];
@@ -1255,7 +1231,7 @@ void numbers_section(context &c, document &doc)
         else
             head.t("Slide along $u_t$:");
         sec.para(head);
-        sec.rows(step_rows(sc, cn, c.shared, sc.sol.steps.size()));
+        sec.rows(step_rows(c, sc, cn, c.shared, sc.sol.steps.size()));
         if (cn.stopped) {
             sec.para(paragraph().t("$D_s ≤ 0$: the normal impulse would not be positive, so this slide cannot hold."));
             continue;
@@ -1269,8 +1245,11 @@ void numbers_section(context &c, document &doc)
         }
         sec.rows(sconds);
     }
+}
 
-    // Planar: the regimes along the mu axis for this problem.
+// Planar: the regimes along the mu axis for this problem (with a stick candidate).
+void mu_axis_numbers(const context &c, section &sec, const std::vector<case_numbers> &nums, const ex &Nst)
+{
     if (c.dim == 2 && c.has_stick() && c.f.cases.size() == 3) {
         const regime_case &st = c.stick();
         const step *DK = st.sol.find(step_role::response_determinant);
@@ -1299,48 +1278,35 @@ void numbers_section(context &c, document &doc)
             sec.list(items);
         }
     }
+}
 
-    // The verdict.
-    std::string why;
-    regime_case sel;
-    bool selected = false;
-    try {
-        sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
-        selected = true;
-    } catch (const input_error &err) {
-        why = err.what();
-    }
-    if (!selected) {
-        sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
-        sec.para(paragraph().w("\"" + why + "\""));
-        sec.para(paragraph().t(
-            "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
-            "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
-            "tangential directions, typically leaves a single regime."));
-        doc.sections.push_back(sec);
-        return;
-    }
-    {
-        paragraph q;
-        q.w("The regime that holds: ");
-        for (const span &x : regime_words(sel).spans)
-            q.spans.push_back(x);
-        q.w(".");
-        if (sel.kind == regime::slide && c.dim == 3) {
-            q.t(" The sliding direction $d = ($");
-            for (int a = 0; a < 3; ++a) {
-                const ex x = settle(sel.direction[a]);
-                if (a)
-                    q.w(", ");
-                if (is_float(x))
-                    q.n(decimal(x), decimal(x));
-                else
-                    q.m(x);
-            }
-            q.w(").");
+// "The regime that holds: ..." (and the sliding direction in 3-D).
+paragraph verdict_paragraph(const context &c, const regime_case &sel)
+{
+    paragraph q;
+    q.w("The regime that holds: ");
+    for (const span &x : regime_words(sel).spans)
+        q.spans.push_back(x);
+    q.w(".");
+    if (sel.kind == regime::slide && c.dim == 3) {
+        q.t(" The sliding direction $d = ($");
+        for (int a = 0; a < 3; ++a) {
+            const ex x = settle(sel.direction[a]);
+            if (a)
+                q.w(", ");
+            if (is_float(x))
+                q.n(decimal(x), decimal(x));
+            else
+                q.m(x);
         }
-        sec.para(q);
+        q.w(").");
     }
+    return q;
+}
+
+// Section 10: the answer, the equations substituted back, the energy.
+section answer_section(const context &c, const regime_case &sel)
+{
     section ans{"10. The answer", {}};
     std::vector<math_row> answers;
     lst unknown_values;
@@ -1423,6 +1389,66 @@ void numbers_section(context &c, document &doc)
             "the one the law gives."));
     else if (loss == decision::zero)
         ans.para(paragraph().w("No kinetic energy is lost."));
+    return ans;
+}
+
+void numbers_section(context &c, document &doc)
+{
+    section sec{"9. The numbers", {}};
+    if (c.f.cases.empty())
+        return;
+    // The shared steps are the first candidate's first steps (stick's, or a slide's without it).
+    const regime_case &first = c.f.cases.front();
+    if (c.inputs.nops()) {
+        std::vector<math_row> given;
+        for (std::size_t k = 0; k < c.inputs.nops(); ++k) {
+            math_row r = value_row(c.inputs.op(k).lhs(), c.inputs.op(k).rhs());
+            if (k < c.units.size() && !c.units[k].empty())
+                r.note.w(r.note.spans.empty() ? "in" + c.units[k] : "," + c.units[k]);
+            given.push_back(r);
+        }
+        sec.para(paragraph().w("The problem's numbers: substitute"));
+        sec.rows(given);
+        sec.para(paragraph().w("Every step above is then a number, exact where the closed form is. The shared steps:"));
+    } else {
+        sec.para(paragraph().w(
+            "The problem is numeric: every step above is a number, exact where the closed form is. The shared steps:"));
+    }
+    std::vector<case_numbers> nums;
+    for (const regime_case &rc : c.f.cases)
+        nums.push_back(rc.needs_angle ? case_numbers{} : evaluate(c, rc));
+    sec.rows(step_rows(c, first, nums[0], 0, c.shared));
+
+    ex Nst, mu_star;
+    if (c.has_stick())
+        stick_numbers(c, sec, nums[0], step_rows(c, first, nums[0], c.shared, first.sol.steps.size()), Nst, mu_star);
+    slide_numbers(c, sec, nums);
+
+    if (c.dim == 2 && c.has_stick() && c.f.cases.size() == 3)
+        mu_axis_numbers(c, sec, nums, Nst);
+
+    // The verdict.
+    std::string why;
+    regime_case sel;
+    bool selected = false;
+    try {
+        sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
+        selected = true;
+    } catch (const input_error &err) {
+        why = err.what();
+    }
+    if (!selected) {
+        sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
+        sec.para(paragraph().w("\"" + why + "\""));
+        sec.para(paragraph().t(
+            "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
+            "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
+            "tangential directions, typically leaves a single regime."));
+        doc.sections.push_back(sec);
+        return;
+    }
+    sec.para(verdict_paragraph(c, sel));
+    const section ans = answer_section(c, sel);
     doc.sections.push_back(sec);
     doc.sections.push_back(ans);
 }
