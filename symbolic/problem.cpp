@@ -573,6 +573,129 @@ void validate(const problem &p)
                           " along the normal ((v_B - v_A).n = " + show(approach) + " >= 0)");
 }
 
+// A body's "inertia": a number in 2-D; in 3-D a 3x3 nested list or [Ixx, Iyy, Izz]; 0 or all
+// zeros for a particle.
+void read_inertia(const json_value &in, int d, const std::string &where, body &b)
+{
+    const std::string w = where + ".inertia";
+    if (d == 2) {
+        ex I = scalar(in, w);
+        const decision sign = decided(I, w, "the moment of inertia");
+        if (sign == decision::negative)
+            throw input_error(w + ": not positive-definite (must be > 0, or 0 for a particle)");
+        if (sign != decision::zero) {
+            b.particle = false;
+            b.inertia[2][2] = I;
+        }
+    } else if (!in.is_array()) {
+        ex I = scalar(in, w);
+        if (!I.is_zero())
+            throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz] (0 for a particle)");
+    } else if (in.items().size() == 3 && !in.items()[0].is_array()) {
+        for (int k = 0; k < 3; ++k)
+            b.inertia[k][k] = scalar(in.items()[k], w + "[" + std::to_string(k) + "]");
+        b.particle = false;
+    } else if (in.items().size() == 3) {
+        for (int r = 0; r < 3; ++r)
+            b.inertia[r] = vector_of(in.items()[r], 3, w + "[" + std::to_string(r) + "]");
+        b.particle = false;
+    } else {
+        throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz], got a list of " +
+                          std::to_string(in.items().size()));
+    }
+    if (!b.particle) {
+        bool all_zero = true;
+        for (const auto &row : b.inertia)
+            for (const ex &e : row)
+                all_zero = all_zero && e.is_zero();
+        b.particle = all_zero;
+    }
+}
+
+// One element of "bodies" (index i), in dimension d.
+body read_body(const json_value &jb, std::size_t i, int d, std::vector<std::string> &warnings)
+{
+    std::string where = "bodies[" + std::to_string(i) + "]";
+    if (!jb.is_object())
+        throw input_error(where + ": expected an object, got " + json_value::kind_name(jb.type()));
+    warn_unknown_keys(jb, {"name", "mass", "inertia", "position", "velocity", "angular_velocity"}, where, warnings);
+    body b;
+    const json_value &name = require(jb, "name", where);
+    if (!name.is_string() || name.text().empty())
+        throw input_error(where + ".name: expected a non-empty string");
+    if (name.text().size() > limits::name_length)
+        throw input_error(where + ".name: longer than " + std::to_string(limits::name_length) + " bytes");
+    for (char ch : name.text())
+        if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+            throw input_error(where + ".name: \"" + names::display_text(name.text()) +
+                              "\" contains a control character (names are printed in documents and code)");
+    b.name = b.label = name.text();
+    where += " (\"" + names::display_text(b.name) + "\")";
+    const json_value &mass = require(jb, "mass", where);
+    std::string lower = mass.text();
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (mass.is_string() && (lower == "inf" || lower == "infinity" || lower == "+inf")) {
+        b.infinite_mass = true;
+    } else {
+        b.mass = scalar(mass, where + ".mass");
+    }
+    if (const json_value *in = jb.find("inertia"))
+        read_inertia(*in, d, where, b);
+    b.position = vector_of(require(jb, "position", where), d, where + ".position");
+    b.velocity = vector_of(require(jb, "velocity", where), d, where + ".velocity");
+    if (const json_value *w = jb.find("angular_velocity")) {
+        if (d == 2)
+            b.angular_velocity[2] = scalar(*w, where + ".angular_velocity");
+        else
+            b.angular_velocity = vector_of(*w, 3, where + ".angular_velocity");
+    }
+    return b;
+}
+
+// "contact": the two bodies, the point, the normal and the law (Coulomb's with "friction").
+void read_contact(const json_value &root, problem &p)
+{
+    const int d = p.dimension;
+    const json_value &jc = require(root, "contact", "problem");
+    if (!jc.is_object())
+        throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
+    warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, "contact", p.warnings);
+    const json_value &cb = require(jc, "bodies", "contact");
+    if (!cb.is_array() || cb.items().size() != 2)
+        throw input_error("contact.bodies: expected a list of the two bodies that touch");
+    p.contact.body1 = body_index(p, cb.items()[0], "contact.bodies[0]");
+    p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
+    p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
+    p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
+    if (const json_value *jf = jc.find("friction")) {
+        p.contact.set_friction(scalar(*jf, "contact.friction"));
+        // mu = 0 (exactly, however written) is the smooth impact, unchanged
+        if (is_constant(p.contact.friction()) && decide(p.contact.friction()) == decision::zero)
+            p.contact.set_friction(0);
+    }
+}
+
+// "pivots" (optional): fixed pins (2-D) or ball joints (3-D).
+void read_pivots(const json_value &root, problem &p)
+{
+    const int d = p.dimension;
+    if (const json_value *jp = root.find("pivots")) {
+        if (!jp->is_array())
+            throw input_error(std::string("pivots: expected a list, got ") + json_value::kind_name(jp->type()));
+        for (std::size_t k = 0; k < jp->items().size(); ++k) {
+            const json_value &jv = jp->items()[k];
+            std::string where = "pivots[" + std::to_string(k) + "]";
+            if (!jv.is_object())
+                throw input_error(where + ": expected an object, got " + json_value::kind_name(jv.type()));
+            warn_unknown_keys(jv, {"body", "point"}, where, p.warnings);
+            pivot pv;
+            pv.body = body_index(p, require(jv, "body", where), where + ".body");
+            pv.point = vector_of(require(jv, "point", where), d, where + ".point");
+            p.pivots.push_back(pv);
+        }
+    }
+}
+
 problem read_problem(const std::string &text, const std::string &source)
 {
     if (text.size() > limits::file_bytes)
@@ -609,78 +732,8 @@ problem read_problem(const std::string &text, const std::string &source)
     if (bodies.items().size() > limits::bodies)
         throw input_error("bodies: " + std::to_string(bodies.items().size()) + " bodies; at most " +
                           std::to_string(limits::bodies) + " are read");
-    for (std::size_t i = 0; i < bodies.items().size(); ++i) {
-        const json_value &jb = bodies.items()[i];
-        std::string where = "bodies[" + std::to_string(i) + "]";
-        if (!jb.is_object())
-            throw input_error(where + ": expected an object, got " + json_value::kind_name(jb.type()));
-        warn_unknown_keys(jb, {"name", "mass", "inertia", "position", "velocity", "angular_velocity"}, where,
-                          p.warnings);
-        body b;
-        const json_value &name = require(jb, "name", where);
-        if (!name.is_string() || name.text().empty())
-            throw input_error(where + ".name: expected a non-empty string");
-        if (name.text().size() > limits::name_length)
-            throw input_error(where + ".name: longer than " + std::to_string(limits::name_length) + " bytes");
-        for (char ch : name.text())
-            if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
-                throw input_error(where + ".name: \"" + names::display_text(name.text()) +
-                                  "\" contains a control character (names are printed in documents and code)");
-        b.name = b.label = name.text();
-        where += " (\"" + names::display_text(b.name) + "\")";
-        const json_value &mass = require(jb, "mass", where);
-        std::string lower = mass.text();
-        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
-        if (mass.is_string() && (lower == "inf" || lower == "infinity" || lower == "+inf")) {
-            b.infinite_mass = true;
-        } else {
-            b.mass = scalar(mass, where + ".mass");
-        }
-        if (const json_value *in = jb.find("inertia")) {
-            std::string w = where + ".inertia";
-            if (d == 2) {
-                ex I = scalar(*in, w);
-                decision d = decided(I, w, "the moment of inertia");
-                if (d == decision::negative)
-                    throw input_error(w + ": not positive-definite (must be > 0, or 0 for a particle)");
-                if (d != decision::zero) {
-                    b.particle = false;
-                    b.inertia[2][2] = I;
-                }
-            } else if (!in->is_array()) {
-                ex I = scalar(*in, w);
-                if (!I.is_zero())
-                    throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz] (0 for a particle)");
-            } else if (in->items().size() == 3 && !in->items()[0].is_array()) {
-                for (int k = 0; k < 3; ++k)
-                    b.inertia[k][k] = scalar(in->items()[k], w + "[" + std::to_string(k) + "]");
-                b.particle = false;
-            } else if (in->items().size() == 3) {
-                for (int r = 0; r < 3; ++r)
-                    b.inertia[r] = vector_of(in->items()[r], 3, w + "[" + std::to_string(r) + "]");
-                b.particle = false;
-            } else {
-                throw input_error(w + ": a 3-D inertia is a 3x3 nested list or [Ixx, Iyy, Izz], got a list of " +
-                                  std::to_string(in->items().size()));
-            }
-            if (!b.particle) {
-                bool all_zero = true;
-                for (const auto &row : b.inertia)
-                    for (const ex &e : row)
-                        all_zero = all_zero && e.is_zero();
-                b.particle = all_zero;
-            }
-        }
-        b.position = vector_of(require(jb, "position", where), d, where + ".position");
-        b.velocity = vector_of(require(jb, "velocity", where), d, where + ".velocity");
-        if (const json_value *w = jb.find("angular_velocity")) {
-            if (d == 2)
-                b.angular_velocity[2] = scalar(*w, where + ".angular_velocity");
-            else
-                b.angular_velocity = vector_of(*w, 3, where + ".angular_velocity");
-        }
-        p.bodies.push_back(b);
-    }
+    for (std::size_t i = 0; i < bodies.items().size(); ++i)
+        p.bodies.push_back(read_body(bodies.items()[i], i, d, p.warnings));
     if (p.bodies.size() < 2)
         throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
     {
@@ -691,39 +744,8 @@ problem read_problem(const std::string &text, const std::string &source)
                                   names::display_text(p.bodies[i].name) + "\"");
     }
 
-    const json_value &jc = require(root, "contact", "problem");
-    if (!jc.is_object())
-        throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
-    warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, "contact", p.warnings);
-    const json_value &cb = require(jc, "bodies", "contact");
-    if (!cb.is_array() || cb.items().size() != 2)
-        throw input_error("contact.bodies: expected a list of the two bodies that touch");
-    p.contact.body1 = body_index(p, cb.items()[0], "contact.bodies[0]");
-    p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
-    p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
-    p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
-    if (const json_value *jf = jc.find("friction")) {
-        p.contact.set_friction(scalar(*jf, "contact.friction"));
-        // mu = 0 (exactly, however written) is the smooth impact, unchanged
-        if (is_constant(p.contact.friction()) && decide(p.contact.friction()) == decision::zero)
-            p.contact.set_friction(0);
-    }
-
-    if (const json_value *jp = root.find("pivots")) {
-        if (!jp->is_array())
-            throw input_error(std::string("pivots: expected a list, got ") + json_value::kind_name(jp->type()));
-        for (std::size_t k = 0; k < jp->items().size(); ++k) {
-            const json_value &jv = jp->items()[k];
-            std::string where = "pivots[" + std::to_string(k) + "]";
-            if (!jv.is_object())
-                throw input_error(where + ": expected an object, got " + json_value::kind_name(jv.type()));
-            warn_unknown_keys(jv, {"body", "point"}, where, p.warnings);
-            pivot pv;
-            pv.body = body_index(p, require(jv, "body", where), where + ".body");
-            pv.point = vector_of(require(jv, "point", where), d, where + ".point");
-            p.pivots.push_back(pv);
-        }
-    }
+    read_contact(root, p);
+    read_pivots(root, p);
     const std::size_t symbols = p.parameters().size();
     if (symbols > limits::symbols)
         throw input_error("problem: " + std::to_string(symbols) + " distinct symbols; at most " +
