@@ -668,6 +668,127 @@ std::vector<numeric> trig_roots(const numeric a[5], const std::string &where)
 
 } // namespace
 
+namespace
+{
+
+// A sliding direction along +-e_t or +-e_b (a motion in one plane: e.g. a ball sliding along
+// e_b) is taken exactly when the sliding equation vanishes there exactly: the answer is then
+// exact, not floats with 1e-60 in the components that are zero. True with (exact_c, exact_s).
+bool exact_axis_direction(const problem &p, const regime_case &c, const numeric &t, ex &exact_c, ex &exact_s)
+{
+    bool exact = false;
+    if (p.is_numeric()) {
+        const numeric ct = cos(t), sn = sin(t);
+        for (const auto &[c0, s0] : {std::pair<int, int>{1, 0}, {0, 1}, {-1, 0}, {0, -1}}) {
+            if (abs(ct - c0) + abs(sn - s0) > numeric(1, 1000000))
+                continue;
+            lst exact_fixed;
+            for (const step &st : c.sol.steps) {
+                if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
+                    break;
+                exact_fixed.append(st.sym == tidy(st.value.subs(exact_fixed)));
+            }
+            const ex g0 = tidy(c.angle_equation.subs(exact_fixed).subs(lst{c.dir_c == c0, c.dir_s == s0}));
+            if (is_a<numeric>(g0) && g0.is_zero()) {
+                exact = true;
+                exact_c = c0;
+                exact_s = s0;
+            }
+        }
+    }
+    return exact;
+}
+
+// The slide at the root t of the sliding equation, if its conditions hold (margin: a condition
+// within `margin` of 0 is too close to call).
+void slide_at_root(const problem &p, const regime_case &c, const numeric &t, double margin, const std::string &where,
+                   std::vector<regime_case> &holding)
+{
+    ex exact_c, exact_s;
+    const bool exact = exact_axis_direction(p, c, t, exact_c, exact_s);
+    const lst dirv = exact ? lst{c.dir_c == exact_c, c.dir_s == exact_s} : lst{c.dir_c == cos(t), c.dir_s == sin(t)};
+    lst vals;
+    for (const step &st : c.sol.steps) {
+        const ex v = st.value.subs(dirv).subs(vals);
+        vals.append(st.sym == (exact ? tidy(v) : v.evalf()));
+    }
+    bool ok = true;
+    for (const regime_condition &rc : c.conditions) {
+        ex v = rc.value.subs(dirv).subs(vals).evalf();
+        if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
+            throw input_error(where + ": cannot evaluate the condition " + rc.meaning);
+        const double x = ex_to<numeric>(v).to_double();
+        if (std::abs(x) <= margin)
+            throw input_error(where + ": the condition " + rc.meaning +
+                              " is too close to its boundary to decide the regime");
+        ok = ok && x > 0;
+    }
+    if (ok) {
+        regime_case r = substituted(c, dirv, vals, !exact);
+        r.needs_angle = false;
+        std::ostringstream angle;
+        angle.precision(6);
+        angle << t.to_double();
+        r.name = "slide at the angle " + angle.str() + " rad from e_t towards e_b";
+        if (exact)
+            r.name = exact_c.is_equal(1)    ? "slide along +e_t"
+                     : exact_c.is_equal(-1) ? "slide along -e_t"
+                     : exact_s.is_equal(1)  ? "slide along +e_b"
+                                            : "slide along -e_b";
+        r.has_angle = true;
+        r.angle = t.to_double();
+        holding.push_back(r);
+    }
+}
+
+// The slides of a 3-D candidate without a closed form that hold: at each root of the sliding
+// equation g(c, s) = 0 on the unit circle, found at 50 digits (and two more per decade of a large mu).
+void holding_angles(const problem &p, const impact_solution &f, const regime_case &c, const std::string &where,
+                    std::vector<regime_case> &holding)
+{
+    // The sliding angle: roots of g(c, s) = 0 on the unit circle, at 50 digits.
+    // 50 digits, and two more per decade of a large mu: the sliding equation's coefficients
+    // span mu^2, and the root must hold to 1e-40 of the smallest.
+    long digits = 50;
+    {
+        const ex m = f.mu.evalf();
+        if (is_a<numeric>(m) && abs(ex_to<numeric>(m)) > 1)
+            digits += std::min(400L, 2 * static_cast<long>(std::ceil(
+                                             std::log10(std::max(1.0, std::abs(ex_to<numeric>(m).to_double()))))) +
+                                         2);
+    }
+    const digits_scope scope(digits);
+    lst fixed; // the steps that do not depend on the direction, as floats
+    for (const step &st : c.sol.steps) {
+        if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
+            break;
+        fixed.append(st.sym == st.value.subs(fixed).evalf());
+    }
+    ex g = c.angle_equation.subs(fixed).evalf().expand();
+    auto coeff2 = [&](int i, int j) {
+        ex v = g.coeff(c.dir_c, i).coeff(c.dir_s, j).evalf();
+        if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
+            throw input_error(where + ": the sliding equation has a coefficient that is not a real number");
+        return ex_to<numeric>(v);
+    };
+    // c^2 = (1 + cos 2t)/2, s^2 = (1 - cos 2t)/2, c s = sin(2t)/2.
+    const numeric c00 = coeff2(0, 0), c10 = coeff2(1, 0), c01 = coeff2(0, 1), c20 = coeff2(2, 0), c02 = coeff2(0, 2),
+                  c11 = coeff2(1, 1);
+    const numeric a[5] = {c00 + (c20 + c02) / 2, c10, c01, (c20 - c02) / 2, c11 / 2};
+    const std::vector<numeric> roots = trig_roots(a, where);
+    // Margin: a condition within 10^-30 of the problem's scale (the largest step value
+    // before the direction enters) is too close to its boundary to call.
+    double scale = 1;
+    for (const ex &rel : fixed)
+        if (is_a<numeric>(rel.rhs()))
+            scale = std::max(scale, std::abs(ex_to<numeric>(rel.rhs()).to_double()));
+    const double margin = scale * 1e-30;
+    for (const numeric &t : roots)
+        slide_at_root(p, c, t, margin, where, holding);
+}
+
+} // namespace
+
 std::vector<regime_case> holding_regimes(const derivation &d, const friction_solution &f)
 {
     const problem &p = d.prob;
@@ -684,111 +805,7 @@ std::vector<regime_case> holding_regimes(const derivation &d, const friction_sol
                 holding.push_back(substituted(c, lst{}, values));
             continue;
         }
-        // The sliding angle: roots of g(c, s) = 0 on the unit circle, at 50 digits.
-        // 50 digits, and two more per decade of a large mu: the sliding equation's coefficients
-        // span mu^2, and the root must hold to 1e-40 of the smallest.
-        const long saved = Digits;
-        long digits = 50;
-        {
-            const ex m = f.mu.evalf();
-            if (is_a<numeric>(m) && abs(ex_to<numeric>(m)) > 1)
-                digits += std::min(400L, 2 * static_cast<long>(std::ceil(
-                                                 std::log10(std::max(1.0, std::abs(ex_to<numeric>(m).to_double()))))) +
-                                             2);
-        }
-        Digits = digits;
-        try {
-            lst fixed; // the steps that do not depend on the direction, as floats
-            for (const step &st : c.sol.steps) {
-                if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
-                    break;
-                fixed.append(st.sym == st.value.subs(fixed).evalf());
-            }
-            ex g = c.angle_equation.subs(fixed).evalf().expand();
-            auto coeff2 = [&](int i, int j) {
-                ex v = g.coeff(c.dir_c, i).coeff(c.dir_s, j).evalf();
-                if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
-                    throw input_error(where + ": the sliding equation has a coefficient that is not a real number");
-                return ex_to<numeric>(v);
-            };
-            // c^2 = (1 + cos 2t)/2, s^2 = (1 - cos 2t)/2, c s = sin(2t)/2.
-            const numeric c00 = coeff2(0, 0), c10 = coeff2(1, 0), c01 = coeff2(0, 1), c20 = coeff2(2, 0),
-                          c02 = coeff2(0, 2), c11 = coeff2(1, 1);
-            const numeric a[5] = {c00 + (c20 + c02) / 2, c10, c01, (c20 - c02) / 2, c11 / 2};
-            const std::vector<numeric> roots = trig_roots(a, where);
-            // Margin: a condition within 10^-30 of the problem's scale (the largest step value
-            // before the direction enters) is too close to its boundary to call.
-            double scale = 1;
-            for (const ex &rel : fixed)
-                if (is_a<numeric>(rel.rhs()))
-                    scale = std::max(scale, std::abs(ex_to<numeric>(rel.rhs()).to_double()));
-            const double margin = scale * 1e-30;
-            for (const numeric &t : roots) {
-                // A direction along +-e_t or +-e_b (a motion in one plane: e.g. F3 of the hostile
-                // pass, a ball sliding along e_b) is taken exactly when the sliding equation
-                // vanishes there exactly: the answer is then exact, not floats with 1e-60 in
-                // the components that are zero.
-                ex exact_c, exact_s;
-                bool exact = false;
-                if (p.is_numeric()) {
-                    const numeric ct = cos(t), sn = sin(t);
-                    for (const auto &[c0, s0] : {std::pair<int, int>{1, 0}, {0, 1}, {-1, 0}, {0, -1}}) {
-                        if (abs(ct - c0) + abs(sn - s0) > numeric(1, 1000000))
-                            continue;
-                        lst exact_fixed;
-                        for (const step &st : c.sol.steps) {
-                            if (st.value.has(c.dir_c) || st.value.has(c.dir_s))
-                                break;
-                            exact_fixed.append(st.sym == tidy(st.value.subs(exact_fixed)));
-                        }
-                        const ex g0 = tidy(c.angle_equation.subs(exact_fixed).subs(lst{c.dir_c == c0, c.dir_s == s0}));
-                        if (is_a<numeric>(g0) && g0.is_zero()) {
-                            exact = true;
-                            exact_c = c0;
-                            exact_s = s0;
-                        }
-                    }
-                }
-                const lst dirv =
-                    exact ? lst{c.dir_c == exact_c, c.dir_s == exact_s} : lst{c.dir_c == cos(t), c.dir_s == sin(t)};
-                lst vals;
-                for (const step &st : c.sol.steps) {
-                    const ex v = st.value.subs(dirv).subs(vals);
-                    vals.append(st.sym == (exact ? tidy(v) : v.evalf()));
-                }
-                bool ok = true;
-                for (const regime_condition &rc : c.conditions) {
-                    ex v = rc.value.subs(dirv).subs(vals).evalf();
-                    if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
-                        throw input_error(where + ": cannot evaluate the condition " + rc.meaning);
-                    const double x = ex_to<numeric>(v).to_double();
-                    if (std::abs(x) <= margin)
-                        throw input_error(where + ": the condition " + rc.meaning +
-                                          " is too close to its boundary to decide the regime");
-                    ok = ok && x > 0;
-                }
-                if (ok) {
-                    regime_case r = substituted(c, dirv, vals, !exact);
-                    r.needs_angle = false;
-                    std::ostringstream angle;
-                    angle.precision(6);
-                    angle << t.to_double();
-                    r.name = "slide at the angle " + angle.str() + " rad from e_t towards e_b";
-                    if (exact)
-                        r.name = exact_c.is_equal(1)    ? "slide along +e_t"
-                                 : exact_c.is_equal(-1) ? "slide along -e_t"
-                                 : exact_s.is_equal(1)  ? "slide along +e_b"
-                                                        : "slide along -e_b";
-                    r.has_angle = true;
-                    r.angle = t.to_double();
-                    holding.push_back(r);
-                }
-            }
-        } catch (...) {
-            Digits = saved;
-            throw;
-        }
-        Digits = saved;
+        holding_angles(p, f, c, where, holding);
     }
     if (holding.size() == 1 && decide(f.mu) == decision::zero) { // mu = 0: the smooth impact (F = 0)
         holding[0].kind = regime::smooth;
