@@ -67,9 +67,22 @@
 // double), floor = impulse_floor (default 1000 eps, 2.2e-13). The impulse
 // conditions are relative to the impulse itself: near grazing every candidate's
 // impulse is tiny against P0, and a slide with P_n = -1e-9 P0 must still be
-// rejected. Two candidates x, y are one solution when |x - y| <= merge
-// max(|x|, |y|) + floor P0 (a stick impulse on the cone's edge is also a slide
-// with u'_t = 0).
+// rejected. A candidate must also be resolved (detail::resolved):
+//   eps w |x| <= tol V,  i.e. |x| <= (tol / eps) P0 (6.7e7 P0 in double).
+// Beyond it the rounding of W itself (eps w per entry) moves u' = c + W x by more
+// than the tolerance on the velocity scale, and tol Vx > (tol^2 / eps) V (= V in
+// double) no longer tells restitution from its failure. A singular W (a body
+// pinned at a point struck by an infinite mass: the contact point can only move
+// perpendicular to the lever from the pivot) has spurious roots there: its
+// smallest singular value is a rounding (below eps w) instead of 0, and an impulse of
+// ~P0 / eps along its null direction (inside the cone when mu exceeds the lever's
+// slope) cancels any residual. Without this condition Newton's method converged
+// there (|F| <= newton_tolerance w |x| is then 1e4 to 1e5 V) on about 2% of the
+// random problems of tests/codegen/friction/pinned-plate-struck-3d.json, with a
+// normal impulse ~1e17 P0 and u' breaking restitution by up to 50 V where the law
+// has no solution; an unresolved Newton point is a failed start. Two candidates
+// x, y are one solution when |x - y| <= merge max(|x|, |y|) + floor P0 (a stick
+// impulse on the cone's edge is also a slide with u'_t = 0).
 #pragma once
 
 #include "numeric_problem.hpp"
@@ -456,13 +469,22 @@ template <typename T> Eigen::Matrix<T, 2, 1> tangential(const fv3<T> &a)
     return Eigen::Matrix<T, 2, 1>(a[1], a[2]);
 }
 
+/// Whether the law can be checked at frame impulse x (header comment): the rounding
+/// of W x, eps w |x|, within the tolerance on the velocity scale, tol V. Beyond it
+/// u' = c + W x is not known to the tolerance; a singular W has spurious roots there
+/// (its null direction, scaled by ~1 / eps, against a rounding-sized singular value).
+template <typename T> bool resolved(const friction_contact<T> &fc, const fv3<T> &x, const friction_options<T> &opt)
+{
+    return std::numeric_limits<T>::epsilon() * fc.compliance_scale * x.norm() <= opt.tolerance * fc.velocity_scale;
+}
+
 /// Checks frame impulse x against the law (header comment); d: the sliding direction (frame, tangential) for a slide.
 template <typename T>
 bool satisfies_law(const friction_contact<T> &fc, const fv3<T> &x, friction_regime regime,
                    const Eigen::Matrix<T, 2, 1> &d, const friction_options<T> &opt)
 {
     using std::abs;
-    if (!x.allFinite())
+    if (!x.allFinite() || !resolved(fc, x, opt))
         return false;
     const T tol = opt.tolerance;
     const fv3<T> up = fc.velocity_after(x);
@@ -712,7 +734,9 @@ template <typename T> fv3<T> alart_curnier(const friction_contact<T> &fc, const 
 
 /// Damped semismooth Newton from x (Armijo backtracking on |F|^2). Converged when
 /// |F| <= newton_tolerance * max(V, w |x|) and the step has stopped contracting
-/// (|dx| <= 8 eps |x|, or no smaller than half the previous step: the rounding floor).
+/// (|dx| <= 8 eps |x|, or no smaller than half the previous step: the rounding floor),
+/// at a resolved point (resolved: with W singular the iteration can run off along its
+/// null direction to |x| ~ P0 / eps, where that test passes for any u').
 template <typename T>
 bool newton_from(const friction_contact<T> &fc, const friction_options<T> &opt, fv3<T> &x, int &iterations)
 {
@@ -730,7 +754,7 @@ bool newton_from(const friction_contact<T> &fc, const friction_options<T> &opt, 
             return false;
         const T step = dx.norm();
         if (small && (step <= 8 * eps * x.norm() || step >= previous / 2))
-            return true;
+            return resolved(fc, x, opt);
         previous = step;
         ++iterations;
         const T phi = F.squaredNorm();
@@ -745,11 +769,12 @@ bool newton_from(const friction_contact<T> &fc, const friction_options<T> &opt, 
                 alpha /= 2;
         }
         if (!accepted)
-            return small; // no descent left: at the rounding floor, or stuck
+            return small && resolved(fc, x, opt); // no descent left: at the rounding floor, or stuck
         x = xn;
         F = alart_curnier(fc, x, rho, &J);
     }
-    return F.norm() <= opt.newton_tolerance * std::max(fc.velocity_scale, fc.compliance_scale * x.norm());
+    return F.norm() <= opt.newton_tolerance * std::max(fc.velocity_scale, fc.compliance_scale * x.norm()) &&
+           resolved(fc, x, opt);
 }
 
 /// Classifies a converged point (stick when |u'_t| <= tol Vx) and checks it against the law.

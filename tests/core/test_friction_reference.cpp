@@ -12,7 +12,9 @@
 //   mu = 0: P_t = 0 exactly and the answer of solve_momentum_system.
 // Also: the textbook ball on a floor (stick iff mu >= 2|u_t| / (7 (1+e) |u_n|)),
 // planar and 3-D, and in 3-D the semismooth Newton method against the
-// enumeration wherever the enumeration finds a single solution.
+// enumeration wherever the enumeration finds a single solution; and a 3-D body
+// pinned at a point struck by an immovable one (W singular), where the law often
+// has no solution and an ok answer must still keep restitution.
 //
 // Inputs: masses log-uniform in [1e-3, 1e3] (ratios up to 1e6), mu 10% exactly 0,
 // 10% log-uniform in [1e-4, 1], otherwise uniform in [0, 2]; e 5% exactly 0, 5%
@@ -808,4 +810,81 @@ TEST(FrictionReference, DegenerateInputsAndScalarTypes)
         EXPECT_NEAR(af.normal_impulse, 1.5f, 1e-5f);
         EXPECT_NEAR(af.tangential_impulse.norm(), 0.45f, 1e-5f);
     }
+}
+
+// A body pinned at a point, struck by an immovable one (singular W): the plate of
+// tests/codegen/friction/pinned-plate-struck-3d.json on a ball joint at the origin,
+// struck at O = (0.5, 1, 0.25) by a ram of infinite mass moving at (0, vr, 0). The
+// contact point can only move perpendicular to the lever l = O - E, so W has rank 2
+// (its smallest singular value a rounding, ~1e-18, instead of 0), and for mu above the
+// lever's slope (|l_t| / l_n = 0.56) an impulse along the lever is inside the cone.
+// At e = 0.76, mu = 1, vr = -1 the law has no solution (impactgen solve: none of the
+// slides holds); the reference answered ok, stick, with P_n = 1.4e17 along the lever
+// and u' = (3, 2, -4) against u'_n = 0.76: Newton's method had run off along the null
+// direction, where its convergence test (|F| <= 1000 eps w |x|) and the law's
+// tolerance (tol w |x|) pass for any u'. A sweep of e, mu and vr: every ok answer keeps
+// restitution to 1e-9 of the approach velocity, with a normal impulse of the contact's
+// scale (about 2% of these answered ok with P_n ~ 1e17 and broke restitution).
+prob pinned_plate_struck(double e, double mu, double vr)
+{
+    prob p;
+    p.dimension = 3;
+    p.restitution = e;
+    p.friction = mu;
+    nm::body<double> ram;
+    ram.infinite_mass = true;
+    ram.mass = 0;
+    ram.position = vec3(1, 2, 0);
+    ram.velocity = vec3(0, vr, 0);
+    nm::body<double> plate;
+    plate.particle = false;
+    plate.mass = 2;
+    plate.inertia << 1, 0.1, 0, 0.1, 2, 0.2, 0, 0.2, 1.5;
+    plate.position = vec3(0.3, -0.5, 0.2);
+    p.bodies = {ram, plate};
+    p.body1 = 1; // the contact's bodies: plate, then ram (the normal points from the plate into the ram)
+    p.body2 = 0;
+    p.point = vec3(0.5, 1, 0.25);
+    p.normal = vec3(0, 1, 0);
+    p.pivots = {{1, vec3(0, 0, 0)}};
+    return p;
+}
+
+TEST(FrictionReference, SpatialPinnedPlateStruckByImmovableSingularW)
+{
+    const prob p = pinned_plate_struck(0.76, 1, -1);
+    const nm::friction_contact<double> fc(p);
+    ASSERT_TRUE(fc.ok);
+    const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(fc.W).singularValues();
+    EXPECT_LT(sv[2], 1e-14 * sv[0]); // W singular
+    for (auto method : {nm::friction_method::automatic, nm::friction_method::newton, nm::friction_method::enumeration}) {
+        nm::friction_options<double> opt;
+        opt.method = method;
+        const auto a = nm::solve_friction(p, opt);
+        EXPECT_EQ(a.status, nm::friction_status::no_solution)
+            << "method " << int(method) << ": " << nm::friction_regime_name(a.regime) << ", P_n " << a.normal_impulse;
+    }
+    long ok = 0, none = 0;
+    double worst = 0;
+    for (double vr : {-1.0, -0.75, -0.5})
+        for (int ie = 0; ie <= 100; ++ie)
+            for (int im = 1; im <= 20; ++im) {
+                const prob q = pinned_plate_struck(ie / 100.0, im / 10.0, vr);
+                const auto a = nm::solve_friction(q);
+                if (a.status != nm::friction_status::ok) {
+                    none += a.status == nm::friction_status::no_solution;
+                    continue;
+                }
+                ++ok;
+                const vec3 u = relative_before(q), u1 = a.relative_velocity_after;
+                const double residual = std::abs(u1.y() + q.restitution * u.y()) / u.norm();
+                worst = std::max(worst, residual);
+                EXPECT_LE(residual, tol) << "e " << q.restitution << ", mu " << q.friction << ", vr " << vr << ": "
+                                         << nm::friction_regime_name(a.regime) << ", P_n " << a.normal_impulse;
+                EXPECT_LE(a.normal_impulse, 100 * q.bodies[1].mass * u.norm()) << "e " << q.restitution << ", mu " << q.friction;
+            }
+    std::cout << "[friction] pinned plate struck by an immovable ram (W singular): " << ok << " ok, " << none
+              << " no solution; worst restitution residual " << worst << " of |u|\n";
+    EXPECT_GT(ok, 0);
+    EXPECT_GT(none, 0);
 }
