@@ -86,6 +86,168 @@ section detail::impulse_section(const derivation &d)
     return sec;
 }
 
+namespace
+{
+
+// The words before a group of equations: its principle, for its bodies (typed).
+paragraph group_why(const problem &p, const equation &first, std::size_t i, const pivot *pv)
+{
+    std::string title = principle_name(first.why);
+    title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+    paragraph why;
+    why.w(title + ": ");
+    switch (first.why) {
+    case principle::smooth_contact:
+        why.w("the bodies are smooth, so no impulse acts on " + body_ref(p, i))
+            .t(p.dimension == 3 ? " along $e_t$ or $e_b$: its centre-of-mass velocity along them is unchanged."
+                                : " along $e_t$: its centre-of-mass velocity along $e_t$ is unchanged.");
+        break;
+    case principle::system_momentum:
+        why.t("the impulse $N e_n$ is internal to the system of both bodies, and no other impulse acts, so their "
+              "linear "
+              "momentum along $e_n$ is conserved:");
+        break;
+    case principle::linear_impulse:
+        why.w("the change of linear momentum of " + body_ref(p, i) + " equals the impulses on it, ")
+            .t(i == p.contact.body1 ? "$-N e_n$" : "$+N e_n$")
+            .t(pv ? " and the pivot impulse $~R$." : ".");
+        break;
+    case principle::angular_momentum:
+        if (pv)
+            why.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change "
+                  "of angular "
+                  "momentum of ")
+                .w(body_ref(p, i))
+                .t(" about $E$ is the moment of the contact impulse. Its angular momentum about $E$ is that about "
+                   "$C$ plus "
+                   "the moment of the momentum of $C$ (which is $~~I_E ~ω$, with $~~I_E$ the inertia about $E$, "
+                   "while the body "
+                   "turns about $E$); in components:");
+        else
+            why.w("the contact impulse on " + body_ref(p, i))
+                .t(" passes through $O$, which is fixed in the inertial frame, so its moment about $O$ is zero and "
+                   "the "
+                   "angular momentum about $O$ is conserved, $~H′_O = ~H_O$. Taken about $O$, the angular momentum "
+                   "is "
+                   "that about $C$ plus the moment of the momentum of $C$; in components:");
+        break;
+    case principle::pivot_fixed:
+        why.t("the pivot $E$ of ")
+            .w(body_ref(p, i))
+            .t(" does not move, so the body's velocity at $E$ is zero after impact:");
+        break;
+    case principle::restitution:
+        why.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ "
+              "times "
+              "their velocity of approach.");
+        break;
+    }
+    return why;
+}
+
+// The formulas a group of equations starts from (angular momentum, a fixed pivot,
+// restitution at the contact points).
+void group_formulas(section &sec, const derivation &d, const contact_frame_view &view, const equation &first,
+                    std::size_t i, const pivot *pv)
+{
+    const problem &p = d.prob;
+    if (first.why == principle::angular_momentum) {
+        if (pv) {
+            const bool on1 = i == p.contact.body1;
+            sec.rows({formula_row("H_E = I_C ω + r_EC × m v_C",
+                                  "\\underline{H}_E = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
+                                  "\\underline{r}_{EC} \\times m\\,\\underline{v}_C"),
+                      formula_row(on1 ? "H′_E - H_E = -r_EO × ∫N dt e_n" : "H′_E - H_E = r_EO × ∫N dt e_n",
+                                  std::string("\\underline{H}'_E - \\underline{H}_E = ") + (on1 ? "-" : "") +
+                                      "\\underline{r}_{EO} \\times \\int N\\,dt\\;\\hat{\\underline{e}}_n")});
+        } else {
+            sec.rows({formula_row("H_O = I_C ω + r_OC × m v_C",
+                                  "\\underline{H}_O = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
+                                  "\\underline{r}_{OC} \\times m\\,\\underline{v}_C",
+                                  ""),
+                      formula_row("I_C ω′ + r_OC × m v′_C = I_C ω + r_OC × m v_C",
+                                  "\\underline{\\underline{I}}_C\\,\\underline{\\omega}' + \\underline{r}_{OC} \\times "
+                                  "m\\,\\underline{v}'_C = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
+                                  "\\underline{r}_{OC} \\times m\\,\\underline{v}_C")});
+        }
+    } else if (first.why == principle::pivot_fixed) {
+        sec.rows({formula_row("v′_E = v′_C + ω′ × r_CE = 0",
+                              "\\underline{v}'_E = \\underline{v}'_C + \\underline{\\omega}' \\times "
+                              "\\underline{r}_{CE} = \\underline{0}")});
+    } else if (first.why == principle::restitution) {
+        const std::size_t i2 = p.contact.body2;
+        sec.para(paragraph().t(
+            "$e = -(v′_Bn - v′_An)/(v_Bn - v_An)$: the velocities are those of the contact points $A$ and $B$, not "
+            "of the "
+            "centres of mass. As $A$ and $C1$ are both points of body 1, and $B$ and $C2$ of body 2:"));
+        const vec3 &n = d.n_hat;
+        std::vector<math_row> pv_rows;
+        pv_rows.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n",
+                                   "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times "
+                                   "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                   view.apply(tidy_expand(dot(d.vA, n)))));
+        pv_rows.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n",
+                                   "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times "
+                                   "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                   view.apply(tidy_expand(dot(d.vA_after, n)))));
+        pv_rows.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n",
+                                   "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times "
+                                   "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                   view.apply(tidy_expand(dot(d.vB, n)))));
+        math_row last = note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n",
+                                 "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times "
+                                 "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                 view.apply(tidy_expand(dot(d.vB_after, n))));
+        if (p.bodies[i2].infinite_mass || p.immovable(i2))
+            last.note.t("$B$ is on a body the impulse cannot move: $v′_Bn = v_Bn$");
+        pv_rows.push_back(last);
+        sec.rows(pv_rows);
+        sec.para(paragraph().t("and $v′_Bn - v′_An = -e (v_Bn - v_An)$ reads:"));
+    }
+}
+
+// Where a principle gives no usable equation.
+void remark_list(section &sec, const derivation &d)
+{
+    const problem &p = d.prob;
+    sec.para(paragraph().w("Where a principle gives no usable equation:"));
+    std::vector<paragraph> items;
+    for (const remark &r : d.remarks) {
+        paragraph q;
+        const std::string who = body_ref(p, r.body);
+        switch (r.kind) {
+        case remark_kind::momentum_infinite_mass:
+            q.t("Linear momentum of the system along $e_n$ is not useful: ")
+                .w(who)
+                .t(" has infinite mass, so $m (v′_n - v_n)$ "
+                   "on its side is finite but unknown (infinity times zero).");
+            break;
+        case remark_kind::infinite_mass_unchanged:
+            q.w("The velocities of " + who)
+                .t(" are unchanged: a finite impulse cannot change the motion of an infinite mass, so "
+                   "it gives no angular momentum equation either.");
+            break;
+        case remark_kind::particle_no_rotation:
+            q.w(who).t(" is a particle (no rotational inertia): it has no angular velocity unknowns, and its "
+                       "angular momentum "
+                       "about $O$, $~r_OC × m ~v_C$, changes only through $~v_C$, which the other equations fix: "
+                       "it gives no new equation.");
+            break;
+        case remark_kind::pinned_particle:
+            q.w(who).t(" is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot "
+                       "takes the whole contact impulse.");
+            break;
+        case remark_kind::uninvolved:
+            q.w(who + " takes no part in the contact: its velocities are unchanged.");
+            break;
+        }
+        items.push_back(q);
+    }
+    sec.list(items);
+}
+
+} // namespace
+
 section detail::equations_section(const derivation &d)
 {
     const problem &p = d.prob;
@@ -128,150 +290,14 @@ section detail::equations_section(const derivation &d)
         }
         const std::size_t i = first.bodies.empty() ? no_body : first.bodies[0];
         const pivot *pv = i == no_body ? nullptr : p.pivot_of(i);
-        std::string title = principle_name(first.why);
-        title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
-        paragraph why;
-        why.w(title + ": ");
-        switch (first.why) {
-        case principle::smooth_contact:
-            why.w("the bodies are smooth, so no impulse acts on " + body_ref(p, i))
-                .t(p.dimension == 3 ? " along $e_t$ or $e_b$: its centre-of-mass velocity along them is unchanged."
-                                    : " along $e_t$: its centre-of-mass velocity along $e_t$ is unchanged.");
-            break;
-        case principle::system_momentum:
-            why.t("the impulse $N e_n$ is internal to the system of both bodies, and no other impulse acts, so their "
-                  "linear "
-                  "momentum along $e_n$ is conserved:");
-            break;
-        case principle::linear_impulse:
-            why.w("the change of linear momentum of " + body_ref(p, i) + " equals the impulses on it, ")
-                .t(i == p.contact.body1 ? "$-N e_n$" : "$+N e_n$")
-                .t(pv ? " and the pivot impulse $~R$." : ".");
-            break;
-        case principle::angular_momentum:
-            if (pv)
-                why.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change "
-                      "of angular "
-                      "momentum of ")
-                    .w(body_ref(p, i))
-                    .t(" about $E$ is the moment of the contact impulse. Its angular momentum about $E$ is that about "
-                       "$C$ plus "
-                       "the moment of the momentum of $C$ (which is $~~I_E ~ω$, with $~~I_E$ the inertia about $E$, "
-                       "while the body "
-                       "turns about $E$); in components:");
-            else
-                why.w("the contact impulse on " + body_ref(p, i))
-                    .t(" passes through $O$, which is fixed in the inertial frame, so its moment about $O$ is zero and "
-                       "the "
-                       "angular momentum about $O$ is conserved, $~H′_O = ~H_O$. Taken about $O$, the angular momentum "
-                       "is "
-                       "that about $C$ plus the moment of the momentum of $C$; in components:");
-            break;
-        case principle::pivot_fixed:
-            why.t("the pivot $E$ of ")
-                .w(body_ref(p, i))
-                .t(" does not move, so the body's velocity at $E$ is zero after impact:");
-            break;
-        case principle::restitution:
-            why.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ "
-                  "times "
-                  "their velocity of approach.");
-            break;
-        }
+        const paragraph why = group_why(p, first, i, pv);
         sec.para(why);
-        if (first.why == principle::angular_momentum) {
-            if (pv) {
-                const bool on1 = i == p.contact.body1;
-                sec.rows({formula_row("H_E = I_C ω + r_EC × m v_C",
-                                      "\\underline{H}_E = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
-                                      "\\underline{r}_{EC} \\times m\\,\\underline{v}_C"),
-                          formula_row(on1 ? "H′_E - H_E = -r_EO × ∫N dt e_n" : "H′_E - H_E = r_EO × ∫N dt e_n",
-                                      std::string("\\underline{H}'_E - \\underline{H}_E = ") + (on1 ? "-" : "") +
-                                          "\\underline{r}_{EO} \\times \\int N\\,dt\\;\\hat{\\underline{e}}_n")});
-            } else {
-                sec.rows(
-                    {formula_row("H_O = I_C ω + r_OC × m v_C",
-                                 "\\underline{H}_O = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
-                                 "\\underline{r}_{OC} \\times m\\,\\underline{v}_C",
-                                 ""),
-                     formula_row("I_C ω′ + r_OC × m v′_C = I_C ω + r_OC × m v_C",
-                                 "\\underline{\\underline{I}}_C\\,\\underline{\\omega}' + \\underline{r}_{OC} \\times "
-                                 "m\\,\\underline{v}'_C = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
-                                 "\\underline{r}_{OC} \\times m\\,\\underline{v}_C")});
-            }
-        } else if (first.why == principle::pivot_fixed) {
-            sec.rows({formula_row("v′_E = v′_C + ω′ × r_CE = 0",
-                                  "\\underline{v}'_E = \\underline{v}'_C + \\underline{\\omega}' \\times "
-                                  "\\underline{r}_{CE} = \\underline{0}")});
-        } else if (first.why == principle::restitution) {
-            const std::size_t i2 = p.contact.body2;
-            sec.para(paragraph().t(
-                "$e = -(v′_Bn - v′_An)/(v_Bn - v_An)$: the velocities are those of the contact points $A$ and $B$, not "
-                "of the "
-                "centres of mass. As $A$ and $C1$ are both points of body 1, and $B$ and $C2$ of body 2:"));
-            const vec3 &n = d.n_hat;
-            std::vector<math_row> pv_rows;
-            pv_rows.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n",
-                                       "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times "
-                                       "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                       view.apply(tidy_expand(dot(d.vA, n)))));
-            pv_rows.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n",
-                                       "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times "
-                                       "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
-                                       view.apply(tidy_expand(dot(d.vA_after, n)))));
-            pv_rows.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n",
-                                       "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times "
-                                       "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                       view.apply(tidy_expand(dot(d.vB, n)))));
-            math_row last = note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n",
-                                     "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times "
-                                     "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
-                                     view.apply(tidy_expand(dot(d.vB_after, n))));
-            if (p.bodies[i2].infinite_mass || p.immovable(i2))
-                last.note.t("$B$ is on a body the impulse cannot move: $v′_Bn = v_Bn$");
-            pv_rows.push_back(last);
-            sec.rows(pv_rows);
-            sec.para(paragraph().t("and $v′_Bn - v′_An = -e (v_Bn - v_An)$ reads:"));
-        }
+        group_formulas(sec, d, view, first, i, pv);
         sec.rows(rows);
         k = j;
     }
-    if (!d.remarks.empty()) {
-        sec.para(paragraph().w("Where a principle gives no usable equation:"));
-        std::vector<paragraph> items;
-        for (const remark &r : d.remarks) {
-            paragraph q;
-            const std::string who = body_ref(p, r.body);
-            switch (r.kind) {
-            case remark_kind::momentum_infinite_mass:
-                q.t("Linear momentum of the system along $e_n$ is not useful: ")
-                    .w(who)
-                    .t(" has infinite mass, so $m (v′_n - v_n)$ "
-                       "on its side is finite but unknown (infinity times zero).");
-                break;
-            case remark_kind::infinite_mass_unchanged:
-                q.w("The velocities of " + who)
-                    .t(" are unchanged: a finite impulse cannot change the motion of an infinite mass, so "
-                       "it gives no angular momentum equation either.");
-                break;
-            case remark_kind::particle_no_rotation:
-                q.w(who).t(" is a particle (no rotational inertia): it has no angular velocity unknowns, and its "
-                           "angular momentum "
-                           "about $O$, $~r_OC × m ~v_C$, changes only through $~v_C$, which the other equations fix: "
-                           "it gives no new equation.");
-                break;
-            case remark_kind::pinned_particle:
-                q.w(who).t(" is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot "
-                           "takes the whole contact impulse.");
-                break;
-            case remark_kind::uninvolved:
-                q.w(who + " takes no part in the contact: its velocities are unchanged.");
-                break;
-            }
-            items.push_back(q);
-        }
-        sec.list(items);
-    }
+    if (!d.remarks.empty())
+        remark_list(sec, d);
     return sec;
 }
 
@@ -489,6 +515,108 @@ void percussion(section &sec, const derivation &d, const solution &s)
 }
 } // namespace
 
+namespace
+{
+
+// The limits of e: the plastic and the elastic impulse.
+void limits_of_e(section &sec, const derivation &de, const ex &N, const ex &N_val, const symbol &e_sym, const ex &u)
+{
+    ex sep_symbolic = -e_sym * u;
+    sec.para(paragraph()
+                 .t("The limits of $e$, in the normal impulse and the normal velocity of separation $(~v′_B - "
+                    "~v′_A)·e_n = -e u$ (equation ")
+                 .ref(de.equations.back().label)
+                 .w("):"));
+    std::vector<math_row> lim;
+    math_row r0 = row(N, N_val.subs(e_sym == 0), "e = 0");
+    r0.note.t("plastic: the contact points move on together, $(~v′_B - ~v′_A)·e_n$ = ")
+        .m(sep_symbolic.subs(e_sym == 0));
+    math_row r1 = row(N, N_val.subs(e_sym == 1), "e = 1");
+    r1.note.t("elastic: twice the plastic impulse, $(~v′_B - ~v′_A)·e_n$ = ")
+        .m(sep_symbolic.subs(e_sym == 1))
+        .t(" = $|u|$, the contact points separate as fast as they approached");
+    lim.push_back(r0);
+    lim.push_back(r1);
+    sec.rows(lim);
+}
+
+// m2 -> infinity: the notes' massive case as body 2 grows heavy.
+void heavy_body_limit(section &sec, const problem &p, const solution &se, const symbol &e_sym, const ex &u, const ex &N)
+{
+    const std::size_t i2 = p.contact.body2;
+    const body &b2 = p.bodies[i2];
+    if (b2.infinite_mass) {
+        sec.para(paragraph().t("$m2 → ∞$: body 2 already has infinite mass; the notes' massive case, $w_2 = 0$ and $N "
+                               "= -(1 + e) u/w_1$."));
+    } else if (p.immovable(i2)) {
+        sec.para(paragraph().t("$m2 → ∞$: body 2 cannot move under the impulse already ($w_2 = 0$)."));
+    } else if (p.immovable(p.contact.body1)) {
+        // Body 1 already cannot move: making body 2 heavy too would leave nothing to move.
+        sec.para(paragraph().t(
+            "$m2 → ∞$ is not taken here: body 1 cannot move under the impulse already ($w_1 = 0$), so this is "
+            "the notes' massive case with the bodies' roles exchanged, $N = -(1 + e) u/w_2$; were body 2 "
+            "infinitely heavy as well, nothing could move."));
+    } else {
+        // Body 2 grows heavy with its shape kept: m2 -> m2/eps, I_2 -> I_2/eps. Its
+        // effective inverse mass scales exactly: w_2(eps) = eps w_2 (1/m and I^-1
+        // both scale with eps, about C or about the pivot alike), so with
+        // k = w_1 + eps w_2 the impulse tends to the notes' massive case and body
+        // 2's velocity change N n eps/m2 tends to zero. No symbolic limit is
+        // taken (normal() of a 3-D closed form has no useful time bound).
+        const step *w1 = find_step(se, step_role::effective_inverse_mass, p.contact.body1);
+        const ex w1_value =
+            w1 ? ex(w1->sym) : (p.immovable(p.contact.body1) ? ex(0) : 1 / p.bodies[p.contact.body1].mass);
+        paragraph q;
+        q.t("$m2 → ∞$: let body 2 grow heavy with its shape kept, $m2 → m2/ε$ and its inertia $~~I → ~~I/ε$, and take "
+            "$ε → 0$. "
+            "Both $1/m2$ and $~~I⁻¹$ scale with $ε$, so $w_2 → ε w_2$ exactly and $k → w_1 + ε w_2$:");
+        sec.para(q);
+        std::vector<math_row> rows;
+        math_row rw = row(show("w_2", "w_2"), 0, "", "body 2 no longer yields at B");
+        rw.rel = "→";
+        rows.push_back(rw);
+        if (!w1_value.is_zero()) {
+            ex N_inf = -(1 + e_sym) * u / w1_value;
+            math_row rn = row(N, N_inf);
+            rn.note.t("finite: the notes' massive case, $N = -(1 + e) u/w_1$");
+            rn.rel = "→";
+            rows.push_back(rn);
+            math_row rv = note_row("|v′_C2 - v_C2|²", "|\\underline{v}'_{C_2} - \\underline{v}_{C_2}|^2", 0);
+            rv.note.t("$~ω′_2 ≈ ~ω_2$ and $~v′_C2 ≈ ~v_C2$: body 2 is unaffected (its change $N ε/m2 → 0$)");
+            rv.rel = "→";
+            rows.push_back(rv);
+        }
+        sec.rows(rows);
+    }
+}
+
+// The numbers: a numeric problem's, or a worked example's substituted.
+void numbers_part(section &sec, const derivation &d, const solution &s, const worked_example *example)
+{
+    const problem &p = d.prob;
+    if (p.is_numeric()) {
+        sec.para(paragraph().w("The problem is numeric: every step and unknown above is an exact number."));
+        numbers_walk(sec, d, s, lst{});
+    } else if (example) {
+        if (example->problem_numbers)
+            sec.para(paragraph().w("The problem's numbers: substitute"));
+        else
+            sec.para(paragraph().w("Worked example (" + example->caption + "): substitute"));
+        std::vector<math_row> vals;
+        for (std::size_t k = 0; k < example->values.nops(); ++k) {
+            const ex rel = example->values.op(k);
+            math_row r = row(rel.lhs(), rel.rhs());
+            if (k < example->units.size())
+                r.note.w(example->units[k]);
+            vals.push_back(r);
+        }
+        sec.rows(vals);
+        numbers_walk(sec, d, s, example->values);
+    }
+}
+
+} // namespace
+
 section detail::checks_section(const derivation &d, const solution &s, const worked_example *example)
 {
     const problem &p = d.prob;
@@ -584,93 +712,13 @@ section detail::checks_section(const derivation &d, const solution &s, const wor
 
     // Limits of e.
     ex N = se.normal_impulse;
-    ex sep_symbolic = -e_sym * u;
-    sec.para(paragraph()
-                 .t("The limits of $e$, in the normal impulse and the normal velocity of separation $(~v′_B - "
-                    "~v′_A)·e_n = -e u$ (equation ")
-                 .ref(de.equations.back().label)
-                 .w("):"));
-    std::vector<math_row> lim;
-    math_row r0 = row(N, N_val.subs(e_sym == 0), "e = 0");
-    r0.note.t("plastic: the contact points move on together, $(~v′_B - ~v′_A)·e_n$ = ")
-        .m(sep_symbolic.subs(e_sym == 0));
-    math_row r1 = row(N, N_val.subs(e_sym == 1), "e = 1");
-    r1.note.t("elastic: twice the plastic impulse, $(~v′_B - ~v′_A)·e_n$ = ")
-        .m(sep_symbolic.subs(e_sym == 1))
-        .t(" = $|u|$, the contact points separate as fast as they approached");
-    lim.push_back(r0);
-    lim.push_back(r1);
-    sec.rows(lim);
+    limits_of_e(sec, de, N, N_val, e_sym, u);
 
-    // m2 -> infinity.
-    const std::size_t i2 = p.contact.body2;
-    const body &b2 = p.bodies[i2];
-    if (b2.infinite_mass) {
-        sec.para(paragraph().t("$m2 → ∞$: body 2 already has infinite mass; the notes' massive case, $w_2 = 0$ and $N "
-                               "= -(1 + e) u/w_1$."));
-    } else if (p.immovable(i2)) {
-        sec.para(paragraph().t("$m2 → ∞$: body 2 cannot move under the impulse already ($w_2 = 0$)."));
-    } else if (p.immovable(p.contact.body1)) {
-        // Body 1 already cannot move: making body 2 heavy too would leave nothing to move.
-        sec.para(paragraph().t(
-            "$m2 → ∞$ is not taken here: body 1 cannot move under the impulse already ($w_1 = 0$), so this is "
-            "the notes' massive case with the bodies' roles exchanged, $N = -(1 + e) u/w_2$; were body 2 "
-            "infinitely heavy as well, nothing could move."));
-    } else {
-        // Body 2 grows heavy with its shape kept: m2 -> m2/eps, I_2 -> I_2/eps. Its
-        // effective inverse mass scales exactly: w_2(eps) = eps w_2 (1/m and I^-1
-        // both scale with eps, about C or about the pivot alike), so with
-        // k = w_1 + eps w_2 the impulse tends to the notes' massive case and body
-        // 2's velocity change N n eps/m2 tends to zero. No symbolic limit is
-        // taken (normal() of a 3-D closed form has no useful time bound).
-        const step *w1 = find_step(se, step_role::effective_inverse_mass, p.contact.body1);
-        const ex w1_value =
-            w1 ? ex(w1->sym) : (p.immovable(p.contact.body1) ? ex(0) : 1 / p.bodies[p.contact.body1].mass);
-        paragraph q;
-        q.t("$m2 → ∞$: let body 2 grow heavy with its shape kept, $m2 → m2/ε$ and its inertia $~~I → ~~I/ε$, and take "
-            "$ε → 0$. "
-            "Both $1/m2$ and $~~I⁻¹$ scale with $ε$, so $w_2 → ε w_2$ exactly and $k → w_1 + ε w_2$:");
-        sec.para(q);
-        std::vector<math_row> rows;
-        math_row rw = row(show("w_2", "w_2"), 0, "", "body 2 no longer yields at B");
-        rw.rel = "→";
-        rows.push_back(rw);
-        if (!w1_value.is_zero()) {
-            ex N_inf = -(1 + e_sym) * u / w1_value;
-            math_row rn = row(N, N_inf);
-            rn.note.t("finite: the notes' massive case, $N = -(1 + e) u/w_1$");
-            rn.rel = "→";
-            rows.push_back(rn);
-            math_row rv = note_row("|v′_C2 - v_C2|²", "|\\underline{v}'_{C_2} - \\underline{v}_{C_2}|^2", 0);
-            rv.note.t("$~ω′_2 ≈ ~ω_2$ and $~v′_C2 ≈ ~v_C2$: body 2 is unaffected (its change $N ε/m2 → 0$)");
-            rv.rel = "→";
-            rows.push_back(rv);
-        }
-        sec.rows(rows);
-    }
+    heavy_body_limit(sec, p, se, e_sym, u, N);
 
     percussion(sec, d, s);
 
-    // Numbers.
-    if (p.is_numeric()) {
-        sec.para(paragraph().w("The problem is numeric: every step and unknown above is an exact number."));
-        numbers_walk(sec, d, s, lst{});
-    } else if (example) {
-        if (example->problem_numbers)
-            sec.para(paragraph().w("The problem's numbers: substitute"));
-        else
-            sec.para(paragraph().w("Worked example (" + example->caption + "): substitute"));
-        std::vector<math_row> vals;
-        for (std::size_t k = 0; k < example->values.nops(); ++k) {
-            const ex rel = example->values.op(k);
-            math_row r = row(rel.lhs(), rel.rhs());
-            if (k < example->units.size())
-                r.note.w(example->units[k]);
-            vals.push_back(r);
-        }
-        sec.rows(vals);
-        numbers_walk(sec, d, s, example->values);
-    }
+    numbers_part(sec, d, s, example);
     return sec;
 }
 

@@ -37,17 +37,13 @@ paragraph friction_coefficient(const friction_setup &fr)
         q.w(", written ").n(fr.mu_in_problem->text, fr.mu_in_problem->tex).w(" in the problem");
     return q.t(" ($μ ≥ 0$).");
 }
-} // namespace
 
-section detail::setup_section(const derivation &d, const friction_setup *fr)
+// The set-up's opening: what strikes what, e, mu and the units.
+void setup_intro(section &sec, const derivation &d, const friction_setup *fr)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
     const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
-    section sec{"1. Set-up", {}};
-    // With friction the equations stay in world components (explain_friction.cpp).
-    const contact_frame_view view = fr ? world_components_view(d) : contact_frame_view_of(d);
-
     const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
                                 : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
     // The movable body strikes an immovable one at rest (as the figure's caption says it); a
@@ -67,7 +63,12 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
         sec.para(friction_coefficient(*fr));
     if (!p.units.empty())
         sec.para(paragraph().w("Units: " + units_key(p) + "."));
+}
 
+// Each body: its mass, inertia, position, velocities and pivot.
+std::vector<paragraph> body_list(const problem &p)
+{
+    const int dim = p.dimension;
     // A unit follows numbers only, never a symbol (a numeric problem is taught in symbols first).
     auto unit_of = [&](quantity q, const ex &a, const ex &b = 0, const ex &c = 0) {
         return is_a<numeric>(a) && is_a<numeric>(b) && is_a<numeric>(c) ? unit(p, q) : std::string();
@@ -117,8 +118,15 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
         }
         bodies.push_back(q);
     }
-    sec.list(bodies);
+    return bodies;
+}
 
+// The contact point and frame, the figure, and the frame components of the inputs and
+// inertia tensors.
+void frame_paragraphs(section &sec, const derivation &d, const contact_frame_view &view)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
     paragraph frame;
     frame.t("The contact point $O$ = ");
     vector_span(frame, p.contact.point, dim);
@@ -177,7 +185,10 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
             "equations below use them; the tensor is symmetric, $I_nt = I_tn$):"));
         sec.rows(inertia_rows);
     }
+}
 
+void unknown_rows_of(section &sec, const contact_frame_view &view, const friction_setup *fr)
+{
     // Known and unknown.
     paragraph known;
     known.t("Known before impact: the velocities $~v_C$ and angular velocities $ω$ of both bodies (above). "
@@ -201,7 +212,13 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
             unknown_rows.push_back(r);
         }
     sec.rows(unknown_rows);
+}
 
+void why_count(section &sec, const derivation &d, const friction_setup *fr)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     // Why this many.
     std::vector<paragraph> why;
     std::string sum;
@@ -277,47 +294,76 @@ section detail::setup_section(const derivation &d, const friction_setup *fr)
     sec.list(why);
     const std::size_t extra = fr ? fr->impulses.size() : 0;
     sec.para(paragraph().w("Number of unknowns: " + sum + " = " + std::to_string(d.count_unknowns() + extra) + "."));
-    // Central or not: a body whose centre of mass lies on the line of impact feels no moment about C
-    // (smooth contact only: a friction impulse has a moment about C).
-    if (!fr) {
-        std::vector<std::size_t> central;
-        for (std::size_t i : {i1, i2}) {
-            const vec3 r = cross(p.contact.point - p.bodies[i].position, d.n_hat);
-            if (p.pivot_of(i) || p.bodies[i].infinite_mass)
-                continue;
-            // tidy(), not expand(): a point like (a + b + ...)^12 must not be expanded
-            if (impactgen::tidy(r[0]).is_zero() && impactgen::tidy(r[1]).is_zero() && impactgen::tidy(r[2]).is_zero())
-                central.push_back(i);
-        }
-        const bool both_particles = central.size() == 2 && p.bodies[i1].particle && p.bodies[i2].particle;
-        const bool both_rigid = central.size() == 2 && !p.bodies[i1].particle && !p.bodies[i2].particle;
-        if (both_particles)
-            sec.para(paragraph().t(
-                "A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
-                "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$, and the spin of a sphere "
-                "would be unchanged by it. The bodies are therefore taken as particles, without angular velocity "
-                "unknowns."));
-        // In 3-D, the example that keeps the spins (its solution is checked by Prose.SpinningSpheres...).
-        if (both_particles && dim == 3)
-            sec.para(paragraph().t(
-                "Kept as spinning spheres instead (inertia $2 m R²/5$ about every diameter, 12 unknowns: "
-                "the example spinning-spheres.json in examples/problems of impactgen's sources), the same "
-                "equations find every spin unchanged, $~ω′ = ~ω$, and the same velocities $~v′_C$."));
-        else if (both_rigid)
-            sec.para(paragraph().t(
-                "A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
-                "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$. The angular momentum "
-                "equations below keep the angular velocities as unknowns, and the solution finds each spin "
-                "unchanged, $~ω′ = ~ω$: the impact changes only the velocities of the centres along $e_n$."));
-        else
-            for (std::size_t i : central)
-                if (!p.bodies[i].particle)
-                    sec.para(paragraph()
-                                 .t("The line of impact passes through the centre of mass of ")
-                                 .w(body_ref(p, i))
-                                 .t(": $~r_CO × e_n = 0$, so the impulse has no moment about its $C$ and its spin is "
-                                    "unchanged."));
+}
+
+// Central or not: a body whose centre of mass lies on the line of impact feels no moment about C
+// (smooth contact only: a friction impulse has a moment about C).
+void central_notes(section &sec, const derivation &d)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    std::vector<std::size_t> central;
+    for (std::size_t i : {i1, i2}) {
+        const vec3 r = cross(p.contact.point - p.bodies[i].position, d.n_hat);
+        if (p.pivot_of(i) || p.bodies[i].infinite_mass)
+            continue;
+        // tidy(), not expand(): a point like (a + b + ...)^12 must not be expanded
+        if (impactgen::tidy(r[0]).is_zero() && impactgen::tidy(r[1]).is_zero() && impactgen::tidy(r[2]).is_zero())
+            central.push_back(i);
     }
+    const bool both_particles = central.size() == 2 && p.bodies[i1].particle && p.bodies[i2].particle;
+    const bool both_rigid = central.size() == 2 && !p.bodies[i1].particle && !p.bodies[i2].particle;
+    if (both_particles)
+        sec.para(paragraph().t(
+            "A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
+            "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$, and the spin of a sphere "
+            "would be unchanged by it. The bodies are therefore taken as particles, without angular velocity "
+            "unknowns."));
+    // In 3-D, the example that keeps the spins (its solution is checked by Prose.SpinningSpheres...).
+    if (both_particles && dim == 3)
+        sec.para(
+            paragraph().t("Kept as spinning spheres instead (inertia $2 m R²/5$ about every diameter, 12 unknowns: "
+                          "the example spinning-spheres.json in examples/problems of impactgen's sources), the same "
+                          "equations find every spin unchanged, $~ω′ = ~ω$, and the same velocities $~v′_C$."));
+    else if (both_rigid)
+        sec.para(paragraph().t(
+            "A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
+            "$~r_CO × e_n = 0$ for each body: the impulse has no moment about $C$. The angular momentum "
+            "equations below keep the angular velocities as unknowns, and the solution finds each spin "
+            "unchanged, $~ω′ = ~ω$: the impact changes only the velocities of the centres along $e_n$."));
+    else
+        for (std::size_t i : central)
+            if (!p.bodies[i].particle)
+                sec.para(paragraph()
+                             .t("The line of impact passes through the centre of mass of ")
+                             .w(body_ref(p, i))
+                             .t(": $~r_CO × e_n = 0$, so the impulse has no moment about its $C$ and its spin is "
+                                "unchanged."));
+}
+
+} // namespace
+
+section detail::setup_section(const derivation &d, const friction_setup *fr)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    section sec{"1. Set-up", {}};
+    // With friction the equations stay in world components (explain_friction.cpp).
+    const contact_frame_view view = fr ? world_components_view(d) : contact_frame_view_of(d);
+
+    setup_intro(sec, d, fr);
+
+    const std::vector<paragraph> bodies = body_list(p);
+    sec.list(bodies);
+
+    frame_paragraphs(sec, d, view);
+
+    unknown_rows_of(sec, view, fr);
+
+    why_count(sec, d, fr);
+    if (!fr)
+        central_notes(sec, d);
     if (d.impulse_form && !fr && dim == 2)
         sec.para(paragraph().t(
             "The notes' hinged-rod example names 6 unknowns -- the ball's $v′_1$, the rod's $~v′_G$ (2 components) and "
