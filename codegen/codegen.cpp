@@ -1,4 +1,5 @@
 #include "codegen.hpp"
+#include "form_text.hpp"
 #include "friction.hpp"
 #include "runtime.hpp"
 #include "text.hpp"
@@ -22,248 +23,7 @@ using namespace GiNaC;
 
 namespace
 {
-
-std::string counts_text(const op_counts &c)
-{
-    return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
-           std::to_string(c.sqrt) + " sqrt";
-}
-
-std::string wrap_comment(const std::string &lhs, const std::string &rhs)
-{
-    // One formula per line; long right-hand sides continue on indented lines.
-    std::string out = "//   " + lhs + " = ";
-    std::size_t col = out.size();
-    std::string word;
-    std::istringstream is(rhs);
-    bool first = true;
-    while (is >> word) {
-        if (!first && col + 1 + word.size() > 110) {
-            out += "\n//       ";
-            col = 9;
-        } else if (!first) {
-            out += " ";
-            ++col;
-        }
-        out += word;
-        col += word.size();
-        first = false;
-    }
-    return out + "\n";
-}
-
-// True when the code names the identifier (not as part of a longer one).
-bool uses(const std::string &code, const std::string &name)
-{
-    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
-        if ((at == 0 || !ident(code[at - 1])) && (at + name.size() == code.size() || !ident(code[at + name.size()])))
-            return true;
-    return false;
-}
-
-// A balanced sum: finite unless some term is not (or it overflows, checked term by term).
-std::string balanced_sum(std::vector<std::string> level)
-{
-    while (level.size() > 1) {
-        std::vector<std::string> next;
-        for (std::size_t i = 0; i + 1 < level.size(); i += 2)
-            next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
-                           (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
-        if (level.size() % 2)
-            next.push_back(level.back());
-        level = next;
-    }
-    return level.empty() ? std::string() : level[0];
-}
-
-// A term of the finiteness sum of a branchless form: its text, when its value is ready
-// (an estimate of the latency from the inputs, in cycles) and whether the form may leave
-// it 0 (energy_lost under with_energy_lost = false: then it is not added at all).
-struct sum_term {
-    std::string text;
-    int ready = 0;
-    bool optional = false;
-};
-
-// The sum of the terms, added in the order their values are ready (the two earliest
-// first, like a Huffman tree): the terms known early (inputs, values before the
-// impulse) are summed while the impulse is computed, and the flag waits for as few
-// additions as possible after the last value. The optional term is added last, under
-// with_energy_lost. Each side of the conditional converted to T (autodiff expression types).
-std::string timed_sum(const std::vector<sum_term> &terms)
-{
-    struct node {
-        std::string text;
-        int ready;
-        std::size_t order;
-    };
-    std::vector<node> nodes;
-    std::string optional;
-    for (const sum_term &t : terms) {
-        if (t.optional)
-            optional = t.text;
-        else
-            nodes.push_back({t.text, t.ready, nodes.size()});
-    }
-    auto wrap = [](const std::string &x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
-    std::size_t next = nodes.size();
-    while (nodes.size() > 1) {
-        auto earlier = [](const node &a, const node &b) {
-            return a.ready != b.ready ? a.ready < b.ready : a.order < b.order;
-        };
-        std::sort(nodes.begin(), nodes.end(), earlier);
-        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3,
-                 next++};
-        nodes.erase(nodes.begin(), nodes.begin() + 2);
-        nodes.push_back(sum);
-    }
-    if (optional.empty())
-        return nodes.empty() ? std::string() : "T(" + nodes[0].text + ")";
-    if (nodes.empty())
-        return "T(" + optional + ")";
-    return "with_energy_lost ? T(" + wrap(nodes[0].text) + " + " + optional + ") : T(" + nodes[0].text + ")";
-}
-
-// energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
-std::string energy_optional(const std::string &code, const std::string &lhs)
-{
-    std::istringstream lines(code);
-    std::string line, r;
-    while (std::getline(lines, line)) {
-        if (line.rfind(lhs, 0) == 0 && line.size() > lhs.size() && line.back() == ';') {
-            std::string rhs = line.substr(lhs.size(), line.size() - lhs.size() - 1);
-            if (rhs.find(' ') != std::string::npos)
-                rhs = "(" + rhs + ")";
-            line = lhs + "with_energy_lost ? " + rhs + " : T(0);";
-        }
-        r += line + "\n";
-    }
-    return r;
-}
-
-// Minimums the flag of a branchless form takes (one per list of more than one term).
-std::size_t mins(const emitted &em)
-{
-    std::size_t n = 0;
-    for (const auto *v : {&em.positive_terms, &em.nonneg_terms, &em.normal_terms})
-        n += v->empty() ? 0 : v->size() - 1;
-    return n;
-}
-
-// Every check of a branchless form in one flag: signs through a min (which may drop a
-// NaN: every value in a min is also in the sum), finiteness through one sum.
-// The finiteness terms of a flag with positive terms: those ready well before the last
-// values (early: summed and folded into the min while the impulse is computed) and the
-// last values (late: within an add or two of each other as the estimate goes, summed as
-// a balanced tree; the optional term with them).
-std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term> &finite_terms)
-{
-    int last = 0;
-    for (const sum_term &t : finite_terms)
-        if (!t.optional)
-            last = std::max(last, t.ready);
-    std::vector<sum_term> early, late;
-    for (const sum_term &t : finite_terms)
-        if (t.optional || t.ready + 7 > last)
-            late.push_back({t.text, last, t.optional});
-        else
-            early.push_back(t);
-    return {early, late};
-}
-
-// The multiply-adds (x * 0 folded into the min) and the comparisons of a flag.
-std::pair<std::size_t, std::size_t> flag_counts(const emitted &form, const std::vector<sum_term> &finite_terms)
-{
-    std::size_t fmas = 0, tests = 0;
-    if (!form.positive_terms.empty()) {
-        const auto [early, late] = split_by_time(finite_terms);
-        fmas = (early.empty() ? 0 : 1) + (late.empty() ? 0 : 1);
-    }
-    tests += !form.positive_terms.empty() || !finite_terms.empty();
-    tests += !form.nonneg_terms.empty();
-    tests += !form.normal_terms.empty();
-    return {fmas, tests};
-}
-
-std::string ok_flag(const std::string &ind, const emitted &form, const std::vector<sum_term> &finite_terms, bool scalar)
-{
-    std::vector<std::string> parts;
-    std::string last_part; // the part that waits for the last values: tested last
-    // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
-    // that would not deduce.
-    auto min_of = [](const std::vector<std::string> &v) {
-        if (v.size() == 1)
-            return v[0];
-        std::vector<std::string> args;
-        for (const std::string &x : v)
-            args.push_back("T(" + x + ")");
-        return "detail::min_of(" + join(args, ", ") + ")";
-    };
-    // The sums converted to T too: with an autodiff T a sum of values is an expression
-    // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
-    if (!form.positive_terms.empty()) {
-        const std::string m =
-            form.positive_terms.size() == 1 ? "T(" + form.positive_terms[0] + ")" : min_of(form.positive_terms);
-        // With the finiteness in the same comparison: x * 0 is +-0 when x is finite
-        // (min + 0 = min) and NaN when not (NaN > 0 fails). The terms ready before the
-        // last ones (inputs, values before the impulse) are summed and folded into the
-        // min while the impulse is computed; after the last values the flag waits for
-        // their sum and one multiply-add, instead of the whole sum, a subtraction, a
-        // comparison and a flag of its own. (Written min + x * 0: g++ 12 contracts it
-        // into one fma, x * 0 + min not.)
-        const auto [early, late] = split_by_time(finite_terms);
-        auto wrapped = [](const std::string &x) { return x.find('?') != std::string::npos ? "T(" + x + ")" : x; };
-        std::string folded = m;
-        if (!early.empty())
-            folded = "T(" + folded + " + " + wrapped(timed_sum(early)) + " * T(0))";
-        if (!late.empty())
-            folded = "T(" + folded + " + " + wrapped(timed_sum(late)) + " * T(0))";
-        last_part = "(" + folded + " > T(0))";
-    }
-    if (!form.nonneg_terms.empty())
-        parts.push_back("(" + min_of(form.nonneg_terms) + " >= T(0))");
-    if (!form.normal_terms.empty())
-        parts.push_back("(" + min_of(form.normal_terms) + " >= std::numeric_limits<T>::min())");
-    if (!finite_terms.empty() && form.positive_terms.empty())
-        last_part = "detail::finite(" + timed_sum(finite_terms) + ")";
-    if (!last_part.empty())
-        parts.push_back(last_part);
-    std::string text;
-    if (!form.check_comments.empty() || form.shares_reciprocals) {
-        std::string what = names::comment_text(join(form.check_comments, "; "));
-        if (form.shares_reciprocals)
-            what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
-        text += ind + "// checks: " + what + "; every value finite\n";
-    }
-    if (scalar) {
-        // The scalar forms: the parts joined by &&, which the compiler may test with a
-        // branch each (the earlier parts decided before the last values are there;
-        // predicted, they cost less than folding the comparisons into one flag).
-        text += ind + "const bool ok = " +
-                (parts.empty() ? std::string("true") : join(parts, " &&\n" + ind + "                ")) + ";\n";
-        return text;
-    }
-    // The batch loop: folded as unsigned so that no branch is implied (the loop
-    // vectorises) and clang's -Wbitwise-instead-of-logical has nothing to say.
-    for (std::string &part : parts)
-        part = "static_cast<unsigned>" + (part.front() == '(' ? part : "(" + part + ")");
-    text += ind + "const bool ok = " +
-            (parts.empty() ? std::string("true") : "(" + join(parts, " &\n" + ind + "                 ") + ") != 0u") +
-            ";\n";
-    return text;
-}
-
-// The options of a branchless form (fast, batch, Jacobian): one flag, outputs as locals.
-emit_options branchless_form(bool share_divisions, int optional_output)
-{
-    emit_options o;
-    o.outputs = output_placement::local;
-    o.branchless = true;
-    o.share_divisions = share_divisions;
-    o.optional_output = optional_output;
-    return o;
-}
+using namespace form_text;
 
 const char *const tparams = "template <typename T, bool with_energy_lost = true>\n";
 
@@ -572,14 +332,6 @@ private:
         for (std::size_t i = 0; i < prog_.size(); ++i)
             if (prog_.at(static_cast<int>(i)).kind == op::input)
                 reached.insert(prog_.at(static_cast<int>(i)).name);
-        // Every output but small exact constants (0, 1/2): a folded constant can be
-        // beyond the range of float, or of double.
-        auto needs_check = [&](int id) {
-            const op &o = prog_.at(id);
-            const numeric small(16777216); // 2^24: exact in float
-            return o.kind != op::constant || !o.value.is_rational() || abs(o.value.numer()) > small ||
-                   o.value.denom() > small;
-        };
         for (const auto &[field, id] : outs_)
             if (needs_check(id))
                 sum_terms_.push_back("out." + field);
@@ -589,8 +341,56 @@ private:
                 sum_terms_.push_back(nm);
                 unused_inputs.push_back(nm);
             }
-        // When each value is ready: a latency estimate from the inputs (cycles of a
-        // current x86 core), to add the terms of the finiteness sum in that order.
+        const std::vector<int> ready = ready_times();
+        std::map<std::string, int> id_of_name;
+        for (const auto &[id, nm] : var_names_)
+            id_of_name[nm] = id;
+        const std::vector<bool> implied = implied_outputs(energy);
+        // The terms of the finiteness check in the branchless forms (local output values).
+        auto finite_terms = [&](const emitted &form, bool energy_optional) {
+            std::vector<sum_term> t;
+            auto has = [&](const std::string &x) {
+                return std::any_of(t.begin(), t.end(), [&](const sum_term &y) { return y.text == x; });
+            };
+            for (std::size_t k = 0; k < outs_.size(); ++k)
+                if (needs_check(outs_[k].second) && !implied[k])
+                    t.push_back({local_of_.at(outs_[k].first), ready[static_cast<std::size_t>(outs_[k].second)],
+                                 energy_optional && static_cast<int>(k) == energy});
+            for (const std::string &nm : unused_inputs)
+                t.push_back({nm, 0, false});
+            for (const std::string &x : form.finite_terms)
+                if (!has(x))
+                    t.push_back(
+                        {x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
+            return t;
+        };
+        fast_terms_ = finite_terms(fast_, true);
+        batch_terms_ = finite_terms(batch_, true);
+        if (pl_.has_jacobian) {
+            std::vector<std::pair<std::string, int>> all = outs_local_;
+            all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
+            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, branchless_form(false, -1));
+            jac_terms_ = finite_terms(jac_, false);
+            for (const auto &[local, id] : jac_outs_)
+                if (needs_check(id))
+                    jac_terms_.push_back({local, ready[static_cast<std::size_t>(id)], false});
+        }
+    }
+
+    // Every output but small exact constants (0, 1/2): a folded constant can be
+    // beyond the range of float, or of double.
+    bool needs_check(int id) const
+    {
+        const op &o = prog_.at(id);
+        const numeric small(16777216); // 2^24: exact in float
+        return o.kind != op::constant || !o.value.is_rational() || abs(o.value.numer()) > small ||
+               o.value.denom() > small;
+    }
+
+    // When each value is ready: a latency estimate from the inputs (cycles of a
+    // current x86 core), to add the terms of the finiteness sum in that order.
+    std::vector<int> ready_times() const
+    {
         std::vector<int> ready(prog_.size(), 0);
         for (std::size_t i = 0; i < prog_.size(); ++i) {
             const op &o = prog_.at(static_cast<int>(i));
@@ -621,13 +421,15 @@ private:
                     before = std::max(before, ready[static_cast<std::size_t>(c)]);
             ready[i] = before + cost;
         }
-        std::map<std::string, int> id_of_name;
-        for (const auto &[id, nm] : var_names_)
-            id_of_name[nm] = id;
-        // An output is left out of the sum when the finiteness of another one implies it
-        // (an operand of +, -, *, negation, sqrt or the numerator of / is finite when the
-        // result is: N in v' = v - N/m, u in N = -(1 + e) u / k); energy_lost implies
-        // nothing (a form may leave it 0). Of outputs with the same value, the first stays.
+        return ready;
+    }
+
+    // An output is left out of the sum when the finiteness of another one implies it
+    // (an operand of +, -, *, negation, sqrt or the numerator of / is finite when the
+    // result is: N in v' = v - N/m, u in N = -(1 + e) u / k); energy_lost implies
+    // nothing (a form may leave it 0). Of outputs with the same value, the first stays.
+    std::vector<bool> implied_outputs(int energy) const
+    {
         std::vector<bool> implied(outs_.size(), false);
         for (std::size_t j = 0; j < outs_.size(); ++j) {
             if (static_cast<int>(j) == energy)
@@ -655,35 +457,7 @@ private:
                     (seen[static_cast<std::size_t>(outs_[k].second)] || (outs_[k].second == outs_[j].second && k > j)))
                     implied[k] = true;
         }
-        // The terms of the finiteness check in the branchless forms (local output values).
-        auto finite_terms = [&](const emitted &form, bool energy_optional) {
-            std::vector<sum_term> t;
-            auto has = [&](const std::string &x) {
-                return std::any_of(t.begin(), t.end(), [&](const sum_term &y) { return y.text == x; });
-            };
-            for (std::size_t k = 0; k < outs_.size(); ++k)
-                if (needs_check(outs_[k].second) && !implied[k])
-                    t.push_back({local_of_.at(outs_[k].first), ready[static_cast<std::size_t>(outs_[k].second)],
-                                 energy_optional && static_cast<int>(k) == energy});
-            for (const std::string &nm : unused_inputs)
-                t.push_back({nm, 0, false});
-            for (const std::string &x : form.finite_terms)
-                if (!has(x))
-                    t.push_back(
-                        {x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
-            return t;
-        };
-        fast_terms_ = finite_terms(fast_, true);
-        batch_terms_ = finite_terms(batch_, true);
-        if (pl_.has_jacobian) {
-            std::vector<std::pair<std::string, int>> all = outs_local_;
-            all.insert(all.end(), jac_outs_.begin(), jac_outs_.end());
-            jac_ = emit_cpp(prog_, all, checks_, var_names_, taken, branchless_form(false, -1));
-            jac_terms_ = finite_terms(jac_, false);
-            for (const auto &[local, id] : jac_outs_)
-                if (needs_check(id))
-                    jac_terms_.push_back({local, ready[static_cast<std::size_t>(id)], false});
-        }
+        return implied;
     }
 
     void banner()

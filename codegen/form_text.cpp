@@ -1,0 +1,246 @@
+// The text helpers of the smooth header writer (form_text.hpp).
+#include "form_text.hpp"
+#include "text.hpp"
+
+#include "names/escape.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+namespace impactgen::codegen::form_text
+{
+std::string counts_text(const op_counts &c)
+{
+    return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
+           std::to_string(c.sqrt) + " sqrt";
+}
+
+std::string wrap_comment(const std::string &lhs, const std::string &rhs)
+{
+    // One formula per line; long right-hand sides continue on indented lines.
+    std::string out = "//   " + lhs + " = ";
+    std::size_t col = out.size();
+    std::string word;
+    std::istringstream is(rhs);
+    bool first = true;
+    while (is >> word) {
+        if (!first && col + 1 + word.size() > 110) {
+            out += "\n//       ";
+            col = 9;
+        } else if (!first) {
+            out += " ";
+            ++col;
+        }
+        out += word;
+        col += word.size();
+        first = false;
+    }
+    return out + "\n";
+}
+
+// True when the code names the identifier (not as part of a longer one).
+bool uses(const std::string &code, const std::string &name)
+{
+    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
+        if ((at == 0 || !ident(code[at - 1])) && (at + name.size() == code.size() || !ident(code[at + name.size()])))
+            return true;
+    return false;
+}
+
+// A balanced sum: finite unless some term is not (or it overflows, checked term by term).
+std::string balanced_sum(std::vector<std::string> level)
+{
+    while (level.size() > 1) {
+        std::vector<std::string> next;
+        for (std::size_t i = 0; i + 1 < level.size(); i += 2)
+            next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
+                           (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
+        if (level.size() % 2)
+            next.push_back(level.back());
+        level = next;
+    }
+    return level.empty() ? std::string() : level[0];
+}
+
+// The sum of the terms, added in the order their values are ready (the two earliest
+// first, like a Huffman tree): the terms known early (inputs, values before the
+// impulse) are summed while the impulse is computed, and the flag waits for as few
+// additions as possible after the last value. The optional term is added last, under
+// with_energy_lost. Each side of the conditional converted to T (autodiff expression types).
+std::string timed_sum(const std::vector<sum_term> &terms)
+{
+    struct node {
+        std::string text;
+        int ready;
+        std::size_t order;
+    };
+    std::vector<node> nodes;
+    std::string optional;
+    for (const sum_term &t : terms) {
+        if (t.optional)
+            optional = t.text;
+        else
+            nodes.push_back({t.text, t.ready, nodes.size()});
+    }
+    auto wrap = [](const std::string &x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
+    std::size_t next = nodes.size();
+    while (nodes.size() > 1) {
+        auto earlier = [](const node &a, const node &b) {
+            return a.ready != b.ready ? a.ready < b.ready : a.order < b.order;
+        };
+        std::sort(nodes.begin(), nodes.end(), earlier);
+        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3,
+                 next++};
+        nodes.erase(nodes.begin(), nodes.begin() + 2);
+        nodes.push_back(sum);
+    }
+    if (optional.empty())
+        return nodes.empty() ? std::string() : "T(" + nodes[0].text + ")";
+    if (nodes.empty())
+        return "T(" + optional + ")";
+    return "with_energy_lost ? T(" + wrap(nodes[0].text) + " + " + optional + ") : T(" + nodes[0].text + ")";
+}
+
+// energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
+std::string energy_optional(const std::string &code, const std::string &lhs)
+{
+    std::istringstream lines(code);
+    std::string line, r;
+    while (std::getline(lines, line)) {
+        if (line.rfind(lhs, 0) == 0 && line.size() > lhs.size() && line.back() == ';') {
+            std::string rhs = line.substr(lhs.size(), line.size() - lhs.size() - 1);
+            if (rhs.find(' ') != std::string::npos)
+                rhs = "(" + rhs + ")";
+            line = lhs + "with_energy_lost ? " + rhs + " : T(0);";
+        }
+        r += line + "\n";
+    }
+    return r;
+}
+
+// Minimums the flag of a branchless form takes (one per list of more than one term).
+std::size_t mins(const emitted &em)
+{
+    std::size_t n = 0;
+    for (const auto *v : {&em.positive_terms, &em.nonneg_terms, &em.normal_terms})
+        n += v->empty() ? 0 : v->size() - 1;
+    return n;
+}
+
+// Every check of a branchless form in one flag: signs through a min (which may drop a
+// NaN: every value in a min is also in the sum), finiteness through one sum.
+// The finiteness terms of a flag with positive terms: those ready well before the last
+// values (early: summed and folded into the min while the impulse is computed) and the
+// last values (late: within an add or two of each other as the estimate goes, summed as
+// a balanced tree; the optional term with them).
+std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term> &finite_terms)
+{
+    int last = 0;
+    for (const sum_term &t : finite_terms)
+        if (!t.optional)
+            last = std::max(last, t.ready);
+    std::vector<sum_term> early, late;
+    for (const sum_term &t : finite_terms)
+        if (t.optional || t.ready + 7 > last)
+            late.push_back({t.text, last, t.optional});
+        else
+            early.push_back(t);
+    return {early, late};
+}
+
+// The multiply-adds (x * 0 folded into the min) and the comparisons of a flag.
+std::pair<std::size_t, std::size_t> flag_counts(const emitted &form, const std::vector<sum_term> &finite_terms)
+{
+    std::size_t fmas = 0, tests = 0;
+    if (!form.positive_terms.empty()) {
+        const auto [early, late] = split_by_time(finite_terms);
+        fmas = (early.empty() ? 0 : 1) + (late.empty() ? 0 : 1);
+    }
+    tests += !form.positive_terms.empty() || !finite_terms.empty();
+    tests += !form.nonneg_terms.empty();
+    tests += !form.normal_terms.empty();
+    return {fmas, tests};
+}
+
+std::string ok_flag(const std::string &ind, const emitted &form, const std::vector<sum_term> &finite_terms, bool scalar)
+{
+    std::vector<std::string> parts;
+    std::string last_part; // the part that waits for the last values: tested last
+    // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
+    // that would not deduce.
+    auto min_of = [](const std::vector<std::string> &v) {
+        if (v.size() == 1)
+            return v[0];
+        std::vector<std::string> args;
+        for (const std::string &x : v)
+            args.push_back("T(" + x + ")");
+        return "detail::min_of(" + join(args, ", ") + ")";
+    };
+    // The sums converted to T too: with an autodiff T a sum of values is an expression
+    // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).
+    if (!form.positive_terms.empty()) {
+        const std::string m =
+            form.positive_terms.size() == 1 ? "T(" + form.positive_terms[0] + ")" : min_of(form.positive_terms);
+        // With the finiteness in the same comparison: x * 0 is +-0 when x is finite
+        // (min + 0 = min) and NaN when not (NaN > 0 fails). The terms ready before the
+        // last ones (inputs, values before the impulse) are summed and folded into the
+        // min while the impulse is computed; after the last values the flag waits for
+        // their sum and one multiply-add, instead of the whole sum, a subtraction, a
+        // comparison and a flag of its own. (Written min + x * 0: g++ 12 contracts it
+        // into one fma, x * 0 + min not.)
+        const auto [early, late] = split_by_time(finite_terms);
+        auto wrapped = [](const std::string &x) { return x.find('?') != std::string::npos ? "T(" + x + ")" : x; };
+        std::string folded = m;
+        if (!early.empty())
+            folded = "T(" + folded + " + " + wrapped(timed_sum(early)) + " * T(0))";
+        if (!late.empty())
+            folded = "T(" + folded + " + " + wrapped(timed_sum(late)) + " * T(0))";
+        last_part = "(" + folded + " > T(0))";
+    }
+    if (!form.nonneg_terms.empty())
+        parts.push_back("(" + min_of(form.nonneg_terms) + " >= T(0))");
+    if (!form.normal_terms.empty())
+        parts.push_back("(" + min_of(form.normal_terms) + " >= std::numeric_limits<T>::min())");
+    if (!finite_terms.empty() && form.positive_terms.empty())
+        last_part = "detail::finite(" + timed_sum(finite_terms) + ")";
+    if (!last_part.empty())
+        parts.push_back(last_part);
+    std::string text;
+    if (!form.check_comments.empty() || form.shares_reciprocals) {
+        std::string what = names::comment_text(join(form.check_comments, "; "));
+        if (form.shares_reciprocals)
+            what += std::string(what.empty() ? "" : "; ") + "shared reciprocals in range";
+        text += ind + "// checks: " + what + "; every value finite\n";
+    }
+    if (scalar) {
+        // The scalar forms: the parts joined by &&, which the compiler may test with a
+        // branch each (the earlier parts decided before the last values are there;
+        // predicted, they cost less than folding the comparisons into one flag).
+        text += ind + "const bool ok = " +
+                (parts.empty() ? std::string("true") : join(parts, " &&\n" + ind + "                ")) + ";\n";
+        return text;
+    }
+    // The batch loop: folded as unsigned so that no branch is implied (the loop
+    // vectorises) and clang's -Wbitwise-instead-of-logical has nothing to say.
+    for (std::string &part : parts)
+        part = "static_cast<unsigned>" + (part.front() == '(' ? part : "(" + part + ")");
+    text += ind + "const bool ok = " +
+            (parts.empty() ? std::string("true") : "(" + join(parts, " &\n" + ind + "                 ") + ") != 0u") +
+            ";\n";
+    return text;
+}
+
+// The options of a branchless form (fast, batch, Jacobian): one flag, outputs as locals.
+emit_options branchless_form(bool share_divisions, int optional_output)
+{
+    emit_options o;
+    o.outputs = output_placement::local;
+    o.branchless = true;
+    o.share_divisions = share_divisions;
+    o.optional_output = optional_output;
+    return o;
+}
+
+} // namespace impactgen::codegen::form_text

@@ -1,0 +1,38 @@
+// The text helpers of the smooth header writer (codegen.cpp): operation counts, wrapped
+// comments, and the one flag of a branchless form (its finiteness sum ordered by when each
+// value is ready, its minimums and comparisons). Private to the codegen library.
+#pragma once
+
+#include "program.hpp"
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impactgen::codegen::form_text
+{
+
+std::string counts_text(const op_counts &c);
+std::string wrap_comment(const std::string &lhs, const std::string &rhs);
+bool uses(const std::string &code, const std::string &name);
+std::string balanced_sum(std::vector<std::string> level);
+
+// A term of the finiteness sum of a branchless form: its text, when its value is ready
+// (an estimate of the latency from the inputs, in cycles) and whether the form may leave
+// it 0 (energy_lost under with_energy_lost = false: then it is not added at all).
+struct sum_term {
+    std::string text;
+    int ready = 0;
+    bool optional = false;
+};
+std::string timed_sum(const std::vector<sum_term> &terms);
+std::string energy_optional(const std::string &code, const std::string &lhs);
+std::size_t mins(const emitted &em);
+std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term> &finite_terms);
+std::pair<std::size_t, std::size_t> flag_counts(const emitted &form, const std::vector<sum_term> &finite_terms);
+std::string ok_flag(const std::string &ind, const emitted &form, const std::vector<sum_term> &finite_terms,
+                    bool scalar);
+emit_options branchless_form(bool share_divisions, int optional_output);
+
+} // namespace impactgen::codegen::form_text
