@@ -1,8 +1,11 @@
 // The text helpers of the smooth header writer (form_text.hpp).
 #include "form_text.hpp"
+#include "runtime.hpp"
 #include "text.hpp"
 
 #include "names/escape.hpp"
+#include "names/identifier.hpp"
+#include "symbolic/decide.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -241,6 +244,84 @@ emit_options branchless_form(bool share_divisions, int optional_output)
     o.share_divisions = share_divisions;
     o.optional_output = optional_output;
     return o;
+}
+
+// The leading principal minors that make a symmetric tensor positive definite, block by
+// block: axes coupled by non-zero off-diagonal entries form a block (a diagonal tensor is
+// three blocks of one entry), and the tensor is positive definite when each block is. Per
+// block its leading minors of order 1 and 2, and of order 3 for a block of all three axes
+// when with_determinant (else the caller checks its determinant step). Minors of blocks,
+// not of the whole tensor: no product of entries of different blocks, whose range float
+// may not hold (a diagonal I = 1e13 would give 1e39).
+std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
+                                                                 bool with_determinant)
+{
+    int block_of[3] = {0, 1, 2};
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            if (!tidy(J[r][c]).is_zero()) {
+                const int from = block_of[c], to = block_of[r];
+                for (int &x : block_of)
+                    if (x == from)
+                        x = to;
+            }
+    std::vector<std::pair<ex, std::string>> minors;
+    for (int first = 0; first < 3; ++first) {
+        std::vector<std::size_t> a;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (block_of[k] == first)
+                a.push_back(k);
+        if (a.empty())
+            continue;
+        const std::string xx = axes[a[0]] + axes[a[0]];
+        minors.push_back({J[a[0]][a[0]], xx + " entry > 0, finite"});
+        if (a.size() >= 2) {
+            const std::string yy = axes[a[1]] + axes[a[1]], xy = axes[a[0]] + axes[a[1]];
+            minors.push_back({J[a[0]][a[0]] * J[a[1]][a[1]] - J[a[0]][a[1]] * J[a[1]][a[0]],
+                              "minor " + xx + " " + yy + " - " + xy + "^2 > 0, finite"});
+        }
+        if (a.size() == 3 && with_determinant)
+            minors.push_back({det(J), "determinant > 0, finite"});
+    }
+    return minors;
+}
+
+// The command that regenerates a header, as its banner writes it.
+std::string command_line(const options &o)
+{
+    std::string command = "impactgen codegen " + o.source + " --name " + o.name + " --namespace " + o.ns;
+    if (o.params_given)
+        command += " --params " + join(o.params, ",");
+    if (!o.set.empty()) {
+        std::vector<std::string> kv;
+        for (auto &[k, v] : o.set)
+            kv.push_back(k + "=" + v);
+        command += " --set " + join(kv, ",");
+    }
+    if (o.inverse_inertia)
+        command += " --inverse-inertia";
+    if (o.inverse_mass)
+        command += " --inverse-mass";
+    if (o.unit_normal)
+        command += " --unit-normal";
+    if (!o.wrt.empty())
+        command += " --wrt " + join(o.wrt, ",");
+    else if (o.jacobian)
+        command += " --jacobian";
+    return command;
+}
+
+// The function name and the namespace of a header, refused with option_error when unusable.
+void check_names(const options &o)
+{
+    if (!names::is_safe_identifier(o.name) || reserved().count(o.name) || o.name.back() == '_')
+        throw option_error(
+            option_error::function_name,
+            "\"" + names::display_text(o.name) +
+                "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
+                "not a keyword or a reserved name)");
+    if (std::string why = names::namespace_problem(o.ns); !why.empty())
+        throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
 }
 
 } // namespace impactgen::codegen::form_text

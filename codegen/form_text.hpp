@@ -1,10 +1,14 @@
-// The text helpers of the smooth header writer (codegen.cpp): operation counts, wrapped
-// comments, and the one flag of a branchless form (its finiteness sum ordered by when each
-// value is ready, its minimums and comparisons). Private to the codegen library.
+// The helpers both header writers (codegen.cpp, friction*.cpp) share: operation counts,
+// wrapped comments, balanced sums, the positive-definiteness minors of an inertia tensor,
+// and the one flag of a branchless form (its finiteness sum ordered by when each value is
+// ready, its minimums and comparisons). Private to the codegen library.
 #pragma once
 
+#include "codegen.hpp"
 #include "program.hpp"
+#include "symbolic/vector_algebra.hpp"
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -14,9 +18,19 @@ namespace impactgen::codegen::form_text
 {
 
 std::string counts_text(const op_counts &c);
+/// The command that regenerates a header ("impactgen codegen SOURCE --name ... --flags"),
+/// as its banner writes it.
+std::string command_line(const options &o);
+/// Refuses (option_error) a function name that is not a usable C++ identifier or a
+/// namespace that cannot be one.
+void check_names(const options &o);
 std::string wrap_comment(const std::string &lhs, const std::string &rhs);
 bool uses(const std::string &code, const std::string &name);
 std::string balanced_sum(std::vector<std::string> level);
+/// The leading principal minors that make a symmetric tensor positive definite, block by
+/// block (with the determinant of a block of all three axes only when with_determinant).
+std::vector<std::pair<GiNaC::ex, std::string>>
+positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes, bool with_determinant);
 
 // A term of the finiteness sum of a branchless form: its text, when its value is ready
 // (an estimate of the latency from the inputs, in cycles) and whether the form may leave

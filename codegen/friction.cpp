@@ -46,64 +46,12 @@ namespace friction_detail
 // ---------------------------------------------------------------------------
 // Helpers
 
-std::string counts_text(const op_counts &c)
-{
-    return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
-           std::to_string(c.sqrt) + " sqrt";
-}
-
 void add_counts(op_counts &a, const op_counts &b)
 {
     a.add += b.add;
     a.mul += b.mul;
     a.div += b.div;
     a.sqrt += b.sqrt;
-}
-
-std::string wrap_comment(const std::string &lhs, const std::string &rhs)
-{
-    std::string out = "//   " + lhs + " = ";
-    std::size_t col = out.size();
-    std::string word;
-    std::istringstream is(rhs);
-    bool first = true;
-    while (is >> word) {
-        if (!first && col + 1 + word.size() > 110) {
-            out += "\n//       ";
-            col = 9;
-        } else if (!first) {
-            out += " ";
-            ++col;
-        }
-        out += word;
-        col += word.size();
-        first = false;
-    }
-    return out + "\n";
-}
-
-// True when the code names the identifier (not as part of a longer one).
-bool uses(const std::string &code, const std::string &name)
-{
-    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
-        if ((at == 0 || !ident(code[at - 1])) && (at + name.size() == code.size() || !ident(code[at + name.size()])))
-            return true;
-    return false;
-}
-
-std::string balanced_sum(std::vector<std::string> level)
-{
-    while (level.size() > 1) {
-        std::vector<std::string> next;
-        for (std::size_t i = 0; i + 1 < level.size(); i += 2)
-            next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
-                           (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
-        if (level.size() % 2)
-            next.push_back(level.back());
-        level = next;
-    }
-    return level.empty() ? std::string() : level[0];
 }
 
 std::string indent(const std::string &code, const std::string &by)
@@ -113,42 +61,6 @@ std::string indent(const std::string &code, const std::string &by)
     while (std::getline(lines, line))
         r += (line.empty() ? "" : by) + line + "\n";
     return r;
-}
-
-// The leading principal minors that make a symmetric tensor positive definite, block by
-// block (as the smooth headers check them: codegen.cpp), with the determinant of a block
-// of all three axes only when with_determinant.
-std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
-                                                                 bool with_determinant)
-{
-    int block_of[3] = {0, 1, 2};
-    for (int r = 0; r < 3; ++r)
-        for (int c = r + 1; c < 3; ++c)
-            if (!tidy(J[r][c]).is_zero()) {
-                const int from = block_of[c], to = block_of[r];
-                for (int &x : block_of)
-                    if (x == from)
-                        x = to;
-            }
-    std::vector<std::pair<ex, std::string>> minors;
-    for (int first = 0; first < 3; ++first) {
-        std::vector<std::size_t> a;
-        for (std::size_t k = 0; k < 3; ++k)
-            if (block_of[k] == first)
-                a.push_back(k);
-        if (a.empty())
-            continue;
-        const std::string xx = axes[a[0]] + axes[a[0]];
-        minors.push_back({J[a[0]][a[0]], xx + " entry > 0, finite"});
-        if (a.size() >= 2) {
-            const std::string yy = axes[a[1]] + axes[a[1]], xy = axes[a[0]] + axes[a[1]];
-            minors.push_back({J[a[0]][a[0]] * J[a[1]][a[1]] - J[a[0]][a[1]] * J[a[1]][a[0]],
-                              "minor " + xx + " " + yy + " - " + xy + "^2 > 0, finite"});
-        }
-        if (a.size() == 3 && with_determinant)
-            minors.push_back({det(J), "determinant > 0, finite"});
-    }
-    return minors;
 }
 
 bool depends_on(const ex &e, const exset &syms)
@@ -403,14 +315,7 @@ bool has_friction(const problem &p, const options &o)
 
 header generate_friction(const problem &p, const options &o)
 {
-    if (!names::is_safe_identifier(o.name) || reserved().count(o.name) || o.name.back() == '_')
-        throw option_error(
-            option_error::function_name,
-            "\"" + names::display_text(o.name) +
-                "\" is not a usable C++ identifier (letters, digits and single underscores, not ending in one; "
-                "not a keyword or a reserved name)");
-    if (std::string why = names::namespace_problem(o.ns); !why.empty())
-        throw option_error(option_error::name_space, "\"" + names::display_text(o.ns) + "\": " + why);
+    form_text::check_names(o);
     return friction_writer(p, o).run();
 }
 

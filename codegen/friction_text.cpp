@@ -23,17 +23,7 @@ std::string friction_writer::args() const
 
 void friction_writer::banner()
 {
-    std::string command = "impactgen codegen " + o_.source + " --name " + o_.name + " --namespace " + o_.ns;
-    if (o_.params_given)
-        command += " --params " + join(o_.params, ",");
-    if (!o_.set.empty()) {
-        std::vector<std::string> kv;
-        for (auto &[k, v] : o_.set)
-            kv.push_back(k + "=" + v);
-        command += " --set " + join(kv, ",");
-    }
-    if (o_.unit_normal)
-        command += " --unit-normal";
+    const std::string command = command_line(o_);
     const char *kind = angle_ >= 0         ? "3-D, sliding direction found at run time"
                        : q_.dimension == 2 ? "planar"
                                            : "3-D, the contact response isotropic: sliding along u_t";

@@ -3,6 +3,7 @@
 // Private to the codegen library; the design is described at the top of friction.cpp.
 #pragma once
 
+#include "form_text.hpp"
 #include "friction.hpp"
 #include "runtime.hpp"
 #include "text.hpp"
@@ -25,14 +26,15 @@ using namespace GiNaC;
 
 namespace friction_detail
 {
-std::string counts_text(const op_counts &c);
 void add_counts(op_counts &a, const op_counts &b);
-std::string wrap_comment(const std::string &lhs, const std::string &rhs);
-bool uses(const std::string &code, const std::string &name);
-std::string balanced_sum(std::vector<std::string> level);
+using form_text::balanced_sum;
+using form_text::check_names;
+using form_text::command_line;
+using form_text::counts_text;
+using form_text::positive_definite_minors;
+using form_text::uses;
+using form_text::wrap_comment;
 std::string indent(const std::string &code, const std::string &by);
-std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
-                                                                 bool with_determinant);
 bool depends_on(const ex &e, const exset &syms);
 void collect_symbols(const ex &e, exset &out);
 
