@@ -68,4 +68,23 @@ std::optional<document> taught_in_symbols(const derivation &d,
 /// Section 1: bodies, contact frame, unknowns and their count.
 section setup_section(const derivation &d, const friction_setup *friction = nullptr);
 
+/// Rows without a relation and without equation tags: definitions (a symbol and its meaning).
+inline bool rows_are_plain(const std::vector<math_row> &rows)
+{
+    for (const math_row &r : rows)
+        if (!r.rel.empty() || !r.tag.empty())
+            return false;
+    return true;
+}
+/// Plain rows without notes: formulas displayed one per line.
+inline bool rows_are_bare(const std::vector<math_row> &rows)
+{
+    if (!rows_are_plain(rows))
+        return false;
+    for (const math_row &r : rows)
+        if (!r.note.spans.empty())
+            return false;
+    return true;
+}
+
 } // namespace impactgen::print::detail

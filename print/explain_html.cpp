@@ -17,6 +17,7 @@
 // smaller grey type under their row.
 #include "canonical.hpp"
 #include "explain.hpp"
+#include "explain_detail.hpp"
 #include "tex_to_mathml.hpp"
 
 #include "names/escape.hpp"
@@ -266,12 +267,7 @@ std::string explain_html(const document &doc)
                 os << "</figure>\n";
                 break;
             case block::rows: {
-                bool plain = true;
-                for (const math_row &r : b.math)
-                    plain = plain && r.rel.empty() && r.tag.empty();
-                bool bare = plain; // formulas without notes: displayed, one per line
-                for (const math_row &r : b.math)
-                    bare = bare && r.note.spans.empty();
+                const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
                 if (bare) {
                     for (const math_row &r : b.math)
                         os << "<div class=\"eq\">" << row_block(r) << "</div>\n";

@@ -3,6 +3,7 @@
 // document's, and every expression goes through the canonical printer.
 #include "canonical.hpp"
 #include "explain.hpp"
+#include "explain_detail.hpp"
 #include "tex_layout.hpp"
 
 #include "names/escape.hpp"
@@ -621,12 +622,7 @@ std::string explain_latex(const document &doc)
                 os << "\\end{center}\n";
                 break;
             case block::rows: {
-                bool plain = true;
-                for (const math_row &r : b.math)
-                    plain = plain && r.rel.empty() && r.tag.empty();
-                bool bare = plain; // formulas without notes: displayed, one per line
-                for (const math_row &r : b.math)
-                    bare = bare && r.note.spans.empty();
+                const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
                 if (bare) {
                     os << "\\begin{gather*}\n";
                     for (std::size_t k = 0; k < b.math.size(); ++k)
