@@ -66,149 +66,28 @@ int canonical_pool::node_of(const scaled &s)
     return intern(std::move(m));
 }
 
-scaled canonical_pool::convert(const ex &e)
+namespace
 {
-    // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
-    // to 40 digits: a literal good for long double, exact to every digit of double.
-    if (!is_a<numeric>(e) && is_constant(e)) {
-        const long saved = Digits;
-        Digits = 40;
-        ex v;
-        try {
-            v = e.evalf();
-        } catch (...) {
-            Digits = saved;
-            throw;
-        }
+
+// The value of a constant to 40 digits (Digits restored even when evalf throws).
+ex value_to_40_digits(const ex &e)
+{
+    const long saved = Digits;
+    Digits = 40;
+    ex v;
+    try {
+        v = e.evalf();
+    } catch (...) {
         Digits = saved;
-        if (is_a<numeric>(v) && ex_to<numeric>(v).is_real())
-            return {ex_to<numeric>(v), -1};
+        throw;
     }
-    if (is_a<numeric>(e)) {
-        const numeric &x = ex_to<numeric>(e);
-        if (!x.is_real())
-            throw std::runtime_error("code generation: complex number " + number_text(x));
-        return {x, -1};
-    }
-    if (is_a<symbol>(e)) {
-        auto it = step_syms_.find(e);
-        if (it != step_syms_.end())
-            return {1, it->second};
-        cnode n;
-        n.kind = cnode::input;
-        auto known = input_names_.find(e);
-        if (known == input_names_.end())
-            throw std::logic_error("code generation: symbol " + ex_to<symbol>(e).get_name() + " is not an input");
-        n.name = known->second;
-        n.key = n.name;
-        return {1, intern(std::move(n))};
-    }
-    if (is_a<add>(e)) {
-        std::map<int, numeric> coeff;
-        numeric constant = 0;
-        for (std::size_t i = 0; i < e.nops(); ++i) {
-            scaled t = convert(e.op(i));
-            if (t.node < 0) {
-                constant += t.scale;
-                continue;
-            }
-            const cnode &tn = at(t.node);
-            if (tn.kind == cnode::add) {
-                for (auto &[c, id] : tn.terms)
-                    coeff[id] += t.scale * c;
-                constant += t.scale * tn.value;
-            } else {
-                coeff[t.node] += t.scale;
-            }
-        }
-        std::vector<std::pair<numeric, int>> terms;
-        for (auto &[id, c] : coeff)
-            if (!c.is_zero())
-                terms.push_back({c, id});
-        if (terms.empty())
-            return {constant, -1};
-        if (terms.size() == 1 && constant.is_zero())
-            return {terms[0].first, terms[0].second};
-        std::sort(terms.begin(), terms.end(),
-                  [&](const auto &a, const auto &b) { return at(a.second).key < at(b.second).key; });
-        numeric sign = terms[0].first < 0 ? -1 : 1;
-        cnode n;
-        n.kind = cnode::add;
-        n.value = sign * constant;
-        for (auto &t : terms)
-            n.terms.push_back({sign * t.first, t.second});
-        n.key = "(";
-        for (auto &[c, id] : n.terms)
-            n.key += number_text(c) + "*" + at(id).key + ";";
-        n.key += "|" + number_text(n.value) + ")";
-        return {sign, intern(std::move(n))};
-    }
-    if (is_a<mul>(e) || is_a<power>(e)) {
-        numeric coeff = 1;
-        std::map<int, int> expo;
-        auto take = [&](const scaled &f, int k) {
-            if (f.scale.is_zero() && k < 0)
-                throw std::runtime_error("code generation: division by zero");
-            coeff *= pow(f.scale, numeric(k)); // exact for integer k
-            if (f.node < 0)
-                return;
-            const cnode &fn = at(f.node);
-            if (fn.kind == cnode::mul) {
-                coeff *= pow(fn.value, numeric(k));
-                for (auto &[id, x] : fn.factors)
-                    expo[id] += x * k;
-            } else {
-                expo[f.node] += k;
-            }
-        };
-        auto factor = [&](const ex &f) {
-            if (is_a<power>(f)) {
-                const ex &b = f.op(0);
-                const ex &x = f.op(1);
-                if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_rational())
-                    throw std::runtime_error("code generation: power with a non-rational exponent");
-                numeric q = ex_to<numeric>(x);
-                if (q.is_integer()) {
-                    take(convert(b), q.to_int());
-                    return;
-                }
-                if (q.denom() != 2)
-                    throw std::runtime_error("code generation: only integer and half-integer powers are supported");
-                // b^(p/2) = sqrt(b)^p
-                cnode s;
-                s.kind = cnode::sqrt_;
-                s.arg = node_of(convert(b));
-                s.key = "sqrt(" + at(s.arg).key + ")";
-                take({1, intern(std::move(s))}, q.numer().to_int());
-                return;
-            }
-            take(convert(f), 1);
-        };
-        if (is_a<power>(e))
-            factor(e);
-        else
-            for (std::size_t i = 0; i < e.nops(); ++i)
-                factor(e.op(i));
-        std::vector<std::pair<int, int>> factors;
-        for (auto &[id, x] : expo)
-            if (x != 0)
-                factors.push_back({id, x});
-        if (factors.empty() || coeff.is_zero())
-            return {coeff, -1};
-        if (factors.size() == 1 && factors[0].second == 1)
-            return {coeff, factors[0].first};
-        std::sort(factors.begin(), factors.end(),
-                  [&](const auto &a, const auto &b) { return at(a.first).key < at(b.first).key; });
-        cnode n;
-        n.kind = cnode::mul;
-        n.value = 1;
-        n.factors = std::move(factors);
-        n.key = "[1:";
-        for (auto &f : n.factors)
-            n.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
-        n.key += "]";
-        return {coeff, intern(std::move(n))};
-    }
+    Digits = saved;
+    return v;
+}
+
+// The error for an expression C++ arithmetic cannot express, naming its functions.
+[[noreturn]] void cannot_express(const ex &e)
+{
     // A function of symbols: name the functions, in a stable order (GiNaC's own
     // printing of e changes with its term order from run to run).
     std::set<std::string> functions;
@@ -221,6 +100,160 @@ scaled canonical_pool::convert(const ex &e)
     throw std::runtime_error("code generation: cannot express " +
                              (list.empty() ? std::string("this expression") : list) +
                              " of symbols in C++ arithmetic (only +, -, *, /, integer powers and sqrt)");
+}
+
+} // namespace
+
+// A symbol: a bound step or a named input.
+scaled canonical_pool::convert_symbol(const ex &e)
+{
+    auto it = step_syms_.find(e);
+    if (it != step_syms_.end())
+        return {1, it->second};
+    cnode n;
+    n.kind = cnode::input;
+    auto known = input_names_.find(e);
+    if (known == input_names_.end())
+        throw std::logic_error("code generation: symbol " + ex_to<symbol>(e).get_name() + " is not an input");
+    n.name = known->second;
+    n.key = n.name;
+    return {1, intern(std::move(n))};
+}
+
+// A sum: its terms' nodes with exact coefficients, signed so the first coefficient is positive.
+scaled canonical_pool::convert_sum(const ex &e)
+{
+    std::map<int, numeric> coeff;
+    numeric constant = 0;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+        scaled t = convert(e.op(i));
+        if (t.node < 0) {
+            constant += t.scale;
+            continue;
+        }
+        const cnode &tn = at(t.node);
+        if (tn.kind == cnode::add) {
+            for (auto &[c, id] : tn.terms)
+                coeff[id] += t.scale * c;
+            constant += t.scale * tn.value;
+        } else {
+            coeff[t.node] += t.scale;
+        }
+    }
+    std::vector<std::pair<numeric, int>> terms;
+    for (auto &[id, c] : coeff)
+        if (!c.is_zero())
+            terms.push_back({c, id});
+    if (terms.empty())
+        return {constant, -1};
+    if (terms.size() == 1 && constant.is_zero())
+        return {terms[0].first, terms[0].second};
+    std::sort(terms.begin(), terms.end(),
+              [&](const auto &a, const auto &b) { return at(a.second).key < at(b.second).key; });
+    numeric sign = terms[0].first < 0 ? -1 : 1;
+    cnode n;
+    n.kind = cnode::add;
+    n.value = sign * constant;
+    for (auto &t : terms)
+        n.terms.push_back({sign * t.first, t.second});
+    n.key = "(";
+    for (auto &[c, id] : n.terms)
+        n.key += number_text(c) + "*" + at(id).key + ";";
+    n.key += "|" + number_text(n.value) + ")";
+    return {sign, intern(std::move(n))};
+}
+
+// A product or power: its factors' nodes with integer exponents (half-integer ones through sqrt).
+scaled canonical_pool::convert_product(const ex &e)
+{
+    numeric coeff = 1;
+    std::map<int, int> expo;
+    auto take = [&](const scaled &f, int k) {
+        if (f.scale.is_zero() && k < 0)
+            throw std::runtime_error("code generation: division by zero");
+        coeff *= pow(f.scale, numeric(k)); // exact for integer k
+        if (f.node < 0)
+            return;
+        const cnode &fn = at(f.node);
+        if (fn.kind == cnode::mul) {
+            coeff *= pow(fn.value, numeric(k));
+            for (auto &[id, x] : fn.factors)
+                expo[id] += x * k;
+        } else {
+            expo[f.node] += k;
+        }
+    };
+    auto factor = [&](const ex &f) {
+        if (is_a<power>(f)) {
+            const ex &b = f.op(0);
+            const ex &x = f.op(1);
+            if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_rational())
+                throw std::runtime_error("code generation: power with a non-rational exponent");
+            numeric q = ex_to<numeric>(x);
+            if (q.is_integer()) {
+                take(convert(b), q.to_int());
+                return;
+            }
+            if (q.denom() != 2)
+                throw std::runtime_error("code generation: only integer and half-integer powers are supported");
+            // b^(p/2) = sqrt(b)^p
+            cnode s;
+            s.kind = cnode::sqrt_;
+            s.arg = node_of(convert(b));
+            s.key = "sqrt(" + at(s.arg).key + ")";
+            take({1, intern(std::move(s))}, q.numer().to_int());
+            return;
+        }
+        take(convert(f), 1);
+    };
+    if (is_a<power>(e))
+        factor(e);
+    else
+        for (std::size_t i = 0; i < e.nops(); ++i)
+            factor(e.op(i));
+    std::vector<std::pair<int, int>> factors;
+    for (auto &[id, x] : expo)
+        if (x != 0)
+            factors.push_back({id, x});
+    if (factors.empty() || coeff.is_zero())
+        return {coeff, -1};
+    if (factors.size() == 1 && factors[0].second == 1)
+        return {coeff, factors[0].first};
+    std::sort(factors.begin(), factors.end(),
+              [&](const auto &a, const auto &b) { return at(a.first).key < at(b.first).key; });
+    cnode n;
+    n.kind = cnode::mul;
+    n.value = 1;
+    n.factors = std::move(factors);
+    n.key = "[1:";
+    for (auto &f : n.factors)
+        n.key += at(f.first).key + "^" + std::to_string(f.second) + ";";
+    n.key += "]";
+    return {coeff, intern(std::move(n))};
+}
+
+scaled canonical_pool::convert(const ex &e)
+{
+    // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
+    // to 40 digits: a literal good for long double, exact to every digit of double.
+    if (!is_a<numeric>(e) && is_constant(e)) {
+        ex v = value_to_40_digits(e);
+        if (is_a<numeric>(v) && ex_to<numeric>(v).is_real())
+            return {ex_to<numeric>(v), -1};
+    }
+    if (is_a<numeric>(e)) {
+        const numeric &x = ex_to<numeric>(e);
+        if (!x.is_real())
+            throw std::runtime_error("code generation: complex number " + number_text(x));
+        return {x, -1};
+    }
+    if (is_a<symbol>(e))
+        return convert_symbol(e);
+    if (is_a<add>(e))
+        return convert_sum(e);
+    if (is_a<mul>(e) || is_a<power>(e))
+        return convert_product(e);
+    cannot_express(e);
 }
 
 } // namespace impactgen::codegen

@@ -53,6 +53,12 @@ public:
     std::size_t size() const { return nodes_.size(); }
 
 private:
+    /// A symbol: a bound step or a named input.
+    scaled convert_symbol(const GiNaC::ex &e);
+    /// A sum: its terms' nodes with exact coefficients.
+    scaled convert_sum(const GiNaC::ex &e);
+    /// A product or power: its factors' nodes with integer exponents.
+    scaled convert_product(const GiNaC::ex &e);
     int intern(cnode n);
     std::vector<cnode> nodes_;
     std::map<std::string, int> by_key_;

@@ -136,123 +136,92 @@ bool planar_inverse_inertia(plan &pl, const body &b, lst &subs)
     return true;
 }
 
-// Engine convention for one 3-D body: g = inv_I (r x n) with the inverse tensor's
-// entries as inputs; the determinant step is no longer needed.
-//
-// The tensor falls into blocks of axes coupled by non-zero off-diagonal entries (a
-// diagonal tensor: three blocks of one axis each), and its inverse has the same
-// blocks. A block of numbers is inverted exactly here; a block of one symbol I gets
-// the input inv_I = 1/I (and I becomes 1/inv_I wherever else it appears; an
-// isotropic ["I", "I", "I"] has one input); a larger block of symbols takes its
-// inverse's entries as inputs, one per entry. Refused, with the reason: an entry that
-// is an expression; a larger block that mixes numbers and symbols (the inverse's
-// entries there are neither numbers nor inputs: they depend on the numbers and the
-// symbols together); a symbol of a larger block that stands for two entries or
-// appears anywhere else in the problem (its inverse entry cannot stand for it there).
-bool tensor_inverse_inertia(plan &pl, std::size_t i, lst &subs)
-{
-    const problem &q = pl.prob;
-    const body &b = q.bodies[i];
-    solution &s = pl.sol;
-    const mat3 &I = b.inertia;
-    bool symbolic = false;
-    for (auto &row : I)
-        for (auto &c : row)
-            symbolic = symbolic || !is_constant(c);
-    if (!symbolic)
-        return false; // a known tensor is inverted exactly at generation time
-    const std::string who = names::display_text(b.name);
-    auto entry = [&](int r, int c) { return q.axes[std::min(r, c)] + q.axes[std::max(r, c)]; };
-    auto quantity_name = [&](int r, int c) { return "I" + suffix(b.label) + "_" + entry(r, c); };
-
-    // Blocks: axes joined by a non-zero off-diagonal entry.
-    int block_of[3] = {0, 1, 2};
-    for (int r = 0; r < 3; ++r)
-        for (int c = r + 1; c < 3; ++c)
-            if (!tidy(I[r][c]).is_zero()) {
-                const int from = block_of[c], to = block_of[r];
-                for (int &x : block_of)
-                    if (x == from)
-                        x = to;
-            }
+// The inverse of one 3-D body's inertia tensor, filled block by block, with the inputs it takes.
+struct tensor_inverter {
+    plan &pl;
+    const problem &q;
+    const body &b;
+    const mat3 &I;
+    lst &subs;
+    const std::string who;
     mat3 K = zero_mat();
-    for (int first = 0; first < 3; ++first) {
-        std::vector<int> axes;
-        for (int a = 0; a < 3; ++a)
-            if (block_of[a] == first)
-                axes.push_back(a);
-        if (axes.empty())
-            continue;
-        const unsigned n = static_cast<unsigned>(axes.size());
-        bool constant = true, all_symbols = true;
-        for (int r : axes)
-            for (int c : axes) {
-                constant = constant && is_constant(I[r][c]);
-                all_symbols = all_symbols && is_a<symbol>(I[r][c]);
-            }
-        if (constant) { // numbers: the inverse block exactly
-            matrix M(n, n);
-            for (unsigned r = 0; r < n; ++r)
-                for (unsigned c = 0; c < n; ++c)
-                    M(r, c) = I[axes[r]][axes[c]];
-            matrix Minv = M.inverse();
-            for (unsigned r = 0; r < n; ++r)
-                for (unsigned c = 0; c < n; ++c)
-                    K[axes[r]][axes[c]] = tidy(Minv(r, c));
-            continue;
+
+    // The name of an entry by its axes, e.g. "xy".
+    std::string entry(int r, int c) const { return q.axes[std::min(r, c)] + q.axes[std::max(r, c)]; }
+    // The quantity an entry is, e.g. "I1_xy".
+    std::string quantity_name(int r, int c) const { return "I" + suffix(b.label) + "_" + entry(r, c); }
+
+    // A block of numbers: the inverse block exactly.
+    void numbers_block(const std::vector<int> &axes, unsigned n)
+    {
+        matrix M(n, n);
+        for (unsigned r = 0; r < n; ++r)
+            for (unsigned c = 0; c < n; ++c)
+                M(r, c) = I[axes[r]][axes[c]];
+        matrix Minv = M.inverse();
+        for (unsigned r = 0; r < n; ++r)
+            for (unsigned c = 0; c < n; ++c)
+                K[axes[r]][axes[c]] = tidy(Minv(r, c));
+    }
+
+    // A block of one symbol: inv_I = 1/I, shared by every entry (and body) it stands for.
+    void one_symbol_block(const std::vector<int> &axes)
+    {
+        const int a = axes[0];
+        const ex &old = I[a][a];
+        if (!is_a<symbol>(old))
+            throw option_error(option_error::inverse_inertia, "the inertia entry " + entry(a, a) + " of " + who +
+                                                                  " is neither a number nor a single symbol");
+        auto known = pl.inverse_of.find(old);
+        if (known != pl.inverse_of.end()) {
+            K[a][a] = known->second;
+            return;
         }
-        if (n == 1) { // one symbol: inv_I = 1/I, shared by every entry (and body) it stands for
-            const int a = axes[0];
-            const ex &old = I[a][a];
-            if (!is_a<symbol>(old))
-                throw option_error(option_error::inverse_inertia, "the inertia entry " + entry(a, a) + " of " + who +
-                                                                      " is neither a number nor a single symbol");
-            auto known = pl.inverse_of.find(old);
-            if (known != pl.inverse_of.end()) {
-                K[a][a] = known->second;
-                continue;
-            }
-            std::vector<std::string> where; // an isotropic tensor: one symbol on every diagonal entry
-            for (int d = 0; d < 3; ++d)
-                if (I[d][d].is_equal(old))
-                    where.push_back(entry(d, d));
-            symbol k = inverse_symbol(pl, old,
-                                      "inverse inertia tensor of " + b.name + " (world axes), " + join(where, ", ") +
-                                          (where.size() > 1 ? " entries" : " entry") + " (= 1/" +
-                                          ex_to<symbol>(old).get_name() + ")");
-            subs.append(old == 1 / k);
-            K[a][a] = k;
-            continue;
-        }
+        std::vector<std::string> where; // an isotropic tensor: one symbol on every diagonal entry
+        for (int d = 0; d < 3; ++d)
+            if (I[d][d].is_equal(old))
+                where.push_back(entry(d, d));
+        symbol k = inverse_symbol(pl, old,
+                                  "inverse inertia tensor of " + b.name + " (world axes), " + join(where, ", ") +
+                                      (where.size() > 1 ? " entries" : " entry") + " (= 1/" +
+                                      ex_to<symbol>(old).get_name() + ")");
+        subs.append(old == 1 / k);
+        K[a][a] = k;
+    }
+
+    // A larger block that mixes numbers (or expressions) and symbols: refused, with the reason.
+    [[noreturn]] void refuse_mixed_block(const std::vector<int> &axes, unsigned n) const
+    {
         std::string block_axes;
         for (int a : axes)
             block_axes += q.axes[static_cast<std::size_t>(a)];
-        if (!all_symbols) {
-            std::vector<std::string> numbers, names, exprs;
-            for (std::size_t r = 0; r < n; ++r)
-                for (std::size_t c = r; c < n; ++c) {
-                    const ex &x = I[axes[r]][axes[c]];
-                    if (is_constant(x)) {
-                        numbers.push_back(entry(axes[r], axes[c]) + " = " + shown(x));
-                        names.push_back(quantity_name(axes[r], axes[c]));
-                    } else if (!is_a<symbol>(x)) {
-                        exprs.push_back(entry(axes[r], axes[c]));
-                    }
+        std::vector<std::string> numbers, names, exprs;
+        for (std::size_t r = 0; r < n; ++r)
+            for (std::size_t c = r; c < n; ++c) {
+                const ex &x = I[axes[r]][axes[c]];
+                if (is_constant(x)) {
+                    numbers.push_back(entry(axes[r], axes[c]) + " = " + shown(x));
+                    names.push_back(quantity_name(axes[r], axes[c]));
+                } else if (!is_a<symbol>(x)) {
+                    exprs.push_back(entry(axes[r], axes[c]));
                 }
-            if (!exprs.empty())
-                throw option_error(option_error::inverse_inertia,
-                                   "the inertia entry " + exprs[0] + " of " + who +
-                                       " is not a single symbol (the entries of a tensor whose axes " + block_axes +
-                                       " are coupled are replaced by its inverse's entries, one input each)");
-            throw option_error(
-                option_error::inverse_inertia,
-                "the inertia tensor of " + who + " couples the axes " + block_axes +
-                    " (non-zero off-diagonal entries), and in that block numbers (" + join(numbers, ", ") +
-                    ") stand beside symbols: the entries of the inverse there depend on both, so they are "
-                    "neither inputs nor numbers. Make every entry of the block a symbol (name " +
-                    join(names, ", ") + " in --params) or a number");
-        }
-        // A block of distinct symbols, each standing for its entry only.
+            }
+        if (!exprs.empty())
+            throw option_error(option_error::inverse_inertia,
+                               "the inertia entry " + exprs[0] + " of " + who +
+                                   " is not a single symbol (the entries of a tensor whose axes " + block_axes +
+                                   " are coupled are replaced by its inverse's entries, one input each)");
+        throw option_error(option_error::inverse_inertia,
+                           "the inertia tensor of " + who + " couples the axes " + block_axes +
+                               " (non-zero off-diagonal entries), and in that block numbers (" + join(numbers, ", ") +
+                               ") stand beside symbols: the entries of the inverse there depend on both, so they are "
+                               "neither inputs nor numbers. Make every entry of the block a symbol (name " +
+                               join(names, ", ") + " in --params) or a number");
+    }
+
+    // A larger block of distinct symbols, each standing for its entry only: its inverse's entries as inputs.
+    void symbols_block(const std::vector<int> &axes, unsigned n)
+    {
         problem copy = q;
         const std::vector<quantity> all = quantities(copy);
         for (std::size_t r = 0; r < n; ++r)
@@ -273,7 +242,27 @@ bool tensor_inverse_inertia(plan &pl, std::size_t i, lst &subs)
                     false);
             }
     }
-    pl.inverse_tensor[i] = K;
+};
+
+// The blocks of a tensor: axes joined by a non-zero off-diagonal entry share a block.
+void inertia_blocks(const mat3 &I, int (&block_of)[3])
+{
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            if (!tidy(I[r][c]).is_zero()) {
+                const int from = block_of[c], to = block_of[r];
+                for (int &x : block_of)
+                    if (x == from)
+                        x = to;
+            }
+}
+
+// The angular response steps g = K t rewritten with the inverse tensor K; the determinant step dropped.
+void rewrite_angular_response(plan &pl, std::size_t i, const mat3 &K)
+{
+    const problem &q = pl.prob;
+    const body &b = q.bodies[i];
+    solution &s = pl.sol;
     vec3 tau = cross(q.contact.point - b.position, pl.deriv.n_hat);
     vec3 t;
     for (int c = 0; c < 3; ++c) {
@@ -300,6 +289,66 @@ bool tensor_inverse_inertia(plan &pl, std::size_t i, lst &subs)
         std::remove_if(s.steps.begin(), s.steps.end(),
                        [&](const step &st) { return st.role == step_role::inertia_determinant && st.body == i; }),
         s.steps.end());
+}
+
+// Engine convention for one 3-D body: g = inv_I (r x n) with the inverse tensor's
+// entries as inputs; the determinant step is no longer needed.
+//
+// The tensor falls into blocks of axes coupled by non-zero off-diagonal entries (a
+// diagonal tensor: three blocks of one axis each), and its inverse has the same
+// blocks. A block of numbers is inverted exactly here; a block of one symbol I gets
+// the input inv_I = 1/I (and I becomes 1/inv_I wherever else it appears; an
+// isotropic ["I", "I", "I"] has one input); a larger block of symbols takes its
+// inverse's entries as inputs, one per entry. Refused, with the reason: an entry that
+// is an expression; a larger block that mixes numbers and symbols (the inverse's
+// entries there are neither numbers nor inputs: they depend on the numbers and the
+// symbols together); a symbol of a larger block that stands for two entries or
+// appears anywhere else in the problem (its inverse entry cannot stand for it there).
+bool tensor_inverse_inertia(plan &pl, std::size_t i, lst &subs)
+{
+    const problem &q = pl.prob;
+    const body &b = q.bodies[i];
+    const mat3 &I = b.inertia;
+    bool symbolic = false;
+    for (auto &row : I)
+        for (auto &c : row)
+            symbolic = symbolic || !is_constant(c);
+    if (!symbolic)
+        return false; // a known tensor is inverted exactly at generation time
+    const std::string who = names::display_text(b.name);
+    tensor_inverter T{pl, q, b, I, subs, who};
+
+    // Blocks: axes joined by a non-zero off-diagonal entry.
+    int block_of[3] = {0, 1, 2};
+    inertia_blocks(I, block_of);
+    for (int first = 0; first < 3; ++first) {
+        std::vector<int> axes;
+        for (int a = 0; a < 3; ++a)
+            if (block_of[a] == first)
+                axes.push_back(a);
+        if (axes.empty())
+            continue;
+        const unsigned n = static_cast<unsigned>(axes.size());
+        bool constant = true, all_symbols = true;
+        for (int r : axes)
+            for (int c : axes) {
+                constant = constant && is_constant(I[r][c]);
+                all_symbols = all_symbols && is_a<symbol>(I[r][c]);
+            }
+        if (constant) {
+            T.numbers_block(axes, n);
+            continue;
+        }
+        if (n == 1) {
+            T.one_symbol_block(axes);
+            continue;
+        }
+        if (!all_symbols)
+            T.refuse_mixed_block(axes, n);
+        T.symbols_block(axes, n);
+    }
+    pl.inverse_tensor[i] = T.K;
+    rewrite_angular_response(pl, i, T.K);
     return true;
 }
 

@@ -343,6 +343,80 @@ std::string svg_points(const std::vector<point> &pts)
         s += (k ? " " : "") + decimal(pts[k].x) + "," + decimal(pts[k].y);
     return s;
 }
+// A circle item: a centre's quartered disc, the contact point, a pivot or a body's disc.
+void svg_circle(std::string &s, const drawing &g, const layout &L, const item &it)
+{
+    const point c = svg_out(L, it.points[0]);
+    const std::string cx = decimal(c.x), cy = decimal(c.y);
+    if (it.what == role::centre) {
+        const double r = 3.4;
+        const std::string rs = decimal(r);
+        s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + rs +
+             "\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1\"/>\n";
+        // Two quarters filled: upper right and lower left (y down).
+        s += "<path d=\"M" + cx + "," + cy + " L" + decimal(c.x + r) + "," + cy + " A" + rs + "," + rs + " 0 0 0 " +
+             cx + "," + decimal(c.y - r) + " Z M" + cx + "," + cy + " L" + decimal(c.x - r) + "," + cy + " A" + rs +
+             "," + rs + " 0 0 0 " + cx + "," + decimal(c.y + r) + " Z\" fill=\"#000000\"/>\n";
+    } else if (it.what == role::contact) {
+        s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"2.6\" fill=\"#000000\"/>\n";
+    } else if (it.what == role::pivot) {
+        s += "<circle cx=\"" + cx + "\" cy=\"" + cy +
+             "\" r=\"2.8\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1.2\"/>\n";
+    } else {
+        s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + decimal(it.radius * L.scale) + "\" fill=\"" +
+             (it.filled ? svg_fill(g, it.body) : "none") + "\" stroke=\"#000000\" stroke-width=\"1.4\"/>\n";
+    }
+}
+
+// An arrow item: a line to the foot of the head, then the head as a polygon.
+void svg_arrow(std::string &s, const item &it, const std::vector<point> &pts)
+{
+    const point a = pts[0], b = pts[1];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (!(len > 0.5))
+        return;
+    const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len;
+    const bool heavy = it.what == role::impulse || it.what == role::pivot_impulse;
+    const double head = std::min(heavy ? 11.0 : 9.0, 0.6 * len), half = heavy ? 4.2 : 3.4;
+    const point foot{b.x - head * ux, b.y - head * uy};
+    const char *col = svg_colour(it.what);
+    s += "<line x1=\"" + decimal(a.x) + "\" y1=\"" + decimal(a.y) + "\" x2=\"" + decimal(foot.x) + "\" y2=\"" +
+         decimal(foot.y) + "\" stroke=\"" + col + "\" stroke-width=\"" + (heavy ? "2.4" : "1.6") + "\"/>\n";
+    s += "<polygon points=\"" +
+         svg_points({b, {foot.x - half * uy, foot.y + half * ux}, {foot.x + half * uy, foot.y - half * ux}}) +
+         "\" fill=\"" + col + "\"/>\n";
+}
+
+// A label: a name in sans-serif, or italic math with its underline and subscript.
+void svg_label(std::string &s, const layout &L, const label &l)
+{
+    const point p = svg_out(L, l.at);
+    const char *anchor = "middle";
+    if (l.side == place::east || l.side == place::north_east || l.side == place::south_east)
+        anchor = "start";
+    else if (l.side == place::west || l.side == place::north_west || l.side == place::south_west)
+        anchor = "end";
+    // The baseline: text above the point, below it, or centred on it.
+    double base = p.y + 5;
+    if (l.side == place::north || l.side == place::north_east || l.side == place::north_west)
+        base = p.y - 4;
+    else if (l.side == place::south || l.side == place::south_east || l.side == place::south_west)
+        base = p.y + 13;
+    s += "<text x=\"" + decimal(p.x) + "\" y=\"" + decimal(base) + "\" text-anchor=\"" + anchor + "\"";
+    if (l.what != role::body)
+        s += std::string(" fill=\"") + svg_colour(l.what) + "\"";
+    if (l.is_name) {
+        s += " font-family=\"sans-serif\" font-size=\"13\">" + names::xml_text(shown_name(l.name)) + "</text>\n";
+        return;
+    }
+    s += " font-style=\"italic\">";
+    // Math labels are this library's own text; escaped all the same.
+    const std::string base_text = names::xml_text(l.text);
+    s += is_vector_label(l) ? "<tspan text-decoration=\"underline\">" + base_text + "</tspan>" : base_text;
+    if (!l.sub.empty())
+        s += "<tspan dy=\"4\" font-size=\"11\">" + names::xml_text(l.sub) + "</tspan>";
+    s += "</text>\n";
+}
 
 } // namespace
 
@@ -357,26 +431,7 @@ std::string to_svg(const drawing &g)
     s += "<title>" + names::xml_text(describe(g)) + "</title>\n";
     for (const item &it : g.items) {
         if (it.kind == item::circle) {
-            const point c = svg_out(L, it.points[0]);
-            const std::string cx = decimal(c.x), cy = decimal(c.y);
-            if (it.what == role::centre) {
-                const double r = 3.4;
-                const std::string rs = decimal(r);
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + rs +
-                     "\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1\"/>\n";
-                // Two quarters filled: upper right and lower left (y down).
-                s += "<path d=\"M" + cx + "," + cy + " L" + decimal(c.x + r) + "," + cy + " A" + rs + "," + rs +
-                     " 0 0 0 " + cx + "," + decimal(c.y - r) + " Z M" + cx + "," + cy + " L" + decimal(c.x - r) + "," +
-                     cy + " A" + rs + "," + rs + " 0 0 0 " + cx + "," + decimal(c.y + r) + " Z\" fill=\"#000000\"/>\n";
-            } else if (it.what == role::contact) {
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"2.6\" fill=\"#000000\"/>\n";
-            } else if (it.what == role::pivot) {
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy +
-                     "\" r=\"2.8\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1.2\"/>\n";
-            } else {
-                s += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + decimal(it.radius * L.scale) + "\" fill=\"" +
-                     (it.filled ? svg_fill(g, it.body) : "none") + "\" stroke=\"#000000\" stroke-width=\"1.4\"/>\n";
-            }
+            svg_circle(s, g, L, it);
             continue;
         }
         if (it.points.size() < 2)
@@ -385,21 +440,7 @@ std::string to_svg(const drawing &g)
         for (const point &q : it.points)
             pts.push_back(svg_out(L, q));
         if (it.kind == item::arrow) {
-            // A line to the foot of the head, then the head as a polygon.
-            const point a = pts[0], b = pts[1];
-            const double len = std::hypot(b.x - a.x, b.y - a.y);
-            if (!(len > 0.5))
-                continue;
-            const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len;
-            const bool heavy = it.what == role::impulse || it.what == role::pivot_impulse;
-            const double head = std::min(heavy ? 11.0 : 9.0, 0.6 * len), half = heavy ? 4.2 : 3.4;
-            const point foot{b.x - head * ux, b.y - head * uy};
-            const char *col = svg_colour(it.what);
-            s += "<line x1=\"" + decimal(a.x) + "\" y1=\"" + decimal(a.y) + "\" x2=\"" + decimal(foot.x) + "\" y2=\"" +
-                 decimal(foot.y) + "\" stroke=\"" + col + "\" stroke-width=\"" + (heavy ? "2.4" : "1.6") + "\"/>\n";
-            s += "<polygon points=\"" +
-                 svg_points({b, {foot.x - half * uy, foot.y + half * ux}, {foot.x + half * uy, foot.y - half * ux}}) +
-                 "\" fill=\"" + col + "\"/>\n";
+            svg_arrow(s, it, pts);
             continue;
         }
         std::string fill = "none", stroke = svg_colour(it.what), width = "1.4";
@@ -418,34 +459,8 @@ std::string to_svg(const drawing &g)
              "\" stroke=\"" + stroke + "\" stroke-width=\"" + width + "\"" +
              (it.dashed ? " stroke-dasharray=\"5,4\"" : "") + "/>\n";
     }
-    for (const label &l : g.labels) {
-        const point p = svg_out(L, l.at);
-        const char *anchor = "middle";
-        if (l.side == place::east || l.side == place::north_east || l.side == place::south_east)
-            anchor = "start";
-        else if (l.side == place::west || l.side == place::north_west || l.side == place::south_west)
-            anchor = "end";
-        // The baseline: text above the point, below it, or centred on it.
-        double base = p.y + 5;
-        if (l.side == place::north || l.side == place::north_east || l.side == place::north_west)
-            base = p.y - 4;
-        else if (l.side == place::south || l.side == place::south_east || l.side == place::south_west)
-            base = p.y + 13;
-        s += "<text x=\"" + decimal(p.x) + "\" y=\"" + decimal(base) + "\" text-anchor=\"" + anchor + "\"";
-        if (l.what != role::body)
-            s += std::string(" fill=\"") + svg_colour(l.what) + "\"";
-        if (l.is_name) {
-            s += " font-family=\"sans-serif\" font-size=\"13\">" + names::xml_text(shown_name(l.name)) + "</text>\n";
-            continue;
-        }
-        s += " font-style=\"italic\">";
-        // Math labels are this library's own text; escaped all the same.
-        const std::string base_text = names::xml_text(l.text);
-        s += is_vector_label(l) ? "<tspan text-decoration=\"underline\">" + base_text + "</tspan>" : base_text;
-        if (!l.sub.empty())
-            s += "<tspan dy=\"4\" font-size=\"11\">" + names::xml_text(l.sub) + "</tspan>";
-        s += "</text>\n";
-    }
+    for (const label &l : g.labels)
+        svg_label(s, L, l);
     s += "</svg>";
     return s;
 }

@@ -426,11 +426,18 @@ private:
     void add_name(int body, point at, place side);
 
     void body_shape(std::size_t i);
+    void pinned_shape(std::size_t i, const pivot *pv, v3 c);
+    bool free_rod_shape(std::size_t i, v3 c, double r);
     void wall(std::size_t i);
     void box(std::size_t i, v3 c);
     void rod(std::size_t i, point a, point b);
     void pivots();
     void decorations();
+    void lever_arms(std::size_t nb, point o, point t2);
+    void frame_axes(point o, point t2);
+    void velocity_arrows(std::size_t nb, point o, point t2);
+    void contact_impulse(point t2, point n2);
+    void centre_marks(std::size_t nb, point o, point t2, point n2);
 };
 
 double builder::side(std::size_t i) const
@@ -574,6 +581,56 @@ drawing builder::build()
 // ---------------------------------------------------------------------------
 // The bodies.
 
+// A pinned body: a rod through E, C and O when they are in line, else a plate.
+void builder::pinned_shape(std::size_t i, const pivot *pv, v3 c)
+{
+    const body &b = p_.bodies[i];
+    const int bi = static_cast<int>(i);
+    body_summary &summary = g_.bodies[i];
+    // A pinned body: a rod through E, C and O when they are in line, else a
+    // plate (the parallelogram E, O, 2C - E, 2C - O, whose centroid is C).
+    const v3 e = e_[static_cast<std::size_t>(pv - p_.pivots.data())];
+    const v3 ec = c - e, eo = v3{} - e;
+    const double lc = norm(ec), lo = norm(eo);
+    const bool in_line = lc < 1e-9 || lo < 1e-9 || norm(cross((1 / lc) * ec, (1 / lo) * eo)) < 1e-6;
+    centre_at_[i] = proj(c);
+    has_centre_[i] = true;
+    if (in_line) {
+        const v3 u = unit(lo > 1e-9 ? eo : ec, n_);
+        const double t_o = dot(eo, u), t_c2 = 2 * dot(ec, u);
+        const double lo_end = std::min({0.0, t_o, t_c2}), hi_end = std::max({0.0, t_o, t_c2, 0.2});
+        summary.form = shape::rod;
+        rod(i, proj(e + lo_end * u), proj(e + hi_end * u));
+    } else {
+        summary.form = shape::plate;
+        const v3 c2 = 2.0 * c;
+        add_path(role::body, bi, "body", {proj(e), proj(v3{}), proj(c2 - e), proj(c2)}, true, true);
+        if (!b.numbered) {
+            const double low = std::min({proj(e).y, 0.0, proj(c2 - e).y, proj(c2).y});
+            add_name(bi, {proj(c).x, low - label_gap}, place::south);
+        }
+    }
+}
+
+// A free rod with its end at O, when the planar moment about C is a uniform rod's (true: drawn).
+bool builder::free_rod_shape(std::size_t i, v3 c, double r)
+{
+    const body &b = p_.bodies[i];
+    body_summary &summary = g_.bodies[i];
+    const double m = number(b.mass, values_, 0), inertia = number(b.inertia[2][2], values_, 0);
+    const long double length_world = static_cast<long double>(r) * world_unit_;
+    const long double rod_moment = static_cast<long double>(m) * length_world * length_world / 3;
+    if (m > 0 && inertia > 0 && rod_moment > 0 &&
+        std::abs(static_cast<long double>(inertia) - rod_moment) <= 1e-9L * rod_moment) {
+        summary.form = shape::rod;
+        centre_at_[i] = proj(c);
+        has_centre_[i] = true;
+        rod(i, proj(v3{}), proj(2.0 * c));
+        return true;
+    }
+    return false;
+}
+
 void builder::body_shape(std::size_t i)
 {
     const body &b = p_.bodies[i];
@@ -613,29 +670,7 @@ void builder::body_shape(std::size_t i)
         return;
     }
     if (pv) {
-        // A pinned body: a rod through E, C and O when they are in line, else a
-        // plate (the parallelogram E, O, 2C - E, 2C - O, whose centroid is C).
-        const v3 e = e_[static_cast<std::size_t>(pv - p_.pivots.data())];
-        const v3 ec = c - e, eo = v3{} - e;
-        const double lc = norm(ec), lo = norm(eo);
-        const bool in_line = lc < 1e-9 || lo < 1e-9 || norm(cross((1 / lc) * ec, (1 / lo) * eo)) < 1e-6;
-        centre_at_[i] = proj(c);
-        has_centre_[i] = true;
-        if (in_line) {
-            const v3 u = unit(lo > 1e-9 ? eo : ec, n_);
-            const double t_o = dot(eo, u), t_c2 = 2 * dot(ec, u);
-            const double lo_end = std::min({0.0, t_o, t_c2}), hi_end = std::max({0.0, t_o, t_c2, 0.2});
-            summary.form = shape::rod;
-            rod(i, proj(e + lo_end * u), proj(e + hi_end * u));
-        } else {
-            summary.form = shape::plate;
-            const v3 c2 = 2.0 * c;
-            add_path(role::body, bi, "body", {proj(e), proj(v3{}), proj(c2 - e), proj(c2)}, true, true);
-            if (!b.numbered) {
-                const double low = std::min({proj(e).y, 0.0, proj(c2 - e).y, proj(c2).y});
-                add_name(bi, {proj(c).x, low - label_gap}, place::south);
-            }
-        }
+        pinned_shape(i, pv, c);
         return;
     }
     if (on_normal) {
@@ -648,19 +683,8 @@ void builder::body_shape(std::size_t i)
     }
     // A free rod with its end at O: the planar moment about C is that of a
     // uniform rod of length 2|CO|, I = m (2|CO|)^2 / 12.
-    if (planar_) {
-        const double m = number(b.mass, values_, 0), inertia = number(b.inertia[2][2], values_, 0);
-        const long double length_world = static_cast<long double>(r) * world_unit_;
-        const long double rod_moment = static_cast<long double>(m) * length_world * length_world / 3;
-        if (m > 0 && inertia > 0 && rod_moment > 0 &&
-            std::abs(static_cast<long double>(inertia) - rod_moment) <= 1e-9L * rod_moment) {
-            summary.form = shape::rod;
-            centre_at_[i] = proj(c);
-            has_centre_[i] = true;
-            rod(i, proj(v3{}), proj(2.0 * c));
-            return;
-        }
-    }
+    if (planar_ && free_rod_shape(i, c, r))
+        return;
     centre_at_[i] = proj(c);
     has_centre_[i] = true;
     if (s * dot(c, n_) > 1e-6 * r) {
@@ -804,13 +828,9 @@ void builder::pivots()
     }
 }
 
-void builder::decorations()
+// Lever arms r_i from C_i to O, dashed, labelled two thirds of the way from O.
+void builder::lever_arms(std::size_t nb, point o, point t2)
 {
-    const std::size_t nb = p_.bodies.size();
-    const point o{0, 0};
-    const point t2 = g_.t_hat, n2 = proj(n_);
-
-    // Lever arms r_i from C_i to O, dashed, labelled two thirds of the way from O.
     for (std::size_t i = 0; i < nb; ++i) {
         if (!has_centre_[i] || p_.bodies[i].infinite_mass || centre_at_o_[i])
             continue;
@@ -825,8 +845,11 @@ void builder::decorations()
         add_math(role::lever_arm, bi, "r" + index_[i], (2.0 / 3.0) * c, across, "\\underline{r}_{" + index_[i] + "}",
                  "r", index_[i]);
     }
+}
 
-    // The contact frame at O.
+// The contact frame at O.
+void builder::frame_axes(point o, point t2)
+{
     const point et = proj(frame_length * t_), en = proj(frame_length * n_);
     add_arrow(role::frame_axis, -1, "e_t", o, et);
     add_math(role::frame_axis, -1, "e_t", et, et, "\\hat{e}_t", "\u00ea", "t");
@@ -837,9 +860,11 @@ void builder::decorations()
         if (add_arrow(role::frame_axis, -1, "e_b", o, eb))
             add_math(role::frame_axis, -1, "e_b", eb, eb, "\\hat{e}_b", "\u00ea", "b");
     }
+}
 
-    // Velocities before impact at the centres (a wall's on the wall), scaled
-    // so that the fastest is velocity_max long; none shorter than velocity_min.
+// Velocities before impact at the centres (a wall's on the wall), scaled so the fastest is velocity_max long.
+void builder::velocity_arrows(std::size_t nb, point o, point t2)
+{
     std::vector<v3> v(nb);
     double vbig = 0;
     for (std::size_t i = 0; i < nb; ++i) {
@@ -889,8 +914,11 @@ void builder::decorations()
             }
         }
     }
+}
 
-    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n.
+// The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n.
+void builder::contact_impulse(point t2, point n2)
+{
     const v3 foot = (-impulse_gap) * t_;
     const point f = proj(foot);
     const point up = proj(foot + impulse_length * n_), down = proj(foot - impulse_length * n_);
@@ -901,8 +929,11 @@ void builder::decorations()
     if (add_arrow(role::impulse, static_cast<int>(g_.body1), "N1", f, down))
         add_math(role::impulse, static_cast<int>(g_.body1), "N1", down - 0.5 * label_gap * unit2(down - f, n2), aside,
                  "N", "N", "");
+}
 
-    // Centres on top of the lines, then O.
+// Centres on top of the lines, then O.
+void builder::centre_marks(std::size_t nb, point o, point t2, point n2)
+{
     for (std::size_t i = 0; i < nb; ++i) {
         if (!has_centre_[i])
             continue;
@@ -925,6 +956,28 @@ void builder::decorations()
     add_circle(role::contact, -1, "O", o, 0.025, true);
     const point o_dir = unit2(t2 - n2, {1, -1});
     add_math(role::contact, -1, "O", o, o_dir, "O", "O", "");
+}
+
+void builder::decorations()
+{
+    const std::size_t nb = p_.bodies.size();
+    const point o{0, 0};
+    const point t2 = g_.t_hat, n2 = proj(n_);
+
+    lever_arms(nb, o, t2);
+
+    // The contact frame at O.
+    frame_axes(o, t2);
+
+    // Velocities before impact at the centres (a wall's on the wall), scaled
+    // so that the fastest is velocity_max long; none shorter than velocity_min.
+    velocity_arrows(nb, o, t2);
+
+    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n.
+    contact_impulse(t2, n2);
+
+    // Centres on top of the lines, then O.
+    centre_marks(nb, o, t2, n2);
 }
 
 // ---------------------------------------------------------------------------

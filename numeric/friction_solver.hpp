@@ -338,23 +338,15 @@ private:
         return b.velocity + (spin ? vec<T>(b.angular_velocity.cross(p_.point - b.position)) : vec<T>::Zero());
     }
 
-    void assemble()
+    /// The contact frame: the unit normal n and the tangents t1, t2 (false when the normal is zero).
+    bool contact_frame()
     {
-        dim_ = p_.dimension == 2 ? 2 : 3;
-        nw_ = dim_ == 2 ? 1 : 3;
-        tangents = dim_ == 2 ? 1 : 2;
-        e = p_.restitution;
-        mu = p_.friction;
-        const std::size_t nb = p_.bodies.size();
-        if (p_.body1 >= nb || p_.body2 >= nb || p_.body1 == p_.body2)
-            return;
-        // The frame.
         vec<T> nn = p_.normal;
         if (dim_ == 2)
             nn[2] = 0;
         const T len = nn.norm();
         if (!(len > 0) || !std::isfinite(len))
-            return;
+            return false;
         n = nn / len;
         if (dim_ == 2) {
             t1 = vec<T>(n.y(), -n.x(), 0);
@@ -366,7 +358,12 @@ private:
             t1 = (a - a.dot(n) * n).normalized();
             t2 = n.cross(t1);
         }
-        // Degrees of freedom and the block-diagonal inverse mass matrix.
+        return true;
+    }
+
+    /// Degrees of freedom and the block-diagonal inverse mass matrix (false when a mass is not positive).
+    bool inverse_mass(std::size_t nb)
+    {
         off_.assign(nb, -1);
         for (std::size_t i : {p_.body1, p_.body2}) {
             if (p_.immovable(i))
@@ -381,7 +378,7 @@ private:
                 continue;
             const auto &b = p_.bodies[i];
             if (!(b.mass > 0))
-                return;
+                return false;
             for (int k = 0; k < dim_; ++k) {
                 Minv_(off_[i] + k, off_[i] + k) = T(1) / b.mass;
                 q_[off_[i] + k] = b.velocity[k];
@@ -390,13 +387,13 @@ private:
                 continue;
             if (dim_ == 2) {
                 if (!(b.inertia(2, 2) > 0))
-                    return;
+                    return false;
                 Minv_(off_[i] + 2, off_[i] + 2) = T(1) / b.inertia(2, 2);
                 q_[off_[i] + 2] = b.angular_velocity[2];
             } else {
                 Eigen::LDLT<M3> ldlt(b.inertia);
                 if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0))
-                    return;
+                    return false;
                 const M3 Iinv = ldlt.solve(M3::Identity());
                 for (int r = 0; r < 3; ++r) {
                     for (int k = 0; k < 3; ++k)
@@ -405,6 +402,12 @@ private:
                 }
             }
         }
+        return true;
+    }
+
+    /// The pivot constraint rows Jp and their Schur complement (false when it is singular).
+    bool pivot_rows(std::size_t nb)
+    {
         // Pivot constraints of the movable bodies in contact: v + w x (E - C) = 0 after the impact.
         row_.assign(p_.pivots.size(), -1);
         for (std::size_t k = 0; k < p_.pivots.size(); ++k) {
@@ -433,8 +436,14 @@ private:
         if (ncon_ > 0) {
             S_.compute(Jp_ * Minv_ * Jp_.transpose());
             if (!S_.isInvertible())
-                return;
+                return false;
         }
+        return true;
+    }
+
+    /// The contact velocities before and at P = 0, the Delassus matrix W and the scales.
+    bool contact_response()
+    {
         // The contact velocities: before, at P = 0, and the Delassus matrix column by column.
         u_world = point_velocity_before(p_.body2) - point_velocity_before(p_.body1);
         u = frame(u_world);
@@ -451,8 +460,23 @@ private:
             velocity_scale = std::numeric_limits<T>::min();
         compliance_scale = W.cwiseAbs().maxCoeff();
         if (!(compliance_scale > 0) || !W.allFinite() || !c.allFinite() || !u.allFinite())
-            return;
+            return false;
         impulse_scale = velocity_scale / compliance_scale;
+        return true;
+    }
+
+    void assemble()
+    {
+        dim_ = p_.dimension == 2 ? 2 : 3;
+        nw_ = dim_ == 2 ? 1 : 3;
+        tangents = dim_ == 2 ? 1 : 2;
+        e = p_.restitution;
+        mu = p_.friction;
+        const std::size_t nb = p_.bodies.size();
+        if (p_.body1 >= nb || p_.body2 >= nb || p_.body1 == p_.body2)
+            return;
+        if (!contact_frame() || !inverse_mass(nb) || !pivot_rows(nb) || !contact_response())
+            return;
         ok = true;
     }
 };

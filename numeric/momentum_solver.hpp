@@ -56,14 +56,13 @@ template <typename T> void tangents(const problem<T> &p, const vec<T> &n, vec<T>
     b = t.cross(n);
 }
 
-template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
+/// Columns of the unknowns: each movable body's velocity (and angular velocity), then N and
+/// the pivot impulses when a pivot is present.
+template <typename T> system_layout<T> layout_of(const problem<T> &p)
 {
-    using M = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
-    using V = Eigen::Matrix<T, Eigen::Dynamic, 1>;
     const int dim = p.dimension;
     const std::size_t ids[2] = {p.body1, p.body2};
     const bool impulse_form = !p.pivots.empty();
-    const vec<T> n = unit<T>(p.normal);
     system_layout<T> L;
     L.v_col.assign(p.bodies.size(), -1);
     L.w_col.assign(p.bodies.size(), -1);
@@ -86,29 +85,54 @@ template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
                 L.size += dim;
         }
     }
-    M A = M::Zero(L.size, L.size);
-    V rhs = V::Zero(L.size);
+    return L;
+}
+
+/// The linear system A x = rhs being filled row by row, with its coefficient helpers.
+template <typename T> struct momentum_rows {
+    using M = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+    using V = Eigen::Matrix<T, Eigen::Dynamic, 1>;
+    const problem<T> &p;
+    const system_layout<T> &L;
+    const vec<T> &n;
+    const int dim;
+    const std::size_t ids[2];
+    const int first_ang;
+    const int last_lin;
+    M A;
+    V rhs;
     int row = 0;
+
+    momentum_rows(const problem<T> &p_, const system_layout<T> &L_, const vec<T> &n_)
+        : p(p_), L(L_), n(n_), dim(p_.dimension), ids{p_.body1, p_.body2}, first_ang(dim == 2 ? 2 : 0), last_lin(dim),
+          A(M::Zero(L_.size, L_.size)), rhs(V::Zero(L_.size))
+    {
+    }
+
     // Angular columns: world component c maps to column offset (planar: only z).
-    auto wcol = [&](std::size_t i, int c) { return dim == 2 ? (c == 2 ? L.w_col[i] : -1) : L.w_col[i] + c; };
-    auto put = [&](int r, int c, T v) {
+    int wcol(std::size_t i, int c) const { return dim == 2 ? (c == 2 ? L.w_col[i] : -1) : L.w_col[i] + c; }
+    void put(int r, int c, T v)
+    {
         if (c >= 0)
             A(r, c) += v;
-    };
+    }
     // Coefficients of v'_i . a and of (w'_i x q) . a in row r.
-    auto velocity_dot = [&](int r, std::size_t i, const vec<T> &a, T scale) {
+    void velocity_dot(int r, std::size_t i, const vec<T> &a, T scale)
+    {
         for (int c = 0; c < dim; ++c)
             put(r, L.v_col[i] + c, scale * a[c]);
-    };
-    auto angular_dot = [&](int r, std::size_t i, const vec<T> &q, const vec<T> &a, T scale) {
+    }
+    void angular_dot(int r, std::size_t i, const vec<T> &q, const vec<T> &a, T scale)
+    {
         vec<T> coef = q.cross(a); // (w x q).a = w.(q x a)
         for (int c = 0; c < 3; ++c)
             put(r, wcol(i, c), scale * coef[c]);
-    };
-    const int first_ang = dim == 2 ? 2 : 0;
-    const int last_lin = dim;
+    }
 
-    if (!impulse_form) {
+    /// Rows without a pivot: smooth contact along the tangents, system momentum along n, angular
+    /// momentum about O.
+    void smooth_rows()
+    {
         vec<T> t, b;
         tangents<T>(p, n, t, b);
         for (std::size_t i : ids) {
@@ -143,7 +167,11 @@ template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
                 rhs[row++] = H[c];
             }
         }
-    } else {
+    }
+
+    /// Rows with a pivot: impulse-momentum with N and the pivot impulses R, and each pivot fixed.
+    void impulse_rows()
+    {
         for (std::size_t i : ids) {
             const auto &bd = p.bodies[i];
             if (bd.infinite_mass)
@@ -186,7 +214,9 @@ template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
             }
         }
     }
-    // Restitution: (v'_B - v'_A).n = -e (v_B - v_A).n; known parts to the right.
+
+    /// Restitution: (v'_B - v'_A).n = -e (v_B - v_A).n; known parts to the right.
+    void restitution_row()
     {
         T known_before = 0, known_after = 0;
         for (std::size_t i : ids) {
@@ -207,39 +237,60 @@ template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
         }
         rhs[row++] = -p.restitution * known_before - known_after;
     }
+
+    /// The velocities after impact and the impulses, read from the solution x.
+    void read_answer(answer<T> &out, const V &x, bool impulse_form) const
+    {
+        out.ok = true;
+        for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+            vec<T> v = p.bodies[i].velocity, w = p.bodies[i].angular_velocity;
+            if (L.v_col[i] >= 0)
+                for (int c = 0; c < dim; ++c)
+                    v[c] = x[L.v_col[i] + c];
+            if (L.w_col[i] >= 0)
+                for (int c = first_ang; c < 3; ++c)
+                    w[c] = x[wcol(i, c)];
+            out.velocity.push_back(v);
+            out.angular_velocity.push_back(w);
+        }
+        if (impulse_form) {
+            out.normal_impulse = x[L.n_col];
+            for (int rk : L.r_col) {
+                vec<T> R = vec<T>::Zero();
+                for (int c = 0; c < dim && rk >= 0; ++c)
+                    R[c] = x[rk + c];
+                out.pivot_impulses.push_back(R);
+            }
+        } else {
+            // N from the change of momentum of a body of finite mass along n.
+            std::size_t i = p.bodies[p.body2].infinite_mass ? p.body1 : p.body2;
+            const T s = i == p.body1 ? T(-1) : T(1);
+            out.normal_impulse = s * p.bodies[i].mass * (out.velocity[i] - p.bodies[i].velocity).dot(n);
+        }
+    }
+};
+
+template <typename T> answer<T> solve_momentum_system(const problem<T> &p)
+{
+    using M = typename momentum_rows<T>::M;
+    using V = typename momentum_rows<T>::V;
+    const bool impulse_form = !p.pivots.empty();
+    const vec<T> n = unit<T>(p.normal);
+    const system_layout<T> L = layout_of<T>(p);
+    momentum_rows<T> S(p, L, n);
+    if (!impulse_form)
+        S.smooth_rows();
+    else
+        S.impulse_rows();
+    S.restitution_row();
     answer<T> out;
-    if (row != L.size)
+    if (S.row != L.size)
         return out;
-    Eigen::PartialPivLU<M> lu(A);
-    V x = lu.solve(rhs);
+    Eigen::PartialPivLU<M> lu(S.A);
+    V x = lu.solve(S.rhs);
     if (!x.allFinite())
         return out;
-    out.ok = true;
-    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        vec<T> v = p.bodies[i].velocity, w = p.bodies[i].angular_velocity;
-        if (L.v_col[i] >= 0)
-            for (int c = 0; c < dim; ++c)
-                v[c] = x[L.v_col[i] + c];
-        if (L.w_col[i] >= 0)
-            for (int c = first_ang; c < 3; ++c)
-                w[c] = x[wcol(i, c)];
-        out.velocity.push_back(v);
-        out.angular_velocity.push_back(w);
-    }
-    if (impulse_form) {
-        out.normal_impulse = x[L.n_col];
-        for (int rk : L.r_col) {
-            vec<T> R = vec<T>::Zero();
-            for (int c = 0; c < dim && rk >= 0; ++c)
-                R[c] = x[rk + c];
-            out.pivot_impulses.push_back(R);
-        }
-    } else {
-        // N from the change of momentum of a body of finite mass along n.
-        std::size_t i = p.bodies[p.body2].infinite_mass ? p.body1 : p.body2;
-        const T s = i == p.body1 ? T(-1) : T(1);
-        out.normal_impulse = s * p.bodies[i].mass * (out.velocity[i] - p.bodies[i].velocity).dot(n);
-    }
+    S.read_answer(out, x, impulse_form);
     return out;
 }
 

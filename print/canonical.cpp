@@ -240,11 +240,9 @@ struct factor {
 // order, is negative.
 int sum_sign(const ex &s);
 
-// A product: numeric coefficient, numerator factors, denominator factors.
-printed print_product(const ex &e, syntax sx)
+// The factors of a product: its numeric coefficient, its numerator and its denominator, each sorted.
+void split_factors(const ex &e, numeric &coeff, std::vector<factor> &num, std::vector<factor> &den)
 {
-    numeric coeff = 1;
-    std::vector<factor> num, den;
     auto add_factor = [&](ex base, ex exponent) {
         bool negative_exp = is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_negative();
         if (negative_exp)
@@ -276,6 +274,47 @@ printed print_product(const ex &e, syntax sx)
     auto by_key = [](const factor &a, const factor &b) { return a.key < b.key; };
     std::sort(num.begin(), num.end(), by_key);
     std::sort(den.begin(), den.end(), by_key);
+}
+
+// Factors (and a number before them) joined by the syntax's times; a sole factor's level in sole_level.
+std::string factor_text(const std::vector<factor> &fs, const numeric &number, syntax sx, const std::string &times,
+                        bool &single_sum, std::size_t &count, prec &sole_level)
+{
+    std::string out;
+    count = 0;
+    single_sum = false;
+    sole_level = p_atom;
+    if (number != 1) {
+        out = sx == syntax::mathml ? mn(numeric_text(number)) : numeric_text(number);
+        ++count;
+    }
+    for (const factor &f : fs) {
+        printed pf = f.exponent.is_equal(1) ? print_ex(f.base, sx) : print_power(f.base, f.exponent, sx);
+        bool alone = fs.size() == 1 && count == 0;
+        if (alone && pf.level == p_sum)
+            single_sum = true;
+        if (alone)
+            sole_level = pf.level;
+        std::string piece = alone ? pf.s : wrap(pf, p_power, sx);
+        if (!out.empty()) {
+            bool digit = !piece.empty() && std::isdigit(static_cast<unsigned char>(piece[0]));
+            if (sx == syntax::mathml)
+                out += piece.compare(0, 4, "<mn>") == 0 ? mo("⋅") : times;
+            else
+                out += (sx == syntax::latex && digit) ? " \\cdot " : times;
+        }
+        out += piece;
+        ++count;
+    }
+    return out;
+}
+
+// A product: numeric coefficient, numerator factors, denominator factors.
+printed print_product(const ex &e, syntax sx)
+{
+    numeric coeff = 1;
+    std::vector<factor> num, den;
+    split_factors(e, coeff, num, den);
 
     if (!coeff.is_rational())
         throw std::invalid_argument("canonical printer: non-rational coefficient " + numeric_text(coeff));
@@ -288,40 +327,11 @@ printed print_product(const ex &e, syntax sx)
                               : sx == syntax::mathml ? mo("&#x2062;")
                                                      : "·";
     prec sole_level = p_atom;
-    auto join = [&](const std::vector<factor> &fs, const numeric &number, bool &single_sum, std::size_t &count) {
-        std::string out;
-        count = 0;
-        single_sum = false;
-        sole_level = p_atom;
-        if (number != 1) {
-            out = sx == syntax::mathml ? mn(numeric_text(number)) : numeric_text(number);
-            ++count;
-        }
-        for (const factor &f : fs) {
-            printed pf = f.exponent.is_equal(1) ? print_ex(f.base, sx) : print_power(f.base, f.exponent, sx);
-            bool alone = fs.size() == 1 && count == 0;
-            if (alone && pf.level == p_sum)
-                single_sum = true;
-            if (alone)
-                sole_level = pf.level;
-            std::string piece = alone ? pf.s : wrap(pf, p_power, sx);
-            if (!out.empty()) {
-                bool digit = !piece.empty() && std::isdigit(static_cast<unsigned char>(piece[0]));
-                if (sx == syntax::mathml)
-                    out += piece.compare(0, 4, "<mn>") == 0 ? mo("⋅") : times;
-                else
-                    out += (sx == syntax::latex && digit) ? " \\cdot " : times;
-            }
-            out += piece;
-            ++count;
-        }
-        return out;
-    };
     bool num_sum = false, den_sum = false;
     std::size_t num_count = 0, den_count = 0;
-    std::string top = join(num, p, num_sum, num_count);
+    std::string top = factor_text(num, p, sx, times, num_sum, num_count, sole_level);
     const prec top_level = num_count == 1 ? sole_level : p_product;
-    std::string bottom = join(den, q, den_sum, den_count);
+    std::string bottom = factor_text(den, q, sx, times, den_sum, den_count, sole_level);
     if (top.empty())
         top = sx == syntax::mathml ? mn("1") : "1";
     std::string body;

@@ -60,32 +60,22 @@ std::string script_tex(const std::string &s)
     return letters ? "{\\mathrm{" + s + "}}" : "{" + s + "}";
 }
 
-} // namespace
-
-notation prose_notation(const std::string &src)
-{
-    notation out;
+// The scan of a prose notation, left to right: its text and TeX so far.
+struct prose_scanner {
+    const std::string &src;
+    notation out{};
     std::size_t i = 0;
-    auto fail = [&](const std::string &why) {
-        throw std::logic_error("explain: the prose notation \"" + src + "\" " + why + " at byte " + std::to_string(i));
-    };
     bool after_space = false;
-    while (i < src.size()) {
-        if (src[i] == ' ') {
-            out.text += ' ';
-            after_space = true;
-            ++i;
-            continue;
-        }
-        // An identifier: [~] letter-or-Greek [letters/digits] [primes] [_sub] [^sup].
-        int marks = 0; // ~ a vector, ~~ a tensor
-        std::size_t at = i;
-        while (i < src.size() && src[i] == '~' && marks < 2) {
-            ++marks;
-            ++i;
-        }
-        const bool vector = marks > 0;
-        std::string base_text, base_tex;
+
+    // The error for the notation at byte i.
+    [[noreturn]] void fail(const std::string &why) const
+    {
+        throw std::logic_error("explain: the prose notation \"" + src + "\" " + why + " at byte " + std::to_string(i));
+    }
+
+    // The base of an identifier at i: a run of letters, or one Greek letter with its TeX.
+    void read_base(std::string &base_text, std::string &base_tex)
+    {
         if (i < src.size() && std::isalpha(static_cast<unsigned char>(src[i]))) {
             std::size_t k = i;
             while (k < src.size() && std::isalpha(static_cast<unsigned char>(src[k])))
@@ -101,33 +91,77 @@ notation prose_notation(const std::string &src)
                     break;
                 }
         }
-        if (base_text.empty()) {
-            if (vector)
-                fail("has ~ before something that is not a symbol");
-            if (std::isdigit(static_cast<unsigned char>(src[i]))) {
-                std::size_t k = i;
-                while (k < src.size() && (std::isdigit(static_cast<unsigned char>(src[k])) || src[k] == '.'))
-                    ++k;
-                out.text += src.substr(i, k - i);
-                out.tex += src.substr(i, k - i);
-                i = k;
-                after_space = false;
-                continue;
-            }
-            bool done = false;
-            for (const auto &[sign, tex] : signs)
-                if (starts(src, i, sign)) {
-                    out.text += std::string(sign) == "'" ? "′" : sign;
-                    out.tex += tex;
-                    i += std::char_traits<char>::length(sign);
-                    done = true;
-                    break;
-                }
-            if (!done)
-                fail("has a character it does not know");
+    }
+
+    // Something that is not a symbol: a number or a sign, as it is.
+    void other(bool vector)
+    {
+        if (vector)
+            fail("has ~ before something that is not a symbol");
+        if (std::isdigit(static_cast<unsigned char>(src[i]))) {
+            std::size_t k = i;
+            while (k < src.size() && (std::isdigit(static_cast<unsigned char>(src[k])) || src[k] == '.'))
+                ++k;
+            out.text += src.substr(i, k - i);
+            out.tex += src.substr(i, k - i);
+            i = k;
             after_space = false;
-            continue;
+            return;
         }
+        bool done = false;
+        for (const auto &[sign, tex] : signs)
+            if (starts(src, i, sign)) {
+                out.text += std::string(sign) == "'" ? "′" : sign;
+                out.tex += tex;
+                i += std::char_traits<char>::length(sign);
+                done = true;
+                break;
+            }
+        if (!done)
+            fail("has a character it does not know");
+        after_space = false;
+    }
+
+    // The text of an identifier as written and its TeX, appended.
+    void put_identifier(std::size_t at, int marks, bool vector, const std::string &base_text,
+                        const std::string &base_tex, const std::string &sub, const std::string &sup,
+                        const std::string &primes_tex)
+    {
+        // text: as written, without the vector mark, ' as ′
+        std::string written =
+            src.substr(at + static_cast<std::size_t>(marks), i - at - static_cast<std::size_t>(marks));
+        std::string text;
+        for (std::size_t k = 0; k < written.size(); ++k)
+            text += written[k] == '\'' ? std::string("′") : std::string(1, written[k]);
+        out.text += text;
+        std::string tex = base_tex;
+        const bool unit = base_text == "e" && (sub == "t" || sub == "n" || sub == "b");
+        if (unit)
+            tex = "\\hat{\\underline{e}}";
+        else if (marks == 2)
+            tex = "\\underline{\\underline{" + base_tex + "}}";
+        else if (vector)
+            tex = "\\underline{" + base_tex + "}";
+        if (after_space && base_text == "dt")
+            tex = "\\,dt";
+        tex += primes_tex;
+        if (!sub.empty())
+            tex += "_" + script_tex(sub);
+        if (!sup.empty())
+            tex += "^" + script_tex(sup);
+        // a letter right after a letter needs a space in TeX: "N dt", "\omega x"
+        if (!out.tex.empty() && (std::isalpha(static_cast<unsigned char>(out.tex.back()))) && tex[0] != '\\')
+            out.tex += ' ';
+        else if (!out.tex.empty() && out.tex.back() != ' ' && tex[0] == '\\' &&
+                 std::isalpha(static_cast<unsigned char>(tex[1])))
+            out.tex += ' ';
+        out.tex += tex;
+        after_space = false;
+    }
+
+    // An identifier after its base: its TeX name, glued digits, primes, subscript and superscript.
+    void identifier(std::size_t at, int marks, bool vector, std::string &base_text, std::string &base_tex)
+    {
         // Function names and the differential.
         static const std::pair<const char *, const char *> words[] = {
             {"dt", "\\,dt"},  {"cos", "\\cos"}, {"sin", "\\sin"}, {"max", "\\max"},
@@ -181,37 +215,45 @@ notation prose_notation(const std::string &src)
             sup = src.substr(i + 1, k - i - 1);
             i = k;
         }
-        // text: as written, without the vector mark, ' as ′
-        std::string written =
-            src.substr(at + static_cast<std::size_t>(marks), i - at - static_cast<std::size_t>(marks));
-        std::string text;
-        for (std::size_t k = 0; k < written.size(); ++k)
-            text += written[k] == '\'' ? std::string("′") : std::string(1, written[k]);
-        out.text += text;
-        std::string tex = base_tex;
-        const bool unit = base_text == "e" && (sub == "t" || sub == "n" || sub == "b");
-        if (unit)
-            tex = "\\hat{\\underline{e}}";
-        else if (marks == 2)
-            tex = "\\underline{\\underline{" + base_tex + "}}";
-        else if (vector)
-            tex = "\\underline{" + base_tex + "}";
-        if (after_space && base_text == "dt")
-            tex = "\\,dt";
-        tex += primes_tex;
-        if (!sub.empty())
-            tex += "_" + script_tex(sub);
-        if (!sup.empty())
-            tex += "^" + script_tex(sup);
-        // a letter right after a letter needs a space in TeX: "N dt", "\omega x"
-        if (!out.tex.empty() && (std::isalpha(static_cast<unsigned char>(out.tex.back()))) && tex[0] != '\\')
-            out.tex += ' ';
-        else if (!out.tex.empty() && out.tex.back() != ' ' && tex[0] == '\\' &&
-                 std::isalpha(static_cast<unsigned char>(tex[1])))
-            out.tex += ' ';
-        out.tex += tex;
-        after_space = false;
+        put_identifier(at, marks, vector, base_text, base_tex, sub, sup, primes_tex);
     }
+
+    // The notation, token by token.
+    void scan()
+    {
+        while (i < src.size()) {
+            if (src[i] == ' ') {
+                out.text += ' ';
+                after_space = true;
+                ++i;
+                continue;
+            }
+            // An identifier: [~] letter-or-Greek [letters/digits] [primes] [_sub] [^sup].
+            int marks = 0; // ~ a vector, ~~ a tensor
+            std::size_t at = i;
+            while (i < src.size() && src[i] == '~' && marks < 2) {
+                ++marks;
+                ++i;
+            }
+            const bool vector = marks > 0;
+            std::string base_text, base_tex;
+            read_base(base_text, base_tex);
+            if (base_text.empty()) {
+                other(vector);
+                continue;
+            }
+            identifier(at, marks, vector, base_text, base_tex);
+        }
+    }
+};
+
+} // namespace
+
+notation prose_notation(const std::string &src)
+{
+    prose_scanner S{src};
+    S.scan();
+    notation &out = S.out;
     // trim the spaces TeX does not need at the end
     while (!out.tex.empty() && out.tex.back() == ' ')
         out.tex.pop_back();

@@ -85,6 +85,84 @@ section law_section(const context &c)
 
 // ---------------------------------------------------------------- 3. the equations
 
+// The words before a group of equations: its principle, for its body, with the friction impulse.
+paragraph friction_group_why(const context &c, const equation &first, principle why)
+{
+    const problem &p = c.p;
+    std::string title = why == principle::linear_impulse ? "Linear impulse-momentum" : principle_name(why);
+    title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+    const std::size_t i = first.bodies.empty() ? c.i1 : first.bodies[0];
+    const std::string who = display_name(p.bodies[i]);
+    const pivot *pv = p.pivot_of(i);
+    paragraph q;
+    q.w(title + ": ");
+    switch (why) {
+    case principle::linear_impulse:
+        q.w("the change of linear momentum of " + who + " equals the impulses on it: ")
+            .t(i == c.i1 ? "$-~P = -(N e_n + ~F)$" : "$~P = N e_n + ~F$")
+            .t(pv ? " and the pivot impulse $~R$" : "")
+            .w("; with friction the tangential components change too.");
+        break;
+    case principle::angular_momentum:
+        if (pv)
+            q.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change of "
+                "angular "
+                "momentum of ")
+                .w(who)
+                .t(" about $E$ is the moment $(O - E) × ~P$ of the contact impulse, its friction part included.");
+        else
+            q.w("the whole contact impulse on " + who)
+                .t(", normal and friction part alike, acts at $O$, which is fixed in the inertial frame: it has no "
+                   "moment "
+                   "about $O$, so the angular momentum of ")
+                .w(who)
+                .t(" about $O$ is conserved, with friction as without.");
+        break;
+    case principle::pivot_fixed:
+        q.t("the pivot $E$ of ").w(who).t(" does not move: $~v′_C + ~ω′ × ~r_CE = 0$.");
+        break;
+    case principle::restitution:
+        q.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ "
+            "times "
+            "their velocity of approach.");
+        break;
+    default:
+        q.w(first.reason + ".");
+    }
+    return q;
+}
+
+// Coulomb's law in each regime: stick along each tangent, then slide.
+std::vector<math_row> coulomb_law_rows(const context &c)
+{
+    std::vector<math_row> law;
+    for (std::size_t t = 0; t < c.stick_law.size(); ++t) {
+        const equation &eq = c.stick_law[t];
+        law.push_back(row(eq.lhs, eq.rhs, eq.label, ""));
+        law.back()
+            .note.t("stick: $(~v′_B - ~v′_A)·$")
+            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t])
+            .t(" $= 0$, the contact points leave together along ")
+            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t]);
+    }
+    if (c.dim == 2) {
+        for (int s : {1, -1}) {
+            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label);
+            r.note.t(s > 0 ? "slide along $+e_t$ ($u′_t > 0$)" : "slide along $-e_t$ ($u′_t < 0$)");
+            law.push_back(r);
+        }
+    } else {
+        for (std::size_t t = 0; t < c.slide_law.size(); ++t) {
+            math_row r = row(c.slide_law[t].lhs, c.slide_law[t].rhs, c.slide_law[t].label);
+            if (t == 0)
+                r.note.t(
+                    "slide along the unit tangent $~d = (d_t, d_b) = ~u′_t/|~u′_t|$ (components along $e_t$, $e_b$)");
+            law.push_back(r);
+        }
+    }
+    return law;
+}
+
 section equations_section(const context &c)
 {
     const problem &p = c.p;
@@ -118,77 +196,13 @@ section equations_section(const context &c)
                 r.note.w("component along " + p.axes[static_cast<std::size_t>(eq.component)]);
             rows.push_back(r);
         }
-        std::string title = why == principle::linear_impulse ? "Linear impulse-momentum" : principle_name(why);
-        title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
-        const std::size_t i = first.bodies.empty() ? c.i1 : first.bodies[0];
-        const std::string who = display_name(p.bodies[i]);
-        const pivot *pv = p.pivot_of(i);
-        paragraph q;
-        q.w(title + ": ");
-        switch (why) {
-        case principle::linear_impulse:
-            q.w("the change of linear momentum of " + who + " equals the impulses on it: ")
-                .t(i == c.i1 ? "$-~P = -(N e_n + ~F)$" : "$~P = N e_n + ~F$")
-                .t(pv ? " and the pivot impulse $~R$" : "")
-                .w("; with friction the tangential components change too.");
-            break;
-        case principle::angular_momentum:
-            if (pv)
-                q.t("about the pivot $E$, fixed in the inertial frame, the pivot impulse has no moment: the change of "
-                    "angular "
-                    "momentum of ")
-                    .w(who)
-                    .t(" about $E$ is the moment $(O - E) × ~P$ of the contact impulse, its friction part included.");
-            else
-                q.w("the whole contact impulse on " + who)
-                    .t(", normal and friction part alike, acts at $O$, which is fixed in the inertial frame: it has no "
-                       "moment "
-                       "about $O$, so the angular momentum of ")
-                    .w(who)
-                    .t(" about $O$ is conserved, with friction as without.");
-            break;
-        case principle::pivot_fixed:
-            q.t("the pivot $E$ of ").w(who).t(" does not move: $~v′_C + ~ω′ × ~r_CE = 0$.");
-            break;
-        case principle::restitution:
-            q.t("Newton's coefficient of restitution: the normal velocity of separation of the contact points is $e$ "
-                "times "
-                "their velocity of approach.");
-            break;
-        default:
-            q.w(first.reason + ".");
-        }
-        sec.para(q);
+        sec.para(friction_group_why(c, first, why));
         sec.rows(rows);
         k = j;
     }
     sec.para(paragraph().w("Coulomb's law gives the remaining " + std::to_string(c.tangents.size()) +
                            (c.tangents.size() == 1 ? " equation" : " equations") + ", different in each regime:"));
-    std::vector<math_row> law;
-    for (std::size_t t = 0; t < c.stick_law.size(); ++t) {
-        const equation &eq = c.stick_law[t];
-        law.push_back(row(eq.lhs, eq.rhs, eq.label, ""));
-        law.back()
-            .note.t("stick: $(~v′_B - ~v′_A)·$")
-            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t])
-            .t(" $= 0$, the contact points leave together along ")
-            .n("e_" + c.tnames[t], "\\hat{\\underline{e}}_" + c.tnames[t]);
-    }
-    if (c.dim == 2) {
-        for (int s : {1, -1}) {
-            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label);
-            r.note.t(s > 0 ? "slide along $+e_t$ ($u′_t > 0$)" : "slide along $-e_t$ ($u′_t < 0$)");
-            law.push_back(r);
-        }
-    } else {
-        for (std::size_t t = 0; t < c.slide_law.size(); ++t) {
-            math_row r = row(c.slide_law[t].lhs, c.slide_law[t].rhs, c.slide_law[t].label);
-            if (t == 0)
-                r.note.t(
-                    "slide along the unit tangent $~d = (d_t, d_b) = ~u′_t/|~u′_t|$ (components along $e_t$, $e_b$)");
-            law.push_back(r);
-        }
-    }
+    std::vector<math_row> law = coulomb_law_rows(c);
     sec.rows(law);
     const std::size_t n_eq = c.eqs.size() + c.tangents.size();
     std::size_t n_unknowns = c.d.count_unknowns() + c.F.size() + (c.d.impulse_form ? 0 : 1);
@@ -305,6 +319,70 @@ ex with_one_plus_e(const ex &x, const ex &e, const ex &un)
     return f(x);
 }
 
+// The rolling remark: a body of infinite mass at rest, so the other body's contact point leaves at rest.
+void rolling_remark(section &sec, const context &c)
+{
+    for (std::size_t i : {c.i1, c.i2}) {
+        const std::size_t other = i == c.i1 ? c.i2 : c.i1;
+        const body &b = c.p.bodies[i];
+        if (b.infinite_mass && b.at_rest() && !c.p.bodies[other].particle) {
+            paragraph q;
+            q.w("Here " + body_ref(c.p, i))
+                .t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
+                .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ")
+                .ref(c.stick_law[0].label)
+                .w(": ");
+            q.m(c.stick_law[0].lhs).t(" $= 0$.");
+            sec.para(q);
+        }
+    }
+}
+
+// The planar threshold μ* in the contact frame, and with this problem's K and inputs when short.
+void planar_threshold_rows(const context &c, const regime_case &st, const ex &mu_star, std::vector<math_row> &thr)
+{
+    planar_frame k;
+    const ex one_e = 1 + c.e;
+    // D_K F = (1 + e) K_tn u_n - K_nn u_t,  D_K N = K_tn u_t - (1 + e) K_tt u_n
+    const ex num = k.Knn * k.ut - one_e * k.Ktn * k.un, den = k.Ktn * k.ut - one_e * k.Ktt * k.un;
+    thr.push_back(
+        formula_row("μ* = |K_nn u_t - (1 + e) K_tn u_n| / (K_tn u_t - (1 + e) K_tt u_n)",
+                    "\\mu^{*} = \\frac{|K_{nn} u_t - (1 + e) K_{tn} u_n|}{K_{tn} u_t - (1 + e) K_{tt} u_n}",
+                    "in the contact frame: $K_tt = e_t·K e_t$, $K_tn = e_t·K e_n$, $K_nn = e_n·K e_n$, $u_t = ~u·e_t$, "
+                    "$u_n = ~u·e_n$ ($D_K$ cancels; $N > 0$ when sticking is possible)"));
+    // With this problem's K when its entries are small.
+    const vec3 &et = c.d.t_dir;
+    const ex kt = c.kform(et, et), ktn = c.kform(et, c.n), kn = c.kform(c.n, c.n);
+    const std::vector<step_role> roles = {step_role::contact_response};
+    ex kvals[3] = {kt, ktn, kn};
+    bool small = true;
+    for (ex &v : kvals) {
+        v = tidy(st.sol.expand_steps(v));
+        small = small && printable(v, 16);
+    }
+    if (small) {
+        ex r = (kvals[2] * k.ut - one_e * kvals[1] * k.un) / (kvals[1] * k.ut - one_e * kvals[0] * k.un);
+        r = factor(normal(r));
+        const ex shown = abs_split(r, c.e);
+        if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero()) {
+            math_row mr = row(mu_star, shown);
+            mr.note.t("with this problem's $K$: $K_tt$ = ")
+                .m(kvals[0])
+                .t(", $K_tn$ = ")
+                .m(kvals[1])
+                .t(", $K_nn$ = ")
+                .m(kvals[2]);
+            thr.push_back(mr);
+        }
+    }
+    ex ratio = tidy(st.sol.expand_steps(st.tangential_scalar / st.sol.normal_impulse));
+    if (!is_constant(ratio) && printable(ratio, 60)) { // factor() is slow on large rational functions
+        const ex shown = abs_split(factor(normal(ratio)), c.e);
+        if (printable(shown, 80) && short_denominator(shown))
+            thr.push_back(row(mu_star, shown, "", "in the inputs"));
+    }
+}
+
 section stick_section(const context &c)
 {
     const regime_case &st = c.stick();
@@ -330,21 +408,7 @@ section stick_section(const context &c)
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
             unknowns.push_back(srow(c.d.unknowns[k].sym, st.sol.unknown_values.op(k).rhs(), c.d.unknowns[k].meaning));
     sec.rows(unknowns);
-    // The rolling remark: B leaves with A's tangential velocity.
-    for (std::size_t i : {c.i1, c.i2}) {
-        const std::size_t other = i == c.i1 ? c.i2 : c.i1;
-        const body &b = c.p.bodies[i];
-        if (b.infinite_mass && b.at_rest() && !c.p.bodies[other].particle) {
-            paragraph q;
-            q.w("Here " + body_ref(c.p, i))
-                .t(" is at rest and cannot move, so $~u′_t = 0$ means that the contact point of ")
-                .w(body_ref(c.p, other) + " leaves at rest: it rolls without slipping, equation ")
-                .ref(c.stick_law[0].label)
-                .w(": ");
-            q.m(c.stick_law[0].lhs).t(" $= 0$.");
-            sec.para(q);
-        }
-    }
+    rolling_remark(sec, c);
     sec.para(paragraph().t("Test: the stick impulse must lie inside the friction cone, $|F| ≤ μN$:"));
     std::vector<math_row> conds;
     for (const regime_condition &rc : st.conditions) {
@@ -365,48 +429,8 @@ section stick_section(const context &c)
         sec.para(paragraph().t(
             "Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
             "not a threshold."));
-    if (c.dim == 2) {
-        planar_frame k;
-        const ex one_e = 1 + c.e;
-        // D_K F = (1 + e) K_tn u_n - K_nn u_t,  D_K N = K_tn u_t - (1 + e) K_tt u_n
-        const ex num = k.Knn * k.ut - one_e * k.Ktn * k.un, den = k.Ktn * k.ut - one_e * k.Ktt * k.un;
-        thr.push_back(formula_row(
-            "μ* = |K_nn u_t - (1 + e) K_tn u_n| / (K_tn u_t - (1 + e) K_tt u_n)",
-            "\\mu^{*} = \\frac{|K_{nn} u_t - (1 + e) K_{tn} u_n|}{K_{tn} u_t - (1 + e) K_{tt} u_n}",
-            "in the contact frame: $K_tt = e_t·K e_t$, $K_tn = e_t·K e_n$, $K_nn = e_n·K e_n$, $u_t = ~u·e_t$, "
-            "$u_n = ~u·e_n$ ($D_K$ cancels; $N > 0$ when sticking is possible)"));
-        // With this problem's K when its entries are small.
-        const vec3 &et = c.d.t_dir;
-        const ex kt = c.kform(et, et), ktn = c.kform(et, c.n), kn = c.kform(c.n, c.n);
-        const std::vector<step_role> roles = {step_role::contact_response};
-        ex kvals[3] = {kt, ktn, kn};
-        bool small = true;
-        for (ex &v : kvals) {
-            v = tidy(st.sol.expand_steps(v));
-            small = small && printable(v, 16);
-        }
-        if (small) {
-            ex r = (kvals[2] * k.ut - one_e * kvals[1] * k.un) / (kvals[1] * k.ut - one_e * kvals[0] * k.un);
-            r = factor(normal(r));
-            const ex shown = abs_split(r, c.e);
-            if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero()) {
-                math_row mr = row(mu_star, shown);
-                mr.note.t("with this problem's $K$: $K_tt$ = ")
-                    .m(kvals[0])
-                    .t(", $K_tn$ = ")
-                    .m(kvals[1])
-                    .t(", $K_nn$ = ")
-                    .m(kvals[2]);
-                thr.push_back(mr);
-            }
-        }
-        ex ratio = tidy(st.sol.expand_steps(st.tangential_scalar / st.sol.normal_impulse));
-        if (!is_constant(ratio) && printable(ratio, 60)) { // factor() is slow on large rational functions
-            const ex shown = abs_split(factor(normal(ratio)), c.e);
-            if (printable(shown, 80) && short_denominator(shown))
-                thr.push_back(row(mu_star, shown, "", "in the inputs"));
-        }
-    }
+    if (c.dim == 2)
+        planar_threshold_rows(c, st, mu_star, thr);
     sec.rows(thr);
     if (c.can_stick())
         sec.para(paragraph().t(

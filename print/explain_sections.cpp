@@ -351,6 +351,93 @@ section detail::solution_section(const derivation &d, const solution &s)
 namespace
 {
 
+// In the contact frame, the centre-of-mass velocities before and after impact, with notes.
+void frame_velocity_rows(section &sec, const derivation &d, const solution &s, const ex &values, const lst &steps)
+{
+    const problem &p = d.prob;
+    std::vector<std::pair<std::string, vec3>> dirs;
+    dirs.push_back({"t", d.e_t});
+    dirs.push_back({"n", d.n_hat});
+    if (p.dimension == 3)
+        dirs.push_back({"b", d.e_b});
+    std::vector<math_row> frame_rows;
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        if (i != p.contact.body1 && i != p.contact.body2)
+            continue;
+        const vec3 v0 = subs(p.bodies[i].velocity, values);
+        vec3 v1 = subs(s.after[i].velocity, values);
+        for (ex &c : v1)
+            c = c.subs(steps);
+        for (const auto &[axis, e] : dirs) {
+            // roots merged before and after normal(), which keeps sqrt(3) sqrt(6) apart
+            auto exact = [](const ex &x) { return surd_form(impactgen::tidy(merge_roots(tidy_expand(x)))); };
+            const ex before = exact(dot(v0, e)), after = exact(dot(v1, e));
+            const std::string &L = p.bodies[i].label;
+            math_row r = row(show(quantity_name("v", axis, L, false), quantity_tex("v", axis, L, false)), before);
+            math_row ra = row(show(quantity_name("v", axis, L, true), quantity_tex("v", axis, L, true)), after);
+            // "≈ 0.914 m/s -- body 1 (ball), before", as the energies below
+            const std::string u = unit(p, quantity::velocity);
+            auto note = [&](const ex &value, const char *when) {
+                const std::string dec = decimal_note(value);
+                return (dec.empty() ? "" : dec + u + " -- ") + body_ref(p, i) + when +
+                       (dec.empty() && !u.empty() ? " (in" + u + ")" : "");
+            };
+            r.note.w(note(before, ", before"));
+            ra.note.w(note(after, ", after"));
+            if (axis == "t" || axis == "b")
+                ra.note.t(vanishes_identically(s, after - before, "a tangential velocity")
+                              ? ": unchanged, no impulse along it"
+                              : "");
+            frame_rows.push_back(r);
+            frame_rows.push_back(ra);
+        }
+    }
+    sec.para(
+        paragraph().t("In the contact frame, the centre-of-mass velocities before and after impact ($v_t = ~v_C·e_t$, "
+                      "$v_n = ~v_C·e_n$):"));
+    sec.rows(frame_rows);
+}
+
+// The kinetic energy before and after, with the loss from the steps.
+void energy_rows(section &sec, const derivation &d, const solution &s, const ex &values, const lst &steps)
+{
+    const ex before = impactgen::tidy(s.energy_before.subs(values));
+    const ex lost = impactgen::tidy(s.energy_lost.subs(values).subs(steps));
+    if (is_a<numeric>(before) && is_a<numeric>(lost)) {
+        const ex after = impactgen::tidy(before - lost);
+        math_row t0 = row(show("T", "T"), before, "", decimal_note(before));
+        math_row t1 = row(show("T'", "T'"), after, "", decimal_note(after));
+        math_row tl = row(show("T_lost", "T_{\\mathrm{lost}}"), lost, "", decimal_note(lost));
+        for (math_row *r : {&t0, &t1, &tl})
+            r->note.w(unit(d.prob, quantity::energy));
+        t0.note.w(" -- kinetic energy before impact");
+        t1.note.w(" -- after impact");
+        tl.note.w(" -- lost");
+        sec.para(paragraph().w("The kinetic energy of the bodies of finite mass:"));
+        sec.rows({t0, t1, tl});
+    }
+}
+
+// Whether every equation holds with the numbers substituted back.
+void residuals_verdict(section &sec, const derivation &d, const solution &s, const ex &values)
+{
+    bool all_zero = true, all_small = true;
+    for (const ex &r : residuals(d, s, values)) {
+        if (r.is_zero())
+            continue;
+        all_zero = false;
+        // a 60-digit float residual of an irrational problem: zero to 40 digits
+        const bool small = is_a<numeric>(r) && abs(ex_to<numeric>(r)) < numeric(1, 10).power(40);
+        all_small = all_small && small;
+    }
+    const std::string range = "(1)-(" + d.equations.back().label + ")";
+    sec.para(paragraph().w(all_zero    ? "Substituted back, every equation " + range + " holds exactly."
+                           : all_small ? "Substituted back, every equation " + range +
+                                             " holds to 40 digits (evaluated with 60-digit floats: with these "
+                                             "irrational numbers exactness is not decided)."
+                                       : "Substituted back, SOME EQUATION DOES NOT HOLD: this is a bug."));
+}
+
 // Exact numbers for every step and unknown, with the equations as numbers.
 void numbers_walk(section &sec, const derivation &d, const solution &s, const ex &values)
 {
@@ -395,82 +482,12 @@ void numbers_walk(section &sec, const derivation &d, const solution &s, const ex
 
     // Contact-frame components, where the frame is not the world's: the smooth-contact
     // equations then read v′_t = v_t, as in the notes.
-    if (!d.frame_is_world && d.prob.axes[0] != "t") {
-        const problem &p = d.prob;
-        std::vector<std::pair<std::string, vec3>> dirs;
-        dirs.push_back({"t", d.e_t});
-        dirs.push_back({"n", d.n_hat});
-        if (p.dimension == 3)
-            dirs.push_back({"b", d.e_b});
-        std::vector<math_row> frame_rows;
-        for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-            if (i != p.contact.body1 && i != p.contact.body2)
-                continue;
-            const vec3 v0 = subs(p.bodies[i].velocity, values);
-            vec3 v1 = subs(s.after[i].velocity, values);
-            for (ex &c : v1)
-                c = c.subs(steps);
-            for (const auto &[axis, e] : dirs) {
-                // roots merged before and after normal(), which keeps sqrt(3) sqrt(6) apart
-                auto exact = [](const ex &x) { return surd_form(impactgen::tidy(merge_roots(tidy_expand(x)))); };
-                const ex before = exact(dot(v0, e)), after = exact(dot(v1, e));
-                const std::string &L = p.bodies[i].label;
-                math_row r = row(show(quantity_name("v", axis, L, false), quantity_tex("v", axis, L, false)), before);
-                math_row ra = row(show(quantity_name("v", axis, L, true), quantity_tex("v", axis, L, true)), after);
-                // "≈ 0.914 m/s -- body 1 (ball), before", as the energies below
-                const std::string u = unit(p, quantity::velocity);
-                auto note = [&](const ex &value, const char *when) {
-                    const std::string dec = decimal_note(value);
-                    return (dec.empty() ? "" : dec + u + " -- ") + body_ref(p, i) + when +
-                           (dec.empty() && !u.empty() ? " (in" + u + ")" : "");
-                };
-                r.note.w(note(before, ", before"));
-                ra.note.w(note(after, ", after"));
-                if (axis == "t" || axis == "b")
-                    ra.note.t(vanishes_identically(s, after - before, "a tangential velocity")
-                                  ? ": unchanged, no impulse along it"
-                                  : "");
-                frame_rows.push_back(r);
-                frame_rows.push_back(ra);
-            }
-        }
-        sec.para(paragraph().t(
-            "In the contact frame, the centre-of-mass velocities before and after impact ($v_t = ~v_C·e_t$, "
-            "$v_n = ~v_C·e_n$):"));
-        sec.rows(frame_rows);
-    }
+    if (!d.frame_is_world && d.prob.axes[0] != "t")
+        frame_velocity_rows(sec, d, s, values, steps);
 
     // The energy before and after, with the loss from the steps.
-    const ex before = impactgen::tidy(s.energy_before.subs(values));
-    const ex lost = impactgen::tidy(s.energy_lost.subs(values).subs(steps));
-    if (is_a<numeric>(before) && is_a<numeric>(lost)) {
-        const ex after = impactgen::tidy(before - lost);
-        math_row t0 = row(show("T", "T"), before, "", decimal_note(before));
-        math_row t1 = row(show("T'", "T'"), after, "", decimal_note(after));
-        math_row tl = row(show("T_lost", "T_{\\mathrm{lost}}"), lost, "", decimal_note(lost));
-        for (math_row *r : {&t0, &t1, &tl})
-            r->note.w(unit(d.prob, quantity::energy));
-        t0.note.w(" -- kinetic energy before impact");
-        t1.note.w(" -- after impact");
-        tl.note.w(" -- lost");
-        sec.para(paragraph().w("The kinetic energy of the bodies of finite mass:"));
-        sec.rows({t0, t1, tl});
-    }
-    bool all_zero = true, all_small = true;
-    for (const ex &r : residuals(d, s, values)) {
-        if (r.is_zero())
-            continue;
-        all_zero = false;
-        // a 60-digit float residual of an irrational problem: zero to 40 digits
-        const bool small = is_a<numeric>(r) && abs(ex_to<numeric>(r)) < numeric(1, 10).power(40);
-        all_small = all_small && small;
-    }
-    const std::string range = "(1)-(" + d.equations.back().label + ")";
-    sec.para(paragraph().w(all_zero    ? "Substituted back, every equation " + range + " holds exactly."
-                           : all_small ? "Substituted back, every equation " + range +
-                                             " holds to 40 digits (evaluated with 60-digit floats: with these "
-                                             "irrational numbers exactness is not decided)."
-                                       : "Substituted back, SOME EQUATION DOES NOT HOLD: this is a bug."));
+    energy_rows(sec, d, s, values, steps);
+    residuals_verdict(sec, d, s, values);
 }
 
 // The centre of percussion of a pinned body in plane motion: where the contact
@@ -494,16 +511,18 @@ void percussion(section &sec, const derivation &d, const solution &s)
         if (c.is_zero())
             continue;
         const ex star = impactgen::tidy(IE / (b.mass * c));
-        sec.para(
-            paragraph()
-                .t("Centre of percussion of ")
-                .w(body_ref(p, pv.body))
-                .t(": about its pivot $E$ the angular impulse gives $I_E Δω = s N$ and its momentum along $e_n$ gives "
-                   "$m c Δω = ± N + R_n$, with $c$ and $s$ the lever arms of $C$ and of the impulse about $E$. So "
-                   "the pin takes no impulse along $e_n$ when the impulse acts at the distance $s* = I_E/(m c)$ from "
-                   "$E$ "
-                   "(the centre of percussion; its part along $e_t$, $m Δω (e_b × ~r_EC)·e_t$, is zero when the line "
-                   "from $E$ to $C$ is perpendicular to $e_n$):"));
+        sec.para(paragraph()
+                     .t("Centre of percussion of ")
+                     .w(body_ref(p, pv.body))
+                     .t(": about its pivot $E$ the angular impulse gives $I_E Δω = s N$ and its momentum along $e_n$ "
+                        "gives "
+                        "$m c Δω = ± N + R_n$, with $c$ and $s$ the lever arms of $C$ and of the impulse about $E$. So "
+                        "the pin takes no impulse along $e_n$ when the impulse acts at the distance $s* = I_E/(m c)$ "
+                        "from "
+                        "$E$ "
+                        "(the centre of percussion; its part along $e_t$, $m Δω (e_b × ~r_EC)·e_t$, is zero when the "
+                        "line "
+                        "from $E$ to $C$ is perpendicular to $e_n$):"));
         math_row rc = note_row("c = ((C - E) × e_n)·e_b",
                                "c = ((C - E) \\times \\hat{\\underline{e}}_n)\\cdot\\hat{\\underline{e}}_b", c);
         math_row rs = note_row("s = ((O - E) × e_n)·e_b",
@@ -618,38 +637,10 @@ void numbers_part(section &sec, const derivation &d, const solution &s, const wo
     }
 }
 
-} // namespace
-
-section detail::checks_section(const derivation &d, const solution &s, const worked_example *example)
+// The energy checks: the loss as the work of the contact impulse, its textbook form, and at e = 1.
+void energy_checks(section &sec, const problem &p, const derivation &de, const solution &se, const symbol &e_sym,
+                   const ex &u, const step *u_step, const ex &kk, const ex &lost, const std::vector<step_role> &core)
 {
-    const problem &p = d.prob;
-    section sec{"5. Checks", {}};
-
-    // A copy of the problem with a symbol for e, to vary e.
-    ex e_val = p.restitution;
-    symbol e_sym = is_a<symbol>(e_val) ? ex_to<symbol>(e_val) : symbol_named("e");
-    problem pe = p;
-    pe.restitution = e_sym;
-    derivation de = is_a<symbol>(e_val) ? d : derive(pe);
-    solution se = is_a<symbol>(e_val) ? s : solve(de);
-    if (!is_a<symbol>(e_val))
-        sec.para(paragraph()
-                     .t("To vary $e$, the checks below keep $e$ as a symbol; the problem has $e$ = ")
-                     .m(e_val)
-                     .w("."));
-
-    const std::vector<step_role> core = {step_role::energy_lost, step_role::normal_impulse,
-                                         step_role::contact_inverse_mass, step_role::approach_velocity};
-    ex lost = expand_some(se, se.energy_lost, core);
-    const step *u_step = find_step(se, step_role::approach_velocity);
-    const step *k_step = find_step(se, step_role::contact_inverse_mass);
-    const step *N_step = find_step(se, step_role::normal_impulse);
-    ex N_val = N_step ? N_step->value : ex(se.normal_impulse);
-    ex u = u_step ? ex(u_step->sym) : ex(0);
-    // k as N's formula has it: w_1 + w_2, or w_1 alone against an infinite mass.
-    ex kk = k_step ? ex(k_step->sym) : (u_step ? impactgen::tidy(-(1 + e_sym) * u / N_val) : ex(0));
-
-    // Energy.
     sec.para(paragraph().w("Kinetic energy lost (bodies of finite mass), the work of the contact impulse:"));
     std::vector<math_row> energy;
     const step *lost_step = find_step(se, step_role::energy_lost);
@@ -712,6 +703,41 @@ section detail::checks_section(const derivation &d, const solution &s, const wor
         sec.para(paragraph().t(
             "At $e = 1$ the loss is not zero: a moving body of infinite mass does work on the other body, and "
             "its own energy is not counted (see problem-format: that is physics, not an error)."));
+}
+
+} // namespace
+
+section detail::checks_section(const derivation &d, const solution &s, const worked_example *example)
+{
+    const problem &p = d.prob;
+    section sec{"5. Checks", {}};
+
+    // A copy of the problem with a symbol for e, to vary e.
+    ex e_val = p.restitution;
+    symbol e_sym = is_a<symbol>(e_val) ? ex_to<symbol>(e_val) : symbol_named("e");
+    problem pe = p;
+    pe.restitution = e_sym;
+    derivation de = is_a<symbol>(e_val) ? d : derive(pe);
+    solution se = is_a<symbol>(e_val) ? s : solve(de);
+    if (!is_a<symbol>(e_val))
+        sec.para(paragraph()
+                     .t("To vary $e$, the checks below keep $e$ as a symbol; the problem has $e$ = ")
+                     .m(e_val)
+                     .w("."));
+
+    const std::vector<step_role> core = {step_role::energy_lost, step_role::normal_impulse,
+                                         step_role::contact_inverse_mass, step_role::approach_velocity};
+    ex lost = expand_some(se, se.energy_lost, core);
+    const step *u_step = find_step(se, step_role::approach_velocity);
+    const step *k_step = find_step(se, step_role::contact_inverse_mass);
+    const step *N_step = find_step(se, step_role::normal_impulse);
+    ex N_val = N_step ? N_step->value : ex(se.normal_impulse);
+    ex u = u_step ? ex(u_step->sym) : ex(0);
+    // k as N's formula has it: w_1 + w_2, or w_1 alone against an infinite mass.
+    ex kk = k_step ? ex(k_step->sym) : (u_step ? impactgen::tidy(-(1 + e_sym) * u / N_val) : ex(0));
+
+    // Energy.
+    energy_checks(sec, p, de, se, e_sym, u, u_step, kk, lost, core);
 
     // Limits of e.
     ex N = se.normal_impulse;

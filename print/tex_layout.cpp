@@ -174,6 +174,68 @@ bool contains_fraction(const std::string &s)
     return s.find("\\frac") != std::string::npos;
 }
 
+// The width of the control word \name at i (i then past its arguments) added to w; \small scales the rest.
+void control_word_width(const std::string &s, std::size_t &i, const std::string &name, double &w, double &scale,
+                        bool text_mode)
+{
+    auto arg = [&] {
+        std::size_t end = skip_argument(s, i);
+        std::string a = argument_body(s, i, end);
+        i = end;
+        return a;
+    };
+    if (name == "frac" || name == "dfrac" || name == "tfrac") {
+        std::string top = arg(), bottom = arg();
+        w += std::max(tex_width(top, scale, false), tex_width(bottom, scale, false)) + 0.3 * scale;
+    } else if (name == "sqrt") {
+        w += 0.9 * scale + tex_width(arg(), scale, false);
+    } else if (name == "text" || name == "textrm" || name == "mbox" || name == "mathrm" || name == "operatorname" ||
+               name == "textit" || name == "emph") {
+        w += tex_width(arg(), scale, true);
+    } else if (name == "underline" || name == "hat" || name == "bar" || name == "vec" || name == "overline" ||
+               name == "mathbf" || name == "mathit" || name == "boldsymbol" || name == "tilde" || name == "dot" ||
+               name == "ddot" || name == "widehat" || name == "mathcal") {
+        w += tex_width(arg(), scale, text_mode) + 0.05 * scale;
+    } else if (name == "left" || name == "right" || name == "bigl" || name == "bigr" || name == "Bigl" ||
+               name == "Bigr") {
+        std::size_t end = skip_argument(s, i);
+        const bool null = s.compare(i, end - i, ".") == 0;
+        i = end;
+        w += scale * (null ? 0.12 : 0.62);
+    } else if (name == "quad") {
+        w += scale;
+    } else if (name == "qquad") {
+        w += 2 * scale;
+    } else if (name == "cdot" || name == "ldots" || name == "cdots") {
+        w += 0.75 * scale;
+    } else if (name == "times" || name == "pm" || name == "mp" || name == "setminus") {
+        w += 1.24 * scale;
+    } else if (name == "le" || name == "ge" || name == "leq" || name == "geq" || name == "ne" || name == "neq" ||
+               name == "to" || name == "approx" || name == "equiv" || name == "rightarrow" || name == "sim" ||
+               name == "mapsto" || name == "in" || name == "propto" || name == "simeq") {
+        w += 1.34 * scale;
+    } else if (name == "tag" || name == "label" || name == "eqref" || name == "ref") {
+        arg(); // tags are measured by the caller
+        if (name == "eqref" || name == "ref")
+            w += 2 * scale;
+    } else if (name == "small") {
+        scale *= 0.92; // to the end of the group
+    } else if (name == "allowbreak" || name == "displaystyle" || name == "textstyle" || name == "nonumber" ||
+               name == "notag" || name == "limits" || name == "nolimits" || name == "begin" || name == "end") {
+        if (name == "begin" || name == "end")
+            arg();
+    } else if (name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "log" || name == "ln" ||
+               name == "arctan" || name == "max" || name == "min" || name == "sgn" || name == "det") {
+        w += scale * (0.55 * static_cast<double>(name.size()) + 0.17); // upright, and a thin space
+    } else if (name == "infty" || name == "int" || name == "sum" || name == "prod") {
+        w += 1.1 * scale;
+    } else if (text_mode && name.size() > 4 && name.compare(0, 4, "text") == 0) {
+        w += 0.55 * scale; // \textbackslash
+    } else {
+        w += 0.72 * scale; // a Greek letter or another symbol
+    }
+}
+
 // The estimated width of TeX (math mode, or text mode inside \text{...}) at `scale`.
 double tex_width(const std::string &s, double scale, bool text_mode)
 {
@@ -202,63 +264,7 @@ double tex_width(const std::string &s, double scale, bool text_mode)
                 continue;
             }
             i = j;
-            auto arg = [&] {
-                std::size_t end = skip_argument(s, i);
-                std::string a = argument_body(s, i, end);
-                i = end;
-                return a;
-            };
-            if (name == "frac" || name == "dfrac" || name == "tfrac") {
-                std::string top = arg(), bottom = arg();
-                w += std::max(tex_width(top, scale, false), tex_width(bottom, scale, false)) + 0.3 * scale;
-            } else if (name == "sqrt") {
-                w += 0.9 * scale + tex_width(arg(), scale, false);
-            } else if (name == "text" || name == "textrm" || name == "mbox" || name == "mathrm" ||
-                       name == "operatorname" || name == "textit" || name == "emph") {
-                w += tex_width(arg(), scale, true);
-            } else if (name == "underline" || name == "hat" || name == "bar" || name == "vec" || name == "overline" ||
-                       name == "mathbf" || name == "mathit" || name == "boldsymbol" || name == "tilde" ||
-                       name == "dot" || name == "ddot" || name == "widehat" || name == "mathcal") {
-                w += tex_width(arg(), scale, text_mode) + 0.05 * scale;
-            } else if (name == "left" || name == "right" || name == "bigl" || name == "bigr" || name == "Bigl" ||
-                       name == "Bigr") {
-                std::size_t end = skip_argument(s, i);
-                const bool null = s.compare(i, end - i, ".") == 0;
-                i = end;
-                w += scale * (null ? 0.12 : 0.62);
-            } else if (name == "quad") {
-                w += scale;
-            } else if (name == "qquad") {
-                w += 2 * scale;
-            } else if (name == "cdot" || name == "ldots" || name == "cdots") {
-                w += 0.75 * scale;
-            } else if (name == "times" || name == "pm" || name == "mp" || name == "setminus") {
-                w += 1.24 * scale;
-            } else if (name == "le" || name == "ge" || name == "leq" || name == "geq" || name == "ne" ||
-                       name == "neq" || name == "to" || name == "approx" || name == "equiv" || name == "rightarrow" ||
-                       name == "sim" || name == "mapsto" || name == "in" || name == "propto" || name == "simeq") {
-                w += 1.34 * scale;
-            } else if (name == "tag" || name == "label" || name == "eqref" || name == "ref") {
-                arg(); // tags are measured by the caller
-                if (name == "eqref" || name == "ref")
-                    w += 2 * scale;
-            } else if (name == "small") {
-                scale *= 0.92; // to the end of the group
-            } else if (name == "allowbreak" || name == "displaystyle" || name == "textstyle" || name == "nonumber" ||
-                       name == "notag" || name == "limits" || name == "nolimits" || name == "begin" || name == "end") {
-                if (name == "begin" || name == "end")
-                    arg();
-            } else if (name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "log" ||
-                       name == "ln" || name == "arctan" || name == "max" || name == "min" || name == "sgn" ||
-                       name == "det") {
-                w += scale * (0.55 * static_cast<double>(name.size()) + 0.17); // upright, and a thin space
-            } else if (name == "infty" || name == "int" || name == "sum" || name == "prod") {
-                w += 1.1 * scale;
-            } else if (text_mode && name.size() > 4 && name.compare(0, 4, "text") == 0) {
-                w += 0.55 * scale; // \textbackslash
-            } else {
-                w += 0.72 * scale; // a Greek letter or another symbol
-            }
+            control_word_width(s, i, name, w, scale, text_mode);
             continue;
         }
         if (c == '{') {

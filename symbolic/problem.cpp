@@ -135,10 +135,102 @@ numeric exact_decimal(const std::string &lit, const std::string &where)
 // and registers every identifier as a shared symbol; returns the rewritten text.
 const std::string reserved_prefix = "impactgen_number_";
 
-std::string prepare_expression(const std::string &s, symtab &table, const std::string &where, lst &numbers)
+// The limits on one character of an expression: nesting depth, runs of signs, ASCII only.
+void check_character(char c, const std::string &where, int &depth, int &signs)
+{
+    if (c == '(') {
+        if (++depth > limits::expression_depth)
+            throw input_error(where + ": parentheses nested deeper than " + std::to_string(limits::expression_depth) +
+                              " levels");
+    } else if (c == ')') {
+        --depth;
+    }
+    if (c == '+' || c == '-') {
+        if (++signs > limits::sign_run)
+            throw input_error(where + ": more than " + std::to_string(limits::sign_run) +
+                              " signs in a row (+ or -) in the expression");
+    } else if (!std::isspace(static_cast<unsigned char>(c))) {
+        signs = 0;
+    }
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+        throw input_error(where + ": the expression contains the byte " + names::display_text(std::string(1, c)) +
+                          " (expressions are ASCII: numbers, symbols, + - * / ^ ( ) and functions)");
+}
+
+// An identifier at i: a known function called, a constant, or a symbol registered; appended to out, returns its end.
+std::size_t identifier_token(const std::string &s, std::size_t i, symtab &table, const std::string &where,
+                             std::string &out)
 {
     static const std::set<std::string> functions = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan",
                                                     "exp",  "log", "abs", "pow", "sinh", "cosh", "tanh"};
+    std::size_t j = i;
+    while (j < s.size() && is_ident_char(s[j]))
+        ++j;
+    std::string id = s.substr(i, j - i);
+    std::size_t k = j;
+    while (k < s.size() && std::isspace(static_cast<unsigned char>(s[k])))
+        ++k;
+    bool call = k < s.size() && s[k] == '(';
+    std::string lower = id;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (lower == "inf" || lower == "infinity" || lower == "nan")
+        throw input_error(
+            where + ": \"" + names::display_text(s) +
+            "\" is not a finite value (an infinite mass is written as the whole value: \"mass\": \"inf\")");
+    if (id.rfind(reserved_prefix, 0) == 0)
+        throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
+    if (call) {
+        if (!functions.count(id))
+            throw input_error(where + ": unknown function \"" + id + "\" in \"" + names::display_text(s) + "\"");
+        std::size_t a = k + 1;
+        while (a < s.size() && std::isspace(static_cast<unsigned char>(s[a])))
+            ++a;
+        if (a >= s.size() || s[a] == ')')
+            throw input_error(where + ": the function " + id + "() needs an argument");
+    } else if (id == "I") {
+        throw input_error(where + ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
+    } else if (id != "Pi" && id != "Euler" && id != "Catalan") {
+        table[id] = symbol_named(id);
+    }
+    out += id;
+    return j;
+}
+
+// A decimal literal at i, replaced by a placeholder symbol for its exact value; returns its end.
+std::size_t number_token(const std::string &s, std::size_t i, symtab &table, const std::string &where, lst &numbers,
+                         std::string &out)
+{
+    std::size_t j = i;
+    while (j < s.size() && (std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '.'))
+        ++j;
+    if (j < s.size() && (s[j] == 'e' || s[j] == 'E')) {
+        std::size_t k = j + 1;
+        if (k < s.size() && (s[k] == '+' || s[k] == '-'))
+            ++k;
+        if (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) {
+            j = k;
+            while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j])))
+                ++j;
+        }
+    }
+    // One number: at most one decimal point, and not run into a name or another number
+    // ("0.3.1", "0..3", "1e2e3", "2x" are refused, never read as something else).
+    const std::string token = s.substr(i, j - i);
+    if (std::count(token.begin(), token.end(), '.') > 1 || (j < s.size() && (is_ident_char(s[j]) || s[j] == '.')))
+        throw input_error(where + ": malformed number in \"" + names::display_text(s) +
+                          "\" (a number has at most one decimal point and an exponent like 1e-3, "
+                          "and a product is written with *)");
+    // A placeholder symbol: GiNaC's parser would evaluate 2^(2^40) eagerly.
+    std::string name = reserved_prefix + std::to_string(numbers.nops());
+    symbol placeholder(name);
+    table[name] = placeholder;
+    numbers.append(placeholder == exact_decimal(s.substr(i, j - i), where));
+    out += name;
+    return j;
+}
+
+std::string prepare_expression(const std::string &s, symtab &table, const std::string &where, lst &numbers)
+{
     if (s.size() > limits::expression_length)
         throw input_error(where + ": the expression is " + std::to_string(s.size()) + " characters long; at most " +
                           std::to_string(limits::expression_length) + " are read");
@@ -147,88 +239,12 @@ std::string prepare_expression(const std::string &s, symtab &table, const std::s
     int depth = 0, signs = 0;
     while (i < s.size()) {
         char c = s[i];
-        if (c == '(') {
-            if (++depth > limits::expression_depth)
-                throw input_error(where + ": parentheses nested deeper than " +
-                                  std::to_string(limits::expression_depth) + " levels");
-        } else if (c == ')') {
-            --depth;
-        }
-        if (c == '+' || c == '-') {
-            if (++signs > limits::sign_run)
-                throw input_error(where + ": more than " + std::to_string(limits::sign_run) +
-                                  " signs in a row (+ or -) in the expression");
-        } else if (!std::isspace(static_cast<unsigned char>(c))) {
-            signs = 0;
-        }
-        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
-            throw input_error(where + ": the expression contains the byte " + names::display_text(std::string(1, c)) +
-                              " (expressions are ASCII: numbers, symbols, + - * / ^ ( ) and functions)");
+        check_character(c, where, depth, signs);
         if (is_ident_start(c)) {
-            std::size_t j = i;
-            while (j < s.size() && is_ident_char(s[j]))
-                ++j;
-            std::string id = s.substr(i, j - i);
-            std::size_t k = j;
-            while (k < s.size() && std::isspace(static_cast<unsigned char>(s[k])))
-                ++k;
-            bool call = k < s.size() && s[k] == '(';
-            std::string lower = id;
-            std::transform(lower.begin(), lower.end(), lower.begin(),
-                           [](unsigned char ch) { return std::tolower(ch); });
-            if (lower == "inf" || lower == "infinity" || lower == "nan")
-                throw input_error(
-                    where + ": \"" + names::display_text(s) +
-                    "\" is not a finite value (an infinite mass is written as the whole value: \"mass\": \"inf\")");
-            if (id.rfind(reserved_prefix, 0) == 0)
-                throw input_error(where + ": names starting with \"" + reserved_prefix + "\" are reserved");
-            if (call) {
-                if (!functions.count(id))
-                    throw input_error(where + ": unknown function \"" + id + "\" in \"" + names::display_text(s) +
-                                      "\"");
-                std::size_t a = k + 1;
-                while (a < s.size() && std::isspace(static_cast<unsigned char>(s[a])))
-                    ++a;
-                if (a >= s.size() || s[a] == ')')
-                    throw input_error(where + ": the function " + id + "() needs an argument");
-            } else if (id == "I") {
-                throw input_error(where +
-                                  ": \"I\" is the imaginary unit in expressions; name the symbol otherwise (e.g. I1)");
-            } else if (id != "Pi" && id != "Euler" && id != "Catalan") {
-                table[id] = symbol_named(id);
-            }
-            out += id;
-            i = j;
+            i = identifier_token(s, i, table, where, out);
         } else if (std::isdigit(static_cast<unsigned char>(c)) ||
                    (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
-            std::size_t j = i;
-            while (j < s.size() && (std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '.'))
-                ++j;
-            if (j < s.size() && (s[j] == 'e' || s[j] == 'E')) {
-                std::size_t k = j + 1;
-                if (k < s.size() && (s[k] == '+' || s[k] == '-'))
-                    ++k;
-                if (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) {
-                    j = k;
-                    while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j])))
-                        ++j;
-                }
-            }
-            // One number: at most one decimal point, and not run into a name or another number
-            // ("0.3.1", "0..3", "1e2e3", "2x" are refused, never read as something else).
-            const std::string token = s.substr(i, j - i);
-            if (std::count(token.begin(), token.end(), '.') > 1 ||
-                (j < s.size() && (is_ident_char(s[j]) || s[j] == '.')))
-                throw input_error(where + ": malformed number in \"" + names::display_text(s) +
-                                  "\" (a number has at most one decimal point and an exponent like 1e-3, "
-                                  "and a product is written with *)");
-            // A placeholder symbol: GiNaC's parser would evaluate 2^(2^40) eagerly.
-            std::string name = reserved_prefix + std::to_string(numbers.nops());
-            symbol placeholder(name);
-            table[name] = placeholder;
-            numbers.append(placeholder == exact_decimal(s.substr(i, j - i), where));
-            out += name;
-            i = j;
+            i = number_token(s, i, table, where, numbers, out);
         } else {
             out += c;
             ++i;

@@ -214,25 +214,13 @@ void set_energies(const problem &p, solution &s)
     s.energy_after_direct = kinetic_energy(p, v1, w1);
 }
 
-solution solve(const derivation &d)
+// Each movable body's response at the contact and its effective inverse mass w along n, as steps.
+void side_responses(const derivation &d, step_builder &sb, smooth_side (&sides)[2])
 {
     const problem &p = d.prob;
-    if (p.has_friction()) {
-        std::ostringstream mu;
-        mu << p.contact.friction();
-        throw input_error(
-            (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
-            ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
-            ") is solved by 'impactgen solve' (numbers) and 'impactgen formulas'");
-    }
-    solution s;
-    step_builder sb(s, p);
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
     const vec3 &n = d.n_hat;
     const vec3 &O = p.contact.point;
-
-    smooth_side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};
 
     for (smooth_side &sd : sides) {
         const body &b = p.bodies[sd.index];
@@ -256,22 +244,14 @@ solution solve(const derivation &d)
             sb.add(step_role::effective_inverse_mass, sd.index, -1, -1, "w_" + L, "w_{" + label_subscript_tex(L) + "}",
                    sd.w, "effective inverse mass of " + display_name(b) + " at the contact point along n");
     }
+}
 
-    ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", tidy(dot(d.vB - d.vA, n)),
-                  "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
-    ex k_value = sides[0].w + sides[1].w;
-    const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
-    if (vanishes_identically(s, k_value, where + ": the effective inverse mass k = w_1 + w_2"))
-        throw input_error(where + ": no impulse can act: neither body can move along the normal at the contact point "
-                                  "(the line of impact passes through the pivot of a body that cannot otherwise move)");
-    const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
-    ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value,
-                  "effective inverse mass of the contact: " + wsum);
-    ex N = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + p.restitution) * u / k,
-                  "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
-    s.normal_impulse = N;
-
-    // Every body after impact.
+// Every body after impact, and the pivot impulses, from the normal impulse N.
+void bodies_after(const derivation &d, solution &s, const smooth_side (&sides)[2], const ex &N)
+{
+    const problem &p = d.prob;
+    const int dim = p.dimension;
+    const vec3 &n = d.n_hat;
     s.after.resize(p.bodies.size());
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
@@ -297,13 +277,14 @@ solution solve(const derivation &d)
                 s.pivot_impulses[k_index][2] = 0;
         }
     }
+}
 
-    s.unknown_values = unknown_values(d, s);
-    // Energy lost, through the work of the contact impulse: a body that moves
-    // under the impulse s N n at its contact point gains s N (a + a')/2 with
-    // a the normal velocity of that point, a' = a + s N w; pivot impulses act at
-    // fixed points and do no work.
-    // When both bodies move this is -N u - N^2 k / 2 = (1 - e^2) u^2 / (2 k).
+// The kinetic energy lost, as the work of the contact impulse on the bodies that move.
+ex work_of_impulse(const derivation &d, const smooth_side (&sides)[2], const ex &N, const ex &u, const ex &k)
+{
+    const problem &p = d.prob;
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const vec3 &n = d.n_hat;
     ex lost = 0;
     const vec3 *contact_velocity[2] = {&d.vA, &d.vB};
     if (!p.immovable(i1) && !p.immovable(i2)) {
@@ -317,6 +298,53 @@ solution solve(const derivation &d)
             lost -= sd.sign * N * a + N * N * sd.w / 2;
         }
     }
+    return lost;
+}
+
+solution solve(const derivation &d)
+{
+    const problem &p = d.prob;
+    if (p.has_friction()) {
+        std::ostringstream mu;
+        mu << p.contact.friction();
+        throw input_error(
+            (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
+            ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
+            ") is solved by 'impactgen solve' (numbers) and 'impactgen formulas'");
+    }
+    solution s;
+    step_builder sb(s, p);
+    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const vec3 &n = d.n_hat;
+
+    smooth_side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};
+
+    side_responses(d, sb, sides);
+
+    ex u = sb.add(step_role::approach_velocity, no_body, -1, -1, "u", "u", tidy(dot(d.vB - d.vA, n)),
+                  "normal velocity of approach (v_B - v_A).n before impact (negative for an impact)", true);
+    ex k_value = sides[0].w + sides[1].w;
+    const std::string where = p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact";
+    if (vanishes_identically(s, k_value, where + ": the effective inverse mass k = w_1 + w_2"))
+        throw input_error(where + ": no impulse can act: neither body can move along the normal at the contact point "
+                                  "(the line of impact passes through the pivot of a body that cannot otherwise move)");
+    const std::string wsum = "w_" + p.bodies[i1].label + " + w_" + p.bodies[i2].label;
+    ex k = sb.add(step_role::contact_inverse_mass, no_body, -1, -1, "k", "k", k_value,
+                  "effective inverse mass of the contact: " + wsum);
+    ex N = sb.add(step_role::normal_impulse, no_body, -1, -1, "N", "N", -(1 + p.restitution) * u / k,
+                  "normal impulse: integral of N dt, on body 2 along +n, on body 1 along -n", true);
+    s.normal_impulse = N;
+
+    // Every body after impact.
+    bodies_after(d, s, sides, N);
+
+    s.unknown_values = unknown_values(d, s);
+    // Energy lost, through the work of the contact impulse: a body that moves
+    // under the impulse s N n at its contact point gains s N (a + a')/2 with
+    // a the normal velocity of that point, a' = a + s N w; pivot impulses act at
+    // fixed points and do no work.
+    // When both bodies move this is -N u - N^2 k / 2 = (1 - e^2) u^2 / (2 k).
+    ex lost = work_of_impulse(d, sides, N, u, k);
     set_energies(p, s);
     s.energy_lost = sb.add(step_role::energy_lost, no_body, -1, -1, "T_lost", "T_{\\mathrm{lost}}", lost,
                            "kinetic energy lost, T - T' (bodies of finite mass)", true);
