@@ -210,7 +210,7 @@ private:
             auto it = pl_.inverse_of.find(x);
             return it == pl_.inverse_of.end() ? nullptr : &it->second;
         };
-        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        for (std::size_t i : {q.contact().body1, q.contact().body2}) {
             const body &b = q.bodies[i];
             if (b.infinite_mass)
                 continue;
@@ -228,7 +228,7 @@ private:
         // or about the pivot E), or in the engine convention of the inverse tensor given:
         // leading principal minors, block by block. Entries or minors that are numbers
         // were validated when the problem was read; the determinant is its own step below.
-        for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+        for (std::size_t i : {q.contact().body1, q.contact().body2}) {
             const body &b = q.bodies[i];
             if (q.dimension != 3 || b.particle || b.infinite_mass)
                 continue;
@@ -243,7 +243,7 @@ private:
         }
         // A normal with symbols: its squared length a normal number before anything divides
         // by the length; declared unit (--unit-normal), of length 1 within 2^-17.
-        const ex nn = tidy(dot(q.contact.normal, q.contact.normal));
+        const ex nn = tidy(dot(q.contact().normal, q.contact().normal));
         if (!is_constant(nn)) {
             if (pl_.deriv.normal_assumed_unit)
                 add_check(nn, check::near_one, "invalid_normal", "the normal is a unit vector: |n.n - 1| <= 2^-17");

@@ -118,12 +118,12 @@ void friction_writer::prepare(const problem &p)
     problem p0 = p;
     // --params mu with a numeric coefficient: mu becomes the parameter.
     if (o_.params_given && std::find(o_.params.begin(), o_.params.end(), "mu") != o_.params.end() &&
-        is_a<numeric>(p0.contact.friction())) {
+        is_a<numeric>(p0.contact().friction())) {
         bool taken = false;
         for (const symbol &s : p0.parameters())
             taken = taken || s.get_name() == "mu";
         if (!taken)
-            p0.contact.set_friction(symbol_named("mu", "\\mu"));
+            p0.contact().set_friction(symbol_named("mu", "\\mu"));
     }
     q_ = specialise(p0, o_);
     if (!q_.has_friction())
@@ -134,12 +134,12 @@ void friction_writer::prepare(const problem &p)
     // headers' order with their meanings, the outputs, the vector views, the state a
     // failed call returns.
     problem sq = q_;
-    sq.contact.set_friction(0);
+    sq.contact().set_friction(0);
     std::set<std::string> rest;
     for (const symbol &s : sq.parameters())
         rest.insert(s.get_name());
     exset fsyms;
-    collect_symbols(q_.contact.friction(), fsyms);
+    collect_symbols(q_.contact().friction(), fsyms);
     std::set<std::string> friction_only;
     for (const ex &s : fsyms)
         if (!rest.count(ex_to<symbol>(s).get_name()))
@@ -168,7 +168,7 @@ void friction_writer::order_inputs(const std::set<std::string> &friction_only)
     std::map<std::string, symbol> by_name;
     for (const symbol &s : q_.parameters())
         by_name.emplace(s.get_name(), s);
-    const std::string mu_meaning = is_a<symbol>(q_.contact.friction())
+    const std::string mu_meaning = is_a<symbol>(q_.contact().friction())
                                        ? "coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)"
                                        : "appears in the coefficient of friction mu";
     auto smooth_meaning = [&](const symbol &s) -> std::string {
@@ -221,8 +221,8 @@ void friction_writer::order_outputs()
         of.component = ov.component;
         of.smooth = k;
         if (ov.kind == output_value::normal_impulse)
-            of.meaning = "normal impulse P.n >= 0 along the unit normal: on " + q_.bodies[q_.contact.body2].name +
-                         " along +n, on " + q_.bodies[q_.contact.body1].name + " along -n";
+            of.meaning = "normal impulse P.n >= 0 along the unit normal: on " + q_.bodies[q_.contact().body2].name +
+                         " along +n, on " + q_.bodies[q_.contact().body1].name + " along -n";
         if (ov.kind == output_value::approach_velocity)
             of.meaning = "(v_B - v_A).n before impact along the unit normal (< 0)";
         smooth_index_[k] = outs_.size();
@@ -231,8 +231,8 @@ void friction_writer::order_outputs()
             for (int a = 0; a < dim; ++a) {
                 out_field tf;
                 tf.field = "tangential_impulse_" + q_.axes[static_cast<std::size_t>(a)];
-                tf.meaning = "tangential (friction) impulse P - (P.n) n on " + q_.bodies[q_.contact.body2].name +
-                             " (on " + q_.bodies[q_.contact.body1].name + " its opposite), world " +
+                tf.meaning = "tangential (friction) impulse P - (P.n) n on " + q_.bodies[q_.contact().body2].name +
+                             " (on " + q_.bodies[q_.contact().body1].name + " its opposite), world " +
                              q_.axes[static_cast<std::size_t>(a)];
                 tf.kind = output_value::normal_impulse;
                 tf.tangential = true;
@@ -270,7 +270,7 @@ void friction_writer::name_everything()
         nb_.pool.set_input_names(input_ident_);
         for (int a = 0; a < 3; ++a)
             nb_.output(scope_.claim("basis_n_" + q_.axes[static_cast<std::size_t>(a)]),
-                       q_.contact.normal[static_cast<std::size_t>(a)]);
+                       q_.contact().normal[static_cast<std::size_t>(a)]);
     }
     for (out_field &of : outs_)
         of.field = members_.claim(of.field);

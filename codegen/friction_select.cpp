@@ -252,7 +252,7 @@ void friction_writer::main_function()
         h_ << "        return detail::all_finite(" << join(input_names_, ", ")
            << ") ? detail::friction_status_of(why) : friction_status::non_finite_input;\n";
     h_ << "    };\n";
-    const ex &mu = q_.contact.friction();
+    const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
     const std::string mu_check = "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
                                  "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
@@ -273,7 +273,7 @@ void friction_writer::main_function()
     if (!mu_input && !mu_name_.empty())
         h_ << mu_check;
     h_ << "    // The regime that holds: its impulse (world axes, on "
-       << names::comment_text(q_.bodies[q_.contact.body2].name) << "), normal and tangential impulse.\n";
+       << names::comment_text(q_.bodies[q_.contact().body2].name) << "), normal and tangential impulse.\n";
     h_ << "    T " << sel_N_name_ << " = T(0);\n";
     for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
         h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";

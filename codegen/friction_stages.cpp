@@ -185,12 +185,12 @@ ex friction_writer::response_entry(const solution &s, int a, int b) const
 {
     const problem &q = q_;
     ex k = 0;
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         if (q.immovable(i))
             continue;
         const body &bd = q.bodies[i];
         const pivot *pv = q.pivot_of(i);
-        const vec3 lever = pv ? q.contact.point - pv->point : q.contact.point - bd.position;
+        const vec3 lever = pv ? q.contact().point - pv->point : q.contact().point - bd.position;
         if (!pv && a == b)
             k += 1 / bd.mass;
         if (bd.particle)
@@ -280,12 +280,12 @@ after_state friction_writer::state_after_selected() const
     vec3 P = zero_vec();
     for (std::size_t a = 0; a < sel_P_.size(); ++a)
         P[a] = sel_P_[a];
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.infinite_mass)
             continue;
-        const body_response br = response_of(q, i, q.contact.point);
-        const vec3 Pi = ex(i == q.contact.body1 ? -1 : 1) * P;
+        const body_response br = response_of(q, i, q.contact().point);
+        const vec3 Pi = ex(i == q.contact().body1 ? -1 : 1) * P;
         const mat3 inv = br.movable && !br.particle ? inverse_inertia(f_.shared, i) : zero_mat();
         const vec3 dw = spin_change(br, inv, Pi), dv = centre_velocity_change(br, Pi, dw);
         r.velocity[i] = b.velocity + dv;
@@ -308,11 +308,11 @@ ex friction_writer::energy_lost(const after_state &after) const
 {
     const problem &q = q_;
     ex work = 0;
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.infinite_mass || q.immovable(i))
             continue;
-        const ex s = i == q.contact.body1 ? ex(-1) : ex(1);
+        const ex s = i == q.contact().body1 ? ex(-1) : ex(1);
         const vec3 &v1 = after.velocity[i], &w1 = after.angular_velocity[i];
         if (q.pivot_of(i)) {
             const vec3 dv = v1 - b.velocity, dw = w1 - b.angular_velocity;
@@ -322,8 +322,8 @@ ex friction_writer::energy_lost(const after_state &after) const
         vec3 Pi = zero_vec();
         for (std::size_t a = 0; a < sel_P_.size(); ++a)
             Pi[a] = s * sel_P_[a];
-        const vec3 before = point_velocity(b, b.velocity, b.angular_velocity, q.contact.point);
-        const vec3 after = point_velocity(b, v1, w1, q.contact.point);
+        const vec3 before = point_velocity(b, b.velocity, b.angular_velocity, q.contact().point);
+        const vec3 after = point_velocity(b, v1, w1, q.contact().point);
         work += dot(Pi, before + after) / 2;
     }
     return -work;
@@ -383,7 +383,7 @@ void friction_writer::name_links()
     auto collect = [&](const ex &e) { collect_symbols(e, used); };
     for (const ex &v : c_values_)
         collect(v);
-    if (!is_a<numeric>(q_.contact.friction())) { // stage S is written only when mu may be 0
+    if (!is_a<numeric>(q_.contact().friction())) { // stage S is written only when mu may be 0
         collect(s_D0_);
         collect(s_N0_value_);
         for (const ex &v : s_P0_)
@@ -426,7 +426,7 @@ void friction_writer::build_stage_a()
         a_.bind_step(a_steps_[i], a_step_names_[i]);
     add_checks();
     // mu as a value (when it is not simply an input or a number)
-    const ex &mu = q.contact.friction();
+    const ex &mu = q.contact().friction();
     if (is_a<symbol>(mu) && input_ident_.count(mu)) {
         mu_name_ = input_ident_.at(mu);
     } else if (is_a<numeric>(mu)) {
@@ -504,7 +504,7 @@ void friction_writer::angle_outputs()
     for (std::size_t a = 0; a < 3; ++a) {
         u[a] = tidy(d_.vB[a] - d_.vA[a]);
         dir[a] = c.dir_c * f_.e_t[a] + c.dir_s * f_.e_b[a];
-        m[a] = d_.n_hat[a] - q.contact.friction() * dir[a];
+        m[a] = d_.n_hat[a] - q.contact().friction() * dir[a];
     }
     const vec3 Q = mul(K, m);
     const ex Lambda = dot(d_.n_hat, Q) * dot(u, dir) - (1 + q.restitution) * un * dot(Q, dir);
@@ -533,7 +533,7 @@ void friction_writer::angle_outputs()
     const ex Knn = Kdot(nh, nh), Knt = Kdot(f_.e_t, nh), Knb = Kdot(f_.e_b, nh);
     const ex Ktt = Kdot(f_.e_t, f_.e_t), Ktb = Kdot(f_.e_t, f_.e_b), Kbb = Kdot(f_.e_b, f_.e_b);
     const ex ut = dot(u, f_.e_t), ub = dot(u, f_.e_b);
-    const ex &mu = q.contact.friction();
+    const ex &mu = q.contact().friction();
     const ex M11 = a * Ktt + ut * Knt, M12 = a * Ktb + ut * Knb, M21 = a * Ktb + ub * Knt, M22 = a * Kbb + ub * Knb;
     const ex fast[7] = {mu * M11,
                         mu * M12,
@@ -555,7 +555,7 @@ void friction_writer::add_checks()
 {
     const problem &q = q_;
     a_.add_check(q.restitution, check::unit_interval, "invalid_restitution", "0 <= e <= 1");
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.infinite_mass)
             continue;
@@ -564,7 +564,7 @@ void friction_writer::add_checks()
             a_.add_check(b.inertia[2][2], check::positive, "invalid_inertia",
                          "moment of inertia of " + b.name + " > 0, finite");
     }
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (q.dimension != 3 || b.particle || b.infinite_mass)
             continue;
@@ -575,7 +575,7 @@ void friction_writer::add_checks()
         for (const auto &[minor, text] : positive_definite_minors(J, q.axes, false))
             a_.add_check(minor, check::positive, "invalid_inertia", what + text);
     }
-    const ex nn = tidy(dot(q.contact.normal, q.contact.normal));
+    const ex nn = tidy(dot(q.contact().normal, q.contact().normal));
     if (!is_constant(nn)) {
         if (d_.normal_assumed_unit)
             a_.add_check(nn, check::near_one, "invalid_normal", "the normal is a unit vector: |n.n - 1| <= 2^-17");

@@ -75,7 +75,7 @@ void friction_writer::result_struct()
             f.push_back("0.0L");
         }
         view_functions(tangential_view_, static_cast<int>(e.size()), 1, e, f,
-                       "tangential (friction) impulse on " + q_.bodies[q_.contact.body2].name + ", world axes");
+                       "tangential (friction) impulse on " + q_.bodies[q_.contact().body2].name + ", world axes");
     }
     h_ << "};\n\n";
     h_ << "/// The inputs of " << o_.name << " by name (the same as its parameters).\n";

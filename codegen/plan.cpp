@@ -66,10 +66,10 @@ std::vector<quantity> quantities(problem &p)
                          "angular velocity of " + b.name + " before impact, " + ax[c]});
     }
     for (int c = 0; c < dim; ++c)
-        q.push_back({"O_" + ax[c], &p.contact.point[c], "contact point, " + ax[c]});
+        q.push_back({"O_" + ax[c], &p.contact().point[c], "contact point, " + ax[c]});
     for (int c = 0; c < dim; ++c)
         q.push_back(
-            {"n_" + ax[c], &p.contact.normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
+            {"n_" + ax[c], &p.contact().normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
     for (pivot &pv : p.pivots)
         for (int c = 0; c < dim; ++c)
             q.push_back({"E_" + ax[c] + suffix(p.bodies[pv.body].label), &pv.point[c],
@@ -263,7 +263,7 @@ void rewrite_angular_response(plan &pl, std::size_t i, const mat3 &K)
     const problem &q = pl.prob;
     const body &b = q.bodies[i];
     solution &s = pl.sol;
-    vec3 tau = cross(q.contact.point - b.position, pl.deriv.n_hat);
+    vec3 tau = cross(q.contact().point - b.position, pl.deriv.n_hat);
     vec3 t;
     for (int c = 0; c < 3; ++c) {
         const step *ts = s.find(step_role::lever_arm, i, c);
@@ -357,7 +357,7 @@ void apply_inverse_inertia(plan &pl)
     const problem &q = pl.prob;
     bool any = false;
     lst subs;
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.particle || b.infinite_mass || q.pivot_of(i))
             continue;
@@ -374,7 +374,7 @@ void apply_inverse_mass(plan &pl)
 {
     const problem &q = pl.prob;
     lst subs;
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.infinite_mass || is_a<numeric>(b.mass))
             continue;
@@ -399,10 +399,10 @@ void order_inputs(plan &pl, const options &o)
     for (const quantity &x : all) {
         if (!is_a<symbol>(*x.value))
             continue;
-        const bool normal = x.value >= &q.contact.normal[0] && x.value <= &q.contact.normal[2];
+        const bool normal = x.value >= &q.contact().normal[0] && x.value <= &q.contact().normal[2];
         if (normal && o.unit_normal) // the promise --unit-normal makes, in the parameter's documentation
             meaning.emplace(*x.value, "contact normal, a unit vector (from body 1 into body 2; |n.n - 1| <= 2^-17), " +
-                                          q.axes[static_cast<std::size_t>(x.value - &q.contact.normal[0])]);
+                                          q.axes[static_cast<std::size_t>(x.value - &q.contact().normal[0])]);
         else
             meaning.emplace(*x.value, x.meaning);
     }
@@ -453,7 +453,7 @@ void plan_outputs(plan &pl)
     const solution &s = pl.sol;
     const auto &ax = q.axes;
     const int dim = q.dimension;
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (b.infinite_mass)
             continue;
@@ -470,7 +470,7 @@ void plan_outputs(plan &pl)
     // N is the impulse along the unit normal (as `impactgen solve` reports it), whatever |n| was given.
     pl.outputs.push_back({output_value::normal_impulse, 0, 0, "normal_impulse", s.normal_impulse,
                           "normal impulse, integral of N dt >= 0 along the unit normal: on " +
-                              q.bodies[q.contact.body2].name + " along +n, on " + q.bodies[q.contact.body1].name +
+                              q.bodies[q.contact().body2].name + " along +n, on " + q.bodies[q.contact().body1].name +
                               " along -n"});
     for (std::size_t k = 0; k < q.pivots.size(); ++k)
         for (int c = 0; c < dim; ++c)
@@ -567,7 +567,7 @@ void plan_groups(plan &pl)
             r.push_back(v[c]);
         return r;
     };
-    for (std::size_t i : {q.contact.body1, q.contact.body2}) {
+    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         const std::string s = suffix(b.label);
         if (!b.infinite_mass && !b.particle && dim == 3) {
@@ -585,8 +585,8 @@ void plan_groups(plan &pl)
         if (dim == 3)
             add_input("w" + s, 3, 1, vec(b.angular_velocity), "angular velocity of " + b.name + " before impact");
     }
-    add_input("O", dim, 1, vec(q.contact.point), "contact point");
-    add_input("n", dim, 1, vec(q.contact.normal), "contact normal");
+    add_input("O", dim, 1, vec(q.contact().point), "contact point");
+    add_input("n", dim, 1, vec(q.contact().normal), "contact normal");
     for (const pivot &pv : q.pivots)
         add_input("E" + suffix(q.bodies[pv.body].label), dim, 1, vec(pv.point), "pivot of " + q.bodies[pv.body].name);
 
@@ -651,7 +651,7 @@ void plan_unchanged(plan &pl)
 // option changes nothing); one of another length is refused.
 void check_unit_normal(const problem &q)
 {
-    const vec3 &n = q.contact.normal;
+    const vec3 &n = q.contact().normal;
     const ex nn = tidy(dot(n, n));
     if (!is_constant(nn))
         return;

@@ -280,19 +280,19 @@ exmap illustrative_values(const problem &p)
                 settle(known, b.inertia[r][c], r == c ? (planar ? 0.2 : 1.0) : 0.0, r == c ? 1.0 : 0.0);
     }
     settle(known, p.restitution, 0.5, 0.5);
-    settle(known, p.contact.friction(), 0.3, 0.3);
+    settle(known, p.contact().friction(), 0.3, 0.3);
     // The normal (a symbolic component 1), the contact point (0).
     for (int c = 0; c < dim; ++c)
-        settle(known, p.contact.normal[c], 1, 1);
+        settle(known, p.contact().normal[c], 1, 1);
     for (int c = 0; c < dim; ++c)
-        settle(known, p.contact.point[c], 0, 0);
-    const v3 n = unit({number(p.contact.normal[0], known, 0), number(p.contact.normal[1], known, 1),
-                       planar ? 0 : number(p.contact.normal[2], known, 0)},
+        settle(known, p.contact().point[c], 0, 0);
+    const v3 n = unit({number(p.contact().normal[0], known, 0), number(p.contact().normal[1], known, 1),
+                       planar ? 0 : number(p.contact().normal[2], known, 0)},
                       {0, 1, 0});
     const v3 t = planar ? v3{n.y, -n.x, 0} : unit(cross(std::abs(n.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n), {1, 0, 0});
-    const v3 o{number(p.contact.point[0], known, 0), number(p.contact.point[1], known, 0),
-               planar ? 0 : number(p.contact.point[2], known, 0)};
-    auto side = [&](std::size_t i) { return i == p.contact.body1 ? -1.0 : 1.0; };
+    const v3 o{number(p.contact().point[0], known, 0), number(p.contact().point[1], known, 0),
+               planar ? 0 : number(p.contact().point[2], known, 0)};
+    auto side = [&](std::size_t i) { return i == p.contact().body1 ? -1.0 : 1.0; };
     // Centres: 0.8 from O on the body's side, a rigid body's off the line of impact.
     std::vector<v3> centre(p.bodies.size());
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
@@ -442,9 +442,9 @@ private:
 
 double builder::side(std::size_t i) const
 {
-    if (i == p_.contact.body1)
+    if (i == p_.contact().body1)
         return -1;
-    if (i == p_.contact.body2)
+    if (i == p_.contact().body2)
         return 1;
     return dot(c_[i], n_) < 0 ? -1 : 1;
 }
@@ -497,8 +497,8 @@ drawing builder::build()
 {
     planar_ = p_.dimension == 2;
     g_.dimension = planar_ ? 2 : 3;
-    g_.body1 = p_.contact.body1;
-    g_.body2 = p_.contact.body2;
+    g_.body1 = p_.contact().body1;
+    g_.body2 = p_.contact().body2;
     values_ = illustrative_values(p_);
     g_.schematic = !values_.empty();
 
@@ -521,7 +521,7 @@ drawing builder::build()
     // Scale: world points divided by their largest coordinate, O moved to the
     // origin, then divided by the largest distance of a centre or pivot.
     const std::size_t nb = p_.bodies.size();
-    const v3 o_world = value(p_.contact.point);
+    const v3 o_world = value(p_.contact().point);
     std::vector<v3> c_world(nb), e_world(p_.pivots.size());
     double big = max_abs(o_world);
     for (std::size_t i = 0; i < nb; ++i) {

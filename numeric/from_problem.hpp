@@ -43,11 +43,11 @@ template <typename T> problem<T> from_problem(const impactgen::problem &p)
         nb.angular_velocity = to_float<T>(b.angular_velocity);
         q.bodies.push_back(nb);
     }
-    q.body1 = p.contact.body1;
-    q.body2 = p.contact.body2;
-    q.point = to_float<T>(p.contact.point);
-    q.normal = to_float<T>(p.contact.normal);
-    q.friction = to_float<T>(p.contact.friction());
+    q.body1 = p.contact().body1;
+    q.body2 = p.contact().body2;
+    q.point = to_float<T>(p.contact().point);
+    q.normal = to_float<T>(p.contact().normal);
+    q.friction = to_float<T>(p.contact().friction());
     for (const impactgen::pivot &pv : p.pivots)
         q.pivots.push_back({pv.body, to_float<T>(pv.point)});
     return q;

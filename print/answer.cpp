@@ -140,10 +140,10 @@ std::string answer_text(const derivation &d, const solution &s, const regime_cas
             r += (c ? ", " : "") + show(v[c]);
         return r + ")";
     };
-    os << "Impact of " << p.bodies[p.contact.body1].name << " (body 1) on " << p.bodies[p.contact.body2].name
+    os << "Impact of " << p.bodies[p.contact().body1].name << " (body 1) on " << p.bodies[p.contact().body2].name
        << " (body 2), e = " << parser_syntax(p.restitution);
     if (friction)
-        os << ", mu = " << parser_syntax(p.contact.friction());
+        os << ", mu = " << parser_syntax(p.contact().friction());
     os << "\n\n";
     if (friction)
         os << "Regime: " << regime_name(friction->kind)

@@ -362,7 +362,7 @@ contact_frame_view contact_frame_view_of(const derivation &d)
     }
 
     // Inputs before impact given as plain symbols.
-    for (std::size_t i : {p.contact.body1, p.contact.body2}) {
+    for (std::size_t i : {p.contact().body1, p.contact().body2}) {
         const body &b = p.bodies[i];
         std::vector<std::string> meanings;
         for (int k = 0; k < dim; ++k)

@@ -288,7 +288,7 @@ namespace detail
 std::string body_ref(const problem &p, std::size_t i)
 {
     const body &b = p.bodies[i];
-    std::string role = i == p.contact.body1 ? "body 1" : i == p.contact.body2 ? "body 2" : "body";
+    std::string role = i == p.contact().body1 ? "body 1" : i == p.contact().body2 ? "body 2" : "body";
     return b.numbered ? role : role + " (" + b.name + ")";
 }
 
@@ -595,11 +595,11 @@ problem detail::symbolized(const problem &p, lst &values, std::vector<std::strin
         units.push_back("");
         q.restitution = e;
     }
-    if (!q.contact.friction().is_zero()) {
+    if (!q.contact().friction().is_zero()) {
         symbol mu("mu", "\\mu"); // printed μ (explain_friction writes Coulomb's coefficient so)
-        values.append(mu == q.contact.friction());
+        values.append(mu == q.contact().friction());
         units.push_back("");
-        q.contact.set_friction(mu);
+        q.contact().set_friction(mu);
     }
     return q;
 }

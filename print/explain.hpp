@@ -144,7 +144,7 @@ bool notes_example(const std::string &class_name, worked_example &out);
 /// substitute into every step of a symbolic problem at the end.
 document explain(const derivation &d, const solution &s, const worked_example *example = nullptr);
 
-/// The explanation of an impact with Coulomb friction (problem.contact.friction not 0):
+/// The explanation of an impact with Coulomb friction (problem.contact().friction not 0):
 /// the contact law, impulse-momentum with the friction impulse, the contact response K,
 /// stick tested against the cone, then slide; the regimes as conditions on mu, the
 /// energy, existence and uniqueness; for a numeric problem every number and the

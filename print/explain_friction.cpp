@@ -861,8 +861,8 @@ document friction_document(const derivation &d, const friction_solution &f, cons
     context c(d, f);
     const problem &p = d.prob;
     c.dim = p.dimension;
-    c.i1 = p.contact.body1;
-    c.i2 = p.contact.body2;
+    c.i1 = p.contact().body1;
+    c.i2 = p.contact().body2;
     c.e = p.restitution;
     c.mu = f.mu;
     c.n = d.n_hat;

@@ -29,7 +29,7 @@ using namespace detail;
 section detail::impulse_section(const derivation &d)
 {
     const problem &p = d.prob;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     section sec{"2. The impulses (impulse-momentum diagram in words)", {}};
     std::vector<paragraph> items;
     items.push_back(paragraph()
@@ -109,7 +109,7 @@ paragraph group_why(const problem &p, const equation &first, std::size_t i, cons
         break;
     case principle::linear_impulse:
         why.w("the change of linear momentum of " + body_ref(p, i) + " equals the impulses on it, ")
-            .t(i == p.contact.body1 ? "$-N e_n$" : "$+N e_n$")
+            .t(i == p.contact().body1 ? "$-N e_n$" : "$+N e_n$")
             .t(pv ? " and the pivot impulse $~R$." : ".");
         break;
     case principle::angular_momentum:
@@ -156,7 +156,7 @@ void group_formulas(section &sec, const derivation &d, const contact_frame_view 
     const problem &p = d.prob;
     if (first.why == principle::angular_momentum) {
         if (pv) {
-            const bool on1 = i == p.contact.body1;
+            const bool on1 = i == p.contact().body1;
             sec.rows({formula_row("H_E = I_C ω + r_EC × m v_C",
                                   "\\underline{H}_E = \\underline{\\underline{I}}_C\\,\\underline{\\omega} + "
                                   "\\underline{r}_{EC} \\times m\\,\\underline{v}_C"),
@@ -178,7 +178,7 @@ void group_formulas(section &sec, const derivation &d, const contact_frame_view 
                               "\\underline{v}'_E = \\underline{v}'_C + \\underline{\\omega}' \\times "
                               "\\underline{r}_{CE} = \\underline{0}")});
     } else if (first.why == principle::restitution) {
-        const std::size_t i2 = p.contact.body2;
+        const std::size_t i2 = p.contact().body2;
         sec.para(paragraph().t(
             "$e = -(v′_Bn - v′_An)/(v_Bn - v_An)$: the velocities are those of the contact points $A$ and $B$, not "
             "of the "
@@ -362,7 +362,7 @@ void frame_velocity_rows(section &sec, const derivation &d, const solution &s, c
         dirs.push_back({"b", d.e_b});
     std::vector<math_row> frame_rows;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        if (i != p.contact.body1 && i != p.contact.body2)
+        if (i != p.contact().body1 && i != p.contact().body2)
             continue;
         const vec3 v0 = subs(p.bodies[i].velocity, values);
         vec3 v1 = subs(s.after[i].velocity, values);
@@ -504,7 +504,7 @@ void percussion(section &sec, const derivation &d, const solution &s)
         const body &b = p.bodies[pv.body];
         if (b.particle || b.infinite_mass)
             continue;
-        const vec3 dC = b.position - pv.point, dO = p.contact.point - pv.point;
+        const vec3 dC = b.position - pv.point, dO = p.contact().point - pv.point;
         const ex c = impactgen::tidy(dC[0] * d.n_hat[1] - dC[1] * d.n_hat[0]);
         const ex lever = impactgen::tidy(dO[0] * d.n_hat[1] - dO[1] * d.n_hat[0]);
         const ex IE = impactgen::tidy(b.inertia[2][2] + b.mass * (dC[0] * dC[0] + dC[1] * dC[1]));
@@ -565,14 +565,14 @@ void limits_of_e(section &sec, const derivation &de, const ex &N, const ex &N_va
 // m2 -> infinity: the notes' massive case as body 2 grows heavy.
 void heavy_body_limit(section &sec, const problem &p, const solution &se, const symbol &e_sym, const ex &u, const ex &N)
 {
-    const std::size_t i2 = p.contact.body2;
+    const std::size_t i2 = p.contact().body2;
     const body &b2 = p.bodies[i2];
     if (b2.infinite_mass) {
         sec.para(paragraph().t("$m2 → ∞$: body 2 already has infinite mass; the notes' massive case, $w_2 = 0$ and $N "
                                "= -(1 + e) u/w_1$."));
     } else if (p.immovable(i2)) {
         sec.para(paragraph().t("$m2 → ∞$: body 2 cannot move under the impulse already ($w_2 = 0$)."));
-    } else if (p.immovable(p.contact.body1)) {
+    } else if (p.immovable(p.contact().body1)) {
         // Body 1 already cannot move: making body 2 heavy too would leave nothing to move.
         sec.para(paragraph().t(
             "$m2 → ∞$ is not taken here: body 1 cannot move under the impulse already ($w_1 = 0$), so this is "
@@ -585,9 +585,9 @@ void heavy_body_limit(section &sec, const problem &p, const solution &se, const 
         // k = w_1 + eps w_2 the impulse tends to the notes' massive case and body
         // 2's velocity change N n eps/m2 tends to zero. No symbolic limit is
         // taken (normal() of a 3-D closed form has no useful time bound).
-        const step *w1 = find_step(se, step_role::effective_inverse_mass, p.contact.body1);
+        const step *w1 = find_step(se, step_role::effective_inverse_mass, p.contact().body1);
         const ex w1_value =
-            w1 ? ex(w1->sym) : (p.immovable(p.contact.body1) ? ex(0) : 1 / p.bodies[p.contact.body1].mass);
+            w1 ? ex(w1->sym) : (p.immovable(p.contact().body1) ? ex(0) : 1 / p.bodies[p.contact().body1].mass);
         paragraph q;
         q.t("$m2 → ∞$: let body 2 grow heavy with its shape kept, $m2 → m2/ε$ and its inertia $~~I → ~~I/ε$, and take "
             "$ε → 0$. "
@@ -661,7 +661,7 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
     // point's normal velocity), +2 u v_An/k when body 1 has. Shown when it checks out.
     std::vector<math_row> named_at_one;
     if (lost_step && !at_one.is_zero() && u_step && !kk.is_zero()) {
-        const bool two = p.bodies[p.contact.body2].infinite_mass, one = p.bodies[p.contact.body1].infinite_mass;
+        const bool two = p.bodies[p.contact().body2].infinite_mass, one = p.bodies[p.contact().body1].infinite_mass;
         if (two != one) {
             const ex vn = impactgen::tidy(tidy_expand(dot(two ? de.vB : de.vA, de.n_hat)));
             const symbol vn_sym = two ? symbol("v_Bn", "v_{Bn}") : symbol("v_An", "v_{An}");

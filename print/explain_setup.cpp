@@ -43,7 +43,7 @@ void setup_intro(section &sec, const derivation &d, const friction_setup *fr)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const std::string kind = fr ? std::string(dim == 2 ? "A planar (2-D)" : "A 3-D") + " impact with Coulomb friction"
                                 : std::string("A smooth ") + (dim == 2 ? "planar (2-D)" : "3-D") + " impact";
     // The movable body strikes an immovable one at rest (as the figure's caption says it); a
@@ -129,7 +129,7 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
     const int dim = p.dimension;
     paragraph frame;
     frame.t("The contact point $O$ = ");
-    vector_span(frame, p.contact.point, dim);
+    vector_span(frame, p.contact().point, dim);
     frame.t(
         " is a geometric point, fixed in the inertial frame, where $A$ and $B$ coincide. The contact frame: $e_n$ = ");
     vector_span(frame, d.n_hat, dim);
@@ -218,7 +218,7 @@ void why_count(section &sec, const derivation &d, const friction_setup *fr)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     // Why this many.
     std::vector<paragraph> why;
     std::string sum;
@@ -233,7 +233,7 @@ void why_count(section &sec, const derivation &d, const friction_setup *fr)
         paragraph q;
         q.w(body_ref(p, i) + ": " + number_word(nv + nw) + " unknowns");
         if (b.infinite_mass)
-            q.t(i == p.contact.body2 ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
+            q.t(i == p.contact().body2 ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
                                        "$~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
                                      : " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
                                        "$~ω′ = ~ω$ (the notes' $m2 → ∞$ "
@@ -302,10 +302,10 @@ void central_notes(section &sec, const derivation &d)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     std::vector<std::size_t> central;
     for (std::size_t i : {i1, i2}) {
-        const vec3 r = cross(p.contact.point - p.bodies[i].position, d.n_hat);
+        const vec3 r = cross(p.contact().point - p.bodies[i].position, d.n_hat);
         if (p.pivot_of(i) || p.bodies[i].infinite_mass)
             continue;
         // tidy(), not expand(): a point like (a + b + ...)^12 must not be expanded

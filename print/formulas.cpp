@@ -49,7 +49,7 @@ std::string formulas_text(const derivation &d, const solution &s)
 {
     std::ostringstream os;
     os << header(d) << "\n";
-    if (!d.frame_is_world || d.prob.contact.normal != vec3{0, 1, 0})
+    if (!d.frame_is_world || d.prob.contact().normal != vec3{0, 1, 0})
         os << "unit normal n = (" << canonical_text(d.n_hat[0]) << ", " << canonical_text(d.n_hat[1])
            << (d.prob.dimension == 3 ? ", " + canonical_text(d.n_hat[2]) : "") << ")\n";
     os << "\n";

@@ -179,7 +179,7 @@ void friction_momentum(const derivation &d, friction_equations &fe, int &label)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const vec3 P = fe.impulse(dim, d.n_hat);
     auto add = [&](const ex &lhs, const ex &rhs, principle why, const std::string &reason, std::size_t body, int a) {
         fe.equations.push_back({std::to_string(++label), lhs, rhs, why, reason, {body}, a});
@@ -205,7 +205,7 @@ void friction_momentum(const derivation &d, friction_equations &fe, int &label)
         if (pv) {
             const vec3 dH =
                 mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) + cross(b.position - pv->point, dp);
-            const vec3 moment = cross(p.contact.point - pv->point, ex(s) * P);
+            const vec3 moment = cross(p.contact().point - pv->point, ex(s) * P);
             for (int a = first; a < 3; ++a)
                 add(tidy_expand(dH[a]), tidy_expand(moment[a]), principle::angular_momentum,
                     "about the pivot E, fixed in the inertial frame, the pivot impulse has no moment: the change of "
@@ -213,7 +213,7 @@ void friction_momentum(const derivation &d, friction_equations &fe, int &label)
                         name + " about E is the moment (O - E) × P of the contact impulse, its friction part included",
                     i, a);
         } else {
-            const vec3 r = b.position - p.contact.point;
+            const vec3 r = b.position - p.contact().point;
             const vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
             const vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
             for (int a = first; a < 3; ++a)
@@ -252,8 +252,8 @@ friction_equations derive_friction(const derivation &d)
                 fe.equations.push_back(
                     {std::to_string(++label), eq.lhs, eq.rhs, eq.why, eq.reason, eq.bodies, eq.component});
     // Coulomb's law: one equation per tangent, different in each regime.
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
-    const ex mu = p.contact.friction();
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
+    const ex mu = p.contact().friction();
     for (std::size_t k = 0; k < fe.tangents.size(); ++k) {
         const std::string tag = std::to_string(label + 1 + static_cast<int>(k));
         fe.stick_law.push_back({tag,
@@ -291,13 +291,13 @@ void unit_normal_and_frame(derivation &d, const derive_options &options)
     if (options.unit_normal) {
         d.normal_length = 1;
         for (int i = 0; i < 3; ++i)
-            d.n_hat[i] = tidy(p.contact.normal[i]);
+            d.n_hat[i] = tidy(p.contact().normal[i]);
     } else {
-        const ex length2 = tidy(dot(p.contact.normal, p.contact.normal));
+        const ex length2 = tidy(dot(p.contact().normal, p.contact().normal));
         d.normal_length = root_of(length2);
         // A rational normal scaled to its primitive integer direction first ((1e6, 1e6) ->
         // (1, 1), (0.6, 0.8) -> (3, 4)), so that the root of its length stays small.
-        vec3 direction = p.contact.normal;
+        vec3 direction = p.contact().normal;
         bool rational = true;
         numeric denominators = 1, numerators = 0;
         for (const ex &c : direction) {
@@ -321,9 +321,9 @@ void unit_normal_and_frame(derivation &d, const derive_options &options)
     d.e_b = dim == 3 ? cross(d.e_t, d.n_hat) : zero_vec();
     for (ex &c : d.e_b)
         c = merge_roots(tidy(c));
-    if (options.runtime_tangent_basis && dim == 3 && !p.contact.normal[0].is_zero() && !p.contact.normal[1].is_zero() &&
-        !p.contact.normal[2].is_zero() &&
-        !(is_constant(p.contact.normal[0]) && is_constant(p.contact.normal[1]) && is_constant(p.contact.normal[2]))) {
+    if (options.runtime_tangent_basis && dim == 3 && !p.contact().normal[0].is_zero() && !p.contact().normal[1].is_zero() &&
+        !p.contact().normal[2].is_zero() &&
+        !(is_constant(p.contact().normal[0]) && is_constant(p.contact().normal[1]) && is_constant(p.contact().normal[2]))) {
         for (int k = 0; k < 6; ++k) {
             const std::string name = std::string(k < 3 ? "e_t_" : "e_b_") + ax[static_cast<std::size_t>(k % 3)];
             d.tangent_basis_symbols.push_back(
@@ -343,7 +343,7 @@ void unknowns_of(derivation &d)
     const problem &p = d.prob;
     const int dim = p.dimension;
     const auto &ax = p.axes;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     // Unknowns and post-impact velocities.
     d.velocity_after.resize(p.bodies.size());
     d.angular_velocity_after.resize(p.bodies.size());
@@ -424,7 +424,7 @@ void free_body_equations(derivation &d, equation_writer &w)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const std::size_t contact_bodies[2] = {i1, i2};
     // (a) Smooth contact: no impulse along e_t, e_b.
     for (std::size_t i : contact_bodies) {
@@ -475,7 +475,7 @@ void free_body_equations(derivation &d, equation_writer &w)
                                      "and its angular momentum about O gives no new equation."});
             continue;
         }
-        vec3 r = b.position - p.contact.point; // r_{C O}: C relative to O
+        vec3 r = b.position - p.contact().point; // r_{C O}: C relative to O
         vec3 Hb = mul(b.inertia, b.angular_velocity) + cross(r, b.mass * b.velocity);
         vec3 Ha = mul(b.inertia, d.angular_velocity_after[i]) + cross(r, b.mass * d.velocity_after[i]);
         w.world_components(Ha, Hb, principle::angular_momentum,
@@ -491,7 +491,7 @@ void free_body_equations(derivation &d, equation_writer &w)
 void constrained_equations(derivation &d, equation_writer &w)
 {
     const problem &p = d.prob;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const std::size_t contact_bodies[2] = {i1, i2};
     // Constrained collision: impulse-momentum with N and R unknown.
     for (std::size_t i : contact_bodies) {
@@ -510,9 +510,9 @@ void constrained_equations(derivation &d, equation_writer &w)
                                (i == i1 ? "-N n" : "+N n") + (pv ? " and the pivot impulse R" : ""),
                            {i}, false);
         if (!b.particle) {
-            vec3 ref = pv ? pv->point : p.contact.point;
+            vec3 ref = pv ? pv->point : p.contact().point;
             vec3 dH = mul(b.inertia, d.angular_velocity_after[i] - b.angular_velocity) + cross(b.position - ref, dp);
-            vec3 moment = pv ? cross(p.contact.point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
+            vec3 moment = pv ? cross(p.contact().point - pv->point, (s * d.normal_impulse) * d.n_hat) : zero_vec();
             w.world_components(dH, moment, principle::angular_momentum,
                                pv ? "about the pivot E, fixed in the inertial frame, the pivot impulse has no "
                                     "moment: the change of angular momentum of " +
@@ -547,7 +547,7 @@ derivation derive(const problem &p, const derive_options &options)
     validate(p);
     derivation d;
     d.prob = p;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     d.impulse_form = !p.pivots.empty();
     unit_normal_and_frame(d, options);
     unknowns_of(d);
@@ -555,10 +555,10 @@ derivation derive(const problem &p, const derive_options &options)
     // Contact point velocities, v_A = v_C1 + w_1 x r_{A C1}.
     const body &A = p.bodies[i1];
     const body &B = p.bodies[i2];
-    d.vA = point_velocity(A, p.contact.point);
-    d.vB = point_velocity(B, p.contact.point);
-    d.vA_after = point_velocity(A, d.velocity_after[i1], d.angular_velocity_after[i1], p.contact.point);
-    d.vB_after = point_velocity(B, d.velocity_after[i2], d.angular_velocity_after[i2], p.contact.point);
+    d.vA = point_velocity(A, p.contact().point);
+    d.vB = point_velocity(B, p.contact().point);
+    d.vA_after = point_velocity(A, d.velocity_after[i1], d.angular_velocity_after[i1], p.contact().point);
+    d.vB_after = point_velocity(B, d.velocity_after[i2], d.angular_velocity_after[i2], p.contact().point);
 
     equation_writer w{d};
     if (!d.impulse_form)

@@ -62,11 +62,11 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
-    const vec3 &O = p.contact.point;
+    const vec3 &O = p.contact().point;
     shared_part sh;
-    sh.sides[0].r = response_of(p, p.contact.body1, O);
+    sh.sides[0].r = response_of(p, p.contact().body1, O);
     sh.sides[0].sign = -1;
-    sh.sides[1].r = response_of(p, p.contact.body2, O);
+    sh.sides[1].r = response_of(p, p.contact().body2, O);
     sh.sides[1].sign = 1;
     for (side &sd : sh.sides) {
         const std::size_t index = sd.r.index;
@@ -458,7 +458,7 @@ friction_solution solve_friction(const derivation &d)
 {
     const problem &p = d.prob;
     friction_solution f;
-    f.mu = p.contact.friction();
+    f.mu = p.contact().friction();
     f.n_hat = d.n_hat;
     solution shared;
     step_builder sb(shared, p);

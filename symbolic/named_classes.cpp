@@ -53,9 +53,9 @@ problem base(const std::string &name, int dim)
     p.dimension = dim;
     p.restitution = S("e");
     p.axes = {"t", "n", "b"};
-    p.contact.body1 = 0;
-    p.contact.body2 = 1;
-    p.contact.normal = {0, 1, 0};
+    p.contact().body1 = 0;
+    p.contact().body2 = 1;
+    p.contact().normal = {0, 1, 0};
     return p;
 }
 
@@ -133,10 +133,10 @@ problem pinned_planar()
     rod.inertia[2][2] = m2 * l * l / 12;
     rod.position = {0, -l / 2, 0};
     p.bodies = {ball, rod};
-    p.contact.body1 = 0;
-    p.contact.body2 = 1;
-    p.contact.point = {0, -l, 0};
-    p.contact.normal = {1, 0, 0};
+    p.contact().body1 = 0;
+    p.contact().body2 = 1;
+    p.contact().point = {0, -l, 0};
+    p.contact().normal = {1, 0, 0};
     p.pivots = {pivot{1, zero_vec()}};
     return p;
 }
@@ -145,7 +145,7 @@ problem pinned_planar()
 problem with_friction(problem p, const std::string &name)
 {
     p.source = name;
-    p.contact.set_friction(S("mu", "\\mu"));
+    p.contact().set_friction(S("mu", "\\mu"));
     return p;
 }
 

@@ -427,9 +427,11 @@ std::vector<symbol> problem::parameters() const
         collect_v(b.velocity);
         collect_v(b.angular_velocity);
     }
-    collect_v(contact.point);
-    collect_v(contact.normal);
-    collect(contact.friction());
+    for (const contact_spec &c : contacts) {
+        collect_v(c.point);
+        collect_v(c.normal);
+        collect(c.friction());
+    }
     for (const pivot &pv : pivots)
         collect_v(pv.point);
     std::vector<symbol> r;
@@ -507,9 +509,9 @@ void validate(const problem &p)
     if (decided(p.restitution, "restitution", "e") == decision::negative ||
         decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
         throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
-    if (decided(p.contact.friction(), "contact.friction", "mu") == decision::negative)
+    if (decided(p.contact().friction(), "contact.friction", "mu") == decision::negative)
         throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " +
-                          show(p.contact.friction()));
+                          show(p.contact().friction()));
     std::set<std::string> seen;
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
         const body &b = p.bodies[i];
@@ -540,7 +542,7 @@ void validate(const problem &p)
                 throw input_error(where + ".inertia: not positive-definite" +
                                   std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
     }
-    const contact_spec &c = p.contact;
+    const contact_spec &c = p.contact();
     if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
         throw input_error("contact.bodies: unknown body");
     if (c.body1 == c.body2)
@@ -668,26 +670,95 @@ body read_body(const json_value &jb, std::size_t i, int d, std::vector<std::stri
     return b;
 }
 
-// "contact": the two bodies, the point, the normal and the law (Coulomb's with "friction").
-void read_contact(const json_value &root, problem &p)
+// One contact object: the two bodies, the point, the normal, the law (Coulomb's with
+// "friction") and, in a `contacts` entry, its own restitution. `where` names it in messages.
+contact_spec read_contact(const json_value &jc, problem &p, const std::string &where, bool own_restitution)
 {
     const int d = p.dimension;
-    const json_value &jc = require(root, "contact", "problem");
     if (!jc.is_object())
-        throw input_error(std::string("contact: expected an object, got ") + json_value::kind_name(jc.type()));
-    warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, "contact", p.warnings);
-    const json_value &cb = require(jc, "bodies", "contact");
+        throw input_error(where + ": expected an object, got " + json_value::kind_name(jc.type()));
+    if (own_restitution)
+        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction", "restitution"}, where, p.warnings);
+    else
+        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, where, p.warnings);
+    contact_spec c;
+    const json_value &cb = require(jc, "bodies", where);
     if (!cb.is_array() || cb.items().size() != 2)
-        throw input_error("contact.bodies: expected a list of the two bodies that touch");
-    p.contact.body1 = body_index(p, cb.items()[0], "contact.bodies[0]");
-    p.contact.body2 = body_index(p, cb.items()[1], "contact.bodies[1]");
-    p.contact.point = vector_of(require(jc, "point", "contact"), d, "contact.point");
-    p.contact.normal = vector_of(require(jc, "normal", "contact"), d, "contact.normal");
+        throw input_error(where + ".bodies: expected a list of the two bodies that touch");
+    c.body1 = body_index(p, cb.items()[0], where + ".bodies[0]");
+    c.body2 = body_index(p, cb.items()[1], where + ".bodies[1]");
+    c.point = vector_of(require(jc, "point", where), d, where + ".point");
+    c.normal = vector_of(require(jc, "normal", where), d, where + ".normal");
     if (const json_value *jf = jc.find("friction")) {
-        p.contact.set_friction(scalar(*jf, "contact.friction"));
+        if (jf->is_string() && jf->text() == "inf")
+            throw input_error(where + ".friction: \"inf\" (a perfectly rough contact) is not solved yet; give a "
+                                      "coefficient mu >= 0");
+        c.set_friction(scalar(*jf, where + ".friction"));
         // mu = 0 (exactly, however written) is the smooth impact, unchanged
-        if (is_constant(p.contact.friction()) && decide(p.contact.friction()) == decision::zero)
-            p.contact.set_friction(0);
+        if (is_constant(c.friction()) && decide(c.friction()) == decision::zero)
+            c.set_friction(0);
+    }
+    return c;
+}
+
+// "contact" (one) or "contacts" (a list; one entry is solved today), never both. A
+// `contacts` entry may carry its own "restitution", which replaces the top-level one.
+void read_contacts(const json_value &root, problem &p, bool &restitution_given)
+{
+    const json_value *one = root.find("contact");
+    const json_value *list = root.find("contacts");
+    if (one && list)
+        throw input_error("contacts: a file has \"contact\" (one) or \"contacts\" (a list), not both");
+    if (!one && !list)
+        throw input_error("problem: missing key \"contact\" (or \"contacts\")");
+    if (one) {
+        p.contacts = {read_contact(*one, p, "contact", false)};
+        return;
+    }
+    if (!list->is_array())
+        throw input_error(std::string("contacts: expected a list, got ") + json_value::kind_name(list->type()));
+    if (list->items().empty())
+        throw input_error("contacts: an impact needs at least one contact, got an empty list");
+    if (list->items().size() > 1)
+        throw input_error("contacts: " + std::to_string(list->items().size()) +
+                          " contacts acting in one impact are not solved yet; give one contact");
+    const json_value &jc = list->items()[0];
+    p.contacts = {read_contact(jc, p, "contacts[0]", true)};
+    if (jc.is_object())
+        if (const json_value *je = jc.find("restitution")) {
+            p.restitution = scalar(*je, "contacts[0].restitution");
+            restitution_given = true;
+        }
+}
+
+// Optional "title" and "description": a person's words for the problem.
+std::string read_text(const json_value &root, const char *key)
+{
+    const json_value *v = root.find(key);
+    if (!v)
+        return "";
+    if (!v->is_string())
+        throw input_error(std::string(key) + ": expected a string, got " + json_value::kind_name(v->type()));
+    for (char ch : v->text())
+        if ((static_cast<unsigned char>(ch) < 0x20 && ch != '\n') || ch == 0x7f)
+            throw input_error(std::string(key) + ": contains a control character (it is printed in documents)");
+    if (v->text().size() > 2000)
+        throw input_error(std::string(key) + ": longer than 2000 bytes");
+    return v->text();
+}
+
+// Keys of version 3 that describe systems not solved yet: refused, never ignored.
+void refuse_systems(const json_value &root)
+{
+    if (const json_value *j = root.find("joints"))
+        if (!j->is_array() || !j->items().empty())
+            throw input_error("joints: joints between bodies are not solved yet (pivots to the fixed frame are)");
+    if (const json_value *i = root.find("impacts")) {
+        if (!i->is_string() || (i->text() != "simultaneous" && i->text() != "sequential"))
+            throw input_error("impacts: expected \"simultaneous\" or \"sequential\"");
+        if (i->text() == "sequential")
+            throw input_error("impacts: \"sequential\" impacts are not solved yet; one contact is one impact "
+                              "(omit the key)");
     }
 }
 
@@ -722,8 +793,13 @@ problem read_problem(const std::string &text, const std::string &source)
         throw input_error(std::string("problem: expected a JSON object, got ") + json_value::kind_name(root.type()));
     problem p;
     p.source = source;
-    warn_unknown_keys(root, {"dimension", "restitution", "bodies", "contact", "pivots", "name", "description", "units"},
+    warn_unknown_keys(root,
+                      {"dimension", "restitution", "bodies", "contact", "contacts", "pivots", "joints", "impacts",
+                       "name", "title", "description", "units"},
                       "", p.warnings);
+    p.title = read_text(root, "title");
+    p.description = read_text(root, "description");
+    refuse_systems(root);
     if (const json_value *u = root.find("units")) {
         // Optional: the unit system of every number, for the prose of explain
         // (kg, m, s, N·s, J). Only "SI" is known; the values are not converted.
@@ -740,7 +816,9 @@ problem read_problem(const std::string &text, const std::string &source)
                           (dim.text().empty() ? json_value::kind_name(dim.type()) : dim.text()));
     p.dimension = dim.text() == "2" ? 2 : 3;
     const int d = p.dimension;
-    p.restitution = scalar(require(root, "restitution", "problem"), "restitution");
+    const json_value *top_e = root.find("restitution");
+    if (top_e)
+        p.restitution = scalar(*top_e, "restitution");
 
     const json_value &bodies = require(root, "bodies", "problem");
     if (!bodies.is_array())
@@ -760,7 +838,10 @@ problem read_problem(const std::string &text, const std::string &source)
                                   names::display_text(p.bodies[i].name) + "\"");
     }
 
-    read_contact(root, p);
+    bool own_e = false;
+    read_contacts(root, p, own_e);
+    if (!top_e && !own_e)
+        throw input_error("problem: missing key \"restitution\" (at the top level or in every contact)");
     read_pivots(root, p);
     const std::size_t symbols = p.parameters().size();
     if (symbols > limits::symbols)
@@ -803,9 +884,11 @@ problem substitute(const problem &p, const ex &values)
         sv(b.velocity);
         sv(b.angular_velocity);
     }
-    sv(q.contact.point);
-    sv(q.contact.normal);
-    q.contact.set_friction(p.contact.friction().subs(values));
+    for (contact_spec &c : q.contacts) {
+        sv(c.point);
+        sv(c.normal);
+        c.set_friction(c.friction().subs(values));
+    }
     for (pivot &pv : q.pivots)
         sv(pv.point);
     return q;

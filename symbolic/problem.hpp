@@ -1,5 +1,5 @@
-// The model of one smooth impact: bodies, one contact, optional pivots and
-// Newton's coefficient of restitution. Every quantity is a GiNaC expression,
+// The model of an impact: bodies, the contacts (each with its law), the joints to the
+// fixed frame (pivots) and Newton's coefficient of restitution. Every quantity is a GiNaC expression,
 // so the same model carries numbers (exact rationals) or symbols.
 #pragma once
 
@@ -85,21 +85,29 @@ struct contact_spec {
 };
 
 struct problem {
-    std::string source; ///< named class or file it came from
-    int dimension = 3;  ///< 2 (planar) or 3
+    std::string source;      ///< named class or file it came from
+    std::string title;       ///< "title" of the file (a person's words), or "" (documents then name the source)
+    std::string description; ///< "description" of the file, or ""
+    int dimension = 3;       ///< 2 (planar) or 3
     ex restitution = 0;
     std::vector<body> bodies;
-    contact_spec contact;
+    /// The contacts that act in the impact, in the file's order. The reader accepts one today
+    /// (a file's `contact`, or `contacts` with one entry); several at once are the Systems issue.
+    std::vector<contact_spec> contacts{contact_spec{}};
+    /// The joints to the fixed frame (pins in 2-D, ball joints in 3-D).
     std::vector<pivot> pivots;
     std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
     std::string units;                 ///< "" (none given) or "SI": the unit system of every number (prose only)
     std::vector<std::string> warnings; ///< e.g. keys that were ignored
 
+    /// The contact of a one-contact problem (every problem the reader accepts today).
+    contact_spec &contact() { return contacts.front(); }
+    const contact_spec &contact() const { return contacts.front(); }
     /// Every symbol the problem's values contain, sorted by name.
     std::vector<GiNaC::symbol> parameters() const;
     bool is_numeric() const { return parameters().empty(); }
     /// True when the contact has a friction coefficient that is not identically 0.
-    bool has_friction() const { return !contact.friction().is_zero(); }
+    bool has_friction() const { return !contact().friction().is_zero(); }
     /// The pivot of a body, or nullptr.
     const pivot *pivot_of(std::size_t body) const;
     /// True when the impulse cannot move the body (infinite mass, or a pinned particle).

@@ -220,7 +220,7 @@ void side_responses(const derivation &d, step_builder &sb, smooth_side (&sides)[
     const problem &p = d.prob;
     const int dim = p.dimension;
     const vec3 &n = d.n_hat;
-    const vec3 &O = p.contact.point;
+    const vec3 &O = p.contact().point;
 
     for (smooth_side &sd : sides) {
         const body &b = p.bodies[sd.index];
@@ -283,7 +283,7 @@ void bodies_after(const derivation &d, solution &s, const smooth_side (&sides)[2
 ex work_of_impulse(const derivation &d, const smooth_side (&sides)[2], const ex &N, const ex &u, const ex &k)
 {
     const problem &p = d.prob;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const vec3 &n = d.n_hat;
     ex lost = 0;
     const vec3 *contact_velocity[2] = {&d.vA, &d.vB};
@@ -306,7 +306,7 @@ solution solve(const derivation &d)
     const problem &p = d.prob;
     if (p.has_friction()) {
         std::ostringstream mu;
-        mu << p.contact.friction();
+        mu << p.contact().friction();
         throw input_error(
             (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") +
             ".friction: this command solves smooth impacts only; friction (mu = " + names::display_text(mu.str(), 60) +
@@ -314,7 +314,7 @@ solution solve(const derivation &d)
     }
     solution s;
     step_builder sb(s, p);
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     const vec3 &n = d.n_hat;
 
     smooth_side sides[2] = {{i1, -1, 0, zero_vec(), {}, false}, {i2, 1, 0, zero_vec(), {}, false}};

@@ -104,10 +104,10 @@ TEST(UnitNormal, TheNormalIsNotNormalised)
     EXPECT_TRUE(pl.deriv.normal_assumed_unit);
     EXPECT_TRUE(pl.deriv.normal_length.is_equal(ex(1)));
     for (int c = 0; c < 3; ++c)
-        EXPECT_TRUE(pl.deriv.n_hat[c].is_equal(pl.prob.contact.normal[c])) << c;
+        EXPECT_TRUE(pl.deriv.n_hat[c].is_equal(pl.prob.contact().normal[c])) << c;
     const codegen::plan plain = codegen::make_plan(p, opts());
     EXPECT_FALSE(plain.deriv.normal_assumed_unit);
-    EXPECT_FALSE(plain.deriv.n_hat[0].is_equal(plain.prob.contact.normal[0]));
+    EXPECT_FALSE(plain.deriv.n_hat[0].is_equal(plain.prob.contact().normal[0]));
     // The meaning of the normal's inputs says what the header checks.
     for (std::size_t i = 0; i < pl.inputs.size(); ++i)
         if (pl.inputs[i].get_name() == "nx")

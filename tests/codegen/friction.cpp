@@ -310,11 +310,11 @@ struct class_model {
             nb.angular_velocity = evalv(b.angular_velocity, v);
             q.bodies.push_back(nb);
         }
-        q.body1 = prob.contact.body1;
-        q.body2 = prob.contact.body2;
-        q.point = evalv(prob.contact.point, v);
-        q.normal = evalv(prob.contact.normal, v);
-        q.friction = eval(prob.contact.friction(), v);
+        q.body1 = prob.contact().body1;
+        q.body2 = prob.contact().body2;
+        q.point = evalv(prob.contact().point, v);
+        q.normal = evalv(prob.contact().normal, v);
+        q.friction = eval(prob.contact().friction(), v);
         for (const impactgen::pivot& pv : prob.pivots)
             q.pivots.push_back({pv.body, evalv(pv.point, v)});
         return q;
@@ -728,7 +728,7 @@ exact_answer exact(const class_model& m, const std::vector<double>& x, std::vect
     for (std::size_t i = 0; i < m.in_syms.size(); ++i)
         values.append(m.in_syms[i] == exact_of(x[i]));
     exact_answer a;
-    const ex mu = m.prob.contact.friction().subs(values);
+    const ex mu = m.prob.contact().friction().subs(values);
     try {
         impactgen::derivation d = m.deriv; // the problem numeric (select_regime decides numeric problems only)
         d.prob = impactgen::substitute(m.prob, values);

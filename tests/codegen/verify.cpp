@@ -471,11 +471,11 @@ stats verifier::run(long samples, long exact_samples, unsigned seed)
             }
             np.bodies.push_back(nb);
         }
-        np.body1 = q.contact.body1;
-        np.body2 = q.contact.body2;
+        np.body1 = q.contact().body1;
+        np.body2 = q.contact().body2;
         for (int c = 0; c < 3; ++c) {
-            np.point[c] = ed(q.contact.point[c]);
-            np.normal[c] = ed(q.contact.normal[c]);
+            np.point[c] = ed(q.contact().point[c]);
+            np.normal[c] = ed(q.contact().normal[c]);
         }
         for (const pivot& pv : q.pivots) {
             nm::pivot<double> npv;

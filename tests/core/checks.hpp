@@ -77,12 +77,12 @@ inline void expect_physics(const derivation& d, const solution& s, const GiNaC::
     GiNaC::lst steps = s.step_values(inputs);
     auto ev = [&](const ex& e) { return e.subs(inputs).subs(steps).normal(); };
     auto evv = [&](const vec3& v) { return vec3{ev(v[0]), ev(v[1]), ev(v[2])}; };
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     vec3 n = evv(d.n_hat);
     auto contact_v = [&](std::size_t i, const vec3& v, const vec3& w) {
         body b = p.bodies[i];
         b.position = evv(b.position);
-        return point_velocity(b, v, w, evv(p.contact.point));
+        return point_velocity(b, v, w, evv(p.contact().point));
     };
     const body& A = p.bodies[i1];
     const body& B = p.bodies[i2];
@@ -119,7 +119,7 @@ inline void expect_physics(const derivation& d, const solution& s, const GiNaC::
         }
         // Angular momentum about the pivot (or O) changes by the moment of the contact impulse only.
         if (!b.particle) {
-            vec3 ref = pv ? evv(pv->point) : evv(p.contact.point);
+            vec3 ref = pv ? evv(pv->point) : evv(p.contact().point);
             vec3 C = evv(b.position);
             mat3 J;
             for (int r = 0; r < 3; ++r)
@@ -127,7 +127,7 @@ inline void expect_physics(const derivation& d, const solution& s, const GiNaC::
                     J[r][c] = ev(b.inertia[r][c]);
             vec3 dw = evv(s.after[i].angular_velocity) - evv(b.angular_velocity);
             vec3 dH = mul(J, dw) + cross(C - ref, ev(b.mass) * dv);
-            vec3 M = cross(evv(p.contact.point) - ref, (sg * N) * n);
+            vec3 M = cross(evv(p.contact().point) - ref, (sg * N) * n);
             for (int c = 0; c < 3; ++c)
                 EXPECT_TRUE(is_zero_exact(dH[c] - M[c])) << what << ": angular momentum of " << b.name;
         }

@@ -123,11 +123,11 @@ void check_derived_equations(const derivation& d, const regime_case& c, double s
 void check_law(const problem& p, const regime_case& c, const std::string& tag)
 {
     const int dim = p.dimension;
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
-    const vec3& O = p.contact.point;
-    const ex len = sqrt(dot(p.contact.normal, p.contact.normal));
-    const vec3 n = (1 / len) * p.contact.normal;
-    const ex N = c.sol.normal_impulse, mu = p.contact.friction(), e = p.restitution;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
+    const vec3& O = p.contact().point;
+    const ex len = sqrt(dot(p.contact().normal, p.contact().normal));
+    const vec3 n = (1 / len) * p.contact().normal;
+    const ex N = c.sol.normal_impulse, mu = p.contact().friction(), e = p.restitution;
     const vec3& F = c.tangential_impulse;
     const vec3 P = N * n + F;
     double scale = mag(N) + mag(F) + 1e-300;
@@ -338,7 +338,7 @@ problem random_problem(sampler& rnd, int kind)
     p.dimension = kind <= 1 ? 2 : 3;
     p.restitution = rnd.restitution();
     std::uniform_int_distribution<int> mu(1, 40);
-    p.contact.set_friction(numeric(mu(rnd.engine()), 20));
+    p.contact().set_friction(numeric(mu(rnd.engine()), 20));
     auto vec = [&](int bound) {
         vec3 v = zero_vec();
         for (int a = 0; a < p.dimension; ++a)
@@ -350,10 +350,10 @@ problem random_problem(sampler& rnd, int kind)
     b2.name = b2.label = "2";
     b1.mass = rnd.mass();
     b2.mass = rnd.mass();
-    p.contact.point = vec(1);
-    p.contact.normal = vec(2);
-    if (p.contact.normal[0].is_zero() && p.contact.normal[1].is_zero() && p.contact.normal[2].is_zero())
-        p.contact.normal[1] = 1;
+    p.contact().point = vec(1);
+    p.contact().normal = vec(2);
+    if (p.contact().normal[0].is_zero() && p.contact().normal[1].is_zero() && p.contact().normal[2].is_zero())
+        p.contact().normal[1] = 1;
     b1.position = vec(2);
     b2.position = vec(2);
     b1.velocity = vec(3);
@@ -385,7 +385,7 @@ problem random_problem(sampler& rnd, int kind)
         b1.mass = 0;
         sphere(b2);
         // the contact point below the centre along the normal: r x n = 0 (a sphere on a plane)
-        b2.position = p.contact.point + rnd.positive(4, 2) * p.contact.normal;
+        b2.position = p.contact().point + rnd.positive(4, 2) * p.contact().normal;
         break;
     case 2: // 3-D: two spheres, centres anywhere (coupled unless central)
         sphere(b1);
@@ -396,15 +396,15 @@ problem random_problem(sampler& rnd, int kind)
     }
     p.bodies = {b1, b2};
     // Approach: flip body 2's velocity (and spin) until the contact points approach.
-    const vec3 u = point_velocity(p.bodies[1], p.contact.point) - point_velocity(p.bodies[0], p.contact.point);
-    if (ex_to<numeric>(tidy(dot(u, p.contact.normal))).is_positive() && !p.pivot_of(1)) {
+    const vec3 u = point_velocity(p.bodies[1], p.contact().point) - point_velocity(p.bodies[0], p.contact().point);
+    if (ex_to<numeric>(tidy(dot(u, p.contact().normal))).is_positive() && !p.pivot_of(1)) {
         p.bodies[1].velocity = ex(-1) * p.bodies[1].velocity;
         p.bodies[1].angular_velocity = ex(-1) * p.bodies[1].angular_velocity;
         p.bodies[0].velocity = ex(-1) * p.bodies[0].velocity;
         p.bodies[0].angular_velocity = ex(-1) * p.bodies[0].angular_velocity;
     }
-    if (p.pivot_of(1) && ex_to<numeric>(tidy(dot(u, p.contact.normal))).is_positive())
-        p.contact.normal = ex(-1) * p.contact.normal; // a particle moving against the normal's other sense
+    if (p.pivot_of(1) && ex_to<numeric>(tidy(dot(u, p.contact().normal))).is_positive())
+        p.contact().normal = ex(-1) * p.contact().normal; // a particle moving against the normal's other sense
     return p;
 }
 
@@ -721,7 +721,7 @@ TEST(Continuity, StickAndSlideMeetAtTheThreshold)
                 continue;
             }
             // The stick impulse does not depend on mu: solve once with mu = 1 to read mu*.
-            q.contact.set_friction(1);
+            q.contact().set_friction(1);
             derivation d1 = derive(q);
             friction_solution f1 = solve_friction(d1);
             const regime_case& st = f1.cases[0];
@@ -732,7 +732,7 @@ TEST(Continuity, StickAndSlideMeetAtTheThreshold)
             if (decide(F2) == decision::zero || decide(N) != decision::positive)
                 continue; // no friction needed to stick (mu* = 0), or a stick impulse that pulls (never sticks)
             const ex mu_star = sqrt(F2) / N;
-            q.contact.set_friction(mu_star);
+            q.contact().set_friction(mu_star);
             derivation d = derive(q);
             friction_solution f = solve_friction(d);
             lst stick_values = f.cases[0].sol.step_values(lst{});

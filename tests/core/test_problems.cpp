@@ -58,8 +58,8 @@ problem random_problem(sampler& rnd)
     auto immovable = [](kind k) { return k == kind::infinite || k == kind::pinned_particle; };
     if (immovable(kinds[0]) && immovable(kinds[1]))
         kinds[1] = kind::free_rigid;
-    p.contact.point = random_vec(dim, rnd, 2);
-    p.contact.normal = random_normal(dim, rnd);
+    p.contact().point = random_vec(dim, rnd, 2);
+    p.contact().normal = random_normal(dim, rnd);
     for (int i = 0; i < 2; ++i) {
         body b;
         b.name = b.label = i == 0 ? "A" : "B";
@@ -97,9 +97,9 @@ bool approaching(problem& p)
 {
     const body& A = p.bodies[0];
     const body& B = p.bodies[1];
-    vec3 vA = point_velocity(A, p.contact.point);
-    vec3 vB = point_velocity(B, p.contact.point);
-    ex u = dot(vB - vA, p.contact.normal).normal();
+    vec3 vA = point_velocity(A, p.contact().point);
+    vec3 vB = point_velocity(B, p.contact().point);
+    ex u = dot(vB - vA, p.contact().normal).normal();
     if (u.is_zero())
         return false;
     if (GiNaC::ex_to<GiNaC::numeric>(u) > 0)
@@ -312,6 +312,37 @@ TEST(ProblemFiles, BystanderBodyIsUnchanged)
     check_numeric_problem(p, "bystander", worst_lu, worst_kkt);
     EXPECT_LT(worst_lu, 1e-12); // a small well-conditioned system: round-off only
     EXPECT_LT(worst_kkt, 1e-12);
+}
+
+} // namespace
+
+namespace {
+
+// Format version 3: a `contacts` list of one, with its own restitution, means the same impact
+// as `contact` with the top-level restitution; title and description are kept for documents.
+TEST(ProblemFiles, ContactsListOfOneIsTheContact)
+{
+    const char *bodies = R"("bodies": [{"name": "ball", "mass": 2, "position": [0, -1], "velocity": [3, 1]},
+                 {"name": "rod", "mass": 1, "inertia": "1/12", "position": [0.5, 0], "velocity": [0, 0]}])";
+    problem a = read_problem(std::string(R"({"dimension": 2, "restitution": "1/3", )") + bodies +
+                                 R"(, "contact": {"bodies": ["ball", "rod"], "point": [0.5, -1], "normal": [1, 0]}})",
+                             "a");
+    problem b = read_problem(std::string(R"({"dimension": 2, "restitution": 1, "title": "Ball and rod",
+      "description": "A ball strikes a free rod.", )") + bodies +
+                                 R"(, "contacts": [{"bodies": ["ball", "rod"], "point": [0.5, -1], "normal": [1, 0],
+                                   "restitution": "1/3"}]})",
+                             "b");
+    EXPECT_EQ(b.title, "Ball and rod");
+    EXPECT_EQ(b.description, "A ball strikes a free rod.");
+    EXPECT_TRUE(a.title.empty());
+    ASSERT_EQ(b.contacts.size(), 1u);
+    EXPECT_TRUE((b.restitution - GiNaC::numeric(1, 3)).is_zero());
+    solution sa = solve(derive(a)), sb = solve(derive(b));
+    for (std::size_t i = 0; i < 2; ++i)
+        for (int k = 0; k < 2; ++k)
+            EXPECT_TRUE((sa.expand_steps(sa.after[i].velocity[k]) - sb.expand_steps(sb.after[i].velocity[k]))
+                            .normal()
+                            .is_zero());
 }
 
 } // namespace

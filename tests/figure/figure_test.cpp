@@ -381,8 +381,8 @@ TEST(FigureEvery, ShowsEveryBodyContactPointAndNormal)
         const point a = {n1->points[1].x - n1->points[0].x, n1->points[1].y - n1->points[0].y};
         const point b = {n2->points[1].x - n2->points[0].x, n2->points[1].y - n2->points[0].y};
         EXPECT_LT(a.x * b.x + a.y * b.y, 0);
-        EXPECT_EQ(n1->body, static_cast<int>(c.p.contact.body1));
-        EXPECT_EQ(n2->body, static_cast<int>(c.p.contact.body2));
+        EXPECT_EQ(n1->body, static_cast<int>(c.p.contact().body1));
+        EXPECT_EQ(n2->body, static_cast<int>(c.p.contact().body2));
         // Labels for C1, C2 (finite bodies), O, e_n, N.
         std::set<std::string> labels;
         for (const label& l : g.labels)
@@ -453,8 +453,8 @@ TEST(FigureGeometry, NormalArrowAlongTheProblemNormal)
         ASSERT_NE(en, nullptr);
         const double drawn = std::atan2(en->points[1].y - en->points[0].y, en->points[1].x - en->points[0].x);
         // Every planar case here has a numeric normal.
-        const double nx = GiNaC::ex_to<GiNaC::numeric>(c.p.contact.normal[0].evalf()).to_double();
-        const double ny = GiNaC::ex_to<GiNaC::numeric>(c.p.contact.normal[1].evalf()).to_double();
+        const double nx = GiNaC::ex_to<GiNaC::numeric>(c.p.contact().normal[0].evalf()).to_double();
+        const double ny = GiNaC::ex_to<GiNaC::numeric>(c.p.contact().normal[1].evalf()).to_double();
         EXPECT_NEAR(drawn, std::atan2(ny, nx), 1e-9);
         // e_t is e_n turned by -90 degrees, as the derivation takes it.
         const item* et = find_item(g, "e_t", item::arrow);

@@ -211,8 +211,8 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
     }
 
     const real e = ck.value(p.restitution, "restitution");
-    const rvec o = ck.value(p.contact.point, "contact.point");
-    rvec n = ck.value(p.contact.normal, "contact.normal");
+    const rvec o = ck.value(p.contact().point, "contact.point");
+    rvec n = ck.value(p.contact().normal, "contact.normal");
     n = (1 / norm(n)) * n;
     const real N = ck.number(a.value("normal_impulse", json()), "answer normal_impulse");
     rvec P = N * n;
@@ -238,7 +238,7 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
     if (!ck.failures.empty())
         return ck.failures; // the laws below need a complete answer
 
-    const std::size_t i1 = p.contact.body1, i2 = p.contact.body2;
+    const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     bool infinite_moves = false;
     for (std::size_t i = 0; i < n_bodies; ++i) {
         rbody& b = bodies[i];
