@@ -234,10 +234,10 @@ void why_count(section &sec, const derivation &d, const friction_setup *fr)
         q.w(body_ref(p, i) + ": " + number_word(nv + nw) + " unknowns");
         if (b.infinite_mass)
             q.t(i == p.contact().body2 ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
-                                       "$~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
-                                     : " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
-                                       "$~ω′ = ~ω$ (the notes' $m2 → ∞$ "
-                                       "case, with the bodies' roles exchanged)");
+                                         "$~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
+                                       : " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
+                                         "$~ω′ = ~ω$ (the notes' $m2 → ∞$ "
+                                         "case, with the bodies' roles exchanged)");
         else if (p.immovable(i))
             q.w(" -- a particle pinned at a fixed point cannot move");
         else if (b.particle)

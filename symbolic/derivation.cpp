@@ -321,9 +321,10 @@ void unit_normal_and_frame(derivation &d, const derive_options &options)
     d.e_b = dim == 3 ? cross(d.e_t, d.n_hat) : zero_vec();
     for (ex &c : d.e_b)
         c = merge_roots(tidy(c));
-    if (options.runtime_tangent_basis && dim == 3 && !p.contact().normal[0].is_zero() && !p.contact().normal[1].is_zero() &&
-        !p.contact().normal[2].is_zero() &&
-        !(is_constant(p.contact().normal[0]) && is_constant(p.contact().normal[1]) && is_constant(p.contact().normal[2]))) {
+    if (options.runtime_tangent_basis && dim == 3 && !p.contact().normal[0].is_zero() &&
+        !p.contact().normal[1].is_zero() && !p.contact().normal[2].is_zero() &&
+        !(is_constant(p.contact().normal[0]) && is_constant(p.contact().normal[1]) &&
+          is_constant(p.contact().normal[2]))) {
         for (int k = 0; k < 6; ++k) {
             const std::string name = std::string(k < 3 ? "e_t_" : "e_b_") + ax[static_cast<std::size_t>(k % 3)];
             d.tangent_basis_symbols.push_back(
