@@ -9,7 +9,7 @@ if [[ "${1:-}" == "--tests" ]]; then
   # (libclang-rt-14-dev has its ASan and UBSan runtimes, only recommended by clang; llvm-14
   # its llvm-symbolizer: without it every sanitized program warns on stderr at exit).
   # clang-format: scripts/check-format.sh, the library against the committed .clang-format.
-  packages+=(libgtest-dev libbenchmark-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev llvm-14 chromium zlib1g-dev
+  packages+=(libgtest-dev libbenchmark-dev libbox2d-dev texlive-latex-base texlive-pictures clang libclang-rt-14-dev llvm-14 chromium zlib1g-dev
              clang-format)
 fi
 missing=()
