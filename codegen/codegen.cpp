@@ -440,10 +440,7 @@ private:
         h_ << "#pragma once\n\n";
         if (em_.uses_sqrt)
             h_ << "#include <cmath>\n";
-        if (!batch_.normal_terms.empty())
-            h_ << "#include <limits>\n";
-        if (em_.uses_sqrt || !batch_.normal_terms.empty())
-            h_ << "\n";
+        h_ << "#include <limits>\n\n"; // the runtime's smallest_normal and machine_epsilon
     }
 
     // The status enum and helpers (codegen/runtime/impact_runtime.hpp), once per
@@ -457,7 +454,7 @@ private:
         if (!g.outputs.empty()) {
             for (std::size_t k : g.outputs) {
                 entries.push_back("&" + pl_.outputs[k].field);
-                fixed.push_back("0.0L");
+                fixed.push_back("0.0");
             }
         } else {
             for (const ex &x : g.inputs) {
@@ -466,7 +463,7 @@ private:
                     fixed.push_back(decimal_literal(ex_to<numeric>(x)));
                 } else {
                     entries.push_back("&" + input_ident_.at(x));
-                    fixed.push_back("0.0L");
+                    fixed.push_back("0.0");
                 }
             }
         }

@@ -205,7 +205,7 @@ std::string ok_flag(const std::string &ind, const emitted &form, const std::vect
     if (!form.nonneg_terms.empty())
         parts.push_back("(" + min_of(form.nonneg_terms) + " >= T(0))");
     if (!form.normal_terms.empty())
-        parts.push_back("(" + min_of(form.normal_terms) + " >= std::numeric_limits<T>::min())");
+        parts.push_back("(" + min_of(form.normal_terms) + " >= detail::smallest_normal<T>())");
     if (!finite_terms.empty() && form.positive_terms.empty())
         last_part = "detail::finite(" + timed_sum(finite_terms) + ")";
     if (!last_part.empty())

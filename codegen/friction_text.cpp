@@ -64,7 +64,7 @@ void friction_writer::result_struct()
         std::vector<std::string> e, f;
         for (std::size_t k : gr.outputs) {
             e.push_back("&" + outs_[smooth_index_.at(k)].field);
-            f.push_back("0.0L");
+            f.push_back("0.0");
         }
         view_functions(out_views_[g], gr.rows, gr.cols, e, f, gr.meaning);
     }
@@ -72,7 +72,7 @@ void friction_writer::result_struct()
         std::vector<std::string> e, f;
         for (std::size_t k : tangential_index_) {
             e.push_back("&" + outs_[k].field);
-            f.push_back("0.0L");
+            f.push_back("0.0");
         }
         view_functions(tangential_view_, static_cast<int>(e.size()), 1, e, f,
                        "tangential (friction) impulse on " + q_.bodies[q_.contact().body2].name + ", world axes");
@@ -91,7 +91,7 @@ void friction_writer::result_struct()
                 f.push_back(decimal_literal(ex_to<numeric>(x)));
             } else {
                 e.push_back("&" + input_ident_.at(x));
-                f.push_back("0.0L");
+                f.push_back("0.0");
             }
         }
         view_functions(in_views_[g], gr.rows, gr.cols, e, f, gr.meaning);

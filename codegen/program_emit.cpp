@@ -107,7 +107,7 @@ struct printer {
             // exact in T when |k| <= 2^53 (and written as an integer literal); otherwise via long double
             if (abs(k) <= numeric(9007199254740992LL))
                 return "T(" + number_text(k) + ")";
-            return "detail::constant<T>(" + number_text(k) + ".0L)";
+            return "detail::constant<T>(IMPACTGEN_WIDE(" + number_text(k) + ".0))";
         };
         const numeric limit(9007199254740992LL); // 2^53
         if (x.is_integer() && abs(x) <= limit)
@@ -134,7 +134,7 @@ std::string decimal_literal(const numeric &x)
             c = 'e';
     if (t.find_first_of(".e") == std::string::npos)
         t += ".0";
-    return t + "L";
+    return "IMPACTGEN_WIDE(" + t + ")"; // a long double literal, or a double one in device code
 }
 
 namespace
@@ -553,7 +553,7 @@ private:
                 cond = x + " < T(0)";
                 break;
             case check::normal_number:
-                cond = x + " >= std::numeric_limits<T>::min() && detail::finite(" + x + ")";
+                cond = x + " >= detail::smallest_normal<T>() && detail::finite(" + x + ")";
                 break;
             case check::near_one:
                 cond = x + " >= " + unit_bound(-1) + " && " + x + " <= " + unit_bound(+1);

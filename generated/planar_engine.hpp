@@ -7,15 +7,21 @@
 //   batch loop: 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 2 fma, 5 min (checks) per impact, no branch.
 #pragma once
 
+#include <limits>
+
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
-//   IMPACTGEN_FUNC  what every function is declared with (default inline;
-//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
+//                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
+//                   that the header is callable from kernels as it is; nothing
+//                   for any other compiler
+//   IMPACTGEN_FUNC  what every function is declared with (default
+//                   IMPACTGEN_HOST_DEVICE inline)
 //   IMPACTGEN_MEMBER  what the structs' member functions are declared with
-//                   (default nothing; e.g. __host__ __device__)
+//                   (default IMPACTGEN_HOST_DEVICE)
 //   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
 //                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
@@ -23,11 +29,24 @@ namespace impactgen::generated {
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math or -ffinite-math-only
 //                   anyway (its NaN and infinity checks may then pass a NaN
 //                   input as ok)
+// Device code (CUDA, HIP): with IMPACTGEN_HOST_DEVICE __host__ __device__ (the
+// default there), every function of the header compiles for the device:
+// its device pass (__CUDA_ARCH__, __HIP_DEVICE_COMPILE__) calls no host-only
+// function (std::numeric_limits' functions, compiler builtins) and has no long
+// double (a number the header writes in long double is a double there: the
+// device has no wider type; view::fixed is double there too).
+#ifndef IMPACTGEN_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__HIPCC__)
+#define IMPACTGEN_HOST_DEVICE __host__ __device__
+#else
+#define IMPACTGEN_HOST_DEVICE
+#endif
+#endif
 #ifndef IMPACTGEN_FUNC
-#define IMPACTGEN_FUNC inline
+#define IMPACTGEN_FUNC IMPACTGEN_HOST_DEVICE inline
 #endif
 #ifndef IMPACTGEN_MEMBER
-#define IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER IMPACTGEN_HOST_DEVICE
 #endif
 #ifndef IMPACTGEN_RESTRICT
 #if defined(__GNUC__) || defined(_MSC_VER)
@@ -52,6 +71,19 @@ namespace impactgen::generated {
 #endif
 #if (defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
 #error "impactgen: -ffast-math and -ffinite-math-only remove the NaN and infinity checks of this header (a NaN input would return ok); compile it without them (or with -fno-finite-math-only), or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define IMPACTGEN_WIDE(x) x
+#else
+#define IMPACTGEN_WIDE(x) x##L
+#endif
+
+/// The widest floating type of the pass: long double, or double in device code.
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+using wide_number = double;
+#else
+using wide_number = long double;
 #endif
 
 /// Why a call computed no post-impact state. On any status but ok the result
@@ -93,7 +125,7 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 template <typename S, int Rows, int Cols> struct view {
     static constexpr int rows = Rows, cols = Cols;
     S* entry[Rows * Cols];
-    long double fixed[Rows * Cols];
+    wide_number fixed[Rows * Cols];
 };
 
 /// Floating-point operations of one call of a generated function.
@@ -107,23 +139,49 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T 
 {
     return (finite(x) && ... && finite(y));
 }
-/// A number of the header (a long double literal) in the scalar type: directly for
+/// A number of the header (a wide_number literal) in the scalar type: directly for
 /// float, double and long double; through double for other types (autodiff
 /// scalars such as Eigen's AutoDiffScalar or ceres::Jet are built on double), so
 /// that no implicit long double conversion is left for -Wconversion to flag.
 template <typename T> struct constant_of {
-    IMPACTGEN_MEMBER static T from(long double x) noexcept { return T(static_cast<double>(x)); }
+    IMPACTGEN_MEMBER static T from(wide_number x) noexcept { return T(static_cast<double>(x)); }
 };
 template <> struct constant_of<float> {
-    IMPACTGEN_MEMBER static constexpr float from(long double x) noexcept { return static_cast<float>(x); }
+    IMPACTGEN_MEMBER static constexpr float from(wide_number x) noexcept { return static_cast<float>(x); }
 };
 template <> struct constant_of<double> {
-    IMPACTGEN_MEMBER static constexpr double from(long double x) noexcept { return static_cast<double>(x); }
+    IMPACTGEN_MEMBER static constexpr double from(wide_number x) noexcept { return static_cast<double>(x); }
 };
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
 template <> struct constant_of<long double> {
     IMPACTGEN_MEMBER static constexpr long double from(long double x) noexcept { return x; }
 };
-template <typename T> IMPACTGEN_FUNC T constant(long double x) noexcept { return constant_of<T>::from(x); }
+#endif
+template <typename T> IMPACTGEN_FUNC T constant(wide_number x) noexcept { return constant_of<T>::from(x); }
+/// The smallest positive normal number and the machine epsilon of T: std::numeric_limits'
+/// on the host; in device code (where those functions are host-only) float's or double's.
+template <typename T> IMPACTGEN_FUNC constexpr T smallest_normal() noexcept
+{
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+    if constexpr (sizeof(T) == sizeof(float))
+        return T(1.17549435082228750797e-38f);
+    else
+        return T(2.22507385850720138309e-308);
+#else
+    return std::numeric_limits<T>::min();
+#endif
+}
+template <typename T> IMPACTGEN_FUNC constexpr T machine_epsilon() noexcept
+{
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+    if constexpr (sizeof(T) == sizeof(float))
+        return T(1.1920928955078125e-07f);
+    else
+        return T(2.220446049250313080847e-16);
+#else
+    return std::numeric_limits<T>::epsilon();
+#endif
+}
 template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
 template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
@@ -145,11 +203,11 @@ template <typename T> struct planar_engine_result {
     T approach_velocity; ///< (v_B - v_A).n before impact along the unit normal (< 0)
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
     /// velocity of the centre of mass of 1 after impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 after impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
 };
 
 /// The inputs of planar_engine by name (the same as its parameters).
@@ -170,17 +228,17 @@ template <typename T> struct planar_engine_input {
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     T w_b2; ///< angular velocity of 2 before impact, b
     /// centre of mass of 1 (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 1 before impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
     /// centre of mass of 2 (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
 };
 
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,

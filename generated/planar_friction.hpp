@@ -11,13 +11,17 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_254370D1_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
-//   IMPACTGEN_FUNC  what every function is declared with (default inline;
-//                   e.g. __host__ __device__ inline for nvcc or hipcc)
+//   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
+//                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
+//                   that the header is callable from kernels as it is; nothing
+//                   for any other compiler
+//   IMPACTGEN_FUNC  what every function is declared with (default
+//                   IMPACTGEN_HOST_DEVICE inline)
 //   IMPACTGEN_MEMBER  what the structs' member functions are declared with
-//                   (default nothing; e.g. __host__ __device__)
+//                   (default IMPACTGEN_HOST_DEVICE)
 //   IMPACTGEN_RESTRICT  the no-alias qualifier of the batch form's arrays
 //                   (default __restrict with GCC, clang, MSVC)
 //   IMPACTGEN_HOT, IMPACTGEN_COLD  attributes of the fast path and of the slow
@@ -25,11 +29,24 @@ namespace impactgen::generated {
 //   IMPACTGEN_ALLOW_FAST_MATH  compile under -ffast-math or -ffinite-math-only
 //                   anyway (its NaN and infinity checks may then pass a NaN
 //                   input as ok)
+// Device code (CUDA, HIP): with IMPACTGEN_HOST_DEVICE __host__ __device__ (the
+// default there), every function of the header compiles for the device:
+// its device pass (__CUDA_ARCH__, __HIP_DEVICE_COMPILE__) calls no host-only
+// function (std::numeric_limits' functions, compiler builtins) and has no long
+// double (a number the header writes in long double is a double there: the
+// device has no wider type; view::fixed is double there too).
+#ifndef IMPACTGEN_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__HIPCC__)
+#define IMPACTGEN_HOST_DEVICE __host__ __device__
+#else
+#define IMPACTGEN_HOST_DEVICE
+#endif
+#endif
 #ifndef IMPACTGEN_FUNC
-#define IMPACTGEN_FUNC inline
+#define IMPACTGEN_FUNC IMPACTGEN_HOST_DEVICE inline
 #endif
 #ifndef IMPACTGEN_MEMBER
-#define IMPACTGEN_MEMBER
+#define IMPACTGEN_MEMBER IMPACTGEN_HOST_DEVICE
 #endif
 #ifndef IMPACTGEN_RESTRICT
 #if defined(__GNUC__) || defined(_MSC_VER)
@@ -54,6 +71,19 @@ namespace impactgen::generated {
 #endif
 #if (defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)) && !defined(IMPACTGEN_ALLOW_FAST_MATH)
 #error "impactgen: -ffast-math and -ffinite-math-only remove the NaN and infinity checks of this header (a NaN input would return ok); compile it without them (or with -fno-finite-math-only), or define IMPACTGEN_ALLOW_FAST_MATH"
+#endif
+
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define IMPACTGEN_WIDE(x) x
+#else
+#define IMPACTGEN_WIDE(x) x##L
+#endif
+
+/// The widest floating type of the pass: long double, or double in device code.
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+using wide_number = double;
+#else
+using wide_number = long double;
 #endif
 
 /// Why a call computed no post-impact state. On any status but ok the result
@@ -95,7 +125,7 @@ IMPACTGEN_FUNC constexpr const char* to_string(impact_status s) noexcept
 template <typename S, int Rows, int Cols> struct view {
     static constexpr int rows = Rows, cols = Cols;
     S* entry[Rows * Cols];
-    long double fixed[Rows * Cols];
+    wide_number fixed[Rows * Cols];
 };
 
 /// Floating-point operations of one call of a generated function.
@@ -109,23 +139,49 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr bool all_finite(T 
 {
     return (finite(x) && ... && finite(y));
 }
-/// A number of the header (a long double literal) in the scalar type: directly for
+/// A number of the header (a wide_number literal) in the scalar type: directly for
 /// float, double and long double; through double for other types (autodiff
 /// scalars such as Eigen's AutoDiffScalar or ceres::Jet are built on double), so
 /// that no implicit long double conversion is left for -Wconversion to flag.
 template <typename T> struct constant_of {
-    IMPACTGEN_MEMBER static T from(long double x) noexcept { return T(static_cast<double>(x)); }
+    IMPACTGEN_MEMBER static T from(wide_number x) noexcept { return T(static_cast<double>(x)); }
 };
 template <> struct constant_of<float> {
-    IMPACTGEN_MEMBER static constexpr float from(long double x) noexcept { return static_cast<float>(x); }
+    IMPACTGEN_MEMBER static constexpr float from(wide_number x) noexcept { return static_cast<float>(x); }
 };
 template <> struct constant_of<double> {
-    IMPACTGEN_MEMBER static constexpr double from(long double x) noexcept { return static_cast<double>(x); }
+    IMPACTGEN_MEMBER static constexpr double from(wide_number x) noexcept { return static_cast<double>(x); }
 };
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
 template <> struct constant_of<long double> {
     IMPACTGEN_MEMBER static constexpr long double from(long double x) noexcept { return x; }
 };
-template <typename T> IMPACTGEN_FUNC T constant(long double x) noexcept { return constant_of<T>::from(x); }
+#endif
+template <typename T> IMPACTGEN_FUNC T constant(wide_number x) noexcept { return constant_of<T>::from(x); }
+/// The smallest positive normal number and the machine epsilon of T: std::numeric_limits'
+/// on the host; in device code (where those functions are host-only) float's or double's.
+template <typename T> IMPACTGEN_FUNC constexpr T smallest_normal() noexcept
+{
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+    if constexpr (sizeof(T) == sizeof(float))
+        return T(1.17549435082228750797e-38f);
+    else
+        return T(2.22507385850720138309e-308);
+#else
+    return std::numeric_limits<T>::min();
+#endif
+}
+template <typename T> IMPACTGEN_FUNC constexpr T machine_epsilon() noexcept
+{
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+    if constexpr (sizeof(T) == sizeof(float))
+        return T(1.1920928955078125e-07f);
+    else
+        return T(2.220446049250313080847e-16);
+#else
+    return std::numeric_limits<T>::epsilon();
+#endif
+}
 template <typename T> IMPACTGEN_FUNC constexpr T min_of(T x) noexcept { return x; }
 /// The smallest argument (a NaN argument may be dropped: callers test finiteness apart).
 template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y, U... z) noexcept
@@ -135,8 +191,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_D18FFB24_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_D18FFB24_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_D0AC53DB_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_D0AC53DB_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -265,9 +321,9 @@ template <typename T> IMPACTGEN_FUNC T cos_pi8(int r) noexcept
 {
     switch (r) {
     case 0: return T(1);
-    case 1: return detail::constant<T>(0.9238795325112867561281831893967882868224L);
-    case 2: return detail::constant<T>(0.7071067811865475244008443621048490392848L);
-    case 3: return detail::constant<T>(0.3826834323650897717284599840303988667613L);
+    case 1: return detail::constant<T>(IMPACTGEN_WIDE(0.9238795325112867561281831893967882868224));
+    case 2: return detail::constant<T>(IMPACTGEN_WIDE(0.7071067811865475244008443621048490392848));
+    case 3: return detail::constant<T>(IMPACTGEN_WIDE(0.3826834323650897717284599840303988667613));
     default: return T(0);
     }
 }
@@ -403,7 +459,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     for (int i = 2; i < 5; ++i)
         B = max_of(B, abs_of(q[i]));
     B += T(1);
-    const T eps = std::numeric_limits<T>::epsilon();
+    const T eps = detail::machine_epsilon<T>();
     const T d1[4] = {T(4), T(3) * q[1], T(2) * q[2], q[3]}; // q'
     const T d2[3] = {T(12), T(6) * q[1], T(2) * q[2]};      // q''
     T ends[4];
@@ -457,7 +513,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
 /// The index of the lowest bit set (bits != 0).
 IMPACTGEN_FUNC int trig2_lowest(unsigned bits) noexcept
 {
-#if defined(__GNUC__)
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
     return __builtin_ctz(bits);
 #else
     int k = 0;
@@ -579,7 +635,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             done = done && in && step[j] <= tight * th[j];
         }
     }
-    const T eps = std::numeric_limits<T>::epsilon();
+    const T eps = detail::machine_epsilon<T>();
     for (int j = 0; j < n; ++j) {
         if (!(inside[j] > T(0) && step[j] <= tight * th[j])) {
             IMPACTGEN_TRIG2_COUNT(polished);
@@ -633,7 +689,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     b2 *= r;
     const T A1 = sqrt(a1 * a1 + b1 * b1), A2 = sqrt(a2 * a2 + b2 * b2);
     const T L1 = A1 + T(2) * A2, L2 = A1 + T(4) * A2, L3 = A1 + T(8) * A2; // bounds of |g'|, |g''|, |g'''|
-    const T w = detail::constant<T>(0.3926990816987241548078304229099378605246L); // pi / 8
+    const T w = detail::constant<T>(IMPACTGEN_WIDE(0.3926990816987241548078304229099378605246)); // pi / 8
     const T c1 = cos_pi8<T>(1), c2 = cos_pi8<T>(2), c3 = cos_pi8<T>(3);
     // cos, sin of k pi / 8 and of twice that, k = 0..16
     const T uc[17] = {T(1), c1, c2, c3, T(0), -c3, -c2, -c1, T(-1), -c1, -c2, -c3, T(0), c3, c2, c1, T(1)};
@@ -683,7 +739,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     // trig2_classify says so, and the halves of undecided arcs that trig2_classify
     // decides (at most 6 halvings: arcs down to pi / 512).
     T cl[4], sl[4], tw[4], gl[4], dl[4], gh[4], dh[4], ww[4];
-    const T tw0 = detail::constant<T>(0.1989123673796580069098427269237060575042L); // tan(pi / 16)
+    const T tw0 = detail::constant<T>(IMPACTGEN_WIDE(0.1989123673796580069098427269237060575042)); // tan(pi / 16)
     int n = 0;
     trig2_arc<T> todo[24]; // a stack of undecided arcs: 16 + 6 + 1 entries at most
     int top = 0;
@@ -781,7 +837,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
     b2 *= r;
     const T tr = m11 + m22, det = m11 * m22 - m12 * m21;
     const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
-    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * std::numeric_limits<T>::epsilon() * nb;
+    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * detail::machine_epsilon<T>() * nb;
     // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
     T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
     for (int it = 0; it < 12; ++it) {
@@ -827,14 +883,14 @@ template <typename T> struct planar_friction_result {
     T energy_lost; ///< kinetic energy lost, T - T' (bodies of finite mass)
     impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok
     /// velocity of the centre of mass of 1 after impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 after impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
     /// tangential (friction) impulse on 2, world axes (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> tangential_impulse() noexcept { return {{&tangential_impulse_t, &tangential_impulse_n}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> tangential_impulse() const noexcept { return {{&tangential_impulse_t, &tangential_impulse_n}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> tangential_impulse() noexcept { return {{&tangential_impulse_t, &tangential_impulse_n}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> tangential_impulse() const noexcept { return {{&tangential_impulse_t, &tangential_impulse_n}, {0.0, 0.0}}; }
 };
 
 /// The inputs of planar_friction by name (the same as its parameters).
@@ -856,17 +912,17 @@ template <typename T> struct planar_friction_input {
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     T w_b2; ///< angular velocity of 2 before impact, b
     /// centre of mass of 1 (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 1 before impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
     /// centre of mass of 2 (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
-    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
-    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0L, 0.0L}}; }
+    IMPACTGEN_MEMBER view<T, 2, 1> v2() noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
+    IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
 };
 
 // The law (impactgen's symbolic/friction.hpp): P = P_n n + P_t the impulse on body 2 (-P on

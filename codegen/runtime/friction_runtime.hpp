@@ -126,9 +126,9 @@ template <typename T> IMPACTGEN_FUNC T cos_pi8(int r) noexcept
 {
     switch (r) {
     case 0: return T(1);
-    case 1: return detail::constant<T>(0.9238795325112867561281831893967882868224L);
-    case 2: return detail::constant<T>(0.7071067811865475244008443621048490392848L);
-    case 3: return detail::constant<T>(0.3826834323650897717284599840303988667613L);
+    case 1: return detail::constant<T>(IMPACTGEN_WIDE(0.9238795325112867561281831893967882868224));
+    case 2: return detail::constant<T>(IMPACTGEN_WIDE(0.7071067811865475244008443621048490392848));
+    case 3: return detail::constant<T>(IMPACTGEN_WIDE(0.3826834323650897717284599840303988667613));
     default: return T(0);
     }
 }
@@ -264,7 +264,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     for (int i = 2; i < 5; ++i)
         B = max_of(B, abs_of(q[i]));
     B += T(1);
-    const T eps = std::numeric_limits<T>::epsilon();
+    const T eps = detail::machine_epsilon<T>();
     const T d1[4] = {T(4), T(3) * q[1], T(2) * q[2], q[3]}; // q'
     const T d2[3] = {T(12), T(6) * q[1], T(2) * q[2]};      // q''
     T ends[4];
@@ -318,7 +318,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
 /// The index of the lowest bit set (bits != 0).
 IMPACTGEN_FUNC int trig2_lowest(unsigned bits) noexcept
 {
-#if defined(__GNUC__)
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
     return __builtin_ctz(bits);
 #else
     int k = 0;
@@ -440,7 +440,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             done = done && in && step[j] <= tight * th[j];
         }
     }
-    const T eps = std::numeric_limits<T>::epsilon();
+    const T eps = detail::machine_epsilon<T>();
     for (int j = 0; j < n; ++j) {
         if (!(inside[j] > T(0) && step[j] <= tight * th[j])) {
             IMPACTGEN_TRIG2_COUNT(polished);
@@ -494,7 +494,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     b2 *= r;
     const T A1 = sqrt(a1 * a1 + b1 * b1), A2 = sqrt(a2 * a2 + b2 * b2);
     const T L1 = A1 + T(2) * A2, L2 = A1 + T(4) * A2, L3 = A1 + T(8) * A2; // bounds of |g'|, |g''|, |g'''|
-    const T w = detail::constant<T>(0.3926990816987241548078304229099378605246L); // pi / 8
+    const T w = detail::constant<T>(IMPACTGEN_WIDE(0.3926990816987241548078304229099378605246)); // pi / 8
     const T c1 = cos_pi8<T>(1), c2 = cos_pi8<T>(2), c3 = cos_pi8<T>(3);
     // cos, sin of k pi / 8 and of twice that, k = 0..16
     const T uc[17] = {T(1), c1, c2, c3, T(0), -c3, -c2, -c1, T(-1), -c1, -c2, -c3, T(0), c3, c2, c1, T(1)};
@@ -544,7 +544,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     // trig2_classify says so, and the halves of undecided arcs that trig2_classify
     // decides (at most 6 halvings: arcs down to pi / 512).
     T cl[4], sl[4], tw[4], gl[4], dl[4], gh[4], dh[4], ww[4];
-    const T tw0 = detail::constant<T>(0.1989123673796580069098427269237060575042L); // tan(pi / 16)
+    const T tw0 = detail::constant<T>(IMPACTGEN_WIDE(0.1989123673796580069098427269237060575042)); // tan(pi / 16)
     int n = 0;
     trig2_arc<T> todo[24]; // a stack of undecided arcs: 16 + 6 + 1 entries at most
     int top = 0;
@@ -642,7 +642,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
     b2 *= r;
     const T tr = m11 + m22, det = m11 * m22 - m12 * m21;
     const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
-    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * std::numeric_limits<T>::epsilon() * nb;
+    const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * detail::machine_epsilon<T>() * nb;
     // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
     T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
     for (int it = 0; it < 12; ++it) {

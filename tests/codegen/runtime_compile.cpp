@@ -1,6 +1,7 @@
 // The runtime files (codegen/runtime/*.hpp) compiled on their own and run, as the headers
-// emit them: inside a namespace; impact_runtime.hpp with nothing included before it,
-// friction_runtime.hpp after <cmath>, <limits> and impact_runtime.hpp (it uses
+// emit them: inside a namespace; impact_runtime.hpp after <limits> (every header includes
+// it: smallest_normal, machine_epsilon), friction_runtime.hpp after <cmath>, <limits> and
+// impact_runtime.hpp (it uses
 // impact_status, IMPACTGEN_FUNC and the detail helpers). GEN_HEADER is the file under
 // test; RUNTIME_IMPACT or RUNTIME_FRICTION says which. The templates are instantiated for
 // float, double and long double, so that the strict warnings of check_compile.cmake see
@@ -10,9 +11,9 @@
 #define RUNTIME_FRICTION
 #define IMPACTGEN_TRIG2_STATS
 #endif
+#include <limits>
 #ifdef RUNTIME_FRICTION
 #include <cmath>
-#include <limits>
 #endif
 
 namespace runtime_check
@@ -49,6 +50,9 @@ template <typename T> void check_impact()
     expect(detail::all_finite(T(1), T(2), T(3)) && !detail::all_finite(T(1), inf), "detail::all_finite");
     expect(detail::min_of(T(3), T(1), T(2)) == T(1), "detail::min_of");
     expect(detail::constant<T>(0.5L) == T(0.5), "detail::constant");
+    expect(detail::constant<T>(IMPACTGEN_WIDE(0.25)) == T(0.25), "IMPACTGEN_WIDE");
+    expect(detail::smallest_normal<T>() == std::numeric_limits<T>::min(), "detail::smallest_normal");
+    expect(detail::machine_epsilon<T>() == std::numeric_limits<T>::epsilon(), "detail::machine_epsilon");
     T x = T(2);
     const view<T, 1, 1> v = {{&x}, {0.0L}};
     expect(*v.entry[0] == T(2) && v.rows == 1 && v.cols == 1, "view");
