@@ -1,7 +1,6 @@
-// explain(): the explanation document, section by section as the notes go:
-// set-up (explain_setup.cpp), impulses, equations, count and solution, checks
-// (explain_sections.cpp); here the notation of prose, the shared builders, the
-// symbolized twin and the document itself.
+// What every chapter of the explanation shares (explain_detail.hpp): the notation of
+// teaching prose, the small builders of rows and spans, the figure, units and the
+// symbolized twin of a numeric problem. The document is built in explain_document.cpp.
 #include "explain.hpp"
 #include "explain_detail.hpp"
 #include "explain_smooth.hpp"
@@ -506,6 +505,15 @@ symbol show(const std::string &name, const std::string &tex)
     return symbol(name, tex);
 }
 
+std::size_t pivot_impulse_count(const derivation &d)
+{
+    std::size_t n = 0;
+    for (const unknown &u : d.unknowns)
+        if (u.kind == unknown_kind::pivot_impulse)
+            ++n;
+    return n;
+}
+
 const step *find_step(const solution &s, step_role role, std::size_t body)
 {
     return s.find(role, body);
@@ -602,83 +610,6 @@ problem detail::symbolized(const problem &p, lst &values, std::vector<std::strin
         q.contact().set_friction(mu);
     }
     return q;
-}
-
-std::optional<document> detail::taught_in_symbols(
-    const derivation &d,
-    const std::function<document(const derivation &, const lst &, const std::vector<std::string> &)> &teach)
-{
-    lst values;
-    std::vector<std::string> units;
-    const problem twin = symbolized(d.prob, values, units);
-    if (values.nops() == 0)
-        return std::nullopt;
-    try {
-        derive_options opt;
-        opt.unit_normal = d.normal_assumed_unit;
-        document doc = teach(derive(twin, opt), values, units);
-        // the figure from the numbers, not from the symbols
-        for (block &b : doc.sections.front().blocks)
-            if (b.k == block::figure)
-                b.art = figure_of(d);
-        return doc;
-    } catch (const std::exception &) {
-        return std::nullopt; // the twin needs a decision only the numbers allow: taught with the numbers
-    }
-}
-
-namespace
-{
-
-document explain_document(const derivation &d, const solution &s, const worked_example *example)
-{
-    document doc;
-    doc.title = "Smooth impact: " + d.prob.source;
-    doc.sections.push_back(setup_section(d));
-    doc.sections.push_back(impulse_section(d));
-    doc.sections.push_back(equations_section(d));
-    doc.sections.push_back(solution_section(d, s));
-    doc.sections.push_back(checks_section(d, s, example));
-    return doc;
-}
-
-} // namespace
-
-document explain(const derivation &d, const solution &s, const worked_example *example)
-{
-    // A numeric problem is taught as the notes teach: the equations and the named
-    // steps in symbols first, then the numbers. When the symbolic twin cannot be
-    // derived (a decision that needs the numbers), the numbers are shown directly.
-    if (d.prob.is_numeric() && !example) {
-        lst values;
-        std::vector<std::string> units;
-        problem twin = symbolized(d.prob, values, units);
-        if (values.nops() > 0) {
-            try {
-                derive_options opt;
-                opt.unit_normal = d.normal_assumed_unit;
-                derivation d2 = derive(twin, opt);
-                solution s2 = solve(d2);
-                worked_example numbers{"the problem's numbers", values, true, units};
-                document doc = explain_document(d2, s2, &numbers);
-                // the figure from the numbers, not from the symbols
-                for (block &b : doc.sections.front().blocks)
-                    if (b.k == block::figure)
-                        b.art = figure_of(d);
-                return doc;
-            } catch (const std::exception &) {
-                // fall through to the numbers
-            }
-        }
-    }
-    return explain_document(d, s, example);
-}
-
-document explain(const derivation &d, const impact_solution &s, const worked_example *example)
-{
-    if (!d.prob.has_friction())
-        return explain(d, s.cases.front().sol, example);
-    return explain_friction(d, s);
 }
 
 } // namespace impactgen::print

@@ -1,10 +1,9 @@
-// What explain.cpp (smooth impacts) and explain_friction.cpp (Coulomb friction)
-// share: the set-up section and the small builders of rows and spans.
+// What every contact law's chapter of the document shares (explain_law.hpp): the small
+// builders of rows and spans, the figure, units, the symbolized twin of a numeric problem.
 #pragma once
 
 #include "explain.hpp"
 
-#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -42,31 +41,13 @@ std::string unit(const problem &p, quantity q);
 /// The units of a problem in words: "SI (masses in kg, ...)".
 std::string units_key(const problem &p);
 
-/// With friction, the set-up also names Coulomb's coefficient and the impulses
-/// that become unknowns: N (unless the derivation has it already) and F.
-struct friction_setup {
-    GiNaC::ex mu;
-    /// The coefficient's own name, when the document writes it otherwise (μ for a
-    /// coefficient the problem names f).
-    std::optional<notation> mu_in_problem;
-    std::vector<std::pair<GiNaC::ex, paragraph>> impulses; ///< unknown symbol, meaning
-};
+/// How many components of pivot impulses are unknowns.
+std::size_t pivot_impulse_count(const derivation &d);
 
 /// A numeric problem's twin with symbols for its masses, inertias, velocities, e and μ
 /// (geometry kept), for teaching in symbols first; values gets symbol == number and
 /// units the unit of each (" kg", or "").
 problem symbolized(const problem &p, GiNaC::lst &values, std::vector<std::string> &units);
-
-/// A numeric problem taught in symbols first: its symbolized twin derived as d was (the
-/// same normal convention), teach(twin, values, units) builds the document, and the
-/// figure is drawn from the numbers. Empty when there is no number to name, or when the
-/// twin cannot be derived or taught (a decision that needs the numbers).
-std::optional<document> taught_in_symbols(const derivation &d,
-                                          const std::function<document(const derivation &twin, const GiNaC::lst &values,
-                                                                       const std::vector<std::string> &units)> &teach);
-
-/// Section 1: bodies, contact frame, unknowns and their count.
-section setup_section(const derivation &d, const friction_setup *friction = nullptr);
 
 /// Rows without a relation and without equation tags: definitions (a symbol and its meaning).
 inline bool rows_are_plain(const std::vector<math_row> &rows)

@@ -1,6 +1,7 @@
-// The parts the friction document's files share (print/explain_friction.cpp: sections 1-8
-// and the document; print/explain_friction_numbers.cpp: the numbers and the answer, sections
-// 9 and 10): the document's context and its small printers. Not an interface of the library.
+// What the files of the Coulomb chapter of the document share (explain_law_coulomb.cpp: the
+// chapter; explain_friction.cpp: the law, equations, candidates and regimes;
+// explain_friction_numbers.cpp: the numbers and the answer): the chapter's context and its
+// small printers. Not an interface of the library.
 #pragma once
 
 #include "explain.hpp"
@@ -97,7 +98,17 @@ bool short_denominator(const ex &x);
 /// |F|/N of the stick impulse (the threshold mu* when N > 0).
 ex stick_threshold_value(const context &c);
 
-/// Sections 9 (the numbers, the regime that holds) and 10 (the answer) of a numeric problem.
-void numbers_section(context &c, document &doc);
+// The sections of the chapter (explain_law_coulomb.cpp puts them in their slots).
+section law_section(const context &c);           ///< the contact law: restitution and Coulomb's cone
+section equations_section(const context &c);     ///< impulse-momentum with the friction impulse
+section response_section(const context &c);      ///< the contact response K and the shared steps
+section stick_section(const context &c);         ///< the stick candidate tested against the cone
+section no_stick_section(const context &c);      ///< K singular: no stick candidate
+section slide_section(const context &c);         ///< the slides, each with its conditions
+section regimes_section(const context &c);       ///< the regimes as conditions on mu, the energy
+section slide_regimes_section(const context &c); ///< without a stick candidate: the slides' conditions, the energy
+section existence_section(const context &c);     ///< one regime, none, or several
+/// A numeric problem's numbers and the regime that holds, then its answer (when one regime holds).
+std::vector<section> numbers_sections(const context &c);
 
 } // namespace impactgen::print::friction_detail

@@ -307,7 +307,7 @@ paragraph verdict_paragraph(const context &c, const regime_case &sel)
 // Section 10: the answer, the equations substituted back, the energy.
 section answer_section(const context &c, const regime_case &sel)
 {
-    section ans{"10. The answer", {}};
+    section ans{"The answer", {}};
     std::vector<math_row> answers;
     lst unknown_values;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k) {
@@ -394,11 +394,11 @@ section answer_section(const context &c, const regime_case &sel)
 
 } // namespace
 
-void numbers_section(context &c, document &doc)
+std::vector<section> numbers_sections(const context &c)
 {
-    section sec{"9. The numbers", {}};
+    section sec{"The numbers", {}};
     if (c.f.cases.empty())
-        return;
+        return {};
     // The shared steps are the first candidate's first steps (stick's, or a slide's without it).
     const regime_case &first = c.f.cases.front();
     if (c.inputs.nops()) {
@@ -446,13 +446,11 @@ void numbers_section(context &c, document &doc)
             "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
             "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
             "tangential directions, typically leaves a single regime."));
-        doc.sections.push_back(sec);
-        return;
+        return {sec};
     }
     sec.para(verdict_paragraph(c, sel));
-    const section ans = answer_section(c, sel);
-    doc.sections.push_back(sec);
-    doc.sections.push_back(ans);
+    section ans = answer_section(c, sel);
+    return {sec, ans};
 }
 
 } // namespace impactgen::print::friction_detail

@@ -1,5 +1,5 @@
-// explain(): sections 2 to 5 of the smooth explanation: the impulses, the equations,
-// the count and the solution, the checks (with the numbers of a worked example).
+// The smooth chapter's sections (explain_smooth.hpp): the impulses, the equations, the count
+// and the solution, the checks (with the numbers of a worked example).
 #include "explain.hpp"
 #include "explain_detail.hpp"
 #include "explain_smooth.hpp"
@@ -30,7 +30,7 @@ section detail::impulse_section(const derivation &d)
 {
     const problem &p = d.prob;
     const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
-    section sec{"2. The impulses (impulse-momentum diagram in words)", {}};
+    section sec{"The impulses (impulse-momentum diagram in words)", {}};
     std::vector<paragraph> items;
     items.push_back(paragraph()
                         .t("At the contact the normal reaction $N$ acts along $e_n$ for a very short time; its impulse "
@@ -254,7 +254,7 @@ void remark_list(section &sec, const derivation &d)
 section detail::equations_section(const derivation &d)
 {
     const problem &p = d.prob;
-    section sec{"3. The equations", {}};
+    section sec{"The equations", {}};
     if (d.impulse_form)
         sec.para(paragraph().t(
             "A body is pinned, so, as in the notes' constrained collision, impulse-momentum is written for each body "
@@ -306,7 +306,7 @@ section detail::equations_section(const derivation &d)
 
 section detail::solution_section(const derivation &d, const solution &s)
 {
-    section sec{"4. Count check and solution", {}};
+    section sec{"Count check and solution", {}};
     const bool ok = d.count_equations() == d.count_unknowns();
     sec.para(paragraph().w(
         std::to_string(d.count_equations()) + " equations for " + std::to_string(d.count_unknowns()) +
@@ -710,7 +710,7 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
 section detail::checks_section(const derivation &d, const solution &s, const worked_example *example)
 {
     const problem &p = d.prob;
-    section sec{"5. Checks", {}};
+    section sec{"Checks", {}};
 
     // A copy of the problem with a symbol for e, to vary e.
     ex e_val = p.restitution;

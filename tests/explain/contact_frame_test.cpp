@@ -175,8 +175,7 @@ TEST(ContactFrame, ExplainPrintsTheSmoothContactEquationAsTheNotesDo)
 {
     const problem p = read_problem(cases[0].json, "planar-34");
     const derivation d = derive(p);
-    const solution s = solve(d);
-    std::string text = explain_text(explain(d, s, nullptr));
+    std::string text = explain_text(explain(d, solve_impact(d), nullptr));
     for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) // unwrap the prose
         if (at + 1 < text.size() && text[at + 1] != '\n' && text[at + 1] != ' ' && at > 0 && text[at - 1] != '\n')
             text[at] = ' ';

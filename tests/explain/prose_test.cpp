@@ -26,12 +26,9 @@ namespace {
 document explain_of(const problem& p)
 {
     derivation d = derive(p);
-    if (p.has_friction())
-        return explain_friction(d, solve_friction(d));
-    solution s = solve(d);
     worked_example example;
     const bool has = notes_example(p.source, example);
-    return explain(d, s, has ? &example : nullptr);
+    return explain(d, solve_impact(d), has ? &example : nullptr);
 }
 
 std::vector<std::pair<std::string, problem>> every_problem()
