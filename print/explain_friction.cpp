@@ -147,7 +147,7 @@ std::vector<math_row> coulomb_law_rows(const context &c)
     }
     if (c.dim == 2) {
         for (int s : {1, -1}) {
-            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label);
+            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_tag(s));
             r.note.t(s > 0 ? "slide along $+e_t$ ($u′_t > 0$)" : "slide along $-e_t$ ($u′_t < 0$)");
             law.push_back(r);
         }

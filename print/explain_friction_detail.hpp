@@ -72,6 +72,10 @@ struct context {
         const step *s = f.shared.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
         return s ? ex(s->sym) : ex(0);
     }
+    // The tag of a planar slide's law F = -sign μ N: the derivation's one equation (8′) is two,
+    // one per direction, and two different equations never share a number: (8′) along +e_t,
+    // (8″) along -e_t.
+    std::string slide_tag(int sign) const { return slide_law.front().label + (sign > 0 ? "" : "'"); }
     // x.K y in world steps.
     ex kform(const vec3 &x, const vec3 &y) const
     {

@@ -347,7 +347,9 @@ section answer_section(const context &c, const regime_case &sel)
                 eq.rhs = eq.rhs.subs(c.slide_d[k] == settle(tidy(dot(sel.direction, c.tangents[k]))));
             all.push_back(eq);
         }
-        law_tags = c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
+        law_tags = c.dim == 2
+                       ? c.slide_tag(sel.sign)
+                       : c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
     }
     for (const equation &eq : all) {
         ex r = c.at_inputs(eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values);

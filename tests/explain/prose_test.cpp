@@ -2,6 +2,7 @@
 // read as notation, and what the hand-out adds to the notes' reasoning -- a numeric problem
 // taught in symbols first, units, the energy before and after, the centre of percussion,
 // contact-frame components, a figure in every document.
+#include "print/canonical.hpp"
 #include "print/explain.hpp"
 #include "print/explain_detail.hpp"
 #include "symbolic/named_classes.hpp"
@@ -12,6 +13,8 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -348,4 +351,25 @@ TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
     EXPECT_NE(b.find("bat (wall) strikes ball"), std::string::npos) << b.substr(0, 1200);
     EXPECT_EQ(b.find("let body 2 grow heavy"), std::string::npos);
     EXPECT_NE(b.find("roles exchanged"), std::string::npos);
+}
+
+// Issue 25, defect 4: two different equations never carry the same number. Within a section
+// every tag stands for one equation (the planar slide's law F = -μN and F = μN were both (8′));
+// a worked example may show an equation again, with numbers, in a later section.
+TEST(Prose, TwoDifferentEquationsNeverShareANumber)
+{
+    for (const auto& [name, p] : every_problem()) {
+        const document doc = explain_of(p);
+        for (const section& sec : doc.sections) {
+            std::map<std::string, std::set<std::string>> equations; // tag -> the equations it stands for
+            for (const block& b : sec.blocks)
+                for (const math_row& r : b.math)
+                    if (!r.tag.empty())
+                        equations[r.tag].insert((r.lhs_note.text.empty() ? canonical_text(r.lhs) : r.lhs_note.text) +
+                                                " " + r.rel + " " + canonical_text(r.rhs));
+            for (const auto& [tag, eqs] : equations)
+                EXPECT_EQ(eqs.size(), 1u) << name << ", " << sec.title << ": (" << tag << ") stands for " << eqs.size()
+                                          << " equations, " << *eqs.begin() << " and " << *eqs.rbegin();
+        }
+    }
 }
