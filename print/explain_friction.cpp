@@ -775,9 +775,10 @@ section existence_section(const context &c)
             "solutions: with strong coupling between the normal and the tangential directions $(K_tn$, $K_nb$ large "
             "against $K_nn)$ and a large $μ$, sticking and one or more sliding directions can all satisfy their "
             "conditions at once; a sliding direction with $D_s ≤ 0$ (friction wedging the contact shut) is excluded, "
-            "and in principle none might remain. Then the law of impulses does not decide the outcome: impactgen "
-            "refuses such a numeric problem, naming the regimes, and the impact has to be followed through its "
-            "duration (Routh's method, or integrating the contact in the normal impulse, Darboux-Keller)."));
+            "and in principle none might remain. Then the law of impulses does not decide the outcome, and the impact "
+            "has to be "
+            "followed through its duration (Routh's method, or integrating the contact in the normal impulse, "
+            "Darboux-Keller)."));
     }
     return sec;
 }

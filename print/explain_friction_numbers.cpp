@@ -221,7 +221,7 @@ void slide_numbers(const context &c, section &sec, const std::vector<case_number
                 sec.rows(
                     {formula_row(trig.text, trig.tex, "$c_d = cos θ$, $s_d = sin θ$; the coefficients to 15 digits")});
             sec.para(paragraph().t(
-                "impactgen finds its roots $θ$ on the unit circle at 50 significant digits, isolated with bounds on "
+                "Its roots $θ$ on the unit circle are found to 50 significant digits, isolated with bounds on "
                 "the derivatives, and checks $D_s > 0$ and $λ > 0$ at each."));
             continue;
         }
@@ -302,6 +302,29 @@ paragraph verdict_paragraph(const context &c, const regime_case &sel)
         q.w(").");
     }
     return q;
+}
+
+// Why no regime is the answer: several hold, none does, or the numbers do not decide.
+paragraph no_single_regime(const context &c)
+{
+    paragraph q;
+    q.w("No single regime: ");
+    std::vector<regime_case> holding;
+    try {
+        holding = c.numeric_d ? holding_regimes(*c.numeric_d, *c.numeric_f) : holding_regimes(c.d, c.f);
+    } catch (const input_error &) {
+        return q.w("these numbers do not decide which of the regimes' conditions hold.");
+    }
+    if (holding.empty())
+        return q.w("the conditions of no regime hold for these numbers.");
+    q.w("the law of restitution with Coulomb friction has more than one solution here: the regimes ");
+    for (std::size_t k = 0; k < holding.size(); ++k) {
+        if (k)
+            q.w(k + 1 == holding.size() ? " and " : ", ");
+        for (const span &x : regime_words(holding[k]).spans)
+            q.spans.push_back(x);
+    }
+    return q.w(" all hold.");
 }
 
 // Section 10: the answer, the equations substituted back, the energy.
@@ -432,18 +455,16 @@ std::vector<section> numbers_sections(const context &c)
         mu_axis_numbers(c, sec, nums, Nst);
 
     // The verdict.
-    std::string why;
     regime_case sel;
     bool selected = false;
     try {
         sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
         selected = true;
-    } catch (const input_error &err) {
-        why = err.what();
+    } catch (const input_error &) {
+        // none holds, several do, or the decision is too close to call
     }
     if (!selected) {
-        sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
-        sec.para(paragraph().w("\"" + why + "\""));
+        sec.para(no_single_regime(c));
         sec.para(paragraph().t(
             "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
             "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "

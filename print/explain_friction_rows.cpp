@@ -168,13 +168,13 @@ paragraph condition_note(const regime_condition &rc)
     return q.w(rc.meaning);
 }
 
-// lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), a pointer to
-// where it is printed in full.
+// lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), lhs = … and
+// a note that says so.
 math_row srow(const ex &lhs, const ex &rhs, const std::string &note)
 {
     if (printable(rhs, 400))
         return row(lhs, rhs, "", note);
-    const std::string more = "too long to print here; impactgen formulas prints it";
+    const std::string more = "too long to print here";
     return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots",
                        paragraph().w(note.empty() ? more : note + " (" + more + ")"));
 }

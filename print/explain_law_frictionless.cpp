@@ -43,10 +43,9 @@ void central_notes(std::vector<paragraph> &out, const derivation &d)
             "unknowns."));
     // In 3-D, the example that keeps the spins (its solution is checked by Prose.SpinningSpheres...).
     if (both_particles && dim == 3)
-        out.push_back(
-            paragraph().t("Kept as spinning spheres instead (inertia $2 m R²/5$ about every diameter, 12 unknowns: "
-                          "the example spinning-spheres.json in examples/problems of impactgen's sources), the same "
-                          "equations find every spin unchanged, $~ω′ = ~ω$, and the same velocities $~v′_C$."));
+        out.push_back(paragraph().t(
+            "Kept as spinning spheres instead (inertia $2 m R²/5$ about every diameter, 12 unknowns), "
+            "the same equations find every spin unchanged, $~ω′ = ~ω$, and the same velocities $~v′_C$."));
     else if (both_rigid)
         out.push_back(paragraph().t(
             "A central impact: both centres of mass lie on the line of impact (through $O$ along $e_n$), so "
@@ -93,12 +92,6 @@ public:
             law.count_terms = " + 1 + " + std::to_string(pivot_impulse_count(d));
         }
         central_notes(law.closing, d);
-        if (d.impulse_form && d.prob.dimension == 2)
-            law.closing.push_back(paragraph().t(
-                "The notes' hinged-rod example names 6 unknowns -- the ball's $v′_1$, the rod's $~v′_G$ (2 components) "
-                "and $ω′_3$, $∫N dt$ and the pin's $∫A_1 dt$ -- and numbers 5 equations; the sixth, that the pin is "
-                "fixed ($v′_G1 = ω′_3 l/2$), they use without a number. Here every velocity and impulse component is "
-                "an unknown, also those the notes know to be zero at sight, and every equation is written out."));
         return law;
     }
     std::vector<section> statement() const override { return {impulse_section(in.d)}; }

@@ -702,7 +702,7 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
     else
         sec.para(paragraph().t(
             "At $e = 1$ the loss is not zero: a moving body of infinite mass does work on the other body, and "
-            "its own energy is not counted (see problem-format: that is physics, not an error)."));
+            "its own energy is not counted."));
 }
 
 } // namespace

@@ -232,8 +232,7 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
         else
             q.t(" -- 3 components of $~v′_C$ and 3 of $~ω′$");
         if (p.pivot_of(i) && !p.immovable(i))
-            q.t(" (the pin at $E$ also ties $~v′_C$ to $~ω′$: $~v′_C = ~ω′ × ~r_EC$, equations the notes use without "
-                "numbering them)");
+            q.t(" (the pin at $E$ also ties $~v′_C$ to $~ω′$: $~v′_C = ~ω′ × ~r_EC$)");
         why.push_back(q);
         sum += (sum.empty() ? "" : " + ") + std::to_string(nv + nw);
     }

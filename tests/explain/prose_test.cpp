@@ -86,6 +86,16 @@ std::string prose_outside_math(std::string tex)
     return out;
 }
 
+// The text with its line breaks as spaces and runs of spaces as one: phrases wrap anywhere.
+std::string flat(const std::string& s)
+{
+    std::string out;
+    for (char ch : s)
+        if (!(ch == '\n' || ch == ' ') || (!out.empty() && out.back() != ' '))
+            out += (ch == '\n' ? ' ' : ch);
+    return out;
+}
+
 const math_row* find_row(const document& doc, const std::function<bool(const math_row&)>& pred)
 {
     for (const section& sec : doc.sections)
@@ -284,8 +294,8 @@ TEST(Prose, RadicalNormalAnswerHoldsWhenSubstitutedBack)
     }
 }
 
-// central-oblique is two particles; explain says why and names the example that keeps the
-// spins: two solid spheres (I = 2 m R²/5), 12 unknowns. The example's solution must find
+// central-oblique is two particles; explain says why and what the spheres that keep their
+// spins would do: two solid spheres (I = 2 m R²/5), 12 unknowns. The example's solution must find
 // every spin unchanged and the centres' velocities of the particle class.
 TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
 {
@@ -316,9 +326,10 @@ TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
     // Every equation holds with the solution substituted.
     for (const ex& r : residuals(d, s))
         EXPECT_TRUE(r.is_zero()) << r;
-    // The class's own document names the example.
-    const std::string text = explain_text(explain_of(find_named_class("central-oblique")->build()));
-    EXPECT_NE(text.find("spinning-spheres.json"), std::string::npos);
+    // The class's own document says what the spheres would do, and names no file (a hand-out).
+    const std::string text = flat(explain_text(explain_of(find_named_class("central-oblique")->build())));
+    EXPECT_NE(text.find("Kept as spinning spheres instead"), std::string::npos);
+    EXPECT_EQ(text.find("spinning-spheres.json"), std::string::npos);
     EXPECT_TRUE(fs::exists(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/problems/spinning-spheres.json"));
 }
 
@@ -326,13 +337,6 @@ TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
 // strikes it, as the figure's caption does; otherwise body 1 strikes body 2.
 TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
 {
-    auto flat = [](std::string s) {
-        std::string out;
-        for (char ch : s)
-            if (!(ch == '\n' || ch == ' ') || (!out.empty() && out.back() != ' '))
-                out += (ch == '\n' ? ' ' : ch);
-        return out;
-    };
     const std::string floor = flat(explain_text(explain_of(find_named_class("ball-floor-friction")->build())));
     EXPECT_NE(floor.find("point B of body 2 (ball) strikes point A of body 1 (floor)"), std::string::npos) << floor.substr(0, 400);
     EXPECT_NE(floor.find("ball (disc) strikes floor (wall)"), std::string::npos);
@@ -370,6 +374,25 @@ TEST(Prose, TwoDifferentEquationsNeverShareANumber)
             for (const auto& [tag, eqs] : equations)
                 EXPECT_EQ(eqs.size(), 1u) << name << ", " << sec.title << ": (" << tag << ") stands for " << eqs.size()
                                           << " equations, " << *eqs.begin() << " and " << *eqs.rbegin();
+        }
+    }
+}
+
+// Issue 25, defect 7: a student's hand-out says nothing of the software, its files, its
+// refusals or how the notes count equations (the title line is the problem's: defect 1).
+TEST(Prose, NoWordAboutTheSoftwareOrItsFiles)
+{
+    for (const auto& [name, p] : every_problem()) {
+        if (name == "hostile-names.json")
+            continue; // its names are chosen to look like anything
+        document doc = explain_of(p);
+        doc.title.clear();
+        const std::string text = flat(explain_text(doc));
+        for (const char* word : {"impactgen", ".json", "problem-format", "refuse", "examples/", "sources",
+                                 "numbering them", "numbers 5 equations", "prints it"}) {
+            const std::size_t at = text.find(word);
+            EXPECT_EQ(at, std::string::npos) << name << ": \"" << word << "\" near \""
+                                             << text.substr(at > 80 ? at - 80 : 0, 160) << "\"";
         }
     }
 }
