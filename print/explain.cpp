@@ -291,6 +291,16 @@ std::string body_ref(const problem &p, std::size_t i)
     return b.numbered ? role : role + " (" + b.name + ")";
 }
 
+paragraph &along(paragraph &q, const std::string &axis)
+{
+    if (axis == "t" || axis == "n" || axis == "b") {
+        const notation e = prose_notation("e_" + axis);
+        return q.n(e.text, e.tex);
+    }
+    const bool plain = !axis.empty() && std::all_of(axis.begin(), axis.end(), alnum);
+    return plain ? q.n(axis, axis.size() == 1 ? axis : "\\mathit{" + axis + "}") : q.w(axis);
+}
+
 paragraph step_note(const problem &p, const step &st)
 {
     paragraph q;
@@ -305,7 +315,7 @@ paragraph step_note(const problem &p, const step &st)
             .w(who);
         q.t(pinned ? ": $(~r_EO × e_n)$" : ": $(~r_CO × e_n)$");
         if (st.row >= 0)
-            q.t(", component along ").w(axis(st.row));
+            along(q.t(", component along "), axis(st.row));
         return q;
     case step_role::pivot_inertia:
         q.w("inertia of " + who).t(" about its pivot $E$: ");
@@ -317,7 +327,7 @@ paragraph step_note(const problem &p, const step &st)
     case step_role::inertia_determinant:
         return q.w("determinant of the inertia tensor of " + who);
     case step_role::angular_response:
-        q.t("$~~I⁻¹ (~r × e_n)$ for ").w(who).t(", component along ").w(axis(st.row));
+        along(q.t("$~~I⁻¹ (~r × e_n)$ for ").w(who).t(", component along "), axis(st.row));
         return q.t(": the change of angular velocity per unit impulse");
     case step_role::effective_inverse_mass:
         return q.w("effective inverse mass of " + who).t(" at the contact point along $e_n$");
@@ -334,28 +344,26 @@ paragraph step_note(const problem &p, const step &st)
         return q.t(pinned ? " about its pivot $E$" : " about its centre of mass $C$");
     case step_role::contact_response:
         q.t("contact response $K$, entry ").w(axis(st.row) + axis(st.column));
-        return q.t(": change of the relative velocity $~u$ of the contact points along ")
-            .w(axis(st.row))
-            .w(" per unit impulse on body 2 along ")
-            .w(axis(st.column));
+        along(q.t(": change of the relative velocity $~u$ of the contact points along "), axis(st.row));
+        return along(q.w(" per unit impulse on body 2 along "), axis(st.column));
     case step_role::relative_velocity:
         if (st.row < 0)
             return q.t("sliding speed $|~u_t|$ of the contact points before impact");
-        return q.t("relative velocity $~u = ~v_B - ~v_A$ of the contact points before impact, component along ")
-            .w(axis(st.row));
+        return along(q.t("relative velocity $~u = ~v_B - ~v_A$ of the contact points before impact, component along "),
+                     axis(st.row));
     case step_role::response_determinant:
         return q.t("$D_K = det K$, positive: $K$ is positive definite");
     case step_role::impulse_component:
-        return q.t("contact impulse $~P$ on body 2, component along ").w(axis(st.row));
+        return along(q.t("contact impulse $~P$ on body 2, component along "), axis(st.row));
     case step_role::tangential_impulse:
         if (st.row < 0)
             return q.t("tangential (friction) impulse $F = ~P·e_t$ on body 2 (on body 1 the opposite)");
-        return q.t("friction impulse $~F$ on body 2, component along ").w(axis(st.row));
+        return along(q.t("friction impulse $~F$ on body 2, component along "), axis(st.row));
     case step_role::slide_denominator:
         return q.t(
             "$D_s = e_n·K(e_n - μ ~d)$, the normal response while sliding: it must be positive, else $N$ would not be");
     case step_role::slide_direction:
-        return q.t("sliding direction $~d$, component along ").w(axis(st.row));
+        return along(q.t("sliding direction $~d$, component along "), axis(st.row));
     case step_role::separation_velocity:
         return q.t("sliding speed $λ = ~u′·~d$ after impact: positive when the contact keeps sliding along $~d$");
     }
@@ -437,6 +445,13 @@ bool printable(const ex &e, int limit)
     return count_nodes(e, limit) < limit;
 }
 
+math_row row(const ex &lhs, const ex &rhs, const std::string &tag, const paragraph &note)
+{
+    math_row r = row(lhs, rhs, tag);
+    r.note = note;
+    return r;
+}
+
 math_row row(const ex &lhs, const ex &rhs, const std::string &tag, const std::string &note)
 {
     math_row r;
@@ -468,7 +483,17 @@ math_row formula_row(const std::string &text, const std::string &tex, const char
     return formula_row(text, tex, paragraph().t(note));
 }
 
-std::string decimal_note(const ex &v)
+paragraph approx(const std::string &decimal)
+{
+    return decimal.empty() ? paragraph() : paragraph().n("≈ " + decimal, "\\approx " + decimal);
+}
+
+paragraph decimal_note(const ex &v)
+{
+    return approx(decimal_digits(v));
+}
+
+std::string decimal_digits(const ex &v)
 {
     // A number, or a constant such as 16·√5/35 (no symbol in it), that is not an integer.
     if (is_a<numeric>(v) ? ex_to<numeric>(v).is_integer()
@@ -486,7 +511,7 @@ std::string decimal_note(const ex &v)
     // six significant digits: enough to read, the exact value is beside it
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6g", d);
-    return std::string("≈ ") + buf;
+    return buf;
 }
 
 bool alnum(char c)

@@ -19,17 +19,25 @@ paragraph &vector_span(paragraph &p, const vec3 &v, int n);
 /// Small enough to print as one formula (fewer than `limit` nodes).
 bool printable(const GiNaC::ex &e, int limit = 400);
 math_row row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &tag = "", const std::string &note = "");
+math_row row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &tag, const paragraph &note);
 math_row note_row(const std::string &text, const std::string &tex, const GiNaC::ex &rhs, const std::string &note = "");
 /// A notation row without a value: the formula itself (text and TeX), and a note
 /// (teaching prose, see paragraph::t, or a paragraph built by the caller).
 math_row formula_row(const std::string &text, const std::string &tex, const char *note = "");
 math_row formula_row(const std::string &text, const std::string &tex, const paragraph &note);
-/// "≈ 0.142857142857143" for an exact number that is not an integer, else "".
-std::string decimal_note(const GiNaC::ex &v);
+/// An exact number that is not an integer to six significant digits ("-0.142857"), else "".
+std::string decimal_digits(const GiNaC::ex &v);
+/// "≈ -0.142857" as notation (in math where the format has it: a true minus sign), or nothing.
+paragraph approx(const std::string &decimal);
+/// approx(decimal_digits(v)).
+paragraph decimal_note(const GiNaC::ex &v);
 
 /// The figure of the impact (figure/), drawn from the derivation's problem and frame.
 figure_art figure_of(const derivation &d);
 
+/// The direction of a world axis named `axis` in math: e_t, e_n, e_b for the contact frame's
+/// names, else the name itself ("x"); appended to q.
+paragraph &along(paragraph &q, const std::string &axis);
 /// A step's meaning in teaching prose, from its role, body and component (typed),
 /// not from the solution's ASCII sentence.
 paragraph step_note(const problem &p, const step &st);

@@ -193,7 +193,7 @@ section equations_section(const context &c)
             const equation &eq = c.eqs[j];
             math_row r = row(eq.lhs, eq.rhs, eq.label);
             if (eq.component >= 0)
-                r.note.w("component along " + p.axes[static_cast<std::size_t>(eq.component)]);
+                along(r.note.w("component along "), p.axes[static_cast<std::size_t>(eq.component)]);
             rows.push_back(r);
         }
         sec.para(friction_group_why(c, first, why));
@@ -206,11 +206,11 @@ section equations_section(const context &c)
     sec.rows(law);
     const std::size_t n_eq = c.eqs.size() + c.tangents.size();
     std::size_t n_unknowns = c.d.count_unknowns() + c.F.size() + (c.d.impulse_form ? 0 : 1);
-    sec.para(paragraph().w(
-        std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) +
-        " unknowns: " + (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
-        " in either regime; which regime holds is decided by inequalities: stick needs |F| ≤ μN, slide needs the "
-        "contact to slide the way friction assumed."));
+    sec.para(paragraph()
+                 .w(std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) +
+                    " unknowns: " + (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
+                    " in either regime; which regime holds is decided by inequalities: stick needs ")
+                 .t("$|F| ≤ μN$, slide needs the contact to slide the way friction assumed."));
     return sec;
 }
 
@@ -430,7 +430,8 @@ section stick_section(const context &c)
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     thr.push_back(row(mu_star, stick_threshold_value(c), "",
-                      c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
+                      c.dim == 2 ? paragraph().t("$|F|/N$ of the stick impulse")
+                                 : paragraph().t("$|~F|/N$ of the stick impulse, $~F = ~P - N e_n$")));
     if (!c.can_stick())
         sec.para(paragraph().t(
             "Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "

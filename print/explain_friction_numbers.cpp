@@ -167,7 +167,7 @@ void stick_numbers(const context &c, section &sec, const case_numbers &cn, const
     Nst = tidy(c.at_inputs(st.sol.normal_impulse).subs(cn.values));
     if (decide(Nst) == decision::positive) {
         mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(cn.values));
-        sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
+        sec.rows({value_row(mu_star_sym, mu_star, paragraph().t("the stick impulse needs $μ ≥ μ*$"))});
         paragraph q;
         q.t("$μ =$ ")
             .m(c.at_inputs(c.mu))

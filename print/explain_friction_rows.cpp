@@ -68,7 +68,7 @@ std::string short_decimal(const ex &x)
     return buf;
 }
 
-std::string approx_note(const ex &v)
+std::string approx_digits(const ex &v)
 {
     if (!is_constant(v))
         return "";
@@ -78,7 +78,7 @@ std::string approx_note(const ex &v)
         const ex x = evaluated_constant(v); // until two precisions agree
         if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
             return "";
-        return "≈ " + short_decimal(x);
+        return short_decimal(x);
     } catch (const std::invalid_argument &) {
         return "";
     }
@@ -106,10 +106,14 @@ ex settle(const ex &v)
 // sym = value; a float (a root found numerically) as 15 significant digits.
 math_row value_row(const ex &sym, const ex &value, const std::string &note)
 {
+    return value_row(sym, value, note.empty() ? paragraph() : paragraph().w(note));
+}
+
+math_row value_row(const ex &sym, const ex &value, const paragraph &note)
+{
     if (is_float(value)) {
         const std::string dec = decimal(value);
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
-                           paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
     }
     if (!is_constant(value) || !is_a<numeric>(value))
         for (const_preorder_iterator it = value.preorder_begin(); it != value.preorder_end(); ++it)
@@ -118,12 +122,13 @@ math_row value_row(const ex &sym, const ex &value, const std::string &note)
     if (is_constant(value) && !is_a<numeric>(value) && canonical_text(value).size() > 60) {
         // exact but unreadable (nested roots of large rationals): its decimal
         const std::string dec = decimal(value.evalf());
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
-                           paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
     }
-    std::string n = approx_note(value);
-    if (!note.empty())
-        n = n.empty() ? note : n + ", " + note;
+    paragraph n = approx(approx_digits(value));
+    if (!note.spans.empty() && !n.spans.empty())
+        n.w(", ");
+    for (const span &x : note.spans)
+        n.spans.push_back(x);
     return row(sym, value, "", n);
 }
 

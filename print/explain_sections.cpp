@@ -281,14 +281,8 @@ section detail::equations_section(const derivation &d)
             if (eq.why != first.why || eq.bodies != first.bodies)
                 break;
             math_row r = row(f.lhs, f.rhs, eq.label);
-            if (f.axis == "t")
-                r.note.t("component along $e_t$");
-            else if (f.axis == "n")
-                r.note.t("component along $e_n$");
-            else if (f.axis == "b")
-                r.note.t("component along $e_b$");
-            else if (!f.axis.empty())
-                r.note.t("component along ").w(f.axis);
+            if (!f.axis.empty())
+                along(r.note.t("component along "), f.axis);
             rows.push_back(r);
         }
         const std::size_t i = first.bodies.empty() ? no_body : first.bodies[0];
@@ -378,12 +372,13 @@ void frame_velocity_rows(section &sec, const derivation &d, const solution &s, c
             // "≈ 0.914 m/s -- body 1 (ball), before", as the energies below
             const std::string u = unit(p, quantity::velocity);
             auto note = [&](const ex &value, const char *when) {
-                const std::string dec = decimal_note(value);
-                return (dec.empty() ? "" : dec + u + " -- ") + body_ref(p, i) + when +
-                       (dec.empty() && !u.empty() ? " (in" + u + ")" : "");
+                paragraph q = decimal_note(value);
+                const bool dec = !q.spans.empty();
+                return q.w((dec ? u + " -- " : "") + body_ref(p, i) + when +
+                           (!dec && !u.empty() ? " (in" + u + ")" : ""));
             };
-            r.note.w(note(before, ", before"));
-            ra.note.w(note(after, ", after"));
+            r.note = note(before, ", before");
+            ra.note = note(after, ", after");
             if (axis == "t" || axis == "b")
                 ra.note.t(vanishes_identically(s, after - before, "a tangential velocity")
                               ? ": unchanged, no impulse along it"

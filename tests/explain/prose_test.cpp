@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <regex>
 #include <set>
 #include <fstream>
 #include <sstream>
@@ -394,5 +395,23 @@ TEST(Prose, NoWordAboutTheSoftwareOrItsFiles)
             EXPECT_EQ(at, std::string::npos) << name << ": \"" << word << "\" near \""
                                              << text.substr(at > 80 ? at - 80 : 0, 160) << "\"";
         }
+    }
+}
+
+// Issue 25, defect 8: the notes beside displayed rows set their symbols in math too (a world
+// axis, |F|/N, μ ≥ μ*), and a decimal stands in math with its ≈, so that a negative one has a
+// true minus sign, in LaTeX and in HTML.
+TEST(Prose, SymbolsAndDecimalsOfRowNotesInMath)
+{
+    const std::regex axis_as_text(R"(component along [a-z]\b)"), decimal_as_text(R"(\$\\approx\$ ?-?[0-9])"),
+        bare_symbol(R"(\$\|\$F\$\|\$|needs \$\\mu\$)");
+    for (const auto& [name, p] : every_problem()) {
+        const document doc = explain_of(p);
+        const std::string tex = explain_latex(doc), html = explain_html(doc);
+        std::smatch m;
+        for (const std::regex* re : {&axis_as_text, &decimal_as_text, &bare_symbol})
+            EXPECT_FALSE(std::regex_search(tex, m, *re)) << name << ": \"" << m.str() << "\" in the LaTeX";
+        EXPECT_EQ(html.find("≈ -"), std::string::npos) << name << ": a negative decimal with a hyphen in the HTML";
+        EXPECT_FALSE(std::regex_search(html, m, axis_as_text)) << name << ": \"" << m.str() << "\" in the HTML";
     }
 }
