@@ -89,9 +89,6 @@ struct context {
 
 // |r| split over the factors of a product (numbers by their absolute value, (1 + e) and e kept).
 ex abs_split(const ex &r, const ex &e);
-std::string short_decimal(const ex &x);
-/// A constant that is not an integer to six significant digits, evaluated until two precisions agree; else "".
-std::string approx_digits(const ex &v);
 bool is_float(const ex &v);
 ex settle(const ex &v);
 math_row value_row(const ex &sym, const ex &value, const std::string &note = "");

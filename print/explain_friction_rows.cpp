@@ -59,31 +59,6 @@ ex abs_split(const ex &r, const ex &e)
     return abs(r);
 }
 
-// An exact number's decimal, for a note; "" when it is not a constant or is an integer.
-// Six significant digits: what a reader takes in; the exact value is printed beside it.
-std::string short_decimal(const ex &x)
-{
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", to_double(x));
-    return buf;
-}
-
-std::string approx_digits(const ex &v)
-{
-    if (!is_constant(v))
-        return "";
-    if (is_a<numeric>(v) && ex_to<numeric>(v).is_integer())
-        return "";
-    try {
-        const ex x = evaluated_constant(v); // until two precisions agree
-        if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
-            return "";
-        return short_decimal(x);
-    } catch (const std::invalid_argument &) {
-        return "";
-    }
-}
-
 bool is_float(const ex &v)
 {
     return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational();
@@ -124,7 +99,7 @@ math_row value_row(const ex &sym, const ex &value, const paragraph &note)
         const std::string dec = decimal(value.evalf());
         return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
     }
-    paragraph n = approx(approx_digits(value));
+    paragraph n = decimal_note(value);
     if (!note.spans.empty() && !n.spans.empty())
         n.w(", ");
     for (const span &x : note.spans)
