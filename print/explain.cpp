@@ -301,6 +301,18 @@ paragraph &along(paragraph &q, const std::string &axis)
     return plain ? q.n(axis, axis.size() == 1 ? axis : "\\mathit{" + axis + "}") : q.w(axis);
 }
 
+paragraph component_note(const frame_component &c)
+{
+    paragraph q;
+    q.w(c.meaning);
+    return c.axis.empty() ? q : along(q.w(", component along "), c.axis);
+}
+
+paragraph unknown_note(const problem &p, const unknown &u)
+{
+    return component_note(unknown_component(p, u));
+}
+
 paragraph step_note(const problem &p, const step &st)
 {
     paragraph q;

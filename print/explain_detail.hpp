@@ -9,6 +9,11 @@
 #include <utility>
 #include <vector>
 
+namespace impactgen::print
+{
+struct frame_component;
+}
+
 namespace impactgen::print::detail
 {
 
@@ -38,6 +43,10 @@ figure_art figure_of(const derivation &d);
 /// The direction of a world axis named `axis` in math: e_t, e_n, e_b for the contact frame's
 /// names, else the name itself ("x"); appended to q.
 paragraph &along(paragraph &q, const std::string &axis);
+/// A component's meaning: its words, then ", component along" its axis in math.
+paragraph component_note(const frame_component &c);
+/// An unknown's meaning so (unknown_component in contact_frame.hpp).
+paragraph unknown_note(const problem &p, const unknown &u);
 /// A step's meaning in teaching prose, from its role, body and component (typed),
 /// not from the solution's ASCII sentence.
 paragraph step_note(const problem &p, const step &st);

@@ -419,7 +419,8 @@ section stick_section(const context &c)
     std::vector<math_row> unknowns;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k)
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
-            unknowns.push_back(srow(c.d.unknowns[k].sym, st.sol.unknown_values.op(k).rhs(), c.d.unknowns[k].meaning));
+            unknowns.push_back(
+                srow(c.d.unknowns[k].sym, st.sol.unknown_values.op(k).rhs(), unknown_note(c.p, c.d.unknowns[k])));
     sec.rows(unknowns);
     rolling_remark(sec, c);
     sec.para(paragraph().t("Test: the stick impulse must lie inside the friction cone, $|F| ≤ μN$:"));

@@ -96,6 +96,7 @@ math_row value_row(const ex &sym, const ex &value, const paragraph &note);
 paragraph regime_words(const regime_case &rc);
 paragraph condition_note(const regime_condition &rc);
 math_row srow(const ex &lhs, const ex &rhs, const std::string &note = "");
+math_row srow(const ex &lhs, const ex &rhs, const paragraph &note);
 math_row srow(const problem &p, const step &st);
 bool short_denominator(const ex &x);
 /// |F|/N of the stick impulse (the threshold mu* when N > 0).

@@ -337,7 +337,7 @@ section answer_section(const context &c, const regime_case &sel)
         const ex v = sel.sol.unknown_values.op(k).rhs();
         unknown_values.append(c.d.unknowns[k].sym == v);
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
-            answers.push_back(value_row(c.d.unknowns[k].sym, v, c.d.unknowns[k].meaning));
+            answers.push_back(value_row(c.d.unknowns[k].sym, v, unknown_note(c.p, c.d.unknowns[k])));
     }
     const ex Nv = sel.sol.normal_impulse;
     answers.push_back(value_row(c.N, Nv, "the normal impulse"));

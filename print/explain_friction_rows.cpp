@@ -152,11 +152,17 @@ paragraph condition_note(const regime_condition &rc)
 // a note that says so.
 math_row srow(const ex &lhs, const ex &rhs, const std::string &note)
 {
+    return srow(lhs, rhs, note.empty() ? paragraph() : paragraph().w(note));
+}
+
+math_row srow(const ex &lhs, const ex &rhs, const paragraph &note)
+{
     if (printable(rhs, 400))
         return row(lhs, rhs, "", note);
     const std::string more = "too long to print here";
-    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots",
-                       paragraph().w(note.empty() ? more : note + " (" + more + ")"));
+    paragraph q = note;
+    q.w(note.spans.empty() ? more : " (" + more + ")");
+    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots", q);
 }
 
 // A step's row, its meaning from its role (teaching prose with symbols in math).

@@ -337,7 +337,7 @@ section detail::solution_section(const derivation &d, const solution &s)
     sec.rows(steps);
     std::vector<math_row> unknowns;
     for (const frame_component &u : view.unknowns)
-        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", u.meaning));
+        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", component_note(u)));
     sec.para(paragraph().w("Each unknown:"));
     sec.rows(unknowns);
     return sec;

@@ -150,7 +150,7 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
         std::vector<math_row> input_rows;
         for (const frame_component &c : view.inputs) {
             math_row r = row(c.sym, impactgen::tidy(c.world));
-            r.note.w(c.meaning);
+            r.note = component_note(c);
             input_rows.push_back(r);
         }
         sec.para(paragraph().w(p.dimension == 3 ? "The velocities and spins before impact in the contact frame:"
@@ -161,7 +161,7 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
         std::vector<math_row> inertia_rows;
         for (const frame_component &c : view.inertia) {
             math_row r = row(c.sym, c.world);
-            r.note.w(c.meaning);
+            r.note = component_note(c);
             inertia_rows.push_back(r);
         }
         sec.para(paragraph().t(
@@ -184,7 +184,7 @@ void unknown_rows_of(section &sec, const contact_frame_view &view, const setup_p
         r.lhs_note = {"", ""};
         r.lhs = u.sym;
         r.rel = "";
-        r.note.w(u.meaning);
+        r.note = component_note(u);
         unknown_rows.push_back(r);
     }
     for (const auto &[sym, meaning] : law.impulses) {
