@@ -301,6 +301,26 @@ paragraph &along(paragraph &q, const std::string &axis)
     return plain ? q.n(axis, axis.size() == 1 ? axis : "\\mathit{" + axis + "}") : q.w(axis);
 }
 
+void other_impulses(std::vector<paragraph> &items, const problem &p, const char *contact_impulse)
+{
+    for (const pivot &pv : p.pivots) {
+        paragraph q;
+        q.t("The pin at $E$ = ");
+        vector_span(q, pv.point, p.dimension);
+        q.t(" exerts an unknown reaction impulse $~R$ on ").w(body_ref(p, pv.body) + ".");
+        items.push_back(q);
+    }
+    for (std::size_t i : {p.contact().body1, p.contact().body2})
+        if (p.bodies[i].infinite_mass)
+            items.push_back(paragraph()
+                                .w(body_ref(p, i))
+                                .t(" has infinite mass: the finite impulse ")
+                                .t(contact_impulse)
+                                .w(" does not change its motion."));
+    items.push_back(
+        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+}
+
 paragraph component_note(const frame_component &c)
 {
     paragraph q;

@@ -43,6 +43,10 @@ figure_art figure_of(const derivation &d);
 /// The direction of a world axis named `axis` in math: e_t, e_n, e_b for the contact frame's
 /// names, else the name itself ("x"); appended to q.
 paragraph &along(paragraph &q, const std::string &axis);
+/// The items every law's statement lists after its own: each pin's reaction impulse, that a
+/// body of infinite mass keeps its motion under the contact impulse (`contact_impulse`, teaching
+/// prose such as "$~P$"), and that finite forces give no impulse.
+void other_impulses(std::vector<paragraph> &items, const problem &p, const char *contact_impulse);
 /// A component's meaning: its words, then ", component along" its axis in math.
 paragraph component_note(const frame_component &c);
 /// An unknown's meaning so (unknown_component in contact_frame.hpp).

@@ -52,19 +52,7 @@ section law_section(const context &c)
     items.push_back(
         paragraph().t("slide: $u′_t ≠ 0$, and friction is at its limit and opposes the sliding of $B$ relative to A: "
                       "$F = -μN u′_t/|u′_t|$."));
-    for (const pivot &pv : p.pivots) {
-        paragraph q;
-        q.t("The pin at $E =$ ");
-        vector_span(q, pv.point, p.dimension);
-        q.w(" exerts an unknown reaction impulse R on " + body_ref(p, pv.body) + ".");
-        items.push_back(q);
-    }
-    for (std::size_t i : {c.i1, c.i2})
-        if (p.bodies[i].infinite_mass)
-            items.push_back(
-                paragraph().w(body_ref(p, i) + " has infinite mass: the finite impulse P does not change its motion."));
-    items.push_back(
-        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+    other_impulses(items, p, "$~P$");
     sec.list(items);
     sec.rows({formula_row(
                   "P = N e_n + F,   |F| ≤ μ N",

@@ -42,20 +42,7 @@ section detail::impulse_section(const derivation &d)
     items.push_back(paragraph()
                         .t("The bodies are smooth: the tangential impulse $∫T dt = 0$, so no impulse acts along $e_t$")
                         .t(p.dimension == 3 ? " or $e_b$." : "."));
-    for (const pivot &pv : p.pivots) {
-        paragraph q;
-        q.t("The pin at $E$ = ");
-        vector_span(q, pv.point, p.dimension);
-        q.t(" exerts an unknown reaction impulse $~R$ on ").w(body_ref(p, pv.body) + ".");
-        items.push_back(q);
-    }
-    for (std::size_t i : {i1, i2})
-        if (p.bodies[i].infinite_mass)
-            items.push_back(paragraph()
-                                .w(body_ref(p, i))
-                                .t(" has infinite mass: the finite impulse $∫N dt$ does not change its motion."));
-    items.push_back(
-        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+    other_impulses(items, p, "$∫N dt$");
     sec.list(items);
 
     std::vector<math_row> rows;

@@ -399,12 +399,12 @@ TEST(Prose, NoWordAboutTheSoftwareOrItsFiles)
 }
 
 // Issue 25, defect 8: the notes beside displayed rows set their symbols in math too (a world
-// axis, the axis of an unknown's component, |F|/N, μ ≥ μ*), and a decimal stands in math with its ≈, so that a negative one has a
+// axis, the axis of an unknown's component, |F|/N, μ ≥ μ*, the impulses R and P), and a decimal stands in math with its ≈, so that a negative one has a
 // true minus sign, in LaTeX and in HTML.
 TEST(Prose, SymbolsAndDecimalsOfRowNotesInMath)
 {
     const std::regex axis_as_text(R"(component along [a-z]\b|, [a-z] component\b)"), decimal_as_text(R"(\$\\approx\$ ?-?[0-9])"),
-        bare_symbol(R"(\$\|\$F\$\|\$|needs \$\\mu\$)");
+        bare_symbol(R"(\$\|\$F\$\|\$|needs \$\\mu\$|impulse [RP] )");
     for (const auto& [name, p] : every_problem()) {
         const document doc = explain_of(p);
         const std::string tex = explain_latex(doc), html = explain_html(doc);
