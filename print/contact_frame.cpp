@@ -57,24 +57,24 @@ double expanded_terms(const ex &x)
     return 1;
 }
 
-// What a contact-frame component of a body's vector is, written from its kind and owner
-// (never from the derivation's world-axis sentence): "velocity of the centre of mass of
-// puck after impact, t component".
-std::string frame_meaning(const problem &p, unknown_kind kind, std::size_t body, bool after, const std::string &axis)
+// What a body's vector is, written from its kind and owner (never from the derivation's
+// world-axis sentence): "velocity of the centre of mass of puck after impact"; the component's
+// axis travels beside it (frame_component::axis).
+std::string frame_meaning(const problem &p, unknown_kind kind, std::size_t body, bool after)
 {
-    const std::string who = display_name(p.bodies[body]), tail = ", " + axis + " component";
+    const std::string who = display_name(p.bodies[body]);
     const std::string when = after ? " after impact" : " before impact";
     switch (kind) {
     case unknown_kind::velocity:
-        return "velocity of the centre of mass of " + who + when + tail;
+        return "velocity of the centre of mass of " + who + when;
     case unknown_kind::angular_velocity:
-        return "angular velocity of " + who + when + tail;
+        return "angular velocity of " + who + when;
     case unknown_kind::pivot_impulse:
-        return "impulse of the pivot on " + who + tail;
+        return "impulse of the pivot on " + who;
     case unknown_kind::normal_impulse:
         break;
     }
-    return "normal impulse" + tail; // not a vector: the view never names its components
+    return "normal impulse"; // not a vector: the view never names its components
 }
 
 // The last three equations of v (a body's angular momentum along e_t, e_n, e_b) have
@@ -102,8 +102,8 @@ void name_inertia(contact_frame_view &v, const derivation &d, std::size_t which,
                 const symbol s(quantity_name("I", axes, b.label, false), quantity_tex("I", axes, b.label, false));
                 it = named.emplace(key, std::make_pair(s, c)).first;
                 v.inertia.push_back(
-                    {s, c,
-                     "inertia tensor of " + display_name(b) + " about C in the contact frame, " + axes + " entry"});
+                    {s, c, "inertia tensor of " + display_name(b) + " about C in the contact frame, " + axes + " entry",
+                     ""});
             } else if (!(c - it->second.second).expand().is_zero()) {
                 continue;
             }
@@ -172,7 +172,7 @@ bool name_in_frame(contact_frame_view &v, int dim, const framed_vector &x, const
         ex combination = 0;
         for (int c = 0; c < dim; ++c)
             combination += v.e[k][c] * world[c];
-        into.push_back({frame.back(), combination, meanings[static_cast<std::size_t>(k)]});
+        into.push_back({frame.back(), combination, meanings[static_cast<std::size_t>(k)], frame_axes[k]});
     }
     for (int c = 0; c < dim; ++c) {
         ex combination = 0;
@@ -285,11 +285,19 @@ lst contact_frame_view::with_inputs(const ex &values) const
     return out;
 }
 
+frame_component unknown_component(const problem &p, const unknown &u)
+{
+    if (u.kind == unknown_kind::normal_impulse || u.component < 0 || u.component > 2)
+        return {u.sym, u.sym, u.meaning, ""};
+    const std::size_t body = u.kind == unknown_kind::pivot_impulse ? p.pivots[u.owner].body : u.owner;
+    return {u.sym, u.sym, frame_meaning(p, u.kind, body, true), p.axes[static_cast<std::size_t>(u.component)]};
+}
+
 contact_frame_view world_components_view(const derivation &d)
 {
     contact_frame_view w;
     for (const unknown &u : d.unknowns)
-        w.unknowns.push_back({u.sym, u.sym, u.meaning});
+        w.unknowns.push_back(unknown_component(d.prob, u));
     for (const equation &eq : d.equations)
         w.equations.push_back(
             {&eq, eq.lhs, eq.rhs, eq.component >= 0 ? d.prob.axes[static_cast<std::size_t>(eq.component)] : ""});
@@ -335,7 +343,7 @@ contact_frame_view contact_frame_view_of(const derivation &d)
         const bool vector_kind = u.kind == unknown_kind::velocity || u.kind == unknown_kind::pivot_impulse ||
                                  (u.kind == unknown_kind::angular_velocity && dim == 3);
         if (!vector_kind || i + static_cast<std::size_t>(dim) > d.unknowns.size()) {
-            v.unknowns.push_back({u.sym, u.sym, u.meaning});
+            v.unknowns.push_back(unknown_component(p, u));
             ++i;
             continue;
         }
@@ -347,7 +355,7 @@ contact_frame_view contact_frame_view_of(const derivation &d)
             if (uc.kind != u.kind || uc.owner != u.owner || uc.component != c)
                 return world_only();
             world[c] = uc.sym;
-            meanings.push_back(frame_meaning(p, u.kind, owner_body, true, frame_axes[c]));
+            meanings.push_back(frame_meaning(p, u.kind, owner_body, true));
         }
         const std::string &label = p.bodies[owner_body].label;
         const bool ok = u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
@@ -366,12 +374,12 @@ contact_frame_view contact_frame_view_of(const derivation &d)
         const body &b = p.bodies[i];
         std::vector<std::string> meanings;
         for (int k = 0; k < dim; ++k)
-            meanings.push_back(frame_meaning(p, unknown_kind::velocity, i, false, frame_axes[k]));
+            meanings.push_back(frame_meaning(p, unknown_kind::velocity, i, false));
         rename(b.velocity, "v", "v", b.label, false, meanings, v.inputs);
         if (dim == 3) {
             meanings.clear();
             for (int k = 0; k < dim; ++k)
-                meanings.push_back(frame_meaning(p, unknown_kind::angular_velocity, i, false, frame_axes[k]));
+                meanings.push_back(frame_meaning(p, unknown_kind::angular_velocity, i, false));
             if (rename(b.angular_velocity, "w", "\\omega", b.label, false, meanings, v.inputs))
                 spin_before[i] = frame;
         }

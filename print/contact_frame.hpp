@@ -27,8 +27,13 @@ namespace impactgen::print
 struct frame_component {
     GiNaC::symbol sym;
     GiNaC::ex world;     ///< the same in world components (a combination of world symbols or inputs)
-    std::string meaning; ///< "velocity of the centre of mass of puck after impact, along e_t"
+    std::string meaning; ///< what it is: "velocity of the centre of mass of puck after impact"
+    std::string axis;    ///< the axis of the component: "t" (the contact frame), "x" (world), or "" (none)
 };
+
+/// An unknown of the derivation as a component: its words from its kind and owner, and its
+/// world axis (a normal impulse keeps its own words and has no axis).
+frame_component unknown_component(const problem &p, const unknown &u);
 
 /// One equation of the derivation as the view prints it.
 struct framed_equation {

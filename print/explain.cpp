@@ -1,7 +1,6 @@
-// explain(): the explanation document, section by section as the notes go:
-// set-up (explain_setup.cpp), impulses, equations, count and solution, checks
-// (explain_sections.cpp); here the notation of prose, the shared builders, the
-// symbolized twin and the document itself.
+// What every chapter of the explanation shares (explain_detail.hpp): the notation of
+// teaching prose, the small builders of rows and spans, the figure, units and the
+// symbolized twin of a numeric problem. The document is built in explain_document.cpp.
 #include "explain.hpp"
 #include "explain_detail.hpp"
 #include "explain_smooth.hpp"
@@ -292,6 +291,48 @@ std::string body_ref(const problem &p, std::size_t i)
     return b.numbered ? role : role + " (" + b.name + ")";
 }
 
+paragraph &along(paragraph &q, const std::string &axis)
+{
+    if (axis == "t" || axis == "n" || axis == "b") {
+        const notation e = prose_notation("e_" + axis);
+        return q.n(e.text, e.tex);
+    }
+    const bool plain = !axis.empty() && std::all_of(axis.begin(), axis.end(), alnum);
+    return plain ? q.n(axis, axis.size() == 1 ? axis : "\\mathit{" + axis + "}") : q.w(axis);
+}
+
+void other_impulses(std::vector<paragraph> &items, const problem &p, const char *contact_impulse)
+{
+    for (const pivot &pv : p.pivots) {
+        paragraph q;
+        q.t("The pin at $E$ = ");
+        vector_span(q, pv.point, p.dimension);
+        q.t(" exerts an unknown reaction impulse $~R$ on ").w(body_ref(p, pv.body) + ".");
+        items.push_back(q);
+    }
+    for (std::size_t i : {p.contact().body1, p.contact().body2})
+        if (p.bodies[i].infinite_mass)
+            items.push_back(paragraph()
+                                .w(body_ref(p, i))
+                                .t(" has infinite mass: the finite impulse ")
+                                .t(contact_impulse)
+                                .w(" does not change its motion."));
+    items.push_back(
+        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+}
+
+paragraph component_note(const frame_component &c)
+{
+    paragraph q;
+    q.w(c.meaning);
+    return c.axis.empty() ? q : along(q.w(", component along "), c.axis);
+}
+
+paragraph unknown_note(const problem &p, const unknown &u)
+{
+    return component_note(unknown_component(p, u));
+}
+
 paragraph step_note(const problem &p, const step &st)
 {
     paragraph q;
@@ -306,7 +347,7 @@ paragraph step_note(const problem &p, const step &st)
             .w(who);
         q.t(pinned ? ": $(~r_EO × e_n)$" : ": $(~r_CO × e_n)$");
         if (st.row >= 0)
-            q.t(", component along ").w(axis(st.row));
+            along(q.t(", component along "), axis(st.row));
         return q;
     case step_role::pivot_inertia:
         q.w("inertia of " + who).t(" about its pivot $E$: ");
@@ -318,7 +359,7 @@ paragraph step_note(const problem &p, const step &st)
     case step_role::inertia_determinant:
         return q.w("determinant of the inertia tensor of " + who);
     case step_role::angular_response:
-        q.t("$~~I⁻¹ (~r × e_n)$ for ").w(who).t(", component along ").w(axis(st.row));
+        along(q.t("$~~I⁻¹ (~r × e_n)$ for ").w(who).t(", component along "), axis(st.row));
         return q.t(": the change of angular velocity per unit impulse");
     case step_role::effective_inverse_mass:
         return q.w("effective inverse mass of " + who).t(" at the contact point along $e_n$");
@@ -335,28 +376,26 @@ paragraph step_note(const problem &p, const step &st)
         return q.t(pinned ? " about its pivot $E$" : " about its centre of mass $C$");
     case step_role::contact_response:
         q.t("contact response $K$, entry ").w(axis(st.row) + axis(st.column));
-        return q.t(": change of the relative velocity $~u$ of the contact points along ")
-            .w(axis(st.row))
-            .w(" per unit impulse on body 2 along ")
-            .w(axis(st.column));
+        along(q.t(": change of the relative velocity $~u$ of the contact points along "), axis(st.row));
+        return along(q.w(" per unit impulse on body 2 along "), axis(st.column));
     case step_role::relative_velocity:
         if (st.row < 0)
             return q.t("sliding speed $|~u_t|$ of the contact points before impact");
-        return q.t("relative velocity $~u = ~v_B - ~v_A$ of the contact points before impact, component along ")
-            .w(axis(st.row));
+        return along(q.t("relative velocity $~u = ~v_B - ~v_A$ of the contact points before impact, component along "),
+                     axis(st.row));
     case step_role::response_determinant:
         return q.t("$D_K = det K$, positive: $K$ is positive definite");
     case step_role::impulse_component:
-        return q.t("contact impulse $~P$ on body 2, component along ").w(axis(st.row));
+        return along(q.t("contact impulse $~P$ on body 2, component along "), axis(st.row));
     case step_role::tangential_impulse:
         if (st.row < 0)
             return q.t("tangential (friction) impulse $F = ~P·e_t$ on body 2 (on body 1 the opposite)");
-        return q.t("friction impulse $~F$ on body 2, component along ").w(axis(st.row));
+        return along(q.t("friction impulse $~F$ on body 2, component along "), axis(st.row));
     case step_role::slide_denominator:
         return q.t(
             "$D_s = e_n·K(e_n - μ ~d)$, the normal response while sliding: it must be positive, else $N$ would not be");
     case step_role::slide_direction:
-        return q.t("sliding direction $~d$, component along ").w(axis(st.row));
+        return along(q.t("sliding direction $~d$, component along "), axis(st.row));
     case step_role::separation_velocity:
         return q.t("sliding speed $λ = ~u′·~d$ after impact: positive when the contact keeps sliding along $~d$");
     }
@@ -438,6 +477,13 @@ bool printable(const ex &e, int limit)
     return count_nodes(e, limit) < limit;
 }
 
+math_row row(const ex &lhs, const ex &rhs, const std::string &tag, const paragraph &note)
+{
+    math_row r = row(lhs, rhs, tag);
+    r.note = note;
+    return r;
+}
+
 math_row row(const ex &lhs, const ex &rhs, const std::string &tag, const std::string &note)
 {
     math_row r;
@@ -469,7 +515,17 @@ math_row formula_row(const std::string &text, const std::string &tex, const char
     return formula_row(text, tex, paragraph().t(note));
 }
 
-std::string decimal_note(const ex &v)
+paragraph approx(const std::string &decimal)
+{
+    return decimal.empty() ? paragraph() : paragraph().n("≈ " + decimal, "\\approx " + decimal);
+}
+
+paragraph decimal_note(const ex &v)
+{
+    return approx(decimal_digits(v));
+}
+
+std::string decimal_digits(const ex &v)
 {
     // A number, or a constant such as 16·√5/35 (no symbol in it), that is not an integer.
     if (is_a<numeric>(v) ? ex_to<numeric>(v).is_integer()
@@ -487,7 +543,7 @@ std::string decimal_note(const ex &v)
     // six significant digits: enough to read, the exact value is beside it
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6g", d);
-    return std::string("≈ ") + buf;
+    return buf;
 }
 
 bool alnum(char c)
@@ -504,6 +560,15 @@ std::string number_word(std::size_t n)
 symbol show(const std::string &name, const std::string &tex)
 {
     return symbol(name, tex);
+}
+
+std::size_t pivot_impulse_count(const derivation &d)
+{
+    std::size_t n = 0;
+    for (const unknown &u : d.unknowns)
+        if (u.kind == unknown_kind::pivot_impulse)
+            ++n;
+    return n;
 }
 
 const step *find_step(const solution &s, step_role role, std::size_t body)
@@ -602,83 +667,6 @@ problem detail::symbolized(const problem &p, lst &values, std::vector<std::strin
         q.contact().set_friction(mu);
     }
     return q;
-}
-
-std::optional<document> detail::taught_in_symbols(
-    const derivation &d,
-    const std::function<document(const derivation &, const lst &, const std::vector<std::string> &)> &teach)
-{
-    lst values;
-    std::vector<std::string> units;
-    const problem twin = symbolized(d.prob, values, units);
-    if (values.nops() == 0)
-        return std::nullopt;
-    try {
-        derive_options opt;
-        opt.unit_normal = d.normal_assumed_unit;
-        document doc = teach(derive(twin, opt), values, units);
-        // the figure from the numbers, not from the symbols
-        for (block &b : doc.sections.front().blocks)
-            if (b.k == block::figure)
-                b.art = figure_of(d);
-        return doc;
-    } catch (const std::exception &) {
-        return std::nullopt; // the twin needs a decision only the numbers allow: taught with the numbers
-    }
-}
-
-namespace
-{
-
-document explain_document(const derivation &d, const solution &s, const worked_example *example)
-{
-    document doc;
-    doc.title = "Smooth impact: " + d.prob.source;
-    doc.sections.push_back(setup_section(d));
-    doc.sections.push_back(impulse_section(d));
-    doc.sections.push_back(equations_section(d));
-    doc.sections.push_back(solution_section(d, s));
-    doc.sections.push_back(checks_section(d, s, example));
-    return doc;
-}
-
-} // namespace
-
-document explain(const derivation &d, const solution &s, const worked_example *example)
-{
-    // A numeric problem is taught as the notes teach: the equations and the named
-    // steps in symbols first, then the numbers. When the symbolic twin cannot be
-    // derived (a decision that needs the numbers), the numbers are shown directly.
-    if (d.prob.is_numeric() && !example) {
-        lst values;
-        std::vector<std::string> units;
-        problem twin = symbolized(d.prob, values, units);
-        if (values.nops() > 0) {
-            try {
-                derive_options opt;
-                opt.unit_normal = d.normal_assumed_unit;
-                derivation d2 = derive(twin, opt);
-                solution s2 = solve(d2);
-                worked_example numbers{"the problem's numbers", values, true, units};
-                document doc = explain_document(d2, s2, &numbers);
-                // the figure from the numbers, not from the symbols
-                for (block &b : doc.sections.front().blocks)
-                    if (b.k == block::figure)
-                        b.art = figure_of(d);
-                return doc;
-            } catch (const std::exception &) {
-                // fall through to the numbers
-            }
-        }
-    }
-    return explain_document(d, s, example);
-}
-
-document explain(const derivation &d, const impact_solution &s, const worked_example *example)
-{
-    if (!d.prob.has_friction())
-        return explain(d, s.cases.front().sol, example);
-    return explain_friction(d, s);
 }
 
 } // namespace impactgen::print

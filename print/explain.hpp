@@ -10,7 +10,6 @@
 #pragma once
 
 #include "symbolic/friction.hpp"
-#include "symbolic/solution.hpp"
 
 #include <string>
 #include <vector>
@@ -140,20 +139,11 @@ struct worked_example {
 /// (pinned-planar: ball 0.5 kg at 5 m/s, rod 2 kg of 1 m, e = 0.8).
 bool notes_example(const std::string &class_name, worked_example &out);
 
-/// The explanation of one impact. `example` (optional, may be null): values to
-/// substitute into every step of a symbolic problem at the end.
-document explain(const derivation &d, const solution &s, const worked_example *example = nullptr);
-
-/// The explanation of an impact with Coulomb friction (problem.contact().friction not 0):
-/// the contact law, impulse-momentum with the friction impulse, the contact response K,
-/// stick tested against the cone, then slide; the regimes as conditions on mu, the
-/// energy, existence and uniqueness; for a numeric problem every number and the
-/// regime that holds (or why none or several do).
-document explain_friction(const derivation &d, const friction_solution &f);
-
-/// The explanation of an impact whatever its contact law: the smooth document for a smooth
-/// contact's one candidate (`example` as above), the friction document when the law has
-/// several candidates.
+/// The explanation of one impact, whatever its contact law: the set-up, then the law's
+/// statement, equations, each candidate's solution, the regimes when there is more than one
+/// candidate, and the results (explain_law.hpp). `example` (optional, may be null): values
+/// to substitute into every step of a symbolic problem at the end. A numeric problem is
+/// taught in symbols first, then with its numbers.
 document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr);
 
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns

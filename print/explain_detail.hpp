@@ -1,14 +1,18 @@
-// What explain.cpp (smooth impacts) and explain_friction.cpp (Coulomb friction)
-// share: the set-up section and the small builders of rows and spans.
+// What every contact law's chapter of the document shares (explain_law.hpp): the small
+// builders of rows and spans, the figure, units, the symbolized twin of a numeric problem.
 #pragma once
 
 #include "explain.hpp"
 
-#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace impactgen::print
+{
+struct frame_component;
+}
 
 namespace impactgen::print::detail
 {
@@ -20,17 +24,33 @@ paragraph &vector_span(paragraph &p, const vec3 &v, int n);
 /// Small enough to print as one formula (fewer than `limit` nodes).
 bool printable(const GiNaC::ex &e, int limit = 400);
 math_row row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &tag = "", const std::string &note = "");
+math_row row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &tag, const paragraph &note);
 math_row note_row(const std::string &text, const std::string &tex, const GiNaC::ex &rhs, const std::string &note = "");
 /// A notation row without a value: the formula itself (text and TeX), and a note
 /// (teaching prose, see paragraph::t, or a paragraph built by the caller).
 math_row formula_row(const std::string &text, const std::string &tex, const char *note = "");
 math_row formula_row(const std::string &text, const std::string &tex, const paragraph &note);
-/// "≈ 0.142857142857143" for an exact number that is not an integer, else "".
-std::string decimal_note(const GiNaC::ex &v);
+/// An exact number that is not an integer to six significant digits ("-0.142857"), else "".
+std::string decimal_digits(const GiNaC::ex &v);
+/// "≈ -0.142857" as notation (in math where the format has it: a true minus sign), or nothing.
+paragraph approx(const std::string &decimal);
+/// approx(decimal_digits(v)).
+paragraph decimal_note(const GiNaC::ex &v);
 
 /// The figure of the impact (figure/), drawn from the derivation's problem and frame.
 figure_art figure_of(const derivation &d);
 
+/// The direction of a world axis named `axis` in math: e_t, e_n, e_b for the contact frame's
+/// names, else the name itself ("x"); appended to q.
+paragraph &along(paragraph &q, const std::string &axis);
+/// The items every law's statement lists after its own: each pin's reaction impulse, that a
+/// body of infinite mass keeps its motion under the contact impulse (`contact_impulse`, teaching
+/// prose such as "$~P$"), and that finite forces give no impulse.
+void other_impulses(std::vector<paragraph> &items, const problem &p, const char *contact_impulse);
+/// A component's meaning: its words, then ", component along" its axis in math.
+paragraph component_note(const frame_component &c);
+/// An unknown's meaning so (unknown_component in contact_frame.hpp).
+paragraph unknown_note(const problem &p, const unknown &u);
 /// A step's meaning in teaching prose, from its role, body and component (typed),
 /// not from the solution's ASCII sentence.
 paragraph step_note(const problem &p, const step &st);
@@ -42,31 +62,13 @@ std::string unit(const problem &p, quantity q);
 /// The units of a problem in words: "SI (masses in kg, ...)".
 std::string units_key(const problem &p);
 
-/// With friction, the set-up also names Coulomb's coefficient and the impulses
-/// that become unknowns: N (unless the derivation has it already) and F.
-struct friction_setup {
-    GiNaC::ex mu;
-    /// The coefficient's own name, when the document writes it otherwise (μ for a
-    /// coefficient the problem names f).
-    std::optional<notation> mu_in_problem;
-    std::vector<std::pair<GiNaC::ex, paragraph>> impulses; ///< unknown symbol, meaning
-};
+/// How many components of pivot impulses are unknowns.
+std::size_t pivot_impulse_count(const derivation &d);
 
 /// A numeric problem's twin with symbols for its masses, inertias, velocities, e and μ
 /// (geometry kept), for teaching in symbols first; values gets symbol == number and
 /// units the unit of each (" kg", or "").
 problem symbolized(const problem &p, GiNaC::lst &values, std::vector<std::string> &units);
-
-/// A numeric problem taught in symbols first: its symbolized twin derived as d was (the
-/// same normal convention), teach(twin, values, units) builds the document, and the
-/// figure is drawn from the numbers. Empty when there is no number to name, or when the
-/// twin cannot be derived or taught (a decision that needs the numbers).
-std::optional<document> taught_in_symbols(const derivation &d,
-                                          const std::function<document(const derivation &twin, const GiNaC::lst &values,
-                                                                       const std::vector<std::string> &units)> &teach);
-
-/// Section 1: bodies, contact frame, unknowns and their count.
-section setup_section(const derivation &d, const friction_setup *friction = nullptr);
 
 /// Rows without a relation and without equation tags: definitions (a symbol and its meaning).
 inline bool rows_are_plain(const std::vector<math_row> &rows)

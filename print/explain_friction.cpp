@@ -32,7 +32,7 @@ namespace friction_detail
 section law_section(const context &c)
 {
     const problem &p = c.p;
-    section sec{"2. The contact law: restitution and Coulomb friction", {}};
+    section sec{"The contact law: restitution and Coulomb friction", {}};
     std::vector<paragraph> items;
     items.push_back(
         paragraph()
@@ -52,19 +52,7 @@ section law_section(const context &c)
     items.push_back(
         paragraph().t("slide: $u′_t ≠ 0$, and friction is at its limit and opposes the sliding of $B$ relative to A: "
                       "$F = -μN u′_t/|u′_t|$."));
-    for (const pivot &pv : p.pivots) {
-        paragraph q;
-        q.t("The pin at $E =$ ");
-        vector_span(q, pv.point, p.dimension);
-        q.w(" exerts an unknown reaction impulse R on " + body_ref(p, pv.body) + ".");
-        items.push_back(q);
-    }
-    for (std::size_t i : {c.i1, c.i2})
-        if (p.bodies[i].infinite_mass)
-            items.push_back(
-                paragraph().w(body_ref(p, i) + " has infinite mass: the finite impulse P does not change its motion."));
-    items.push_back(
-        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+    other_impulses(items, p, "$~P$");
     sec.list(items);
     sec.rows({formula_row(
                   "P = N e_n + F,   |F| ≤ μ N",
@@ -147,7 +135,7 @@ std::vector<math_row> coulomb_law_rows(const context &c)
     }
     if (c.dim == 2) {
         for (int s : {1, -1}) {
-            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_law[0].label);
+            math_row r = row(c.F[0], ex(-s) * c.mu * c.N, c.slide_tag(s));
             r.note.t(s > 0 ? "slide along $+e_t$ ($u′_t > 0$)" : "slide along $-e_t$ ($u′_t < 0$)");
             law.push_back(r);
         }
@@ -166,7 +154,7 @@ std::vector<math_row> coulomb_law_rows(const context &c)
 section equations_section(const context &c)
 {
     const problem &p = c.p;
-    section sec{"3. The equations: impulse-momentum with the friction impulse", {}};
+    section sec{"The equations: impulse-momentum with the friction impulse", {}};
     sec.para(paragraph()
                  .t("With friction the notes' smooth-contact equations fail: they said that no impulse acts along the "
                     "tangent, "
@@ -193,7 +181,7 @@ section equations_section(const context &c)
             const equation &eq = c.eqs[j];
             math_row r = row(eq.lhs, eq.rhs, eq.label);
             if (eq.component >= 0)
-                r.note.w("component along " + p.axes[static_cast<std::size_t>(eq.component)]);
+                along(r.note.w("component along "), p.axes[static_cast<std::size_t>(eq.component)]);
             rows.push_back(r);
         }
         sec.para(friction_group_why(c, first, why));
@@ -206,11 +194,11 @@ section equations_section(const context &c)
     sec.rows(law);
     const std::size_t n_eq = c.eqs.size() + c.tangents.size();
     std::size_t n_unknowns = c.d.count_unknowns() + c.F.size() + (c.d.impulse_form ? 0 : 1);
-    sec.para(paragraph().w(
-        std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) +
-        " unknowns: " + (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
-        " in either regime; which regime holds is decided by inequalities: stick needs |F| ≤ μN, slide needs the "
-        "contact to slide the way friction assumed."));
+    sec.para(paragraph()
+                 .w(std::to_string(n_eq) + " equations for " + std::to_string(n_unknowns) +
+                    " unknowns: " + (n_eq == n_unknowns ? "the count matches" : "THE COUNT DOES NOT MATCH") +
+                    " in either regime; which regime holds is decided by inequalities: stick needs ")
+                 .t("$|F| ≤ μN$, slide needs the contact to slide the way friction assumed."));
     return sec;
 }
 
@@ -219,7 +207,7 @@ section equations_section(const context &c)
 section response_section(const context &c)
 {
     const problem &p = c.p;
-    section sec{"4. The contact response K", {}};
+    section sec{"The contact response K", {}};
     sec.para(paragraph().t(
         "Every equation is linear in the impulse. Solve each body's equations for its velocities in terms of $P$ and "
         "put them into the velocities of the contact points: the relative velocity $u = v_B - v_A$ then changes "
@@ -383,10 +371,23 @@ void planar_threshold_rows(const context &c, const regime_case &st, const ex &mu
     }
 }
 
+// A candidate's conditions, one row each: value > 0 or value ≥ 0, with its meaning.
+std::vector<math_row> condition_rows(const regime_case &rc)
+{
+    std::vector<math_row> rows;
+    for (const regime_condition &cond : rc.conditions) {
+        math_row r = row(cond.value, 0);
+        r.note = condition_note(cond);
+        r.rel = cond.strict ? ">" : "≥";
+        rows.push_back(r);
+    }
+    return rows;
+}
+
 section stick_section(const context &c)
 {
     const regime_case &st = c.stick();
-    section sec{"5. Assume sticking", {}};
+    section sec{"Assume sticking", {}};
     sec.para(paragraph().t("Textbooks try sticking first. Then $u′_t = 0$, and restitution gives $u′_n = -e u_n$, so "
                            "$u′ = -e u_n e_n$ and "
                            "$u′ = u + K P$ becomes a linear system for the whole impulse $P$:"));
@@ -406,25 +407,20 @@ section stick_section(const context &c)
     std::vector<math_row> unknowns;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k)
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
-            unknowns.push_back(srow(c.d.unknowns[k].sym, st.sol.unknown_values.op(k).rhs(), c.d.unknowns[k].meaning));
+            unknowns.push_back(
+                srow(c.d.unknowns[k].sym, st.sol.unknown_values.op(k).rhs(), unknown_note(c.p, c.d.unknowns[k])));
     sec.rows(unknowns);
     rolling_remark(sec, c);
     sec.para(paragraph().t("Test: the stick impulse must lie inside the friction cone, $|F| ≤ μN$:"));
-    std::vector<math_row> conds;
-    for (const regime_condition &rc : st.conditions) {
-        math_row r = row(rc.value, 0);
-        r.note = condition_note(rc);
-        r.rel = rc.strict ? ">" : "≥";
-        conds.push_back(r);
-    }
-    sec.rows(conds);
+    sec.rows(condition_rows(st));
     sec.para(paragraph().t("As the stick impulse does not depend on $μ$, the test is a condition on $μ$ alone: "
                            "sticking holds exactly when "
                            "the stick impulse pushes $(N > 0)$ and $μ ≥ μ*$, the threshold"));
     std::vector<math_row> thr;
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     thr.push_back(row(mu_star, stick_threshold_value(c), "",
-                      c.dim == 2 ? "|F|/N of the stick impulse" : "|F|/N of the stick impulse, F = P - N e_n"));
+                      c.dim == 2 ? paragraph().t("$|F|/N$ of the stick impulse")
+                                 : paragraph().t("$|~F|/N$ of the stick impulse, $~F = ~P - N e_n$")));
     if (!c.can_stick())
         sec.para(paragraph().t(
             "Here the stick impulse pulls $(N ≤ 0$, whatever $μ)$: no $μ$ makes the contact stick, and $μ*$ below is "
@@ -444,7 +440,7 @@ section stick_section(const context &c)
 // Section 5 when K is singular: no impulse makes the contact stick.
 section no_stick_section(const context &)
 {
-    section sec{"5. Sticking is impossible", {}};
+    section sec{"Sticking is impossible", {}};
     sec.para(paragraph().t(
         "Textbooks try sticking first: $u′_t = 0$ and $u′_n = -e u_n$, so $u′ = -e u_n e_n$, and $u′ = u + K P$ "
         "would be a linear system for $P$:"));
@@ -464,7 +460,7 @@ section no_stick_section(const context &)
 
 section slide_section(const context &c)
 {
-    section sec{c.has_stick() ? "6. If the test fails: sliding" : "6. Sliding", {}};
+    section sec{c.has_stick() ? "If the test fails: sliding" : "Sliding", {}};
     sec.para(paragraph().t(
         "A sliding contact has friction at its limit, opposite to the sliding: $F = -μN d$, where $d$ is the unit "
         "direction of $u′_t$. The impulse $P = N (e_n - μ d)$ then has one unknown $N$ (once $d$ is known), and "
@@ -533,14 +529,7 @@ section slide_section(const context &c)
             sec.rows({g});
         }
         sec.para(paragraph().w(std::string("It holds when") + (sc.needs_angle ? " (at a root θ)" : "") + ":"));
-        std::vector<math_row> conds;
-        for (const regime_condition &rc : sc.conditions) {
-            math_row r = row(rc.value, 0);
-            r.note = condition_note(rc);
-            r.rel = rc.strict ? ">" : "≥";
-            conds.push_back(r);
-        }
-        sec.rows(conds);
+        sec.rows(condition_rows(sc));
         sec.para(paragraph().w("and then the bodies leave with"));
         std::vector<math_row> unknowns;
         for (std::size_t k = 0; k < c.d.unknowns.size(); ++k)
@@ -596,7 +585,7 @@ ex energy_lost_formula(const context &c, const regime_case &rc)
 // Section 7 without a stick candidate: the slides' conditions, and the energy.
 section slide_regimes_section(const context &c)
 {
-    section sec{"7. The regimes, and the energy", {}};
+    section sec{"The regimes, and the energy", {}};
     std::vector<paragraph> items;
     for (const regime_case &sc : c.f.cases) {
         paragraph item = regime_words(sc);
@@ -637,7 +626,7 @@ section slide_regimes_section(const context &c)
 
 section regimes_section(const context &c)
 {
-    section sec{"7. The regimes as conditions on μ, and the energy", {}};
+    section sec{"The regimes as conditions on μ, and the energy", {}};
     const regime_case &st = c.stick();
     const ex mu_star = symbol("μ*", "\\mu^{*}");
     std::vector<paragraph> items;
@@ -740,7 +729,7 @@ section regimes_section(const context &c)
 
 section existence_section(const context &c)
 {
-    section sec{"8. One regime, none, or several?", {}};
+    section sec{"One regime, none, or several?", {}};
     if (!c.has_stick()) {
         if (c.dim == 2)
             sec.para(paragraph().t(
@@ -776,175 +765,14 @@ section existence_section(const context &c)
             "solutions: with strong coupling between the normal and the tangential directions $(K_tn$, $K_nb$ large "
             "against $K_nn)$ and a large $μ$, sticking and one or more sliding directions can all satisfy their "
             "conditions at once; a sliding direction with $D_s ≤ 0$ (friction wedging the contact shut) is excluded, "
-            "and in principle none might remain. Then the law of impulses does not decide the outcome: impactgen "
-            "refuses such a numeric problem, naming the regimes, and the impact has to be followed through its "
-            "duration (Routh's method, or integrating the contact in the normal impulse, Darboux-Keller)."));
+            "and in principle none might remain. Then the law of impulses does not decide the outcome, and the impact "
+            "has to be "
+            "followed through its duration (Routh's method, or integrating the contact in the normal impulse, "
+            "Darboux-Keller)."));
     }
     return sec;
 }
 
-// How the document writes Coulomb's coefficient and the sliding speed: as the prose does,
-// μ and λ.
-const symbol mu_shown("μ", "\\mu"), lambda_shown("λ", "\\lambda");
-
-// Whether x prints as `shown` does, in text or in TeX (a problem's symbol mu is \mu in TeX).
-bool prints_as(const ex &x, const symbol &shown)
-{
-    return canonical_text(x) == canonical_text(shown) || canonical_latex(x) == canonical_latex(shown);
-}
-
-// Whether a symbol of the problem, or an unknown, other than `self` prints as `shown`
-// does: then writing `self` so would make two symbols look alike.
-bool shown_elsewhere(const derivation &d, const ex &self, const symbol &shown)
-{
-    for (const symbol &s : d.prob.parameters())
-        if (!self.is_equal(s) && prints_as(s, shown))
-            return true;
-    for (const unknown &u : d.unknowns)
-        if (prints_as(u.sym, shown))
-            return true;
-    return false;
-}
-
-// Coulomb's coefficient (friction_solution::mu, whatever its name in the problem) as μ,
-// and each slide's sliding speed (the step regime_case::sliding_speed names) as λ, where
-// that makes no two symbols look alike.
-exmap display_names(const derivation &d, const friction_solution &f)
-{
-    exmap m;
-    if (is_a<symbol>(f.mu) && !shown_elsewhere(d, f.mu, mu_shown))
-        m[f.mu] = mu_shown;
-    for (const regime_case &rc : f.cases) {
-        const bool named_step = std::any_of(rc.sol.steps.begin(), rc.sol.steps.end(), [&](const step &st) {
-            return st.role == step_role::separation_velocity && rc.sliding_speed.is_equal(st.sym);
-        });
-        if (named_step && !shown_elsewhere(d, rc.sliding_speed, lambda_shown))
-            m[rc.sliding_speed] = lambda_shown;
-    }
-    return m;
-}
-
-// Writes the symbols of m as m gives them, in every expression of the document.
-void rename(document &doc, const exmap &m)
-{
-    if (m.empty())
-        return;
-    auto fix = [&](ex &e) { e = e.subs(m); };
-    auto fix_para = [&](paragraph &p) {
-        for (span &s : p.spans)
-            if (s.k == span::math)
-                fix(s.expr);
-    };
-    for (section &sec : doc.sections)
-        for (block &b : sec.blocks) {
-            fix_para(b.para);
-            for (paragraph &p : b.items)
-                fix_para(p);
-            for (math_row &r : b.math) {
-                fix(r.lhs);
-                fix(r.rhs);
-                fix(r.then);
-                fix_para(r.note);
-            }
-        }
-}
-
-struct problem_numbers {
-    const derivation *d;
-    const friction_solution *f;
-    lst values;
-    std::vector<std::string> units;
-};
-
-document friction_document(const derivation &d, const friction_solution &f, const problem_numbers *numbers)
-{
-    context c(d, f);
-    const problem &p = d.prob;
-    c.dim = p.dimension;
-    c.i1 = p.contact().body1;
-    c.i2 = p.contact().body2;
-    c.e = p.restitution;
-    c.mu = f.mu;
-    c.n = d.n_hat;
-    c.numeric = p.is_numeric() || numbers;
-    if (numbers) {
-        c.numeric_d = numbers->d;
-        c.numeric_f = numbers->f;
-        c.inputs = numbers->values;
-        c.units = numbers->units;
-    }
-    c.tnames = c.dim == 2 ? std::vector<std::string>{"t"} : std::vector<std::string>{"t", "b"};
-    c.shared = f.shared.steps.size();
-    // The equations and the impulse's unknowns are the derivation's (derive() writes them).
-    c.tangents = d.friction.tangents;
-    c.N = d.friction.N;
-    c.F = d.friction.F;
-    c.slide_d = d.friction.slide_d;
-    c.eqs = d.friction.equations;
-    c.stick_law = d.friction.stick_law;
-    c.slide_law = d.friction.slide_law;
-
-    const exmap shown = display_names(d, f);
-    friction_setup fs;
-    fs.mu = f.mu;
-    if (shown.count(f.mu) && !prints_as(f.mu, mu_shown))
-        fs.mu_in_problem = notation{canonical_text(f.mu), canonical_latex(f.mu)};
-    const std::string body2 = display_name(p.bodies[c.i2]), body1 = display_name(p.bodies[c.i1]);
-    if (!d.impulse_form)
-        fs.impulses.push_back({c.N, paragraph()
-                                        .t("normal impulse $∫N dt$, on ")
-                                        .w(body2)
-                                        .t(" along $+e_n$ and on ")
-                                        .w(body1)
-                                        .t(" along $-e_n$")});
-    for (std::size_t k = 0; k < c.F.size(); ++k)
-        fs.impulses.push_back({c.F[k], paragraph()
-                                           .w("friction impulse on " + body2 + " along ")
-                                           .n("e_" + c.tnames[k], "\\hat{\\underline{e}}_" + c.tnames[k])
-                                           .w(" (on " + body1 + " the opposite)")});
-
-    document doc;
-    doc.title = "Impact with Coulomb friction: " + p.source;
-    doc.sections.push_back(setup_section(d, &fs));
-    doc.sections.push_back(law_section(c));
-    doc.sections.push_back(equations_section(c));
-    doc.sections.push_back(response_section(c));
-    doc.sections.push_back(c.has_stick() ? stick_section(c) : no_stick_section(c));
-    doc.sections.push_back(slide_section(c));
-    doc.sections.push_back(c.has_stick() ? regimes_section(c) : slide_regimes_section(c));
-    doc.sections.push_back(existence_section(c));
-    if (c.numeric)
-        numbers_section(c, doc);
-
-    rename(doc, shown);
-    return doc;
-}
-
 } // namespace friction_detail
-
-using namespace friction_detail;
-
-document explain_friction(const derivation &d, const friction_solution &f)
-{
-    // A numeric problem is taught as the notes teach: the equations, the regimes and their
-    // conditions in symbols first (μ among them, so that the boundaries are conditions on
-    // μ), then the numbers. When the symbolic twin cannot be solved (a decision that needs
-    // the numbers), the numbers are used throughout.
-    // The contact frame must be rational for the symbols to read well: with a normal such
-    // as (0.2, 1, 0.1), of length sqrt(21/20), every step of the twin would carry products
-    // of unlike roots; the numbers are clearer there.
-    bool rational_frame = true;
-    for (const vec3 *v : {&d.n_hat, &f.e_t, &f.e_b})
-        for (const ex &x : *v)
-            rational_frame = rational_frame && is_a<numeric>(x) && ex_to<numeric>(x).is_rational();
-    if (d.prob.is_numeric() && rational_frame)
-        if (std::optional<document> doc = taught_in_symbols(
-                d, [&](const derivation &twin, const lst &values, const std::vector<std::string> &units) {
-                    const problem_numbers numbers{&d, &f, values, units};
-                    return friction_document(twin, solve_friction(twin), &numbers);
-                }))
-            return *doc;
-    return friction_document(d, f, nullptr);
-}
 
 } // namespace impactgen::print

@@ -1,6 +1,7 @@
-// The parts the friction document's files share (print/explain_friction.cpp: sections 1-8
-// and the document; print/explain_friction_numbers.cpp: the numbers and the answer, sections
-// 9 and 10): the document's context and its small printers. Not an interface of the library.
+// What the files of the Coulomb chapter of the document share (explain_law_coulomb.cpp: the
+// chapter; explain_friction.cpp: the law, equations, candidates and regimes;
+// explain_friction_numbers.cpp: the numbers and the answer): the chapter's context and its
+// small printers. Not an interface of the library.
 #pragma once
 
 #include "explain.hpp"
@@ -71,6 +72,10 @@ struct context {
         const step *s = f.shared.find(step_role::contact_response, no_body, std::min(a, b), std::max(a, b));
         return s ? ex(s->sym) : ex(0);
     }
+    // The tag of a planar slide's law F = -sign μ N: the derivation's one equation (8′) is two,
+    // one per direction, and two different equations never share a number: (8′) along +e_t,
+    // (8″) along -e_t.
+    std::string slide_tag(int sign) const { return slide_law.front().label + (sign > 0 ? "" : "'"); }
     // x.K y in world steps.
     ex kform(const vec3 &x, const vec3 &y) const
     {
@@ -84,20 +89,30 @@ struct context {
 
 // |r| split over the factors of a product (numbers by their absolute value, (1 + e) and e kept).
 ex abs_split(const ex &r, const ex &e);
-std::string short_decimal(const ex &x);
-std::string approx_note(const ex &v);
 bool is_float(const ex &v);
 ex settle(const ex &v);
 math_row value_row(const ex &sym, const ex &value, const std::string &note = "");
+math_row value_row(const ex &sym, const ex &value, const paragraph &note);
 paragraph regime_words(const regime_case &rc);
 paragraph condition_note(const regime_condition &rc);
 math_row srow(const ex &lhs, const ex &rhs, const std::string &note = "");
+math_row srow(const ex &lhs, const ex &rhs, const paragraph &note);
 math_row srow(const problem &p, const step &st);
 bool short_denominator(const ex &x);
 /// |F|/N of the stick impulse (the threshold mu* when N > 0).
 ex stick_threshold_value(const context &c);
 
-/// Sections 9 (the numbers, the regime that holds) and 10 (the answer) of a numeric problem.
-void numbers_section(context &c, document &doc);
+// The sections of the chapter (explain_law_coulomb.cpp puts them in their slots).
+section law_section(const context &c);           ///< the contact law: restitution and Coulomb's cone
+section equations_section(const context &c);     ///< impulse-momentum with the friction impulse
+section response_section(const context &c);      ///< the contact response K and the shared steps
+section stick_section(const context &c);         ///< the stick candidate tested against the cone
+section no_stick_section(const context &c);      ///< K singular: no stick candidate
+section slide_section(const context &c);         ///< the slides, each with its conditions
+section regimes_section(const context &c);       ///< the regimes as conditions on mu, the energy
+section slide_regimes_section(const context &c); ///< without a stick candidate: the slides' conditions, the energy
+section existence_section(const context &c);     ///< one regime, none, or several
+/// A numeric problem's numbers and the regime that holds, then its answer (when one regime holds).
+std::vector<section> numbers_sections(const context &c);
 
 } // namespace impactgen::print::friction_detail

@@ -167,7 +167,7 @@ void stick_numbers(const context &c, section &sec, const case_numbers &cn, const
     Nst = tidy(c.at_inputs(st.sol.normal_impulse).subs(cn.values));
     if (decide(Nst) == decision::positive) {
         mu_star = tidy(c.at_inputs(stick_threshold_value(c)).subs(cn.values));
-        sec.rows({value_row(mu_star_sym, mu_star, "the stick impulse needs μ ≥ μ*")});
+        sec.rows({value_row(mu_star_sym, mu_star, paragraph().t("the stick impulse needs $μ ≥ μ*$"))});
         paragraph q;
         q.t("$μ =$ ")
             .m(c.at_inputs(c.mu))
@@ -221,7 +221,7 @@ void slide_numbers(const context &c, section &sec, const std::vector<case_number
                 sec.rows(
                     {formula_row(trig.text, trig.tex, "$c_d = cos θ$, $s_d = sin θ$; the coefficients to 15 digits")});
             sec.para(paragraph().t(
-                "impactgen finds its roots $θ$ on the unit circle at 50 significant digits, isolated with bounds on "
+                "Its roots $θ$ on the unit circle are found to 50 significant digits, isolated with bounds on "
                 "the derivatives, and checks $D_s > 0$ and $λ > 0$ at each."));
             continue;
         }
@@ -304,17 +304,40 @@ paragraph verdict_paragraph(const context &c, const regime_case &sel)
     return q;
 }
 
+// Why no regime is the answer: several hold, none does, or the numbers do not decide.
+paragraph no_single_regime(const context &c)
+{
+    paragraph q;
+    q.w("No single regime: ");
+    std::vector<regime_case> holding;
+    try {
+        holding = c.numeric_d ? holding_regimes(*c.numeric_d, *c.numeric_f) : holding_regimes(c.d, c.f);
+    } catch (const input_error &) {
+        return q.w("these numbers do not decide which of the regimes' conditions hold.");
+    }
+    if (holding.empty())
+        return q.w("the conditions of no regime hold for these numbers.");
+    q.w("the law of restitution with Coulomb friction has more than one solution here: the regimes ");
+    for (std::size_t k = 0; k < holding.size(); ++k) {
+        if (k)
+            q.w(k + 1 == holding.size() ? " and " : ", ");
+        for (const span &x : regime_words(holding[k]).spans)
+            q.spans.push_back(x);
+    }
+    return q.w(" all hold.");
+}
+
 // Section 10: the answer, the equations substituted back, the energy.
 section answer_section(const context &c, const regime_case &sel)
 {
-    section ans{"10. The answer", {}};
+    section ans{"The answer", {}};
     std::vector<math_row> answers;
     lst unknown_values;
     for (std::size_t k = 0; k < c.d.unknowns.size(); ++k) {
         const ex v = sel.sol.unknown_values.op(k).rhs();
         unknown_values.append(c.d.unknowns[k].sym == v);
         if (c.d.unknowns[k].kind != unknown_kind::normal_impulse)
-            answers.push_back(value_row(c.d.unknowns[k].sym, v, c.d.unknowns[k].meaning));
+            answers.push_back(value_row(c.d.unknowns[k].sym, v, unknown_note(c.p, c.d.unknowns[k])));
     }
     const ex Nv = sel.sol.normal_impulse;
     answers.push_back(value_row(c.N, Nv, "the normal impulse"));
@@ -347,7 +370,9 @@ section answer_section(const context &c, const regime_case &sel)
                 eq.rhs = eq.rhs.subs(c.slide_d[k] == settle(tidy(dot(sel.direction, c.tangents[k]))));
             all.push_back(eq);
         }
-        law_tags = c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
+        law_tags = c.dim == 2
+                       ? c.slide_tag(sel.sign)
+                       : c.slide_law.front().label + (c.slide_law.size() > 1 ? "-" + c.slide_law.back().label : "");
     }
     for (const equation &eq : all) {
         ex r = c.at_inputs(eq.lhs - eq.rhs).subs(unknown_values).subs(impulse_values);
@@ -394,11 +419,11 @@ section answer_section(const context &c, const regime_case &sel)
 
 } // namespace
 
-void numbers_section(context &c, document &doc)
+std::vector<section> numbers_sections(const context &c)
 {
-    section sec{"9. The numbers", {}};
+    section sec{"The numbers", {}};
     if (c.f.cases.empty())
-        return;
+        return {};
     // The shared steps are the first candidate's first steps (stick's, or a slide's without it).
     const regime_case &first = c.f.cases.front();
     if (c.inputs.nops()) {
@@ -430,29 +455,25 @@ void numbers_section(context &c, document &doc)
         mu_axis_numbers(c, sec, nums, Nst);
 
     // The verdict.
-    std::string why;
     regime_case sel;
     bool selected = false;
     try {
         sel = c.numeric_d ? select_regime(*c.numeric_d, *c.numeric_f) : select_regime(c.d, c.f);
         selected = true;
-    } catch (const input_error &err) {
-        why = err.what();
+    } catch (const input_error &) {
+        // none holds, several do, or the decision is too close to call
     }
     if (!selected) {
-        sec.para(paragraph().w("No single regime: impactgen refuses this problem with"));
-        sec.para(paragraph().w("\"" + why + "\""));
+        sec.para(no_single_regime(c));
         sec.para(paragraph().t(
             "That is the situation of section 8: the law of restitution with Coulomb friction does not fix the "
             "outcome here, and no answer is given. A smaller $μ$, or weaker coupling between the normal and the "
             "tangential directions, typically leaves a single regime."));
-        doc.sections.push_back(sec);
-        return;
+        return {sec};
     }
     sec.para(verdict_paragraph(c, sel));
-    const section ans = answer_section(c, sel);
-    doc.sections.push_back(sec);
-    doc.sections.push_back(ans);
+    section ans = answer_section(c, sel);
+    return {sec, ans};
 }
 
 } // namespace impactgen::print::friction_detail

@@ -59,31 +59,6 @@ ex abs_split(const ex &r, const ex &e)
     return abs(r);
 }
 
-// An exact number's decimal, for a note; "" when it is not a constant or is an integer.
-// Six significant digits: what a reader takes in; the exact value is printed beside it.
-std::string short_decimal(const ex &x)
-{
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", to_double(x));
-    return buf;
-}
-
-std::string approx_note(const ex &v)
-{
-    if (!is_constant(v))
-        return "";
-    if (is_a<numeric>(v) && ex_to<numeric>(v).is_integer())
-        return "";
-    try {
-        const ex x = evaluated_constant(v); // until two precisions agree
-        if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_real())
-            return "";
-        return "≈ " + short_decimal(x);
-    } catch (const std::invalid_argument &) {
-        return "";
-    }
-}
-
 bool is_float(const ex &v)
 {
     return is_a<numeric>(v) && !ex_to<numeric>(v).is_rational();
@@ -106,10 +81,14 @@ ex settle(const ex &v)
 // sym = value; a float (a root found numerically) as 15 significant digits.
 math_row value_row(const ex &sym, const ex &value, const std::string &note)
 {
+    return value_row(sym, value, note.empty() ? paragraph() : paragraph().w(note));
+}
+
+math_row value_row(const ex &sym, const ex &value, const paragraph &note)
+{
     if (is_float(value)) {
         const std::string dec = decimal(value);
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
-                           paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
     }
     if (!is_constant(value) || !is_a<numeric>(value))
         for (const_preorder_iterator it = value.preorder_begin(); it != value.preorder_end(); ++it)
@@ -118,12 +97,13 @@ math_row value_row(const ex &sym, const ex &value, const std::string &note)
     if (is_constant(value) && !is_a<numeric>(value) && canonical_text(value).size() > 60) {
         // exact but unreadable (nested roots of large rationals): its decimal
         const std::string dec = decimal(value.evalf());
-        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec,
-                           paragraph().w(note));
+        return formula_row(canonical_text(sym) + " ≈ " + dec, canonical_latex(sym) + " \\approx " + dec, note);
     }
-    std::string n = approx_note(value);
-    if (!note.empty())
-        n = n.empty() ? note : n + ", " + note;
+    paragraph n = decimal_note(value);
+    if (!note.spans.empty() && !n.spans.empty())
+        n.w(", ");
+    for (const span &x : note.spans)
+        n.spans.push_back(x);
     return row(sym, value, "", n);
 }
 
@@ -168,15 +148,21 @@ paragraph condition_note(const regime_condition &rc)
     return q.w(rc.meaning);
 }
 
-// lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), a pointer to
-// where it is printed in full.
+// lhs = rhs, or, when rhs is too long to read (a 3-D problem with a tilted normal), lhs = … and
+// a note that says so.
 math_row srow(const ex &lhs, const ex &rhs, const std::string &note)
+{
+    return srow(lhs, rhs, note.empty() ? paragraph() : paragraph().w(note));
+}
+
+math_row srow(const ex &lhs, const ex &rhs, const paragraph &note)
 {
     if (printable(rhs, 400))
         return row(lhs, rhs, "", note);
-    const std::string more = "too long to print here; impactgen formulas prints it";
-    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots",
-                       paragraph().w(note.empty() ? more : note + " (" + more + ")"));
+    const std::string more = "too long to print here";
+    paragraph q = note;
+    q.w(note.spans.empty() ? more : " (" + more + ")");
+    return formula_row(canonical_text(lhs) + " = …", canonical_latex(lhs) + " = \\ldots", q);
 }
 
 // A step's row, its meaning from its role (teaching prose with symbols in math).

@@ -337,11 +337,31 @@ std::string markdown_row(const math_row &r)
 // " \tag{3}\label{eq:3}": the label only where the tag first appears (the
 // worked example shows the equations again under their tags; a reference
 // goes to the equation as first stated).
+// A tag's TeX: its primes in math mode ("8''" is 8″, not a closing quote).
+std::string tag_words(const std::string &tag)
+{
+    std::string out;
+    for (std::size_t k = 0; k < tag.size();) {
+        if (tag[k] != '\'') {
+            std::size_t j = tag.find('\'', k);
+            out += tex_words(tag.substr(k, j == std::string::npos ? std::string::npos : j - k));
+            k = j == std::string::npos ? tag.size() : j;
+            continue;
+        }
+        std::size_t j = tag.find_first_not_of('\'', k);
+        if (j == std::string::npos)
+            j = tag.size();
+        out += "$" + tag.substr(k, j - k) + "$";
+        k = j;
+    }
+    return out;
+}
+
 std::string tag_tex(const std::string &tag, std::set<std::string> &labelled)
 {
     if (tag.empty())
         return "";
-    std::string out = " \\tag{" + tex_words(tag) + "}";
+    std::string out = " \\tag{" + tag_words(tag) + "}";
     if (labelled.insert(label_key(tag)).second)
         out += "\\label{" + label_key(tag) + "}";
     return out;
@@ -350,7 +370,7 @@ std::string tag_tex(const std::string &tag, std::set<std::string> &labelled)
 // The room a tag takes at the end of a line: "(3)" and the space before it.
 double tag_width_em(const std::string &tag)
 {
-    return tag.empty() ? 0 : tex_width("(" + tex_words(tag) + ")", 1, true) + 1.5;
+    return tag.empty() ? 0 : tex_width("(" + tag_words(tag) + ")", 1, true) + 1.5;
 }
 
 // The width of the box a note under a row is set in: as wide as the note

@@ -1,5 +1,5 @@
-// explain(): sections 2 to 5 of the smooth explanation: the impulses, the equations,
-// the count and the solution, the checks (with the numbers of a worked example).
+// The smooth chapter's sections (explain_smooth.hpp): the impulses, the equations, the count
+// and the solution, the checks (with the numbers of a worked example).
 #include "explain.hpp"
 #include "explain_detail.hpp"
 #include "explain_smooth.hpp"
@@ -30,7 +30,7 @@ section detail::impulse_section(const derivation &d)
 {
     const problem &p = d.prob;
     const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
-    section sec{"2. The impulses (impulse-momentum diagram in words)", {}};
+    section sec{"The impulses (impulse-momentum diagram in words)", {}};
     std::vector<paragraph> items;
     items.push_back(paragraph()
                         .t("At the contact the normal reaction $N$ acts along $e_n$ for a very short time; its impulse "
@@ -42,20 +42,7 @@ section detail::impulse_section(const derivation &d)
     items.push_back(paragraph()
                         .t("The bodies are smooth: the tangential impulse $∫T dt = 0$, so no impulse acts along $e_t$")
                         .t(p.dimension == 3 ? " or $e_b$." : "."));
-    for (const pivot &pv : p.pivots) {
-        paragraph q;
-        q.t("The pin at $E$ = ");
-        vector_span(q, pv.point, p.dimension);
-        q.t(" exerts an unknown reaction impulse $~R$ on ").w(body_ref(p, pv.body) + ".");
-        items.push_back(q);
-    }
-    for (std::size_t i : {i1, i2})
-        if (p.bodies[i].infinite_mass)
-            items.push_back(paragraph()
-                                .w(body_ref(p, i))
-                                .t(" has infinite mass: the finite impulse $∫N dt$ does not change its motion."));
-    items.push_back(
-        paragraph().w("Finite forces such as gravity give no impulse over the (almost zero) contact time."));
+    other_impulses(items, p, "$∫N dt$");
     sec.list(items);
 
     std::vector<math_row> rows;
@@ -254,7 +241,7 @@ void remark_list(section &sec, const derivation &d)
 section detail::equations_section(const derivation &d)
 {
     const problem &p = d.prob;
-    section sec{"3. The equations", {}};
+    section sec{"The equations", {}};
     if (d.impulse_form)
         sec.para(paragraph().t(
             "A body is pinned, so, as in the notes' constrained collision, impulse-momentum is written for each body "
@@ -281,14 +268,8 @@ section detail::equations_section(const derivation &d)
             if (eq.why != first.why || eq.bodies != first.bodies)
                 break;
             math_row r = row(f.lhs, f.rhs, eq.label);
-            if (f.axis == "t")
-                r.note.t("component along $e_t$");
-            else if (f.axis == "n")
-                r.note.t("component along $e_n$");
-            else if (f.axis == "b")
-                r.note.t("component along $e_b$");
-            else if (!f.axis.empty())
-                r.note.t("component along ").w(f.axis);
+            if (!f.axis.empty())
+                along(r.note.t("component along "), f.axis);
             rows.push_back(r);
         }
         const std::size_t i = first.bodies.empty() ? no_body : first.bodies[0];
@@ -306,7 +287,7 @@ section detail::equations_section(const derivation &d)
 
 section detail::solution_section(const derivation &d, const solution &s)
 {
-    section sec{"4. Count check and solution", {}};
+    section sec{"Count check and solution", {}};
     const bool ok = d.count_equations() == d.count_unknowns();
     sec.para(paragraph().w(
         std::to_string(d.count_equations()) + " equations for " + std::to_string(d.count_unknowns()) +
@@ -343,7 +324,7 @@ section detail::solution_section(const derivation &d, const solution &s)
     sec.rows(steps);
     std::vector<math_row> unknowns;
     for (const frame_component &u : view.unknowns)
-        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", u.meaning));
+        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", component_note(u)));
     sec.para(paragraph().w("Each unknown:"));
     sec.rows(unknowns);
     return sec;
@@ -378,12 +359,13 @@ void frame_velocity_rows(section &sec, const derivation &d, const solution &s, c
             // "≈ 0.914 m/s -- body 1 (ball), before", as the energies below
             const std::string u = unit(p, quantity::velocity);
             auto note = [&](const ex &value, const char *when) {
-                const std::string dec = decimal_note(value);
-                return (dec.empty() ? "" : dec + u + " -- ") + body_ref(p, i) + when +
-                       (dec.empty() && !u.empty() ? " (in" + u + ")" : "");
+                paragraph q = decimal_note(value);
+                const bool dec = !q.spans.empty();
+                return q.w((dec ? u + " -- " : "") + body_ref(p, i) + when +
+                           (!dec && !u.empty() ? " (in" + u + ")" : ""));
             };
-            r.note.w(note(before, ", before"));
-            ra.note.w(note(after, ", after"));
+            r.note = note(before, ", before");
+            ra.note = note(after, ", after");
             if (axis == "t" || axis == "b")
                 ra.note.t(vanishes_identically(s, after - before, "a tangential velocity")
                               ? ": unchanged, no impulse along it"
@@ -702,7 +684,7 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
     else
         sec.para(paragraph().t(
             "At $e = 1$ the loss is not zero: a moving body of infinite mass does work on the other body, and "
-            "its own energy is not counted (see problem-format: that is physics, not an error)."));
+            "its own energy is not counted."));
 }
 
 } // namespace
@@ -710,7 +692,7 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
 section detail::checks_section(const derivation &d, const solution &s, const worked_example *example)
 {
     const problem &p = d.prob;
-    section sec{"5. Checks", {}};
+    section sec{"Checks", {}};
 
     // A copy of the problem with a symbol for e, to vary e.
     ex e_val = p.restitution;

@@ -1,6 +1,7 @@
-// What the smooth explanation's files share (explain.cpp, explain_setup.cpp,
-// explain_sections.cpp): small helpers and the sections after the set-up. Private to the
-// print library; explain_detail.hpp holds what explain_friction.cpp shares too.
+// The smooth contact's chapter of the document (explain_law_frictionless.cpp puts these
+// sections in their slots; explain_sections.cpp writes them): small helpers and the
+// sections after the set-up. Private to the print library; explain_detail.hpp holds what
+// every chapter shares.
 #pragma once
 
 #include "explain_detail.hpp"
@@ -21,13 +22,13 @@ const step *find_step(const solution &s, step_role role, std::size_t body = no_b
 /// Substitutes the steps of the given roles (and only those), latest first.
 GiNaC::ex expand_some(const solution &s, const GiNaC::ex &e, const std::vector<step_role> &roles);
 
-/// Section 2: the impulses.
+/// The impulses (the law's statement).
 section impulse_section(const derivation &d);
-/// Section 3: the equations.
+/// The equations.
 section equations_section(const derivation &d);
-/// Section 4: the count and the solution.
+/// The count and the solution.
 section solution_section(const derivation &d, const solution &s);
-/// Section 5: the checks (and the notes' worked example, when given).
+/// The checks (and the notes' worked example, when given).
 section checks_section(const derivation &d, const solution &s, const worked_example *example);
 
 } // namespace impactgen::print::detail

@@ -191,12 +191,9 @@ document document_of(const page& pg)
     problem p = named ? find_named_class(pg.what)->build()
                       : read_problem(read_file(fs::path(IMPACTGEN_SOURCE_DIR) / pg.what), pg.what);
     derivation d = derive(p);
-    if (p.has_friction())
-        return explain_friction(d, solve_friction(d));
-    solution s = solve(d);
     worked_example ex;
     bool has = named && notes_example(pg.what, ex);
-    return explain(d, s, has ? &ex : nullptr);
+    return explain(d, solve_impact(d), has ? &ex : nullptr);
 }
 
 std::size_t count(const std::string& s, const std::string& part)

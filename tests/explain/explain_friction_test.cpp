@@ -38,7 +38,7 @@ explained explain_problem(const problem& p)
 {
     derivation d = derive(p);
     friction_solution f = solve_friction(d);
-    document doc = explain_friction(d, f);
+    document doc = explain(d, f);
     return {d, f, doc};
 }
 

@@ -34,11 +34,11 @@ struct explained {
 explained explain_problem(const problem& p, bool with_example)
 {
     derivation d = derive(p);
-    solution s = solve(d);
+    const impact_solution s = solve_impact(d);
     worked_example ex;
     bool has = with_example && notes_example(p.source, ex);
     document doc = explain(d, s, has ? &ex : nullptr);
-    return {d, s, doc};
+    return {d, s.cases.front().sol, doc};
 }
 
 explained explain_class(const std::string& name) { return explain_problem(find_named_class(name)->build(), true); }

@@ -38,12 +38,9 @@ std::string read_file(const fs::path& p)
 document document_of(const problem& p, const std::string& class_name = "")
 {
     derivation d = derive(p);
-    if (p.has_friction())
-        return explain_friction(d, solve_friction(d));
-    solution s = solve(d);
     worked_example ex;
     bool has = !class_name.empty() && notes_example(class_name, ex);
-    return explain(d, s, has ? &ex : nullptr);
+    return explain(d, solve_impact(d), has ? &ex : nullptr);
 }
 
 // Every document: the named classes, the friction classes, the example

@@ -2,6 +2,7 @@
 // read as notation, and what the hand-out adds to the notes' reasoning -- a numeric problem
 // taught in symbols first, units, the energy before and after, the centre of percussion,
 // contact-frame components, a figure in every document.
+#include "print/canonical.hpp"
 #include "print/explain.hpp"
 #include "print/explain_detail.hpp"
 #include "symbolic/named_classes.hpp"
@@ -12,6 +13,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <regex>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -26,12 +30,9 @@ namespace {
 document explain_of(const problem& p)
 {
     derivation d = derive(p);
-    if (p.has_friction())
-        return explain_friction(d, solve_friction(d));
-    solution s = solve(d);
     worked_example example;
     const bool has = notes_example(p.source, example);
-    return explain(d, s, has ? &example : nullptr);
+    return explain(d, solve_impact(d), has ? &example : nullptr);
 }
 
 std::vector<std::pair<std::string, problem>> every_problem()
@@ -83,6 +84,16 @@ std::string prose_outside_math(std::string tex)
         if (!math)
             out += tex[i];
     }
+    return out;
+}
+
+// The text with its line breaks as spaces and runs of spaces as one: phrases wrap anywhere.
+std::string flat(const std::string& s)
+{
+    std::string out;
+    for (char ch : s)
+        if (!(ch == '\n' || ch == ' ') || (!out.empty() && out.back() != ' '))
+            out += (ch == '\n' ? ' ' : ch);
     return out;
 }
 
@@ -284,8 +295,8 @@ TEST(Prose, RadicalNormalAnswerHoldsWhenSubstitutedBack)
     }
 }
 
-// central-oblique is two particles; explain says why and names the example that keeps the
-// spins: two solid spheres (I = 2 m R²/5), 12 unknowns. The example's solution must find
+// central-oblique is two particles; explain says why and what the spheres that keep their
+// spins would do: two solid spheres (I = 2 m R²/5), 12 unknowns. The example's solution must find
 // every spin unchanged and the centres' velocities of the particle class.
 TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
 {
@@ -316,9 +327,10 @@ TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
     // Every equation holds with the solution substituted.
     for (const ex& r : residuals(d, s))
         EXPECT_TRUE(r.is_zero()) << r;
-    // The class's own document names the example.
-    const std::string text = explain_text(explain_of(find_named_class("central-oblique")->build()));
-    EXPECT_NE(text.find("spinning-spheres.json"), std::string::npos);
+    // The class's own document says what the spheres would do, and names no file (a hand-out).
+    const std::string text = flat(explain_text(explain_of(find_named_class("central-oblique")->build())));
+    EXPECT_NE(text.find("Kept as spinning spheres instead"), std::string::npos);
+    EXPECT_EQ(text.find("spinning-spheres.json"), std::string::npos);
     EXPECT_TRUE(fs::exists(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/problems/spinning-spheres.json"));
 }
 
@@ -326,13 +338,6 @@ TEST(Prose, SpinningSpheresKeepTheirSpinsAndMoveAsTheParticles)
 // strikes it, as the figure's caption does; otherwise body 1 strikes body 2.
 TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
 {
-    auto flat = [](std::string s) {
-        std::string out;
-        for (char ch : s)
-            if (!(ch == '\n' || ch == ' ') || (!out.empty() && out.back() != ' '))
-                out += (ch == '\n' ? ' ' : ch);
-        return out;
-    };
     const std::string floor = flat(explain_text(explain_of(find_named_class("ball-floor-friction")->build())));
     EXPECT_NE(floor.find("point B of body 2 (ball) strikes point A of body 1 (floor)"), std::string::npos) << floor.substr(0, 400);
     EXPECT_NE(floor.find("ball (disc) strikes floor (wall)"), std::string::npos);
@@ -351,4 +356,62 @@ TEST(Prose, TheMovableBodyStrikesTheImmovableOne)
     EXPECT_NE(b.find("bat (wall) strikes ball"), std::string::npos) << b.substr(0, 1200);
     EXPECT_EQ(b.find("let body 2 grow heavy"), std::string::npos);
     EXPECT_NE(b.find("roles exchanged"), std::string::npos);
+}
+
+// Issue 25, defect 4: two different equations never carry the same number. Within a section
+// every tag stands for one equation (the planar slide's law F = -μN and F = μN were both (8′));
+// a worked example may show an equation again, with numbers, in a later section.
+TEST(Prose, TwoDifferentEquationsNeverShareANumber)
+{
+    for (const auto& [name, p] : every_problem()) {
+        const document doc = explain_of(p);
+        for (const section& sec : doc.sections) {
+            std::map<std::string, std::set<std::string>> equations; // tag -> the equations it stands for
+            for (const block& b : sec.blocks)
+                for (const math_row& r : b.math)
+                    if (!r.tag.empty())
+                        equations[r.tag].insert((r.lhs_note.text.empty() ? canonical_text(r.lhs) : r.lhs_note.text) +
+                                                " " + r.rel + " " + canonical_text(r.rhs));
+            for (const auto& [tag, eqs] : equations)
+                EXPECT_EQ(eqs.size(), 1u) << name << ", " << sec.title << ": (" << tag << ") stands for " << eqs.size()
+                                          << " equations, " << *eqs.begin() << " and " << *eqs.rbegin();
+        }
+    }
+}
+
+// Issue 25, defect 7: a student's hand-out says nothing of the software, its files, its
+// refusals or how the notes count equations (the title line is the problem's: defect 1).
+TEST(Prose, NoWordAboutTheSoftwareOrItsFiles)
+{
+    for (const auto& [name, p] : every_problem()) {
+        if (name == "hostile-names.json")
+            continue; // its names are chosen to look like anything
+        document doc = explain_of(p);
+        doc.title.clear();
+        const std::string text = flat(explain_text(doc));
+        for (const char* word : {"impactgen", ".json", "problem-format", "refuse", "examples/", "sources",
+                                 "numbering them", "numbers 5 equations", "prints it"}) {
+            const std::size_t at = text.find(word);
+            EXPECT_EQ(at, std::string::npos) << name << ": \"" << word << "\" near \""
+                                             << text.substr(at > 80 ? at - 80 : 0, 160) << "\"";
+        }
+    }
+}
+
+// Issue 25, defect 8: the notes beside displayed rows set their symbols in math too (a world
+// axis, the axis of an unknown's component, |F|/N, μ ≥ μ*, the impulses R and P), and a decimal stands in math with its ≈, so that a negative one has a
+// true minus sign, in LaTeX and in HTML.
+TEST(Prose, SymbolsAndDecimalsOfRowNotesInMath)
+{
+    const std::regex axis_as_text(R"(component along [a-z]\b|, [a-z] component\b)"), decimal_as_text(R"(\$\\approx\$ ?-?[0-9])"),
+        bare_symbol(R"(\$\|\$F\$\|\$|needs \$\\mu\$|impulse [RP] )");
+    for (const auto& [name, p] : every_problem()) {
+        const document doc = explain_of(p);
+        const std::string tex = explain_latex(doc), html = explain_html(doc);
+        std::smatch m;
+        for (const std::regex* re : {&axis_as_text, &decimal_as_text, &bare_symbol})
+            EXPECT_FALSE(std::regex_search(tex, m, *re)) << name << ": \"" << m.str() << "\" in the LaTeX";
+        EXPECT_EQ(html.find("≈ -"), std::string::npos) << name << ": a negative decimal with a hyphen in the HTML";
+        EXPECT_FALSE(std::regex_search(html, m, axis_as_text)) << name << ": \"" << m.str() << "\" in the HTML";
+    }
 }
