@@ -12,6 +12,7 @@
 #include "figure/figure.hpp"
 #include "names/escape.hpp"
 #include "symbolic/decide.hpp"
+#include "title.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -633,7 +634,8 @@ namespace
 document explain_document(const derivation &d, const solution &s, const worked_example *example)
 {
     document doc;
-    doc.title = "Smooth impact: " + d.prob.source;
+    doc.title = document_title(d.prob, "Smooth impact");
+    doc.description = d.prob.description;
     doc.sections.push_back(setup_section(d));
     doc.sections.push_back(impulse_section(d));
     doc.sections.push_back(equations_section(d));

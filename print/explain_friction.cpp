@@ -13,6 +13,7 @@
 #include "canonical.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
+#include "title.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -904,7 +905,8 @@ document friction_document(const derivation &d, const friction_solution &f, cons
                                            .w(" (on " + body1 + " the opposite)")});
 
     document doc;
-    doc.title = "Impact with Coulomb friction: " + p.source;
+    doc.title = document_title(p, "Impact with Coulomb friction");
+    doc.description = p.description;
     doc.sections.push_back(setup_section(d, &fs));
     doc.sections.push_back(law_section(c));
     doc.sections.push_back(equations_section(c));
