@@ -10,6 +10,7 @@
 // particle, a sphere, a pinned rod or plate, a free rod, a box, a wall), then
 // the decorations of fixed length -- frame, lever arms, impulses, velocities.
 #include "figure/figure.hpp"
+#include "figure/directions.hpp"
 #include "figure/number_text.hpp"
 
 #include "names/escape.hpp"
@@ -46,6 +47,8 @@ const char *role_name(role r)
         return "velocity";
     case role::pivot:
         return "pivot";
+    case role::spin:
+        return "spin";
     }
     return "?";
 }
@@ -357,6 +360,7 @@ private:
     const problem &p_;
     drawing g_;
     exmap values_;
+    detail::directions dirs_; // which way the impulses and spins point
     bool planar_ = true;
     v3 n_, t_, b_;                 // the contact frame, unit, world axes
     std::vector<v3> c_;            // centres, figure coordinates (3-D)
@@ -437,6 +441,9 @@ private:
     void frame_axes(point o, point t2);
     void velocity_arrows(std::size_t nb, point o, point t2);
     void contact_impulse(point t2, point n2);
+    void friction_impulse(point t2);
+    void spins();
+    v3 dir(const detail::vec &a) const { return {a[0], a[1], planar_ ? 0 : a[2]}; }
     void centre_marks(std::size_t nb, point o, point t2, point n2);
 };
 
@@ -501,6 +508,9 @@ drawing builder::build()
     g_.body2 = p_.contact().body2;
     values_ = illustrative_values(p_);
     g_.schematic = !values_.empty();
+    dirs_ = detail::directions_of(d_, values_);
+    g_.impulses_from_answer = dirs_.from_answer;
+    g_.positive = dirs_.positive;
 
     // The contact frame, orthonormal whatever the derivation's vectors evaluate to.
     n_ = unit(value(d_.n_hat), {0, 1, 0});
@@ -817,9 +827,9 @@ void builder::pivots()
             add_path(role::pivot, -1, "hatch", {from, from + 0.05 * away + 0.04 * across}, false, false, false, true);
         }
         add_circle(role::pivot, -1, "E" + k, e, 0.022, false);
-        // R: the unknown pivot impulse, drawn against the contact impulse on its body.
-        const v3 dir = (-side(pv.body)) * n_;
-        const point tip = e + pivot_length * unit2(proj(dir), {1, 0});
+        // R: the pivot impulse on its body, along the answer (or its positive sense); none when 0.
+        const v3 r = j < dirs_.pivot.size() ? dir(dirs_.pivot[j]) : v3{};
+        const point tip = e + pivot_length * unit2(proj(r), {0, 0});
         if (add_arrow(role::pivot_impulse, static_cast<int>(pv.body), "R" + k, e, tip))
             add_math(role::pivot_impulse, static_cast<int>(pv.body), "R" + k, tip, tip - e, k.empty() ? "R" : "R_" + k,
                      "R", k);
@@ -931,6 +941,69 @@ void builder::contact_impulse(point t2, point n2)
                  "N", "N", "");
 }
 
+// The friction impulse: F on body 2 (along the answer's tangential impulse, or +e_t for
+// symbols), -F on body 1, from points just inside each body beside O.
+void builder::friction_impulse(point t2)
+{
+    const v3 f = dir(dirs_.friction);
+    if (!(norm(f) > 0))
+        return;
+    for (const int s : {1, -1}) {
+        const std::size_t body = s > 0 ? g_.body2 : g_.body1;
+        const point from = proj((s * 2 * impulse_gap) * n_), to = from + proj((s * impulse_length) * f);
+        const std::string key = s > 0 ? "F2" : "F1";
+        if (add_arrow(role::impulse, static_cast<int>(body), key, from, to))
+            add_math(role::impulse, static_cast<int>(body), key, to, unit2(to - from, t2), "F", "F", "");
+    }
+}
+
+// Each spin before impact: in the plane a turning arrow of 240 degrees about C, open towards
+// O (the lever arm), its head in the sense of the spin; in 3-D the angular velocity vector at C.
+void builder::spins()
+{
+    constexpr double spin_radius = 0.15, spin_vector = 0.3;
+    for (std::size_t i = 0; i < p_.bodies.size() && i < dirs_.spin.size(); ++i) {
+        const v3 w{dirs_.spin[i][0], dirs_.spin[i][1], dirs_.spin[i][2]}; // in the plane: along z
+        if (!has_centre_[i] || !(norm(w) > 0))
+            continue;
+        const int bi = static_cast<int>(i);
+        const point c = centre_at_[i];
+        const std::string key = "w" + index_[i], tex = "\\omega_{" + index_[i] + "}";
+        if (!planar_) {
+            const point tip = c + proj(spin_vector * w);
+            if (add_arrow(role::spin, bi, key, c, tip))
+                add_math(role::spin, bi, key, tip, unit2(tip - c, {0, 1}), tex, "\u03c9", index_[i]);
+            continue;
+        }
+        const point to_o = unit2(point{0, 0} - c, g_.n_hat);
+        const double gap = std::atan2(to_o.y, to_o.x), sense = w.z > 0 ? 1.0 : -1.0;
+        const double pi = 3.14159265358979323846;
+        std::vector<point> arc;
+        for (int k = 0; k <= 24; ++k) {
+            const double a = gap + sense * (pi / 3 + k * (4 * pi / 3) / 24);
+            arc.push_back(c + spin_radius * point{std::cos(a), std::sin(a)});
+        }
+        const point head = arc.back();
+        add_arrow(role::spin, bi, key, arc[arc.size() - 4], head);
+        arc.resize(arc.size() - 3);
+        add_path(role::spin, bi, key, arc, false, false);
+        // The label beyond the head, away from C.
+        const point out = unit2(head - c, {0, 1});
+        add_math(role::spin, bi, key, head + label_gap * out, out, tex, "\u03c9", index_[i]);
+    }
+}
+
+std::string directions_note_of(const drawing &g)
+{
+    if (g.positive.empty())
+        return "";
+    std::string list;
+    for (std::size_t k = 0; k < g.positive.size(); ++k)
+        list += (k ? (k + 1 == g.positive.size() ? " and " : ", ") : "") + g.positive[k];
+    return " Drawn in the senses in which they count positive (" + list +
+           "): the sign of each value says which way it acts.";
+}
+
 // Centres on top of the lines, then O.
 void builder::centre_marks(std::size_t nb, point o, point t2, point n2)
 {
@@ -973,8 +1046,13 @@ void builder::decorations()
     // so that the fastest is velocity_max long; none shorter than velocity_min.
     velocity_arrows(nb, o, t2);
 
-    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n.
+    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n; the friction
+    // impulse F on body 2 and -F on body 1 at O, each just inside its body.
     contact_impulse(t2, n2);
+    friction_impulse(t2);
+
+    // Spins before impact, about the centres.
+    spins();
 
     // Centres on top of the lines, then O.
     centre_marks(nb, o, t2, n2);
@@ -1022,6 +1100,16 @@ std::string normal_text(const derivation &d)
 }
 
 } // namespace
+
+GiNaC::exmap schematic_values(const problem &p)
+{
+    return illustrative_values(p);
+}
+
+std::string directions_note(const drawing &g)
+{
+    return directions_note_of(g);
+}
 
 drawing draw(const derivation &d)
 {
