@@ -188,6 +188,13 @@ std::string body_item(const problem &p, std::size_t i, format f, bool si)
             t.unit(u("kg m2"));
         }
     }
+    if (b.infinite_mass && !spinning) { // its centre does not enter: the floor, a wall
+        t.w(moving ? "; velocity " : "; at rest");
+        if (moving)
+            t.vec(b.velocity, dim).unit(u("m/s"));
+        t.w(".");
+        return t.str();
+    }
     t.w("; centre of mass at ").vec(b.position, dim).unit(u("m"));
     if (!moving && !spinning) {
         t.w("; at rest before impact");
@@ -220,7 +227,11 @@ std::vector<std::string> statement(const problem &p, format f, bool si)
     const contact_spec &c = p.contact();
     const int dim = p.dimension == 2 ? 2 : 3;
     text contact(f);
-    contact.w("Contact: " + p.bodies[c.body1].name + " strikes " + p.bodies[c.body2].name + " at the point ")
+    // a movable body strikes an immovable one at rest (not "the floor strikes the ball")
+    const body &b1 = p.bodies[c.body1], &b2 = p.bodies[c.body2];
+    const bool swap = b1.infinite_mass && b1.at_rest() && !b2.infinite_mass;
+    contact
+        .w("Contact: " + (swap ? b2.name + " strikes " + b1.name : b1.name + " strikes " + b2.name) + " at the point ")
         .vec(c.point, dim)
         .unit(si ? "m" : "")
         .w("; the common normal there, from " + p.bodies[c.body1].name + " into " + p.bodies[c.body2].name + ", is ")
