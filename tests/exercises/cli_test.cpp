@@ -133,7 +133,9 @@ TEST(ExercisesCli, LatexSheetCompilesWithoutOverfullBoxes)
 {
     if (!have("pdflatex"))
         GTEST_SKIP() << "\n*** pdflatex NOT FOUND: the LaTeX sheet of exercises is NOT COMPILED ***\n";
-    for (const std::string &what : {hinged_rod(), std::string("ball-floor-friction"), std::string("noncentral-3d")}) {
+    // hostile-names.json: body names with LaTeX's special characters ("50% a_b#{x}", "~^\\end{document}")
+    for (const std::string &what : {hinged_rod(), std::string("ball-floor-friction"), std::string("noncentral-3d"),
+                                    std::string(IMPACTGEN_SOURCE_DIR) + "/tests/explain/hostile-names.json"}) {
         SCOPED_TRACE(what);
         const fs::path dir = sheet(what, "--count 10 --seed 1");
         int status = 0;
