@@ -18,6 +18,7 @@ namespace impactgen::cli
 problem load(const std::string &class_or_file);
 
 void register_explain(CLI::App &app, std::function<int()> &action);
+void register_exercises(CLI::App &app, std::function<int()> &action);
 
 } // namespace impactgen::cli
 

@@ -179,6 +179,7 @@ int main(int argc, char **argv)
     std::function<int()> extra_action;
     impactgen::cli::register_explain(app, extra_action);
     impactgen::cli::register_codegen(app, extra_action);
+    impactgen::cli::register_exercises(app, extra_action);
 
     try {
         app.parse(argc, argv);

@@ -218,6 +218,8 @@ const char *tikz_colour(role r)
         return "green!45!black";
     case role::lever_arm:
         return "black!60";
+    case role::spin:
+        return "violet!80!black";
     default:
         return "black";
     }
@@ -278,7 +280,7 @@ std::string to_tikz(const drawing &g)
             if (it.closed)
                 style += ", fill=white";
         } else {
-            style = tikz_colour(it.what);
+            style = std::string(it.what == role::spin ? "thick, " : "") + tikz_colour(it.what);
         }
         if (it.dashed)
             style += ", dashed";
@@ -319,6 +321,8 @@ const char *svg_colour(role r)
         return "#1d7a2c";
     case role::lever_arm:
         return "#666666";
+    case role::spin:
+        return "#6a1b8a";
     default:
         return "#000000";
     }

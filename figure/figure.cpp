@@ -10,7 +10,10 @@
 // particle, a sphere, a pinned rod or plate, a free rod, a box, a wall), then
 // the decorations of fixed length -- frame, lever arms, impulses, velocities.
 #include "figure/figure.hpp"
+#include "figure/directions.hpp"
+#include "figure/geometry.hpp"
 #include "figure/number_text.hpp"
+#include "figure/values.hpp"
 
 #include "names/escape.hpp"
 #include "symbolic/named_classes.hpp"
@@ -46,6 +49,8 @@ const char *role_name(role r)
         return "velocity";
     case role::pivot:
         return "pivot";
+    case role::spin:
+        return "spin";
     }
     return "?";
 }
@@ -71,266 +76,7 @@ const char *shape_name(shape s)
 
 namespace
 {
-
-// ---------------------------------------------------------------------------
-// Small 3-vector and 2-point arithmetic in doubles.
-
-struct v3 {
-    double x = 0, y = 0, z = 0;
-};
-v3 operator+(v3 a, v3 b)
-{
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-v3 operator-(v3 a, v3 b)
-{
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-v3 operator*(double s, v3 a)
-{
-    return {s * a.x, s * a.y, s * a.z};
-}
-double dot(v3 a, v3 b)
-{
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-v3 cross(v3 a, v3 b)
-{
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double max_abs(v3 a)
-{
-    return std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
-}
-
-/// |a| without overflow or underflow in the squares.
-double norm(v3 a)
-{
-    const double m = max_abs(a);
-    if (!(m > 0) || !std::isfinite(m))
-        return 0;
-    const v3 s = (1 / m) * a;
-    return m * std::sqrt(dot(s, s));
-}
-
-/// a / |a|, or the fallback when a is (numerically) zero.
-v3 unit(v3 a, v3 fallback)
-{
-    const double l = norm(a);
-    if (!(l > 0) || !std::isfinite(l))
-        return fallback;
-    const v3 u = (1 / l) * a;
-    return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? u : fallback;
-}
-
-point operator+(point a, point b)
-{
-    return {a.x + b.x, a.y + b.y};
-}
-point operator-(point a, point b)
-{
-    return {a.x - b.x, a.y - b.y};
-}
-point operator*(double s, point a)
-{
-    return {s * a.x, s * a.y};
-}
-double length(point a)
-{
-    return std::hypot(a.x, a.y);
-}
-point unit2(point a, point fallback)
-{
-    const double l = length(a);
-    return l > 1e-12 && std::isfinite(l) ? point{a.x / l, a.y / l} : fallback;
-}
-point perp(point a)
-{
-    return {-a.y, a.x};
-}
-
-/// A finite value or 0: nothing that is not finite reaches a printer.
-double finite(double v)
-{
-    return std::isfinite(v) ? v : 0.0;
-}
-
-// ---------------------------------------------------------------------------
-// Step 1: numbers.
-
-/// The value of e with the illustrative values substituted, as a double; the
-/// fallback when it does not evaluate to a finite real number.
-double number(const ex &e, const exmap &values, double fallback)
-{
-    try {
-        const ex v = (values.empty() ? e : e.subs(values)).evalf();
-        if (is_a<numeric>(v)) {
-            const numeric &x = ex_to<numeric>(v);
-            if (x.is_real()) {
-                const double r = x.to_double();
-                if (std::isfinite(r))
-                    return r;
-            }
-        }
-    } catch (const std::exception &) {
-        // a pole, an overflow in CLN: the fallback below
-    }
-    return fallback;
-}
-
-/// The symbols an expression contains (ordered, so the walk is deterministic).
-std::vector<symbol> symbols_in(const ex &e)
-{
-    exset found;
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
-        if (is_a<symbol>(*it))
-            found.insert(*it);
-    std::vector<symbol> out;
-    for (const ex &s : found)
-        out.push_back(ex_to<symbol>(s));
-    return out;
-}
-
-/// Gives the symbols still open in e values: when e is linear in exactly one
-/// open symbol with numeric coefficients, the value that makes e equal to
-/// target; otherwise every open symbol of e takes the fallback.
-void settle(exmap &known, const ex &e, double target, double fallback)
-{
-    ex r = e;
-    try {
-        if (!known.empty())
-            r = e.subs(known);
-    } catch (const std::exception &) {
-        r = e;
-    }
-    const std::vector<symbol> open = symbols_in(r);
-    if (open.empty())
-        return;
-    if (open.size() == 1) {
-        try {
-            const symbol &s = open[0];
-            const ex x = r.expand();
-            if (x.is_polynomial(s) && x.degree(s) == 1) {
-                const ex a = x.coeff(s, 1).evalf(), b = x.coeff(s, 0).evalf();
-                if (is_a<numeric>(a) && is_a<numeric>(b) && ex_to<numeric>(a).is_real() &&
-                    ex_to<numeric>(b).is_real()) {
-                    const double av = ex_to<numeric>(a).to_double(), bv = ex_to<numeric>(b).to_double();
-                    const double v = (target - bv) / av;
-                    if (av != 0 && std::isfinite(v) && std::abs(v) < 1e12) {
-                        known[s] = numeric(v);
-                        return;
-                    }
-                }
-            }
-        } catch (const std::exception &) {
-            // not solvable: the fallback below
-        }
-    }
-    for (const symbol &s : open)
-        if (known.find(s) == known.end())
-            known[s] = numeric(fallback);
-}
-
-/// The named classes' symbols (symbolic/named_classes.cpp): bodies on their
-/// own side of the tangent plane, centres off the line of impact for the
-/// non-central classes, velocities that approach. A symbol the table lacks is
-/// placed by what it is in the problem (a spin 0, an inertia entry 1 on the
-/// diagonal and 0 off it), never by its name; anything else 1.
-double named_class_value(const problem &p, const symbol &s)
-{
-    static const std::map<std::string, double> table = {
-        {"m1", 1},      {"m2", 1.5},     {"m", 1},      {"e", 0.8},     {"mu", 0.3},    {"R1", 1},      {"R2", 0.8},
-        {"R", 1},       {"l", 1.5},      {"v1", 1},     {"r_t1", -0.5}, {"r_n1", -0.9}, {"r_b1", 0.3},  {"r_t2", 0.6},
-        {"r_n2", 1.0},  {"r_b2", -0.25}, {"v_t1", 0.5}, {"v_n1", 1.0},  {"v_b1", 0.3},  {"v_t2", -0.4}, {"v_n2", -0.6},
-        {"v_b2", -0.2}, {"v_t", 1.0},    {"v_n", -1.2}, {"I1", 0.25},   {"I2", 0.25},
-    };
-    const auto it = table.find(s.get_name());
-    if (it != table.end())
-        return it->second;
-    for (const body &b : p.bodies)
-        for (std::size_t r = 0; r < 3; ++r) {
-            if (b.angular_velocity[r].is_equal(s))
-                return 0;
-            for (std::size_t c = 0; c < 3; ++c)
-                if (b.inertia[r][c].is_equal(s))
-                    return r == c ? 1 : 0;
-        }
-    return 1;
-}
-
-exmap illustrative_values(const problem &p)
-{
-    exmap known;
-    const std::vector<symbol> all = p.parameters();
-    if (all.empty())
-        return known;
-    if (find_named_class(p.source)) {
-        for (const symbol &s : all)
-            known[s] = numeric(named_class_value(p, s));
-        return known;
-    }
-    const bool planar = p.dimension == 2;
-    const int dim = planar ? 2 : 3;
-    // Scalars first: masses, inertias, e, mu.
-    for (const body &b : p.bodies) {
-        if (!b.infinite_mass)
-            settle(known, b.mass, 1, 1);
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                settle(known, b.inertia[r][c], r == c ? (planar ? 0.2 : 1.0) : 0.0, r == c ? 1.0 : 0.0);
-    }
-    settle(known, p.restitution, 0.5, 0.5);
-    settle(known, p.contact().friction(), 0.3, 0.3);
-    // The normal (a symbolic component 1), the contact point (0).
-    for (int c = 0; c < dim; ++c)
-        settle(known, p.contact().normal[c], 1, 1);
-    for (int c = 0; c < dim; ++c)
-        settle(known, p.contact().point[c], 0, 0);
-    const v3 n = unit({number(p.contact().normal[0], known, 0), number(p.contact().normal[1], known, 1),
-                       planar ? 0 : number(p.contact().normal[2], known, 0)},
-                      {0, 1, 0});
-    const v3 t = planar ? v3{n.y, -n.x, 0} : unit(cross(std::abs(n.z) < 0.9 ? v3{0, 0, 1} : v3{1, 0, 0}, n), {1, 0, 0});
-    const v3 o{number(p.contact().point[0], known, 0), number(p.contact().point[1], known, 0),
-               planar ? 0 : number(p.contact().point[2], known, 0)};
-    auto side = [&](std::size_t i) { return i == p.contact().body1 ? -1.0 : 1.0; };
-    // Centres: 0.8 from O on the body's side, a rigid body's off the line of impact.
-    std::vector<v3> centre(p.bodies.size());
-    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body &b = p.bodies[i];
-        const double off = (b.particle || b.infinite_mass) ? 0.0 : 0.3 * side(i);
-        const v3 target = o + (0.8 * side(i)) * n + off * t;
-        const double tc[3] = {target.x, target.y, target.z};
-        for (int c = 0; c < dim; ++c)
-            settle(known, b.position[c], tc[c], tc[c]);
-        centre[i] = {number(b.position[0], known, 0), number(b.position[1], known, 0),
-                     planar ? 0 : number(b.position[2], known, 0)};
-    }
-    // A pivot beyond the centre, so that E, C and O are in line (a rod).
-    for (const pivot &pv : p.pivots) {
-        if (pv.body >= p.bodies.size())
-            continue;
-        const v3 c = centre[pv.body];
-        const v3 target = c + (c - o);
-        const double tc[3] = {target.x, target.y, target.z};
-        for (int k = 0; k < dim; ++k)
-            settle(known, pv.point[k], tc[k], tc[k]);
-    }
-    // Velocities that approach along the normal, spins 0.
-    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        const body &b = p.bodies[i];
-        const v3 target = b.infinite_mass ? v3{} : (-0.8 * side(i)) * n + (0.3 * side(i)) * t;
-        const double tc[3] = {target.x, target.y, target.z};
-        for (int c = 0; c < dim; ++c)
-            settle(known, b.velocity[c], tc[c], tc[c]);
-        for (int c = 0; c < 3; ++c)
-            settle(known, b.angular_velocity[c], 0, 0);
-    }
-    // Anything else (there should be nothing): 1.
-    for (const symbol &s : all)
-        if (known.find(s) == known.end())
-            known[s] = numeric(1);
-    return known;
-}
+using namespace detail;
 
 // ---------------------------------------------------------------------------
 // Steps 2 and 3: the drawing.
@@ -357,6 +103,7 @@ private:
     const problem &p_;
     drawing g_;
     exmap values_;
+    detail::directions dirs_; // which way the impulses and spins point
     bool planar_ = true;
     v3 n_, t_, b_;                 // the contact frame, unit, world axes
     std::vector<v3> c_;            // centres, figure coordinates (3-D)
@@ -437,6 +184,9 @@ private:
     void frame_axes(point o, point t2);
     void velocity_arrows(std::size_t nb, point o, point t2);
     void contact_impulse(point t2, point n2);
+    void friction_impulse(point t2);
+    void spins();
+    v3 dir(const detail::vec &a) const { return {a[0], a[1], planar_ ? 0 : a[2]}; }
     void centre_marks(std::size_t nb, point o, point t2, point n2);
 };
 
@@ -501,6 +251,9 @@ drawing builder::build()
     g_.body2 = p_.contact().body2;
     values_ = illustrative_values(p_);
     g_.schematic = !values_.empty();
+    dirs_ = detail::directions_of(d_, values_);
+    g_.impulses_from_answer = dirs_.from_answer;
+    g_.positive = dirs_.positive;
 
     // The contact frame, orthonormal whatever the derivation's vectors evaluate to.
     n_ = unit(value(d_.n_hat), {0, 1, 0});
@@ -817,9 +570,9 @@ void builder::pivots()
             add_path(role::pivot, -1, "hatch", {from, from + 0.05 * away + 0.04 * across}, false, false, false, true);
         }
         add_circle(role::pivot, -1, "E" + k, e, 0.022, false);
-        // R: the unknown pivot impulse, drawn against the contact impulse on its body.
-        const v3 dir = (-side(pv.body)) * n_;
-        const point tip = e + pivot_length * unit2(proj(dir), {1, 0});
+        // R: the pivot impulse on its body, along the answer (or its positive sense); none when 0.
+        const v3 r = j < dirs_.pivot.size() ? dir(dirs_.pivot[j]) : v3{};
+        const point tip = e + pivot_length * unit2(proj(r), {0, 0});
         if (add_arrow(role::pivot_impulse, static_cast<int>(pv.body), "R" + k, e, tip))
             add_math(role::pivot_impulse, static_cast<int>(pv.body), "R" + k, tip, tip - e, k.empty() ? "R" : "R_" + k,
                      "R", k);
@@ -931,6 +684,69 @@ void builder::contact_impulse(point t2, point n2)
                  "N", "N", "");
 }
 
+// The friction impulse: F on body 2 (along the answer's tangential impulse, or +e_t for
+// symbols), -F on body 1, from points just inside each body beside O.
+void builder::friction_impulse(point t2)
+{
+    const v3 f = dir(dirs_.friction);
+    if (!(norm(f) > 0))
+        return;
+    for (const int s : {1, -1}) {
+        const std::size_t body = s > 0 ? g_.body2 : g_.body1;
+        const point from = proj((s * 2 * impulse_gap) * n_), to = from + proj((s * impulse_length) * f);
+        const std::string key = s > 0 ? "F2" : "F1";
+        if (add_arrow(role::impulse, static_cast<int>(body), key, from, to))
+            add_math(role::impulse, static_cast<int>(body), key, to, unit2(to - from, t2), "F", "F", "");
+    }
+}
+
+// Each spin before impact: in the plane a turning arrow of 240 degrees about C, open towards
+// O (the lever arm), its head in the sense of the spin; in 3-D the angular velocity vector at C.
+void builder::spins()
+{
+    constexpr double spin_radius = 0.15, spin_vector = 0.3;
+    for (std::size_t i = 0; i < p_.bodies.size() && i < dirs_.spin.size(); ++i) {
+        const v3 w{dirs_.spin[i][0], dirs_.spin[i][1], dirs_.spin[i][2]}; // in the plane: along z
+        if (!has_centre_[i] || !(norm(w) > 0))
+            continue;
+        const int bi = static_cast<int>(i);
+        const point c = centre_at_[i];
+        const std::string key = "w" + index_[i], tex = "\\omega_{" + index_[i] + "}";
+        if (!planar_) {
+            const point tip = c + proj(spin_vector * w);
+            if (add_arrow(role::spin, bi, key, c, tip))
+                add_math(role::spin, bi, key, tip, unit2(tip - c, {0, 1}), tex, "\u03c9", index_[i]);
+            continue;
+        }
+        const point to_o = unit2(point{0, 0} - c, g_.n_hat);
+        const double gap = std::atan2(to_o.y, to_o.x), sense = w.z > 0 ? 1.0 : -1.0;
+        const double pi = 3.14159265358979323846;
+        std::vector<point> arc;
+        for (int k = 0; k <= 24; ++k) {
+            const double a = gap + sense * (pi / 3 + k * (4 * pi / 3) / 24);
+            arc.push_back(c + spin_radius * point{std::cos(a), std::sin(a)});
+        }
+        const point head = arc.back();
+        add_arrow(role::spin, bi, key, arc[arc.size() - 4], head);
+        arc.resize(arc.size() - 3);
+        add_path(role::spin, bi, key, arc, false, false);
+        // The label beyond the head, away from C.
+        const point out = unit2(head - c, {0, 1});
+        add_math(role::spin, bi, key, head + label_gap * out, out, tex, "\u03c9", index_[i]);
+    }
+}
+
+std::string directions_note_of(const drawing &g)
+{
+    if (g.positive.empty())
+        return "";
+    std::string list;
+    for (std::size_t k = 0; k < g.positive.size(); ++k)
+        list += (k ? (k + 1 == g.positive.size() ? " and " : ", ") : "") + g.positive[k];
+    return " Drawn in the senses in which they count positive (" + list +
+           "): the sign of each value says which way it acts.";
+}
+
 // Centres on top of the lines, then O.
 void builder::centre_marks(std::size_t nb, point o, point t2, point n2)
 {
@@ -973,8 +789,13 @@ void builder::decorations()
     // so that the fastest is velocity_max long; none shorter than velocity_min.
     velocity_arrows(nb, o, t2);
 
-    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n.
+    // The contact impulse: N e_n on body 2, -N e_n on body 1, beside e_n; the friction
+    // impulse F on body 2 and -F on body 1 at O, each just inside its body.
     contact_impulse(t2, n2);
+    friction_impulse(t2);
+
+    // Spins before impact, about the centres.
+    spins();
 
     // Centres on top of the lines, then O.
     centre_marks(nb, o, t2, n2);
@@ -1022,6 +843,16 @@ std::string normal_text(const derivation &d)
 }
 
 } // namespace
+
+GiNaC::exmap schematic_values(const problem &p)
+{
+    return illustrative_values(p);
+}
+
+std::string directions_note(const drawing &g)
+{
+    return directions_note_of(g);
+}
 
 drawing draw(const derivation &d)
 {

@@ -47,7 +47,8 @@ enum class role {
     impulse,       ///< N e_n on body 2, -N e_n on body 1, at O
     pivot_impulse, ///< R at a pin E
     velocity,      ///< a centre's velocity before impact (scaled)
-    pivot          ///< the pin support drawn at E
+    pivot,         ///< the pin support drawn at E
+    spin           ///< a body's angular velocity before impact: a turning arrow about C (2-D), the vector at C (3-D)
 };
 const char *role_name(role r);
 
@@ -68,7 +69,8 @@ struct item {
     role what = role::body;
     int body = -1; ///< index into problem::bodies, -1 for none
     /// What it is: "body", "hatch", "C1", "C2", "O", "e_t", "e_n", "e_b", "r1", "N1" (on body 1),
-    /// "N2", "v1", "E" and "R" (E1, R1, ... with several pivots), "support", "ground".
+    /// "N2", "F1" and "F2" (the friction impulse on body 1 and 2), "v1", "w1" (the spin of body 1:
+    /// its arc, and its arrow head), "E" and "R" (E1, R1, ... with several pivots), "support", "ground".
     std::string key;
     /// circle: {centre}; path: its vertices; arrow: {tail, tip}.
     std::vector<point> points;
@@ -115,6 +117,10 @@ struct drawing {
     std::size_t body1 = 0, body2 = 1; ///< the contact's bodies (indices into bodies)
     std::string normal_text;          ///< the unit normal, "(3/5, 4/5)", or "n (symbolic)"
     point n_hat, t_hat, b_hat;        ///< the contact frame as drawn (unit in 2-D; projected in 3-D)
+    /// The pivot and friction impulses are drawn along the answer (a numeric problem with one
+    /// answer); otherwise in the senses in which they count positive, listed in `positive`.
+    bool impulses_from_answer = false;
+    std::vector<std::string> positive; ///< in words: "the pivot impulse towards +x", "each spin counter-clockwise"
 };
 
 /// The impact drawn from its derivation (problem + contact frame d.n_hat,
@@ -127,6 +133,15 @@ struct drawing {
 /// derivation that derive() returned; degenerate geometry (C at O, zero or
 /// extreme values, a symbolic normal) still gives finite coordinates.
 drawing draw(const impactgen::derivation &d);
+
+/// The illustrative value draw() gives each symbol of the problem (empty for a numeric
+/// problem): decimals such as 0.8 or -0.9, placed by what each symbol is (see draw()).
+GiNaC::exmap schematic_values(const impactgen::problem &p);
+
+/// What a caption adds about the drawn directions: "" when nothing is assumed, else one
+/// sentence, starting with a space, saying that the unknown impulses (and spins given by
+/// symbols) are drawn in the senses in which they count positive.
+std::string directions_note(const drawing &g);
 
 /// "\\begin{tikzpicture}...\\end{tikzpicture}", at most about 8.5 cm wide and
 /// 7.5 cm high (within 0.8\linewidth of an 11pt article); needs only tikz.

@@ -416,6 +416,7 @@ figure_art figure_of(const derivation &d)
                       : "The impact as the problem gives it: the bodies, their centres of mass C, the contact point O, "
                         "the contact "
                         "frame, the impulses and the velocities before impact.";
+    art.caption += figure::directions_note(g);
     return art;
 }
 

@@ -125,6 +125,7 @@ struct section {
 struct document {
     std::string title;
     std::vector<section> sections;
+    std::string description = ""; ///< shown under the title (the problem's "description"), or ""
 };
 
 /// Values for a worked example in the symbols of a problem (symbol == value).

@@ -4,6 +4,7 @@
 // results. The sections are numbered here, in the order they come.
 #include "explain.hpp"
 #include "explain_law.hpp"
+#include "title.hpp"
 
 #include <exception>
 #include <variant>
@@ -30,7 +31,8 @@ void append(document &doc, std::vector<section> sections)
 document build(const explain_input &in, const law_chapter &law)
 {
     document doc;
-    doc.title = law.title() + ": " + in.d.prob.source;
+    doc.title = document_title(in.d.prob, law.title());
+    doc.description = in.d.prob.description;
     doc.sections.push_back(setup_section(in.d, law.setup()));
     append(doc, law.statement());
     append(doc, law.equations());

@@ -40,6 +40,7 @@ const char *const style = R"css(
          font-size: 17px; line-height: 1.5; }
   math { font-family: "Latin Modern Math", "STIX Two Math", "Cambria Math", math; }
   h1 { font-size: 1.75em; font-weight: normal; text-align: center; margin: 0 0 1.2em; }
+  p.description { text-align: center; font-style: italic; margin: -0.8em 0 1.2em; }
   h2 { font-size: 1.3em; font-weight: bold; margin: 1.8em 0 0.6em; padding-bottom: 0.15em; border-bottom: 1px solid #bbb; }
   p { margin: 0.6em 0; }
   ul { margin: 0.5em 0; padding-left: 1.6em; }
@@ -239,6 +240,8 @@ std::string explain_html(const document &doc)
           "<meta name=\"generator\" content=\"impactgen explain\">\n"
        << "<title>" << title << "</title>\n<style>" << style << "</style>\n</head>\n<body>\n"
        << "<h1>" << title << "</h1>\n";
+    if (!doc.description.empty())
+        os << "<p class=\"description\">" << names::html_text(doc.description) << "</p>\n";
 
     os << "<nav class=\"toc\">\n<h2>Contents</h2>\n<ol>\n";
     for (std::size_t k = 0; k < doc.sections.size(); ++k)

@@ -505,6 +505,8 @@ std::string explain_text(const document &doc)
 {
     std::ostringstream os;
     os << doc.title << "\n" << std::string(columns(doc.title), '=') << "\n";
+    if (!doc.description.empty())
+        os << "\n" << wrap(doc.description, "", "");
     for (const section &sec : doc.sections) {
         os << "\n" << sec.title << "\n" << std::string(columns(sec.title), '-') << "\n";
         for (const block &b : sec.blocks) {
@@ -556,6 +558,8 @@ std::string explain_markdown(const document &doc)
 {
     std::ostringstream os;
     os << "# " << doc.title << "\n";
+    if (!doc.description.empty())
+        os << "\n" << doc.description << "\n";
     for (const section &sec : doc.sections) {
         os << "\n## " << sec.title << "\n";
         for (const block &b : sec.blocks) {
@@ -618,6 +622,8 @@ std::string explain_latex(const document &doc)
        << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
+    if (!doc.description.empty())
+        os << "\\begin{center}\n\\itshape " << tex_words(doc.description) << "\n\\end{center}\n";
     for (const section &sec : doc.sections) {
         os << "\n\\section*{" << tex_words(sec.title) << "}\n";
         for (const block &b : sec.blocks) {

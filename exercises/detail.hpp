@@ -1,0 +1,50 @@
+// Internal to exercises/: the statement of an exercise and its numbers, written once for
+// LaTeX and HTML.
+#pragma once
+
+#include "exercises/exercises.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen::exercises::detail
+{
+
+enum class format { tex, html };
+
+/// Running text in one format: words escaped, numbers and vectors set as mathematics.
+class text
+{
+public:
+    explicit text(format f) : f_(f) {}
+    text &w(const std::string &words);                          ///< words (escaped)
+    text &raw(const std::string &markup);                       ///< markup of this format, as it is
+    text &num(const GiNaC::ex &value);                          ///< an exact number: 3, 0.25, 1/3 (math)
+    text &vec(const vec3 &v, int dimension);                    ///< (x, y) or (x, y, z) (math)
+    text &sym(const std::string &tex, const std::string &html); ///< a symbol (math)
+    text &unit(const std::string &u);                           ///< " kg" etc., or nothing when u is empty
+    text &approx(const GiNaC::ex &value); ///< an answer: exact, and its decimal when not exact in 4 digits
+    const std::string &str() const { return s_; }
+
+private:
+    std::string number(const GiNaC::ex &value) const; ///< the number's markup, without $...$
+    format f_;
+    std::string s_;
+};
+
+/// The statement: one item per body, then the contact and the coefficients.
+std::vector<std::string> statement(const problem &p, format f, bool units);
+/// What is asked, as one sentence.
+std::string find_sentence(const problem &p, format f);
+/// The short answers of an exercise, one item each ("quantity = value unit").
+std::vector<std::string> short_answers(const exercise &e, format f);
+/// The decimal of an exact value, 4 significant digits ("-0.1429").
+std::string decimal4(const GiNaC::ex &value);
+/// The figure of an exercise: TikZ or SVG.
+std::string figure_of(const problem &p, format f);
+
+std::string sheet_latex(const sheet &s);
+std::string sheet_html(const sheet &s);
+std::string quiz_xml(const sheet &s);
+
+} // namespace impactgen::exercises::detail

@@ -1,0 +1,385 @@
+// make_sheet(): the variants of a problem (see exercises.hpp for the rules).
+#include "exercises/exercises.hpp"
+
+#include "figure/figure.hpp"
+#include "print/answer.hpp"
+#include "print/title.hpp"
+#include "symbolic/decide.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <set>
+
+namespace impactgen::exercises
+{
+using namespace GiNaC;
+
+namespace
+{
+
+/// xorshift64*: the sheet's own generator, the same numbers on every platform.
+struct generator {
+    std::uint64_t state;
+    explicit generator(std::uint64_t seed) : state(seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL)
+    {
+        if (state == 0)
+            state = 1;
+    }
+    std::uint64_t next()
+    {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        return state * 0x2545F4914F6CDD1DULL;
+    }
+    std::size_t below(std::size_t n) { return static_cast<std::size_t>((next() >> 11) % n); }
+    numeric pick(const std::vector<numeric> &from) { return from[below(from.size())]; }
+};
+
+/// The number of one significant digit nearest to x (keeps its sign; 0 stays 0).
+numeric one_digit(const numeric &x)
+{
+    if (x.is_zero())
+        return 0;
+    const double a = std::abs(x.to_double());
+    int k = static_cast<int>(std::floor(std::log10(a)));
+    long d = std::lround(a / std::pow(10.0, k));
+    if (d >= 10) {
+        d = 1;
+        ++k;
+    }
+    if (d < 1)
+        d = 1;
+    const numeric r = k >= 0 ? numeric(d) * numeric(10).power(k) : numeric(d) / numeric(10).power(-k);
+    return x.is_negative() ? -r : r;
+}
+
+/// A value of the problem as an exact number (the figure's illustrative values are decimals).
+numeric exact(const ex &e)
+{
+    const ex v = e.evalf();
+    if (is_a<numeric>(e) && ex_to<numeric>(e).is_rational())
+        return ex_to<numeric>(e);
+    if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
+        return 0;
+    return numeric(std::lround(ex_to<numeric>(v).to_double() * 1000), 1000);
+}
+
+bool has_symbols(const ex &e)
+{
+    return !is_a<numeric>(e.evalf());
+}
+
+const std::vector<numeric> &factors()
+{
+    static const std::vector<numeric> f = {numeric(1, 2), numeric(2, 3), 1, numeric(3, 2), 2};
+    return f;
+}
+
+const std::vector<numeric> &restitutions()
+{
+    static const std::vector<numeric> e = {0, numeric(1, 4), numeric(1, 2), numeric(3, 4), 1};
+    return e;
+}
+
+const std::vector<numeric> &frictions()
+{
+    static const std::vector<numeric> mu = {
+        numeric(1, 10), numeric(1, 5), numeric(1, 4), numeric(1, 3), numeric(1, 2), numeric(3, 4), 1};
+    return mu;
+}
+
+/// A short fraction: what a person writes down (denominator and numerator bounded).
+bool short_fraction(const ex &e, long max_denominator)
+{
+    if (!is_a<numeric>(e) || !ex_to<numeric>(e).is_rational())
+        return false;
+    const numeric &q = ex_to<numeric>(e);
+    return q.denom() <= max_denominator && abs(q.numer()) <= numeric(99999);
+}
+
+struct solved {
+    derivation d;
+    regime_case c;
+};
+
+std::optional<solved> solve_numeric(const problem &q)
+{
+    try {
+        validate(q);
+        derivation d = derive(q);
+        regime_case c = select_candidate(d, solve_impact(d));
+        return solved{std::move(d), std::move(c)};
+    } catch (const std::exception &) {
+        return std::nullopt; // not an impact, no single regime: another draw
+    }
+}
+
+ex normal_impulse(const solved &s)
+{
+    return impactgen::tidy(s.c.sol.expand_steps(s.c.sol.normal_impulse));
+}
+
+/// The problem's numbers as the variants start from them: its own, or for symbols the
+/// figure's illustrative values made exact; numbered bodies named "body 1", "body 2".
+problem numeric_base(const problem &base)
+{
+    problem p = base;
+    // the figure's illustrative decimals made exact first, so that expressions in them
+    // (a rod's m l^2/12) stay exact
+    exmap values = figure::schematic_values(base);
+    for (auto &kv : values)
+        kv.second = exact(kv.second);
+    auto put = [&](ex &x) {
+        if (!values.empty())
+            x = x.subs(values);
+        if (has_symbols(x))
+            x = 1;
+        x = exact(x);
+    };
+    for (body &b : p.bodies) {
+        put(b.mass);
+        for (int r = 0; r < 3; ++r) {
+            put(b.position[r]);
+            put(b.velocity[r]);
+            put(b.angular_velocity[r]);
+            for (int c = 0; c < 3; ++c)
+                put(b.inertia[r][c]);
+        }
+        if (b.numbered) {
+            b.name = b.label = "body " + b.name;
+            b.numbered = false;
+        }
+    }
+    for (contact_spec &c : p.contacts) {
+        for (int r = 0; r < 3; ++r) {
+            put(c.point[r]);
+            put(c.normal[r]);
+        }
+        ex mu = c.friction();
+        put(mu);
+        c.set_friction(mu);
+    }
+    for (pivot &pv : p.pivots)
+        for (int r = 0; r < 3; ++r)
+            put(pv.point[r]);
+    put(p.restitution);
+    return p;
+}
+
+/// New masses, speeds, spins, e and mu for one variant (geometry kept).
+problem draw_values(const problem &orig, const problem &p0, const std::string &regime, generator &g)
+{
+    problem q = p0;
+    for (std::size_t i = 0; i < q.bodies.size(); ++i) {
+        body &b = q.bodies[i];
+        const body &o = orig.bodies[i];
+        if (!b.infinite_mass) {
+            const numeric m0 = ex_to<numeric>(b.mass), m = one_digit(m0 * g.pick(factors()));
+            b.mass = m;
+            for (auto &row : b.inertia)
+                for (ex &x : row)
+                    x = ex_to<numeric>(x) * m / m0;
+        }
+        if (q.pivot_of(i)) { // a pinned body's motion is one: scaled as a whole, still about its pivot
+            const numeric f = g.pick({numeric(1, 2), 1, 2});
+            for (int k = 0; k < 3; ++k) {
+                b.velocity[k] = ex_to<numeric>(b.velocity[k]) * f;
+                b.angular_velocity[k] = ex_to<numeric>(b.angular_velocity[k]) * f;
+            }
+            continue;
+        }
+        double speed = 0;
+        for (int k = 0; k < 3; ++k) {
+            const numeric v0 = ex_to<numeric>(b.velocity[k]);
+            speed = std::max(speed, std::abs(v0.to_double()));
+            b.velocity[k] = one_digit(v0 * g.pick(factors()));
+        }
+        if (b.particle)
+            continue;
+        // A spin given by a symbol gets a size from the speed and the lever |C - O|, and a sign.
+        double lever = 0;
+        for (int k = 0; k < 3; ++k)
+            lever = std::max(lever, std::abs(ex_to<numeric>(b.position[k] - q.contact().point[k]).to_double()));
+        for (int k = 0; k < 3; ++k) {
+            const numeric w0 = ex_to<numeric>(b.angular_velocity[k]);
+            if (!w0.is_zero())
+                b.angular_velocity[k] = one_digit(w0 * g.pick(factors()));
+            else if (has_symbols(o.angular_velocity[k]) && speed > 0 && lever > 0)
+                b.angular_velocity[k] =
+                    one_digit(numeric(std::lround(1000 * speed / lever), 1000) * g.pick(factors())) *
+                    (g.below(2) ? 1 : -1);
+        }
+    }
+    q.restitution = g.pick(restitutions());
+    if (q.has_friction()) { // sticking needs mu above a threshold, sliding below it: drawn from that end
+        const std::vector<numeric> &all = frictions();
+        const std::vector<numeric> high(all.begin() + 4, all.end()), low(all.begin(), all.begin() + 4);
+        q.contact().set_friction(g.pick(regime == "stick" ? high : regime == "slide" ? low : all));
+    }
+    return q;
+}
+
+/// The velocity component that drives the approach: of a free movable body of the contact,
+/// the non-zero one most nearly along the normal. false when there is none.
+bool driving_slot(const problem &q, std::size_t &body_index, int &component)
+{
+    double best = 0;
+    for (const std::size_t i : {q.contact().body1, q.contact().body2}) {
+        if (q.immovable(i) || q.pivot_of(i))
+            continue;
+        for (int k = 0; k < q.dimension; ++k) {
+            const double n = std::abs(exact(q.contact().normal[k]).to_double());
+            if (!q.bodies[i].velocity[k].is_zero() && n > best + 1e-12) {
+                best = n;
+                body_index = i;
+                component = k;
+            }
+        }
+    }
+    return best > 0;
+}
+
+/// Back-generation: the driving velocity chosen so that N is a number of one digit near its
+/// value (N is linear in that velocity while the regime stays).
+void back_generate(problem &q, generator &g)
+{
+    std::size_t i = 0;
+    int k = 0;
+    if (!driving_slot(q, i, k))
+        return;
+    const std::optional<solved> s0 = solve_numeric(q);
+    if (!s0)
+        return;
+    problem q1 = q;
+    const numeric x0 = ex_to<numeric>(q.bodies[i].velocity[k]);
+    q1.bodies[i].velocity[k] = x0 + 1;
+    const std::optional<solved> s1 = solve_numeric(q1);
+    if (!s1 || s1->c.kind != s0->c.kind || s1->c.sign != s0->c.sign)
+        return;
+    const ex n0 = normal_impulse(*s0), n1 = normal_impulse(*s1);
+    if (!is_a<numeric>(n0) || !is_a<numeric>(n1) || (n1 - n0).is_zero())
+        return;
+    const numeric target = one_digit(ex_to<numeric>(n0) * g.pick(factors()));
+    const numeric x = x0 + (target - ex_to<numeric>(n0)) / ex_to<numeric>(n1 - n0);
+    // a speed of at most two decimals (denominator dividing 100) within a factor 4 of the drawn one
+    if (x.is_zero() || x.csgn() != x0.csgn() || !short_fraction(x, 100) || !irem(numeric(100), x.denom()).is_zero() ||
+        abs(x) > abs(x0) * 4 || abs(x) * 4 < abs(x0))
+        return;
+    q.bodies[i].velocity[k] = x;
+}
+
+/// Kept when the answers are short, the regime is the one asked for, and it stays the same
+/// with mu a third larger or smaller (far from a regime boundary).
+bool acceptable(const problem &q, const solved &s, const std::string &regime)
+{
+    if (!regime.empty() && regime != regime_name(s.c.kind))
+        return false;
+    const std::vector<quantity> asked = asked_quantities(s.d, s.c);
+    for (const quantity &a : asked)
+        if (!short_fraction(a.exact, a.pointer == "/kinetic_energy/lost" ? 2000 : 200))
+            return false;
+    if (!q.has_friction())
+        return true;
+    for (const numeric &f : {numeric(3, 4), numeric(4, 3)}) {
+        problem near = q;
+        near.contact().set_friction(ex_to<numeric>(q.contact().friction()) * f);
+        const std::optional<solved> t = solve_numeric(near);
+        if (!t || t->c.kind != s.c.kind || t->c.sign != s.c.sign)
+            return false;
+    }
+    return true;
+}
+
+/// The regimes the problem can have: smooth without friction, else its candidates' kinds.
+std::set<std::string> possible_regimes(const problem &p0)
+{
+    std::set<std::string> out;
+    if (!p0.has_friction())
+        return {"smooth"};
+    const derivation d = derive(p0);
+    for (const regime_case &c : solve_impact(d).cases)
+        out.insert(regime_name(c.kind));
+    return out;
+}
+
+std::string two_digits(std::size_t k)
+{
+    return (k < 10 ? "0" : "") + std::to_string(k);
+}
+
+} // namespace
+
+sheet make_sheet(const problem &base, const options &opt)
+{
+    if (opt.count < 1 || opt.count > 99)
+        throw input_error("--count: " + std::to_string(opt.count) + " exercises asked; a sheet has 1 to 99");
+    if (!opt.regime.empty() && opt.regime != "smooth" && opt.regime != "stick" && opt.regime != "slide")
+        throw input_error("--regime: \"" + opt.regime + "\" is not a regime (smooth, stick or slide)");
+    if (base.contacts.size() != 1)
+        throw input_error("exercises: a problem with one contact is needed");
+    const problem p0 = numeric_base(base);
+    if (!opt.regime.empty()) {
+        const std::set<std::string> can = possible_regimes(p0);
+        if (!can.count(opt.regime)) {
+            std::string list;
+            for (const std::string &r : can)
+                list += (list.empty() ? "" : ", ") + r;
+            throw input_error("--regime " + opt.regime + ": this problem cannot have it (" +
+                              (p0.has_friction() ? "its regimes are " : "it has no friction; its regime is ") + list +
+                              ")");
+        }
+    }
+    sheet out;
+    // the problem's title, else a person's name for it (never a path)
+    out.title = !base.title.empty() ? base.title : print::class_name_in_words(base.source);
+    if (out.title.empty())
+        out.title = print::source_stem(base.source);
+    out.units = true;
+    generator g(opt.seed);
+    std::set<std::string> seen;
+    const auto start = std::chrono::steady_clock::now();
+    auto out_of_time = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.seconds;
+    };
+    for (int k = 1; k <= opt.count; ++k) {
+        bool found = false;
+        int attempt = 0;
+        for (; attempt < opt.attempts && !found && !out_of_time(); ++attempt) {
+            problem q = draw_values(base, p0, opt.regime, g);
+            q.units = base.units.empty() ? "SI" : base.units;
+            back_generate(q, g);
+            q.title = "Exercise " + std::to_string(k) + ": " + out.title;
+            q.description.clear();
+            const std::optional<solved> s = solve_numeric(q);
+            if (!s || !acceptable(q, *s, opt.regime))
+                continue;
+            // The problem file read back is the exercise: what a student is given is what is solved.
+            const std::string file = problem_json(q).dump(2);
+            q.title.clear();
+            if (!seen.insert(problem_json(q).dump()).second)
+                continue;
+            exercise ex;
+            ex.prob = read_problem(file, "problems/" + two_digits(static_cast<std::size_t>(k)) + ".json");
+            const std::optional<solved> r = solve_numeric(ex.prob);
+            if (!r)
+                continue;
+            ex.regime = regime_name(r->c.kind);
+            ex.asked = asked_quantities(r->d, r->c);
+            ex.answer = print::answer_json(r->d, r->c, false);
+            out.exercises.push_back(std::move(ex));
+            found = true;
+        }
+        if (!found)
+            throw input_error(
+                "exercises: no variant " + std::string(opt.regime.empty() ? "" : "with regime " + opt.regime + " ") +
+                "with short answers found in " + std::to_string(attempt) + " draws for exercise " + std::to_string(k) +
+                (out_of_time() ? " within " + std::to_string(opt.seconds) + " s" : "") +
+                " (this problem's answers are seldom short fractions; try another --seed)");
+    }
+    out.units = out.exercises.front().prob.units == "SI";
+    return out;
+}
+
+} // namespace impactgen::exercises
