@@ -1,13 +1,13 @@
-// The friction header writer (friction_writer.hpp): the main function, the regime
+// The one header writer (writer.hpp), a plan with a selection rule: the main function, the regime
 // selection (the closed-form candidates, the sliding-angle search, the root loop).
-#include "friction_writer.hpp"
+#include "writer.hpp"
 
-namespace impactgen::codegen::friction_detail
+namespace impactgen::codegen::writer_detail
 {
 
 // The conditions of a candidate, folded as unsigned (no branch implied, and nothing for
 // clang's -Wbitwise-instead-of-logical to say).
-std::string friction_writer::holds_text(const case_names &cn, const regime_case &c) const
+std::string writer::holds_text(const case_names &cn, const regime_case &c) const
 {
     std::vector<std::string> parts;
     for (std::size_t j = 0; j < cn.cond.size(); ++j)
@@ -19,7 +19,7 @@ std::string friction_writer::holds_text(const case_names &cn, const regime_case 
     return "((" + join(parts, " & ") + ") != 0u)";
 }
 
-std::string friction_writer::select_text(const case_names &cn, const std::string &regime, const std::string &ind) const
+std::string writer::select_text(const case_names &cn, const std::string &regime, const std::string &ind) const
 {
     std::string r = ind + regime_name_ + " = impact_regime::" + regime + ";\n";
     r += ind + sel_N_name_ + " = " + cn.N + ";\n";
@@ -32,7 +32,7 @@ std::string friction_writer::select_text(const case_names &cn, const std::string
 
 // The stick/slide boundary within rounding: a slide whose impulse is the stick
 // candidate's to within boundary_tolerance times its size is the same solution.
-std::string friction_writer::merge_text() const
+std::string writer::merge_text() const
 {
     const case_names &sn = names_.front();
     std::string size = "detail::abs_of(" + sn.P[0] + ")";
@@ -41,7 +41,7 @@ std::string friction_writer::merge_text() const
     return "detail::boundary_tolerance<T>() * " + size;
 }
 
-std::string friction_writer::near_text(const case_names &cn) const
+std::string writer::near_text(const case_names &cn) const
 {
     const case_names &sn = names_.front();
     std::vector<std::string> parts;
@@ -53,7 +53,7 @@ std::string friction_writer::near_text(const case_names &cn) const
 // Counting the closed-form candidates that hold; they are selected without a branch (the
 // first that holds: stick when there is one, then the slides; the last when none does:
 // replaced below). Only the rare boundary and failure cases branch.
-void friction_writer::emit_closed_forms(const std::string &ind)
+void writer::emit_closed_forms(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     for (std::size_t i = 0; i < f_.cases.size(); ++i)
@@ -87,7 +87,7 @@ void friction_writer::emit_closed_forms(const std::string &ind)
 
 // The 3-D slide without closed form: its directions (pass 0: the one direction when the
 // solution is provably unique; pass 1: every root of g), each a candidate.
-void friction_writer::emit_angle_search(const std::string &ind)
+void writer::emit_angle_search(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const std::string i2 = ind + "    ", j2 = i2 + "    ";
@@ -153,7 +153,7 @@ void friction_writer::emit_angle_search(const std::string &ind)
 
 // The loop over the roots of g (inside the passes): the slide along each, counted when
 // it holds, the first selected.
-void friction_writer::emit_root_loop(const std::string &ind)
+void writer::emit_root_loop(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const case_names &cn = names_[static_cast<std::size_t>(angle_)];
@@ -187,7 +187,7 @@ void friction_writer::emit_root_loop(const std::string &ind)
 // stick candidate holding or a slide with its impulse, and nothing else holding) the
 // stick solution; else overflow when a candidate or condition is not finite (it decides
 // nothing), no_solution or ambiguous.
-void friction_writer::emit_unresolved(const std::string &ind)
+void writer::emit_unresolved(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const std::string i2 = ind + "    ";
@@ -233,25 +233,18 @@ void friction_writer::emit_unresolved(const std::string &ind)
     h_ << ind << "}\n";
 }
 
-void friction_writer::main_function()
+void writer::main_function()
 {
     h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
     h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
     h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
     h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
     for (std::size_t i = 0; i < input_names_.size(); ++i)
-        h_ << "///   " << input_names_[i] << ": " << names::comment_text(input_meaning_[i]) << "\n";
+        h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
     h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
        << params() << result() << "<T>& out) noexcept\n{\n";
     h_ << "    using std::sqrt;\n";
-    h_ << "    auto fail = [&](auto why) noexcept {\n";
-    h_ << "        detail::" << o_.name << "_unchanged(" << args() << "out);\n";
-    if (input_names_.empty())
-        h_ << "        return detail::friction_status_of(why);\n";
-    else
-        h_ << "        return detail::all_finite(" << join(input_names_, ", ")
-           << ") ? detail::friction_status_of(why) : friction_status::non_finite_input;\n";
-    h_ << "    };\n";
+    fail_lambda("auto", "detail::friction_status_of");
     const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
     const std::string mu_check = "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
@@ -297,7 +290,7 @@ void friction_writer::main_function()
     h_ << c_.em.code;
     h_ << "    out.regime = " << regime_name_ << ";\n";
     std::vector<std::string> terms;
-    for (const out_field &of : outs_)
+    for (const code_output &of : outs_)
         terms.push_back("out." + of.field);
     for (const std::string &nm : input_names_)
         terms.push_back(nm);
@@ -307,4 +300,4 @@ void friction_writer::main_function()
     h_ << "    return friction_status::ok;\n}\n\n";
 }
 
-} // namespace impactgen::codegen::friction_detail
+} // namespace impactgen::codegen::writer_detail
