@@ -256,18 +256,27 @@ void writer::add_checks(stage &s, const std::vector<step> &steps)
         const body &b = q.bodies[i];
         if (b.infinite_mass)
             continue;
+        // The engine convention: an inverse 0 is a static (or kinematic) body, or one whose
+        // rotation is locked: >= 0.
         const symbol *inv_m = inverse(b.mass);
-        add_check(s, inv_m ? ex(*inv_m) : b.mass, check::positive, "invalid_mass",
-                  (inv_m ? "inverse mass of " : "mass of ") + b.name + " > 0, finite");
+        if (inv_m)
+            add_check(s, *inv_m, check::nonnegative, "invalid_mass", "inverse mass of " + b.name + " >= 0, finite");
+        else
+            add_check(s, b.mass, check::positive, "invalid_mass", "mass of " + b.name + " > 0, finite");
         if (!b.particle && q.dimension == 2) {
             const symbol *inv_I = inverse(b.inertia[2][2]);
-            add_check(s, inv_I ? ex(*inv_I) : b.inertia[2][2], check::positive, "invalid_inertia",
-                      (inv_I ? "inverse moment of inertia of " : "moment of inertia of ") + b.name + " > 0, finite");
+            if (inv_I)
+                add_check(s, *inv_I, check::nonnegative, "invalid_inertia",
+                          "inverse moment of inertia of " + b.name + " >= 0, finite");
+            else
+                add_check(s, b.inertia[2][2], check::positive, "invalid_inertia",
+                          "moment of inertia of " + b.name + " > 0, finite");
         }
     }
     // Positive definiteness of each 3-D inertia tensor the closed form inverts (about C,
-    // or about the pivot E), or in the engine convention of the inverse tensor given:
-    // leading principal minors, block by block. Entries or minors that are numbers
+    // or about the pivot E): leading principal minors, block by block; in the engine
+    // convention the inverse tensor given positive semidefinite (0: a static body; singular:
+    // rotation locked about some axes): every principal minor of each block >= 0. Entries or minors that are numbers
     // were validated when the problem was read; the determinant is its own step below.
     for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
@@ -275,10 +284,16 @@ void writer::add_checks(stage &s, const std::vector<step> &steps)
             continue;
         auto inv = pl_.inverse_tensor.find(i);
         const bool inverse_given = inv != pl_.inverse_tensor.end();
-        const std::string what = (inverse_given ? "inverse inertia tensor of " : "inertia tensor of ") + b.name +
-                                 (q.pivot_of(i) && !inverse_given ? " about its pivot" : "") + " positive definite: ";
-        const mat3 J = inverse_given ? inv->second : tensor_in_use(q, straight() ? pl_.sol : solution{}, i);
-        for (const auto &[minor, text] : positive_definite_minors(J, q.axes, inverse_given))
+        if (inverse_given) {
+            for (const auto &[minor, text] : positive_semidefinite_minors(inv->second, q.axes))
+                add_check(s, minor, check::nonnegative, "invalid_inertia",
+                          "inverse inertia tensor of " + b.name + " positive semidefinite: " + text);
+            continue;
+        }
+        const std::string what =
+            "inertia tensor of " + b.name + (q.pivot_of(i) ? " about its pivot" : "") + " positive definite: ";
+        const mat3 J = tensor_in_use(q, straight() ? pl_.sol : solution{}, i);
+        for (const auto &[minor, text] : positive_definite_minors(J, q.axes, false))
             add_check(s, minor, check::positive, "invalid_inertia", what + text);
     }
     // A normal with symbols: its squared length a normal number before anything divides
