@@ -82,9 +82,11 @@ header writer::run()
         unchanged_function(unchanged_);
         checked_function();
         fast_function();
+        unchecked_function();
     } else {
         unchanged_function(u_.em);
-        main_function();
+        main_function(false);
+        main_function(true);
     }
     forwarding_form(false);
     forwarding_form(true);
@@ -118,33 +120,15 @@ void writer::name_everything()
         for (const char *own : {"view", "T", "regime"})
             if (!straight() || std::string(own) != "regime")
                 sc->reserve(own);
-    const std::vector<const char *> straight_suffixes = {"",
-                                                         "_result",
-                                                         "_input",
-                                                         "_unchanged",
-                                                         "_jacobian",
-                                                         "_jacobian_result",
-                                                         "_wrt_count",
-                                                         "_wrt_names",
-                                                         "_checked",
-                                                         "_batch",
-                                                         "_batch_pass",
-                                                         "_input_count",
-                                                         "_output_count",
-                                                         "_input_names",
-                                                         "_output_names",
-                                                         "_ops",
-                                                         "_to_array"};
-    const std::vector<const char *> candidate_suffixes = {"",
-                                                          "_result",
-                                                          "_input",
-                                                          "_unchanged",
-                                                          "_batch",
-                                                          "_input_count",
-                                                          "_output_count",
-                                                          "_input_names",
-                                                          "_output_names",
-                                                          "_to_array"};
+    // clang-format off
+    const std::vector<const char *> straight_suffixes = {
+        "", "_result", "_input", "_unchanged", "_unchecked", "_jacobian", "_jacobian_result", "_wrt_count",
+        "_wrt_names", "_checked", "_batch", "_batch_pass", "_input_count", "_output_count", "_input_names",
+        "_output_names", "_ops", "_to_array"};
+    const std::vector<const char *> candidate_suffixes = {
+        "", "_result", "_input", "_unchanged", "_unchecked", "_batch", "_input_count", "_output_count",
+        "_input_names", "_output_names", "_to_array"};
+    // clang-format on
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);
     for (const symbol &x : cp_.inputs) {
@@ -215,6 +199,17 @@ void writer::name_straight()
     status_ptr_ = scope_.claim("status_out");
 }
 
+// The checks that depend on the state of each call (the contact points approach, the
+// contact response is not singular): what the unchecked variant keeps.
+std::vector<check> state_checks(const std::vector<check> &checks)
+{
+    std::vector<check> kept;
+    for (const check &c : checks)
+        if (c.status == "not_approaching" || c.status == "singular")
+            kept.push_back(c);
+    return kept;
+}
+
 std::string writer::case_prefix(const regime_case &c) const
 {
     if (c.kind == regime::stick)
@@ -276,8 +271,9 @@ void writer::add_checks(stage &s, const std::vector<step> &steps)
     // Positive definiteness of each 3-D inertia tensor the closed form inverts (about C,
     // or about the pivot E): leading principal minors, block by block; in the engine
     // convention the inverse tensor given positive semidefinite (0: a static body; singular:
-    // rotation locked about some axes): every principal minor of each block >= 0. Entries or minors that are numbers
-    // were validated when the problem was read; the determinant is its own step below.
+    // rotation locked about some axes): every principal minor of each block >= 0. Entries
+    // or minors that are numbers were validated when the problem was read; the determinant
+    // is its own step below.
     for (std::size_t i : {q.contact().body1, q.contact().body2}) {
         const body &b = q.bodies[i];
         if (q.dimension != 3 || b.particle || b.infinite_mass)

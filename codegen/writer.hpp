@@ -33,6 +33,7 @@ void add_counts(op_counts &a, const op_counts &b);
 using namespace form_text;
 std::string indent(const std::string &code, const std::string &by);
 bool depends_on(const ex &e, const exset &syms);
+std::vector<check> state_checks(const std::vector<check> &checks);
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'
 // values, its outputs and checks, and the code emitted for them.
@@ -109,6 +110,7 @@ private:
     void straight_formulas();
     void checked_function();
     void fast_function();
+    void unchecked_function();
     void jacobian_function();
     void straight_batch();
 
@@ -146,7 +148,8 @@ private:
     void emit_angle_search(const std::string &ind);
     void emit_root_loop(const std::string &ind);
     void emit_unresolved(const std::string &ind);
-    void main_function();
+    const std::string &selection_text();
+    void main_function(bool unchecked);
     void loop_batch();
 
     // ---- the sections every header has (writer_text.cpp)
@@ -166,7 +169,7 @@ private:
     void group_view(const std::string &name, const group &g);
     void result_struct();
     void unchanged_function(const emitted &code);
-    void fail_lambda(const std::string &why_type, const std::string &status_of);
+    void fail_lambda(const std::string &why_type, const std::string &status_of, bool inputs_checked);
     void forwarding_form(bool by_name);
     void tables();
 
@@ -196,7 +199,7 @@ private:
     std::vector<std::string> jac_step_names_, wrt_names_;
     std::vector<std::vector<std::string>> jac_local_; // [output][wrt] local of the derivative
     std::vector<std::pair<std::string, int>> jac_outs_, outs_local_, unchanged_outs_;
-    emitted em_, fast_, batch_, jac_, unchanged_;
+    emitted em_, fast_, batch_, jac_, unchanged_, unchecked_;
     std::vector<std::string> sum_terms_;
     std::vector<sum_term> fast_terms_, batch_terms_, jac_terms_;
 
@@ -234,6 +237,8 @@ private:
     std::string count_name_, stick_holds_name_, regime_name_, roots_c_name_, roots_s_name_, n_roots_name_, every_name_,
         edge_name_;
     stage a_, b_, s_, c_, u_;
+    emitted a_unchecked_;   // stage A with only the checks of the state (the unchecked variant)
+    std::string selection_; // the selection and the post-impact state, as both functions write them
 };
 
 } // namespace writer_detail

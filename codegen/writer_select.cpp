@@ -233,22 +233,74 @@ void writer::emit_unresolved(const std::string &ind)
     h_ << ind << "}\n";
 }
 
-void writer::main_function()
+// The selection among the candidates and the post-impact state: the same text in the
+// function and its unchecked variant, made once.
+const std::string &writer::selection_text()
 {
-    h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
-    h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
-    h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
-    h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
-    for (std::size_t i = 0; i < input_names_.size(); ++i)
-        h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
-    h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
-       << params() << result() << "<T>& out) noexcept\n{\n";
+    if (!selection_.empty())
+        return selection_;
+    std::ostringstream text;
+    text.swap(h_); // write the selection into a stream of its own
+    h_ << "    // The regime that holds: its impulse (world axes, on "
+       << names::comment_text(q_.bodies[q_.contact().body2].name) << "), normal and tangential impulse.\n";
+    h_ << "    T " << sel_N_name_ << " = T(0);\n";
+    for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
+        h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
+    h_ << "    impact_regime " << regime_name_ << " = impact_regime::smooth;\n";
+    if (!mu_name_.empty()) {
+        h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
+        h_ << indent(s_.em.code, "    ");
+        h_ << "    } else {\n";
+    } else {
+        h_ << "    {\n";
+    }
+    const std::string ind = "        ";
+    emit_closed_forms(ind);
+    if (angle_ >= 0)
+        emit_angle_search(ind);
+    emit_unresolved(ind);
+    h_ << "    }\n";
+    h_ << "    // The post-impact state.\n";
+    h_ << c_.em.code;
+    h_ << "    out.regime = " << regime_name_ << ";\n";
+    text.swap(h_);
+    selection_ = text.str();
+    return selection_;
+}
+
+// The function (checked: every input and the result validated) or its unchecked variant
+// (the caller validated the inputs once: no check of restitution, friction, masses,
+// inertia, normal, nor of finiteness; the same arithmetic, the same selection).
+void writer::main_function(bool unchecked)
+{
+    if (unchecked) {
+        h_ << "/// " << o_.name << " without the per-call validation, for inputs the caller validated once\n";
+        h_ << "/// (contract: every input finite, 0 <= e <= 1, mu >= 0, masses and moments of inertia\n";
+        h_ << "/// > 0, inertia tensors positive definite, a normal neither zero, denormal nor too long;\n";
+        h_ << "/// what " << o_.name << " would not return invalid_* or non_finite_input for). On such inputs\n";
+        h_ << "/// the result is bit for bit that of " << o_.name << " whenever it returns ok; the statuses that\n";
+        h_ << "/// depend on the state (not_approaching, singular, no_solution, ambiguous, overflow of a\n";
+        h_ << "/// candidate) are still returned, but no finiteness check guards the result.\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status "
+           << o_.name << "_unchecked(" << params() << result() << "<T>& out) noexcept\n{\n";
+    } else {
+        h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
+        h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
+        h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
+        h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
+        for (std::size_t i = 0; i < input_names_.size(); ++i)
+            h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
+           << params() << result() << "<T>& out) noexcept\n{\n";
+    }
     h_ << "    using std::sqrt;\n";
-    fail_lambda("auto", "detail::friction_status_of");
+    fail_lambda("auto", "detail::friction_status_of", !unchecked);
     const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
-    const std::string mu_check = "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
-                                 "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
+    const std::string mu_check = unchecked ? std::string()
+                                           : "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
+                                                 "))) // mu >= 0, finite\n        return "
+                                                 "fail(friction_status::invalid_friction);\n";
     if (mu_input)
         h_ << mu_check;
     if (!basis_names_.empty()) {
@@ -261,42 +313,22 @@ void writer::main_function()
             h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3
                << "];\n";
     }
-    h_ << "    // Shared steps, checks, the candidates and their conditions.\n";
-    h_ << a_.em.code;
+    h_ << (unchecked ? "    // Shared steps, the checks of the state, the candidates and their conditions.\n"
+                     : "    // Shared steps, checks, the candidates and their conditions.\n");
+    h_ << (unchecked ? a_unchecked_.code : a_.em.code);
     if (!mu_input && !mu_name_.empty())
         h_ << mu_check;
-    h_ << "    // The regime that holds: its impulse (world axes, on "
-       << names::comment_text(q_.bodies[q_.contact().body2].name) << "), normal and tangential impulse.\n";
-    h_ << "    T " << sel_N_name_ << " = T(0);\n";
-    for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
-        h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
-    h_ << "    impact_regime " << regime_name_ << " = impact_regime::smooth;\n";
-    std::string ind = "    ";
-    if (!mu_name_.empty()) {
-        h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
-        h_ << indent(s_.em.code, "    ");
-        h_ << "    } else {\n";
-        ind = "        ";
-    } else {
-        h_ << "    {\n";
-        ind = "        ";
+    h_ << selection_text();
+    if (!unchecked) {
+        std::vector<std::string> terms;
+        for (const code_output &of : outs_)
+            terms.push_back("out." + of.field);
+        for (const std::string &nm : input_names_)
+            terms.push_back(nm);
+        h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
+        h_ << "    if (!detail::finite(check_sum))\n";
+        h_ << "        return fail(friction_status::overflow);\n";
     }
-    emit_closed_forms(ind);
-    if (angle_ >= 0)
-        emit_angle_search(ind);
-    emit_unresolved(ind);
-    h_ << "    }\n";
-    h_ << "    // The post-impact state.\n";
-    h_ << c_.em.code;
-    h_ << "    out.regime = " << regime_name_ << ";\n";
-    std::vector<std::string> terms;
-    for (const code_output &of : outs_)
-        terms.push_back("out." + of.field);
-    for (const std::string &nm : input_names_)
-        terms.push_back(nm);
-    h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-    h_ << "    if (!detail::finite(check_sum))\n";
-    h_ << "        return fail(friction_status::overflow);\n";
     h_ << "    return friction_status::ok;\n}\n\n";
 }
 

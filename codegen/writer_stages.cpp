@@ -679,6 +679,7 @@ void writer::emit_stages()
             result.energy_output = static_cast<int>(k);
     if (!basis_names_.empty())
         nb_.em = emit_cpp(nb_.prog, nb_.outs, {}, {}, scope_.names(), locals);
+    const std::vector<std::string> before_a = scope_.names();
     emit_one(a_, locals);
     if (angle_ >= 0)
         emit_one(b_, locals);
@@ -686,6 +687,18 @@ void writer::emit_stages()
         emit_one(s_, assign);
     emit_one(c_, result);
     u_.em = emit_cpp(u_.prog, u_.outs, {}, {}, scope_.names());
+    // Stage A of the unchecked variant: the same names as stage A where it declares no
+    // name stage A does not (the stages after it are written with stage A's declared);
+    // else names of its own.
+    a_unchecked_ = emit_cpp(a_.prog, a_.outs, state_checks(a_.checks), a_.names, before_a, locals);
+    const std::set<std::string> declared(a_.em.declared.begin(), a_.em.declared.end());
+    if (!std::all_of(a_unchecked_.declared.begin(), a_unchecked_.declared.end(),
+                     [&](const std::string &nm) { return declared.count(nm) > 0; })) {
+        a_unchecked_ = emit_cpp(a_.prog, a_.outs, state_checks(a_.checks), a_.names, scope_.names(), locals);
+        for (const std::string &nm : a_unchecked_.declared)
+            if (!scope_.taken(nm))
+                scope_.claim(nm);
+    }
     count_name_ = scope_.claim("n_holding");
     stick_holds_name_ = scope_.claim("stick_holds");
     regime_name_ = scope_.claim("regime_now");

@@ -61,6 +61,7 @@ void writer::emit_forms()
     fast_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, branchless_form(false, energy));
     batch_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, branchless_form(true, energy));
     unchanged_ = emit_cpp(main_.prog, unchanged_outs_, {}, {}, taken);
+    unchecked_ = emit_cpp(main_.prog, main_.outs, state_checks(main_.checks), main_.names, taken);
     // Inputs the outputs do not depend on still count for the finiteness check.
     std::set<std::string> reached;
     for (std::size_t i = 0; i < main_.prog.size(); ++i)
@@ -227,7 +228,7 @@ void writer::checked_function()
        << "<T>& out) noexcept\n{\n";
     if (em_.uses_sqrt)
         h_ << "    using std::sqrt;\n";
-    fail_lambda("impact_status", "");
+    fail_lambda("impact_status", "", true);
     h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
     h_ << energy_optional(em_.code, "    out.energy_lost = ");
     if (!sum_terms_.empty()) {
@@ -264,6 +265,26 @@ void writer::fast_function()
     h_ << "out);\n";
     for (const code_output &ov : outs_)
         h_ << "    out." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
+    h_ << "    return impact_status::ok;\n}\n\n";
+}
+
+// The unchecked variant: the checked form's arithmetic with only the checks of the state.
+void writer::unchecked_function()
+{
+    h_ << "/// " << o_.name << " without the per-call validation, for inputs the caller validated once\n";
+    h_ << "/// (contract: every input finite, 0 <= e <= 1, masses and moments of inertia > 0 (their\n";
+    h_ << "/// inverses >= 0), inertia tensors positive definite (inverse tensors semidefinite), a\n";
+    h_ << "/// normal neither zero, denormal nor too long: what " << o_.name << " would not return\n";
+    h_ << "/// invalid_* or non_finite_input for). On such inputs the result is bit for bit that of\n";
+    h_ << "/// " << o_.name << " whenever it returns ok; not_approaching and singular are still returned\n";
+    h_ << "/// (they depend on the state), but no finiteness check guards the result (no overflow).\n";
+    h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "_unchecked(" << params() << result()
+       << "<T>& out) noexcept\n{\n";
+    if (unchecked_.uses_sqrt)
+        h_ << "    using std::sqrt;\n";
+    fail_lambda("impact_status", "", false);
+    h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
+    h_ << energy_optional(unchecked_.code, "    out.energy_lost = ");
     h_ << "    return impact_status::ok;\n}\n\n";
 }
 

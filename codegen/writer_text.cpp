@@ -220,14 +220,14 @@ void writer::unchanged_function(const emitted &code)
 }
 
 // The lambda fail(why) of a function: the state unchanged and the status why (made a
-// status of the header's type by status_of, when given), or non_finite_input when an input
-// is not finite.
-void writer::fail_lambda(const std::string &why_type, const std::string &status_of)
+// status of the header's type by status_of, when given), or when the inputs are checked
+// non_finite_input for an input that is not finite.
+void writer::fail_lambda(const std::string &why_type, const std::string &status_of, bool inputs_checked)
 {
     const std::string why = status_of.empty() ? std::string("why") : status_of + "(why)";
     h_ << "    auto fail = [&](" << why_type << " why) noexcept {\n";
     h_ << "        detail::" << unchanged() << "(" << args() << "out);\n";
-    if (input_names_.empty())
+    if (input_names_.empty() || !inputs_checked)
         h_ << "        return " << why << ";\n";
     else
         h_ << "        return detail::all_finite(" << join(input_names_, ", ") << ") ? " << why << " : "

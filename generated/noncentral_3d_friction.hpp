@@ -1557,6 +1557,335 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     return friction_status::ok;
 }
 
+/// noncentral_3d_friction without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, mu >= 0, masses and moments of inertia
+/// > 0, inertia tensors positive definite, a normal neither zero, denormal nor too long;
+/// what noncentral_3d_friction would not return invalid_* or non_finite_input for). On such inputs
+/// the result is bit for bit that of noncentral_3d_friction whenever it returns ok; the statuses that
+/// depend on the state (not_approaching, singular, no_solution, ambiguous, overflow of a
+/// candidate) are still returned, but no finiteness check guards the result.
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T e, T mu, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_friction_result<T>& out) noexcept
+{
+    using std::sqrt;
+    auto fail = [&](auto why) noexcept {
+        detail::noncentral_3d_friction_unchanged(e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return detail::friction_status_of(why);
+    };
+    // Shared steps, the checks of the state, the candidates and their conditions.
+    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+    const T inv_D_1 = T(1) / D_1;
+    const T J_tt1 = D_1_p1 * inv_D_1;
+    const T J_tn1 = -(D_1_p3 * inv_D_1);
+    const T J_tb1 = D_1_p2 * inv_D_1;
+    const T J_nn1 = inv_D_1 * (I1_bb * I1_tt - I1_tb * I1_tb);
+    const T J_nb1 = -(inv_D_1 * (I1_nb * I1_tt - I1_tn * I1_tb));
+    const T J_bb1 = inv_D_1 * (I1_nn * I1_tt - I1_tn * I1_tn);
+    const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
+    const T D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb;
+    const T D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb;
+    const T D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3;
+    const T inv_D_2 = T(1) / D_2;
+    const T J_tt2 = D_2_p1 * inv_D_2;
+    const T J_tn2 = -(D_2_p3 * inv_D_2);
+    const T J_tb2 = D_2_p2 * inv_D_2;
+    const T J_nn2 = inv_D_2 * (I2_bb * I2_tt - I2_tb * I2_tb);
+    const T J_nb2 = -(inv_D_2 * (I2_nb * I2_tt - I2_tn * I2_tb));
+    const T J_bb2 = inv_D_2 * (I2_nn * I2_tt - I2_tn * I2_tn);
+    const T inv_m1 = T(1) / m1;
+    const T inv_m2 = T(1) / m2;
+    const T K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2);
+    const T K_tn_p1 = J_nb1 * r_t1;
+    const T K_tn_p2 = J_nb2 * r_t2;
+    const T K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1;
+    const T K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2;
+    const T K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 * K_tn_p4;
+    const T K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
+    const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
+    const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
+    const T K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2;
+    const T K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4;
+    const T K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1;
+    const T K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2;
+    const T K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2;
+    const T K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2;
+    const T u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1;
+    const T u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
+    if (!(u_n < T(0))) // the contact points approach: u_n < 0
+        return fail(impact_status::not_approaching);
+    const T u_b = r_n1 * w_t1 + r_t2 * w_n2 + v_b2 - r_n2 * w_t2 - r_t1 * w_n1 - v_b1;
+    const T stick_D_K_p1 = K_tn * K_nb - K_nn * K_tb;
+    const T stick_D_K_p2 = K_nn * K_bb - K_nb * K_nb;
+    const T stick_D_K_p3 = K_tn * K_bb - K_tb * K_nb;
+    const T stick_D_K = K_tb * stick_D_K_p1 + K_tt * stick_D_K_p2 - K_tn * stick_D_K_p3;
+    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
+        return fail(impact_status::singular);
+    const T stick_P_t_p1 = u_n + u_n * e;
+    const T inv_stick_D_K = T(1) / stick_D_K;
+    const T stick_P_t = -((u_b * stick_D_K_p1 + u_t * stick_D_K_p2 - stick_D_K_p3 * stick_P_t_p1) * inv_stick_D_K);
+    const T stick_P_n_p1 = K_tt * K_nb - K_tn * K_tb;
+    const T stick_P_n = inv_stick_D_K * (u_b * stick_P_n_p1 + u_t * stick_D_K_p3 - stick_P_t_p1 * (K_tt * K_bb - K_tb * K_tb));
+    const T stick_P_b = -(inv_stick_D_K * (u_b * (K_tt * K_nn - K_tn * K_tn) + u_t * stick_D_K_p1 - stick_P_t_p1 * stick_P_n_p1));
+    const T stick_F_n = stick_P_n - stick_P_n;
+    const T trig_a0_p1 = K_nb * u_t;
+    const T trig_a0_p2 = mu * trig_a0_p1 * (T(1) / T(2));
+    const T trig_a0_p3 = K_tn * u_b;
+    const T trig_a0_p4 = (T(1) / T(2)) * mu * trig_a0_p3;
+    const T trig_a1_p1 = T(1) + e;
+    const T trig_a1_p2 = K_nn * u_b - K_nb * u_n * trig_a1_p1;
+    const T trig_b1_p1 = trig_a1_p1 * K_tn * u_n;
+    const T trig_b1_p2 = K_nn * u_t;
+    const T trig_a2_p1 = trig_a1_p1 * K_tb * u_n;
+    const T trig_a2_p2 = mu * trig_a2_p1 - trig_a0_p2 - trig_a0_p4;
+    const T trig_b2_p1 = trig_a1_p1 * K_bb * u_n;
+    const T trig_b2_p2 = (T(1) / T(2)) * mu * trig_b2_p1;
+    const T trig_b2_p3 = K_tn * u_t;
+    const T trig_b2_p4 = (T(1) / T(2)) * mu * trig_b2_p3;
+    const T trig_b2_p5 = K_nb * u_b;
+    const T trig_b2_p6 = (T(1) / T(2)) * mu * trig_b2_p5;
+    const T trig_b2_p7 = trig_a1_p1 * K_tt * u_n;
+    const T trig_b2_p8 = (T(1) / T(2)) * mu * trig_b2_p7;
+    const T keep_1_p1 = trig_b1_p2 - trig_b1_p1;
+    const T slide_m11_p1 = trig_b2_p3 - trig_b2_p7;
+    const T slide_m22_p1 = trig_b2_p1 - trig_b2_p5;
+    const T unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * T(2);
+    const T c_stick_N = stick_P_n;
+    const T c_stick_P_t = stick_P_t;
+    const T c_stick_F_t = stick_P_t;
+    const T c_stick_P_n = stick_P_n;
+    const T c_stick_F_n = stick_F_n;
+    const T c_stick_P_b = stick_P_b;
+    const T c_stick_F_b = stick_P_b;
+    const T c_stick_cond1 = stick_P_n;
+    const T c_stick_cond2 = mu * stick_P_n * stick_P_n * mu - stick_F_n * stick_F_n - stick_P_b * stick_P_b - stick_P_t * stick_P_t;
+    const T trig_a0 = trig_a0_p2 - trig_a0_p4;
+    const T trig_a1 = trig_a1_p2;
+    const T trig_b1 = trig_b1_p1 - trig_b1_p2;
+    const T trig_a2 = trig_a2_p2;
+    const T trig_b2 = trig_b2_p2 + trig_b2_p4 - trig_b2_p6 - trig_b2_p8;
+    const T keep_0 = trig_b2_p2 + trig_b2_p8 - trig_b2_p6 - trig_b2_p4;
+    const T keep_1 = keep_1_p1;
+    const T keep_2 = trig_a1_p2;
+    const T keep_3 = trig_b2_p6 + trig_b2_p8 - trig_b2_p2 - trig_b2_p4;
+    const T keep_4 = trig_a2_p2;
+    const T slide_m11 = mu * slide_m11_p1;
+    const T slide_m12 = mu * (trig_a0_p1 - trig_a2_p1);
+    const T slide_m21 = -(mu * (trig_a2_p1 - trig_a0_p3));
+    const T slide_m22 = -(mu * slide_m22_p1);
+    const T slide_b1 = keep_1_p1;
+    const T slide_b2 = trig_a1_p2;
+    const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
+    const T lk_1 = inv_m1;
+    const T lk_2 = inv_m2;
+    const T lk_J_tt1 = J_tt1;
+    const T lk_J_tn1 = J_tn1;
+    const T lk_J_tb1 = J_tb1;
+    const T lk_J_nn1 = J_nn1;
+    const T lk_J_nb1 = J_nb1;
+    const T lk_J_bb1 = J_bb1;
+    const T lk_J_tt2 = J_tt2;
+    const T lk_J_tn2 = J_tn2;
+    const T lk_J_tb2 = J_tb2;
+    const T lk_J_nn2 = J_nn2;
+    const T lk_J_nb2 = J_nb2;
+    const T lk_J_bb2 = J_bb2;
+    const T lk_K_tt = K_tt;
+    const T lk_K_tn = K_tn;
+    const T lk_K_nn = K_nn;
+    const T lk_K_tb = K_tb;
+    const T lk_K_nb = K_nb;
+    const T lk_K_bb = K_bb;
+    const T lk_u_t = u_t;
+    const T lk_u_n = u_n;
+    const T lk_u_b = u_b;
+    // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
+    T sel_N = T(0);
+    T sel_P_t = T(0);
+    T sel_F_t = T(0);
+    T sel_P_n = T(0);
+    T sel_F_n = T(0);
+    T sel_P_b = T(0);
+    T sel_F_b = T(0);
+    impact_regime regime_now = impact_regime::smooth;
+    if (mu == T(0)) { // the smooth impact
+        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
+            return fail(impact_status::singular);
+        const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
+        sel_N = N_0;
+        sel_P_t = T(0);
+        sel_F_t = T(0);
+        sel_P_n = N_0;
+        sel_F_n = T(0);
+        sel_P_b = T(0);
+        sel_F_b = T(0);
+    } else {
+        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        int n_holding = static_cast<int>(stick_holds);
+        regime_now = stick_holds ? impact_regime::stick : impact_regime::slide;
+        sel_N = c_stick_N;
+        sel_P_t = c_stick_P_t;
+        sel_F_t = c_stick_F_t;
+        sel_P_n = c_stick_P_n;
+        sel_F_n = c_stick_F_n;
+        sel_P_b = c_stick_P_b;
+        sel_F_b = c_stick_F_b;
+        int n_apart = 0; // slides holding that are not the stick solution
+        bool at_stick = stick_holds; // some candidate is the stick solution
+        const T merge = detail::boundary_tolerance<T>() * detail::max_of(detail::max_of(detail::abs_of(c_stick_P_t), detail::abs_of(c_stick_P_n)), detail::abs_of(c_stick_P_b));
+        // The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),
+        // only where lambda D may be > 0 (the filter keep_*).
+        T root_c[4];
+        T root_s[4];
+        const T keep[5] = {keep_0, keep_1, keep_2, keep_3, keep_4};
+        // At most one solution when M + M^T is positive definite (with a margin;
+        // detail::slide_direction): then pass 0 takes the stick candidate when it
+        // holds, else the one slide; pass 1 (not unique, or the slide not confirmed within
+        // rounding) searches every direction and counts what holds.
+        const bool unique = ((static_cast<unsigned>(slide_m11 > T(0)) & static_cast<unsigned>(unique_monotone > T(0))) != 0u);
+        bool slides_finite = true;
+        for (int pass = unique ? 0 : 1; pass < 2; ++pass) {
+            int n_roots = 0;
+            if (pass == 0) {
+                if (!stick_holds && !detail::slide_direction(slide_m11, slide_m12, slide_m21, slide_m22, slide_b1, slide_b2, root_c[0], root_s[0]))
+                    continue;
+                n_roots = stick_holds ? 0 : 1;
+            } else {
+                n_roots = detail::trig2_roots(trig_a0, trig_a1, trig_b1, trig_a2, trig_b2, keep, root_c, root_s);
+            }
+            if (n_roots == -2) // a coefficient of g overflowed
+                return fail(friction_status::overflow);
+            // g = 0 identically: every direction satisfies it; a slide that holds in any of
+            // these four is one of infinitely many (ambiguous)
+            const bool every_direction = n_roots == -1;
+            if (every_direction) {
+                root_c[0] = T(1);
+                root_s[0] = T(0);
+                root_c[1] = T(0);
+                root_s[1] = T(1);
+                root_c[2] = T(-1);
+                root_s[2] = T(0);
+                root_c[3] = T(0);
+                root_s[3] = T(-1);
+                n_roots = 4;
+            }
+            for (int k = 0; k < n_roots; ++k) {
+                const T c_d = root_c[k];
+                const T s_d = root_s[k];
+                const T slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d;
+                const T slide_N = -((e + T(1)) * lk_u_n / slide_D_s);
+                const T slide_P_t = -(mu * c_d * slide_N);
+                const T slide_P_b = -(s_d * mu * slide_N);
+                const T slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d * (slide_N * (mu * c_d * lk_K_tt + s_d * mu * lk_K_tb - lk_K_tn) - lk_u_t));
+                const T c_slide_N = slide_N;
+                const T c_slide_P_t = slide_P_t;
+                const T c_slide_F_t = slide_P_t;
+                const T c_slide_P_n = slide_N;
+                const T c_slide_F_n = T(0);
+                const T c_slide_P_b = slide_P_b;
+                const T c_slide_F_b = slide_P_b;
+                const T c_slide_cond1 = slide_D_s;
+                const T c_slide_cond2 = slide_lambda;
+                slides_finite = slides_finite && detail::finite((c_slide_cond1 + c_slide_cond2) + c_slide_N);
+                const bool slide_near = detail::abs_of(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of(c_slide_P_b - c_stick_P_b) <= merge;
+                at_stick = at_stick || slide_near;
+                if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
+                    n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
+                    n_holding += (every_direction ? 2 : 1);
+                    if (n_holding == (every_direction ? 2 : 1)) {
+                        regime_now = impact_regime::slide;
+                        sel_N = c_slide_N;
+                        sel_P_t = c_slide_P_t;
+                        sel_F_t = c_slide_F_t;
+                        sel_P_n = c_slide_P_n;
+                        sel_F_n = c_slide_F_n;
+                        sel_P_b = c_slide_P_b;
+                        sel_F_b = c_slide_F_b;
+                    }
+                }
+            }
+            if (pass == 0) {
+                if (n_holding == 1)
+                    break;
+                n_holding = static_cast<int>(stick_holds);
+                n_apart = 0;
+                at_stick = stick_holds;
+                slides_finite = true;
+            }
+        }
+        if (n_holding != 1) {
+            // On the stick/slide boundary within rounding (the stick candidate holding or a slide
+            // with its impulse, and nothing else holding): the stick solution.
+            if (n_apart == 0 && at_stick) {
+                n_holding = 1;
+                regime_now = impact_regime::stick;
+                sel_N = c_stick_N;
+                sel_P_t = c_stick_P_t;
+                sel_F_t = c_stick_F_t;
+                sel_P_n = c_stick_P_n;
+                sel_F_n = c_stick_F_n;
+                sel_P_b = c_stick_P_b;
+                sel_F_b = c_stick_F_b;
+            } else {
+                if (!detail::finite((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
+                    return fail(friction_status::overflow);
+                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+            }
+        }
+    }
+    // The post-impact state.
+    const T v_t1_p1 = lk_1 * sel_P_t;
+    const T v_n1_p1 = lk_1 * sel_P_n;
+    const T v_b1_p1 = lk_1 * sel_P_b;
+    const T w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1;
+    const T w_t1_p2 = w_t1_p1 * lk_J_tn1;
+    const T w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1;
+    const T w_t1_p4 = w_t1_p3 * lk_J_tt1;
+    const T w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1;
+    const T w_t1_p6 = w_t1_p5 * lk_J_tb1;
+    const T w_n1_p1 = w_t1_p1 * lk_J_nn1;
+    const T w_n1_p2 = lk_J_tn1 * w_t1_p3;
+    const T w_n1_p3 = w_t1_p5 * lk_J_nb1;
+    const T w_b1_p1 = w_t1_p1 * lk_J_nb1;
+    const T w_b1_p2 = w_t1_p3 * lk_J_tb1;
+    const T w_b1_p3 = w_t1_p5 * lk_J_bb1;
+    const T v_t2_p1 = sel_P_t * lk_2;
+    const T v_n2_p1 = sel_P_n * lk_2;
+    const T v_b2_p1 = sel_P_b * lk_2;
+    const T w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2;
+    const T w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2;
+    const T w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2;
+    const T w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2;
+    const T w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2;
+    const T w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2;
+    const T energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1;
+    const T energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1;
+    const T energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1;
+    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_n1 = v_n1 - v_n1_p1;
+    out.v_b1 = v_b1 - v_b1_p1;
+    out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6;
+    out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3;
+    out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3;
+    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_n2 = v_n2_p1 + v_n2;
+    out.v_b2 = v_b2_p1 + v_b2;
+    out.w_t2 = w_t2_p4;
+    out.w_n2 = w_n2_p1;
+    out.w_b2 = w_b2_p1;
+    out.normal_impulse = sel_N;
+    out.tangential_impulse_t = sel_F_t;
+    out.tangential_impulse_n = sel_F_n;
+    out.tangential_impulse_b = sel_F_b;
+    out.approach_velocity = lk_u_n;
+    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p4 - r_n2 * w_t2)) : T(0);
+    out.regime = regime_now;
+    return friction_status::ok;
+}
+
 /// The same with the inputs in an array, in the order of noncentral_3d_friction_input_names.
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction(const T* in, noncentral_3d_friction_result<T>& out) noexcept

@@ -1170,6 +1170,156 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     return friction_status::ok;
 }
 
+/// planar_friction without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, mu >= 0, masses and moments of inertia
+/// > 0, inertia tensors positive definite, a normal neither zero, denormal nor too long;
+/// what planar_friction would not return invalid_* or non_finite_input for). On such inputs
+/// the result is bit for bit that of planar_friction whenever it returns ok; the statuses that
+/// depend on the state (not_approaching, singular, no_solution, ambiguous, overflow of a
+/// candidate) are still returned, but no finiteness check guards the result.
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_friction_result<T>& out) noexcept
+{
+    using std::sqrt;
+    auto fail = [&](auto why) noexcept {
+        detail::planar_friction_unchanged(e, mu, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
+        return detail::friction_status_of(why);
+    };
+    // Shared steps, the checks of the state, the candidates and their conditions.
+    const T inv_I1 = T(1) / I1;
+    const T inv_I2 = T(1) / I2;
+    const T inv_m1 = T(1) / m1;
+    const T inv_m2 = T(1) / m2;
+    const T K_tt = r_n1 * r_n1 * inv_I1 + r_n2 * r_n2 * inv_I2 + inv_m1 + inv_m2;
+    const T K_tn = -(inv_I1 * r_n1 * r_t1 + inv_I2 * r_n2 * r_t2);
+    const T K_nn = inv_m2 + inv_m1 + inv_I1 * r_t1 * r_t1 + inv_I2 * r_t2 * r_t2;
+    const T u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1;
+    const T u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
+    if (!(u_n < T(0))) // the contact points approach: u_n < 0
+        return fail(impact_status::not_approaching);
+    const T stick_D_K = K_tt * K_nn - K_tn * K_tn;
+    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
+        return fail(impact_status::singular);
+    const T stick_P_t_p1 = u_n + u_n * e;
+    const T inv_stick_D_K = T(1) / stick_D_K;
+    const T stick_P_t = -((K_nn * u_t - K_tn * stick_P_t_p1) * inv_stick_D_K);
+    const T stick_P_n = inv_stick_D_K * (K_tn * u_t - K_tt * stick_P_t_p1);
+    const T slide_pos_D_s_p1 = K_tn * mu;
+    const T slide_pos_D_s = K_nn - slide_pos_D_s_p1;
+    const T slide_pos_N_p1 = u_n * (T(1) + e);
+    const T slide_pos_N = -(slide_pos_N_p1 / slide_pos_D_s);
+    const T slide_pos_P_t = -(mu * slide_pos_N);
+    const T slide_pos_lambda_p1 = K_tt * mu;
+    const T slide_pos_lambda = u_t + slide_pos_N * (K_tn - slide_pos_lambda_p1);
+    const T slide_neg_D_s = K_nn + slide_pos_D_s_p1;
+    const T slide_neg_N = -(slide_pos_N_p1 / slide_neg_D_s);
+    const T slide_neg_P_t = mu * slide_neg_N;
+    const T slide_neg_lambda = -(u_t + slide_neg_N * (K_tn + slide_pos_lambda_p1));
+    const T c_stick_cond1_p1 = stick_P_n * mu;
+    const T c_stick_N = stick_P_n;
+    const T c_stick_P_t = stick_P_t;
+    const T c_stick_F_t = stick_P_t;
+    const T c_stick_P_n = stick_P_n;
+    const T c_stick_F_n = T(0);
+    const T c_stick_cond1 = c_stick_cond1_p1 - stick_P_t;
+    const T c_stick_cond2 = stick_P_t + c_stick_cond1_p1;
+    const T c_slide_pos_N = slide_pos_N;
+    const T c_slide_pos_P_t = slide_pos_P_t;
+    const T c_slide_pos_F_t = slide_pos_P_t;
+    const T c_slide_pos_P_n = slide_pos_N;
+    const T c_slide_pos_F_n = T(0);
+    const T c_slide_pos_cond1 = slide_pos_D_s;
+    const T c_slide_pos_cond2 = slide_pos_lambda;
+    const T c_slide_neg_N = slide_neg_N;
+    const T c_slide_neg_P_t = slide_neg_P_t;
+    const T c_slide_neg_F_t = slide_neg_P_t;
+    const T c_slide_neg_P_n = slide_neg_N;
+    const T c_slide_neg_F_n = T(0);
+    const T c_slide_neg_cond1 = slide_neg_D_s;
+    const T c_slide_neg_cond2 = slide_neg_lambda;
+    const T lk_1 = inv_I1;
+    const T lk_2 = inv_I2;
+    const T lk_3 = inv_m1;
+    const T lk_4 = inv_m2;
+    const T lk_K_nn = K_nn;
+    const T lk_u_n = u_n;
+    // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
+    T sel_N = T(0);
+    T sel_P_t = T(0);
+    T sel_F_t = T(0);
+    T sel_P_n = T(0);
+    T sel_F_n = T(0);
+    impact_regime regime_now = impact_regime::smooth;
+    if (mu == T(0)) { // the smooth impact
+        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
+            return fail(impact_status::singular);
+        const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
+        sel_N = N_0;
+        sel_P_t = T(0);
+        sel_F_t = T(0);
+        sel_P_n = N_0;
+        sel_F_n = T(0);
+    } else {
+        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool slide_pos_holds = ((static_cast<unsigned>(c_slide_pos_cond1 > T(0)) & static_cast<unsigned>(c_slide_pos_cond2 > T(0))) != 0u); // slide along +e_t
+        const bool slide_neg_holds = ((static_cast<unsigned>(c_slide_neg_cond1 > T(0)) & static_cast<unsigned>(c_slide_neg_cond2 > T(0))) != 0u); // slide along -e_t
+        int n_holding = static_cast<int>(stick_holds) + static_cast<int>(slide_pos_holds) + static_cast<int>(slide_neg_holds);
+        regime_now = stick_holds ? impact_regime::stick : impact_regime::slide;
+        sel_N = stick_holds ? c_stick_N : slide_pos_holds ? c_slide_pos_N : c_slide_neg_N;
+        sel_P_t = stick_holds ? c_stick_P_t : slide_pos_holds ? c_slide_pos_P_t : c_slide_neg_P_t;
+        sel_F_t = stick_holds ? c_stick_F_t : slide_pos_holds ? c_slide_pos_F_t : c_slide_neg_F_t;
+        sel_P_n = stick_holds ? c_stick_P_n : slide_pos_holds ? c_slide_pos_P_n : c_slide_neg_P_n;
+        sel_F_n = stick_holds ? c_stick_F_n : slide_pos_holds ? c_slide_pos_F_n : c_slide_neg_F_n;
+        if (n_holding != 1) {
+            // On the stick/slide boundary within rounding (the stick candidate holding or a slide
+            // with its impulse, and nothing else holding): the stick solution.
+            const T merge = detail::boundary_tolerance<T>() * detail::max_of(detail::abs_of(c_stick_P_t), detail::abs_of(c_stick_P_n));
+            int n_apart = 0; // slides holding that are not the stick solution
+            bool at_stick = stick_holds; // some candidate is the stick solution
+            const bool slide_pos_near = detail::abs_of(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_pos_P_n - c_stick_P_n) <= merge;
+            at_stick = at_stick || slide_pos_near;
+            n_apart += slide_pos_holds && !slide_pos_near ? 1 : 0;
+            const bool slide_neg_near = detail::abs_of(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_neg_P_n - c_stick_P_n) <= merge;
+            at_stick = at_stick || slide_neg_near;
+            n_apart += slide_neg_holds && !slide_neg_near ? 1 : 0;
+            if (n_apart == 0 && at_stick) {
+                n_holding = 1;
+                regime_now = impact_regime::stick;
+                sel_N = c_stick_N;
+                sel_P_t = c_stick_P_t;
+                sel_F_t = c_stick_F_t;
+                sel_P_n = c_stick_P_n;
+                sel_F_n = c_stick_F_n;
+            } else {
+                if (!detail::finite((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + ((c_stick_cond2 + c_slide_pos_N) + (c_slide_pos_P_t + c_slide_pos_P_n))) + (((c_slide_pos_cond1 + c_slide_pos_cond2) + (c_slide_neg_N + c_slide_neg_P_t)) + ((c_slide_neg_P_n + c_slide_neg_cond1) + c_slide_neg_cond2))))
+                    return fail(friction_status::overflow);
+                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+            }
+        }
+    }
+    // The post-impact state.
+    const T v_t1_p1 = lk_3 * sel_P_t;
+    const T v_n1_p1 = lk_3 * sel_P_n;
+    const T w_b1_p1 = (sel_P_t * r_n1 - sel_P_n * r_t1) * lk_1;
+    const T v_t2_p1 = sel_P_t * lk_4;
+    const T v_n2_p1 = sel_P_n * lk_4;
+    const T w_b2_p1 = (sel_P_t * r_n2 - sel_P_n * r_t2) * lk_2 + w_b2;
+    const T energy_lost_p1 = w_b1_p1 - w_b1;
+    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_n1 = v_n1 - v_n1_p1;
+    out.w_b1 = w_b1 - w_b1_p1;
+    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_n2 = v_n2_p1 + v_n2;
+    out.w_b2 = w_b2_p1;
+    out.normal_impulse = sel_N;
+    out.tangential_impulse_t = sel_F_t;
+    out.tangential_impulse_n = sel_F_n;
+    out.approach_velocity = lk_u_n;
+    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
+    out.regime = regime_now;
+    return friction_status::ok;
+}
+
 /// The same with the inputs in an array, in the order of planar_friction_input_names.
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction(const T* in, planar_friction_result<T>& out) noexcept
