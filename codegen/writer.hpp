@@ -117,6 +117,7 @@ private:
     // ---- a selection rule: the candidates' programs (writer_stages.cpp)
     void build_stages();
     void split_steps();
+    void scale_response();
     void name_selected();
     std::vector<ex> stage_c_values(const after_state &after, const step *un) const;
     ex response_entry(const solution &s, int a, int b) const;
@@ -214,6 +215,7 @@ private:
     std::map<ex, std::string, ex_is_less> step_name_;
     std::vector<symbol> sel_P_, sel_F_;
     symbol sel_N_{"friction_N"};
+    ex scale_ = 0; // the scale of K (n.K n) the candidates divide it by, or 0
     std::vector<std::string> sel_P_names_, sel_F_names_;
     std::string sel_N_name_;
     std::vector<ex> c_values_;

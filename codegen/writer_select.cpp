@@ -325,8 +325,9 @@ void writer::main_function(bool unchecked)
             terms.push_back("out." + of.field);
         for (const std::string &nm : input_names_)
             terms.push_back(nm);
+        // (a sum of finite values may overflow: then each is tested, as the smooth headers do)
         h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-        h_ << "    if (!detail::finite(check_sum))\n";
+        h_ << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
         h_ << "        return fail(friction_status::overflow);\n";
     }
     h_ << "    return friction_status::ok;\n}\n\n";

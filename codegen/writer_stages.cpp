@@ -61,6 +61,16 @@ void writer::build_stages()
     if (!un)
         throw std::logic_error("codegen friction: no approach velocity step");
     std::vector<ex> c_values = stage_c_values(after, un);
+    if (!scale_.is_zero()) { // the candidates' impulses are sigma times the impulse
+        lst unscale;
+        unscale.append(sel_N_ == sel_N_ / scale_);
+        for (std::size_t a = 0; a < sel_P_.size(); ++a) {
+            unscale.append(sel_P_[a] == sel_P_[a] / scale_);
+            unscale.append(sel_F_[a] == sel_F_[a] / scale_);
+        }
+        for (ex &v : c_values)
+            v = v.subs(unscale);
+    }
     // Stage S: mu = 0, the frictionless impact: N = -(1 + e) u_n / (n.K n), P = N n.
     const vec3 &n = d_.n_hat;
     mat3 K = zero_mat();
@@ -154,6 +164,46 @@ void writer::split_steps()
     for (step &st : a_steps_)
         if (st.role == step_role::contact_response)
             st.value = response_entry(f_.shared, st.row, st.column);
+    scale_response();
+}
+
+// K scaled by sigma = n.K n (> 0 whenever a body can move; the smooth header's k, which
+// overflows where it does): the candidates see
+// K~ = K / sigma, so that det K~ neither under- nor overflows where K's entries are in
+// range (masses of 1e200 made det K about 1e-400: singular where the smooth header gives
+// the impact). Every candidate's impulse scales as K^-1 (it comes out sigma times the
+// impulse), its conditions keep their signs (each homogeneous in K and the impulse), and
+// the selected impulse is divided by sigma before the state after it (stage C). A sigma of
+// 0 or infinity makes K~ NaN: det K~ > 0 fails (singular), as k > 0 does in the smooth header.
+void writer::scale_response()
+{
+    auto first = std::find_if(a_steps_.begin(), a_steps_.end(),
+                              [](const step &st) { return st.role == step_role::contact_response; });
+    if (first == a_steps_.end())
+        return;
+    step sc;
+    sc.sym = symbol("friction_K_scale");
+    sc.role = step_role::contact_inverse_mass;
+    sc.meaning = "n.K n, the scale of the contact response K";
+    sc.value = 0;
+    for (const step &st : a_steps_)
+        if (st.role == step_role::contact_response) {
+            // (each entry as K has it: one fraction of the products of masses and inertia
+            // would under- or overflow where the sum does not)
+            const ex nn = tidy((st.row == st.column ? 1 : 2) * d_.n_hat[static_cast<std::size_t>(st.row)] *
+                               d_.n_hat[static_cast<std::size_t>(st.column)]);
+            if (!nn.is_zero())
+                sc.value += nn * st.value;
+        }
+    for (step &st : a_steps_)
+        if (st.role == step_role::contact_response)
+            st.value = st.value / sc.sym;
+    const std::size_t at = static_cast<std::size_t>(first - a_steps_.begin());
+    a_step_names_.insert(a_step_names_.begin() + static_cast<std::ptrdiff_t>(at), scope_.claim("K_scale"));
+    a_steps_.insert(a_steps_.begin() + static_cast<std::ptrdiff_t>(at), sc);
+    a_step_syms_.insert(sc.sym);
+    step_name_[sc.sym] = a_step_names_[at];
+    scale_ = sc.sym;
 }
 
 // The selected impulse (world, on body 2), normal impulse and tangential impulse.

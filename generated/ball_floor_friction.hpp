@@ -2,8 +2,8 @@
 //   impactgen codegen ball-floor-friction --name ball_floor_friction --namespace impactgen::generated
 // Closed forms of the impact with Coulomb friction (planar), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
-// Arithmetic of the straight-line parts: 9 add/sub, 17 mul, 4 div, 0 sqrt (shared steps, checks, candidates);
-//   9 add/sub, 16 mul, 0 div, 0 sqrt (post-impact state).
+// Arithmetic of the straight-line parts: 9 add/sub, 18 mul, 6 div, 0 sqrt (shared steps, checks, candidates);
+//   9 add/sub, 22 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
 
 #include <cmath>
@@ -869,7 +869,8 @@ template <typename T> struct ball_floor_friction_input {
 //   slide along -e_t: c_slide_neg_cond2 > 0  (lambda = u'_t.d > 0 (the contact slides along d after impact))
 // This problem, step by step, as the code below computes it (shared steps, checks, candidates):
 //   check_p1 = m * R * R * (2/5)
-//   K_nn = 1 / m
+//   K_scale = 1 / m
+//   K_nn = 1 / (m * K_scale)
 //   K_tt = K_nn * (7/2)
 //   u_t = R * w + v_t
 //   stick_D_K = K_nn * K_tt
@@ -904,8 +905,9 @@ template <typename T> struct ball_floor_friction_input {
 //   c_slide_neg_F_n = 0
 //   c_slide_neg_cond1 = K_nn
 //   c_slide_neg_cond2 = slide_neg_lambda
-//   lk_1 = 1 / R
-//   lk_2 = K_nn
+//   lk_1 = 1 / K_scale
+//   lk_2 = 1 / R
+//   lk_3 = K_scale
 //   lk_K_nn = K_nn
 //   lk_u_n = v_n
 // mu = 0:
@@ -916,18 +918,19 @@ template <typename T> struct ball_floor_friction_input {
 //   sel_P_n = N_0
 //   sel_F_n = 0
 // The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:
-//   v_t_ball_p1 = lk_2 * sel_P_t
-//   v_n_ball_p1 = lk_2 * sel_P_n
-//   w_b_ball_p1 = v_t_ball_p1 * lk_1
-//   out.v_t_ball = v_t_ball_p1 + v_t
+//   v_t_ball_p1 = lk_1 * lk_3
+//   v_t_ball_p2 = v_t_ball_p1 * sel_P_t
+//   v_n_ball_p1 = v_t_ball_p1 * sel_P_n
+//   w_b_ball_p1 = v_t_ball_p2 * lk_2
+//   out.v_t_ball = v_t_ball_p2 + v_t
 //   out.v_n_ball = v_n_ball_p1 + v_n
 //   out.w_b_ball = w_b_ball_p1 * (5/2) + w
-//   out.normal_impulse = sel_N
-//   out.tangential_impulse_t = sel_F_t
-//   out.tangential_impulse_n = sel_F_n
+//   out.normal_impulse = lk_1 * sel_N
+//   out.tangential_impulse_t = lk_1 * sel_F_t
+//   out.tangential_impulse_n = lk_1 * sel_F_n
 //   out.approach_velocity = lk_u_n
-//   out.energy_lost = -(sel_P_t * ((w_b_ball_p1 * 5 + w * 2) * R + 2 * w * R + v_t_ball_p1 * 2 + v_t * 4) *
-//       (1/4) + sel_P_n * (v_n_ball_p1 + v_n * 2) * (1/2))
+//   out.energy_lost = -(sel_P_t * lk_1 * ((w_b_ball_p1 * 5 + w * 2) * R + 2 * w * R + v_t_ball_p2 * 2 + v_t *
+//       4) * (1/4) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * 2) * (1/2))
 
 namespace detail {
 /// What a failed call of ball_floor_friction returns: the state unchanged (velocities as
@@ -977,7 +980,8 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     const T check_p1 = m * R * R * (T(2) / T(5));
     if (!(check_p1 > T(0) && detail::finite(check_p1))) // moment of inertia of ball > 0, finite
         return fail(impact_status::invalid_inertia);
-    const T K_nn = T(1) / m;
+    const T K_scale = T(1) / m;
+    const T K_nn = T(1) / (m * K_scale);
     const T K_tt = K_nn * (T(7) / T(2));
     const T u_t = R * w + v_t;
     const T stick_D_K = K_nn * K_tt;
@@ -1014,8 +1018,9 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     const T c_slide_neg_F_n = T(0);
     const T c_slide_neg_cond1 = K_nn;
     const T c_slide_neg_cond2 = slide_neg_lambda;
-    const T lk_1 = T(1) / R;
-    const T lk_2 = K_nn;
+    const T lk_1 = T(1) / K_scale;
+    const T lk_2 = T(1) / R;
+    const T lk_3 = K_scale;
     const T lk_K_nn = K_nn;
     const T lk_u_n = v_n;
     // The regime that holds: its impulse (world axes, on ball), normal and tangential impulse.
@@ -1073,20 +1078,21 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
         }
     }
     // The post-impact state.
-    const T v_t_ball_p1 = lk_2 * sel_P_t;
-    const T v_n_ball_p1 = lk_2 * sel_P_n;
-    const T w_b_ball_p1 = v_t_ball_p1 * lk_1;
-    out.v_t_ball = v_t_ball_p1 + v_t;
+    const T v_t_ball_p1 = lk_1 * lk_3;
+    const T v_t_ball_p2 = v_t_ball_p1 * sel_P_t;
+    const T v_n_ball_p1 = v_t_ball_p1 * sel_P_n;
+    const T w_b_ball_p1 = v_t_ball_p2 * lk_2;
+    out.v_t_ball = v_t_ball_p2 + v_t;
     out.v_n_ball = v_n_ball_p1 + v_n;
     out.w_b_ball = w_b_ball_p1 * (T(5) / T(2)) + w;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (-(sel_P_t * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p1 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
+    out.energy_lost = with_energy_lost ? (-(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
     out.regime = regime_now;
     const T check_sum = (((out.v_t_ball + out.v_n_ball) + (out.w_b_ball + out.normal_impulse)) + ((out.tangential_impulse_t + out.tangential_impulse_n) + (out.approach_velocity + out.energy_lost))) + (((e + mu) + (R + m)) + ((v_t + v_n) + w));
-    if (!detail::finite(check_sum))
+    if (!detail::finite(check_sum) && !detail::all_finite(out.v_t_ball, out.v_n_ball, out.w_b_ball, out.normal_impulse, out.tangential_impulse_t, out.tangential_impulse_n, out.approach_velocity, out.energy_lost, e, mu, R, m, v_t, v_n, w))
         return fail(friction_status::overflow);
     return friction_status::ok;
 }
@@ -1109,7 +1115,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
     // Shared steps, the checks of the state, the candidates and their conditions.
     if (!(v_n < T(0))) // the contact points approach: u_n < 0
         return fail(impact_status::not_approaching);
-    const T K_nn = T(1) / m;
+    const T K_scale = T(1) / m;
+    const T K_nn = T(1) / (m * K_scale);
     const T K_tt = K_nn * (T(7) / T(2));
     const T u_t = R * w + v_t;
     const T stick_D_K = K_nn * K_tt;
@@ -1146,8 +1153,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
     const T c_slide_neg_F_n = T(0);
     const T c_slide_neg_cond1 = K_nn;
     const T c_slide_neg_cond2 = slide_neg_lambda;
-    const T lk_1 = T(1) / R;
-    const T lk_2 = K_nn;
+    const T lk_1 = T(1) / K_scale;
+    const T lk_2 = T(1) / R;
+    const T lk_3 = K_scale;
     const T lk_K_nn = K_nn;
     const T lk_u_n = v_n;
     // The regime that holds: its impulse (world axes, on ball), normal and tangential impulse.
@@ -1205,17 +1213,18 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
         }
     }
     // The post-impact state.
-    const T v_t_ball_p1 = lk_2 * sel_P_t;
-    const T v_n_ball_p1 = lk_2 * sel_P_n;
-    const T w_b_ball_p1 = v_t_ball_p1 * lk_1;
-    out.v_t_ball = v_t_ball_p1 + v_t;
+    const T v_t_ball_p1 = lk_1 * lk_3;
+    const T v_t_ball_p2 = v_t_ball_p1 * sel_P_t;
+    const T v_n_ball_p1 = v_t_ball_p1 * sel_P_n;
+    const T w_b_ball_p1 = v_t_ball_p2 * lk_2;
+    out.v_t_ball = v_t_ball_p2 + v_t;
     out.v_n_ball = v_n_ball_p1 + v_n;
     out.w_b_ball = w_b_ball_p1 * (T(5) / T(2)) + w;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (-(sel_P_t * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p1 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
+    out.energy_lost = with_energy_lost ? (-(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
     out.regime = regime_now;
     return friction_status::ok;
 }

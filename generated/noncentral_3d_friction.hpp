@@ -2,9 +2,9 @@
 //   impactgen codegen noncentral-3d-friction --name noncentral_3d_friction --namespace impactgen::generated
 // Closed forms of the impact with Coulomb friction (3-D, sliding direction found at run time), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
-// Arithmetic of the straight-line parts: 113 add/sub, 180 mul, 5 div, 0 sqrt (shared steps, checks, candidates);
+// Arithmetic of the straight-line parts: 113 add/sub, 186 mul, 6 div, 0 sqrt (shared steps, checks, candidates);
 //   10 add/sub, 21 mul, 1 div, 0 sqrt per sliding direction (at most 4);
-//   74 add/sub, 78 mul, 0 div, 0 sqrt (post-impact state).
+//   74 add/sub, 96 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
 
 #include <cmath>
@@ -958,27 +958,30 @@ template <typename T> struct noncentral_3d_friction_input {
 //   J_nb2 = -(inv_D_2 * (I2_nb * I2_tt - I2_tn * I2_tb))
 //   J_bb2_p1 = I2_nn * I2_tt - I2_tn * I2_tn
 //   J_bb2 = inv_D_2 * J_bb2_p1
+//   K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1
+//   K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2
 //   inv_m1 = 1 / m1
 //   inv_m2 = 1 / m2
-//   K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 -
-//       r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)
+//   K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1)
+//       - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2)
+//   inv_K_scale = 1 / K_scale
+//   K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) -
+//       r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale
 //   K_tn_p1 = J_nb1 * r_t1
 //   K_tn_p2 = J_nb2 * r_t2
-//   K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1
-//   K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2
-//   K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 *
-//       K_tn_p4
-//   K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 *
-//       (J_tb2 * r_t2 - J_tt2 * r_b2)
+//   K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 *
+//       (K_tn_p2 - J_tn2 * r_b2)))
+//   K_nn = K_scale * inv_K_scale
 //   K_tb_p1 = K_tn_p1 - J_tb1 * r_n1
 //   K_tb_p2 = K_tn_p2 - J_tb2 * r_n2
 //   K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1
 //   K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2
-//   K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4
+//   K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4)
 //   K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1
 //   K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2
-//   K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2
-//   K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2
+//   K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2))
+//   K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 *
+//       K_nb_p2)
 //   u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1
 //   u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1
 //   u_b = r_n1 * w_t1 + r_t2 * w_n2 + v_b2 - r_n2 * w_t2 - r_t1 * w_n1 - v_b1
@@ -1044,8 +1047,9 @@ template <typename T> struct noncentral_3d_friction_input {
 //   slide_b1 = keep_1_p1
 //   slide_b2 = trig_a1_p2
 //   unique_monotone = -(slide_m11_p1 * slide_m22_p1 * 31 + unique_monotone_p1 * unique_monotone_p1 * 8)
-//   lk_1 = inv_m1
-//   lk_2 = inv_m2
+//   lk_1 = inv_K_scale
+//   lk_2 = inv_m1
+//   lk_3 = inv_m2
 //   lk_J_tt1 = J_tt1
 //   lk_J_tn1 = J_tn1
 //   lk_J_tb1 = J_tb1
@@ -1093,57 +1097,66 @@ template <typename T> struct noncentral_3d_friction_input {
 //   sel_P_b = 0
 //   sel_F_b = 0
 // The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:
-//   v_t1_p1 = lk_1 * sel_P_t
-//   v_n1_p1 = lk_1 * sel_P_n
-//   v_b1_p1 = lk_1 * sel_P_b
-//   w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1
-//   w_t1_p2 = w_t1_p1 * lk_J_tn1
-//   w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1
-//   w_t1_p4 = w_t1_p3 * lk_J_tt1
-//   w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1
-//   w_t1_p6 = w_t1_p5 * lk_J_tb1
-//   w_n1_p1 = w_t1_p1 * lk_J_nn1
-//   w_n1_p2 = lk_J_tn1 * w_t1_p3
-//   w_n1_p3 = w_t1_p5 * lk_J_nb1
-//   w_b1_p1 = w_t1_p1 * lk_J_nb1
-//   w_b1_p2 = w_t1_p3 * lk_J_tb1
-//   w_b1_p3 = w_t1_p5 * lk_J_bb1
-//   v_t2_p1 = sel_P_t * lk_2
-//   v_n2_p1 = sel_P_n * lk_2
-//   v_b2_p1 = sel_P_b * lk_2
-//   w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2
-//   w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2
-//   w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2
-//   w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2
-//   w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2
-//   w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2
+//   v_t1_p1 = lk_1 * lk_2
+//   v_t1_p2 = v_t1_p1 * sel_P_t
+//   v_n1_p1 = v_t1_p1 * sel_P_n
+//   v_b1_p1 = v_t1_p1 * sel_P_b
+//   w_t1_p1 = lk_1 * r_b1
+//   w_t1_p2 = lk_1 * r_t1
+//   w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2
+//   w_t1_p4 = w_t1_p3 * lk_J_tn1
+//   w_t1_p5 = lk_1 * r_n1
+//   w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5
+//   w_t1_p7 = w_t1_p6 * lk_J_tt1
+//   w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2
+//   w_t1_p9 = w_t1_p8 * lk_J_tb1
+//   w_n1_p1 = w_t1_p3 * lk_J_nn1
+//   w_n1_p2 = lk_J_tn1 * w_t1_p6
+//   w_n1_p3 = w_t1_p8 * lk_J_nb1
+//   w_b1_p1 = w_t1_p3 * lk_J_nb1
+//   w_b1_p2 = w_t1_p6 * lk_J_tb1
+//   w_b1_p3 = w_t1_p8 * lk_J_bb1
+//   v_t2_p1 = lk_1 * lk_3
+//   v_t2_p2 = sel_P_t * v_t2_p1
+//   v_n2_p1 = sel_P_n * v_t2_p1
+//   v_b2_p1 = sel_P_b * v_t2_p1
+//   w_t2_p1 = lk_1 * r_b2
+//   w_t2_p2 = lk_1 * r_n2
+//   w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2
+//   w_t2_p4 = lk_1 * r_t2
+//   w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4
+//   w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4
+//   w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2
+//   w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2
+//   w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2
 //   energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1
-//   energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1
+//   energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1
 //   energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1
-//   out.v_t1 = v_t1 - v_t1_p1
+//   out.v_t1 = v_t1 - v_t1_p2
 //   out.v_n1 = v_n1 - v_n1_p1
 //   out.v_b1 = v_b1 - v_b1_p1
-//   out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6
+//   out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9
 //   out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3
 //   out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3
-//   out.v_t2 = v_t2_p1 + v_t2
+//   out.v_t2 = v_t2_p2 + v_t2
 //   out.v_n2 = v_n2_p1 + v_n2
 //   out.v_b2 = v_b2_p1 + v_b2
-//   out.w_t2 = w_t2_p4
+//   out.w_t2 = w_t2_p7
 //   out.w_n2 = w_n2_p1
 //   out.w_b2 = w_b2_p1
-//   out.normal_impulse = sel_N
-//   out.tangential_impulse_t = sel_F_t
-//   out.tangential_impulse_n = sel_F_n
-//   out.tangential_impulse_b = sel_F_b
+//   out.normal_impulse = lk_1 * sel_N
+//   out.tangential_impulse_t = lk_1 * sel_F_t
+//   out.tangential_impulse_n = lk_1 * sel_F_n
+//   out.tangential_impulse_b = lk_1 * sel_F_b
 //   out.approach_velocity = lk_u_n
-//   out.energy_lost = sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * 2 - r_b1 * energy_lost_p2 -
-//       v_n1_p1 - r_t1 * w_b1) * (1/2) + (1/2) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 -
-//       v_n2_p1 - r_b2 * w_t2 - v_n2 * 2) - (1/2) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1
-//       - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * 2) - (1/2) * sel_P_b * (v_b1_p1 + r_t1 *
-//       energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * 2) - (1/2) * sel_P_t *
-//       (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * 2 - r_b2 * w_n2_p1 - r_b2 * w_n2) - (1/2) * sel_P_b
-//       * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * 2 - r_n2 * w_t2_p4 - r_n2 * w_t2)
+//   out.energy_lost = sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * 2 - r_b1 *
+//       energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (1/2) + (1/2) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 *
+//       w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * 2) - (1/2) * sel_P_t * lk_1 * (v_t1_p2 + r_n1
+//       * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * 2) - (1/2) * sel_P_b *
+//       lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 *
+//       2) - (1/2) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * 2 - r_b2 * w_n2_p1 -
+//       r_b2 * w_n2) - (1/2) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * 2 - r_n2 *
+//       w_t2_p7 - r_n2 * w_t2)
 
 namespace detail {
 /// What a failed call of noncentral_3d_friction returns: the state unchanged (velocities as
@@ -1263,24 +1276,26 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     if (!(J_bb2_p1 > T(0) && detail::finite(J_bb2_p1))) // inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite
         return fail(impact_status::invalid_inertia);
     const T J_bb2 = inv_D_2 * J_bb2_p1;
+    const T K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1;
+    const T K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2;
     const T inv_m1 = T(1) / m1;
     const T inv_m2 = T(1) / m2;
-    const T K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2);
+    const T K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale;
     const T K_tn_p1 = J_nb1 * r_t1;
     const T K_tn_p2 = J_nb2 * r_t2;
-    const T K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1;
-    const T K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2;
-    const T K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 * K_tn_p4;
-    const T K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
+    const T K_nn = K_scale * inv_K_scale;
     const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
     const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
     const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
     const T K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2;
-    const T K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4;
+    const T K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4);
     const T K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1;
     const T K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2;
-    const T K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2;
-    const T K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2;
+    const T K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2));
+    const T K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2);
     const T u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
@@ -1347,8 +1362,9 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T slide_b1 = keep_1_p1;
     const T slide_b2 = trig_a1_p2;
     const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
-    const T lk_1 = inv_m1;
-    const T lk_2 = inv_m2;
+    const T lk_1 = inv_K_scale;
+    const T lk_2 = inv_m1;
+    const T lk_3 = inv_m2;
     const T lk_J_tt1 = J_tt1;
     const T lk_J_tn1 = J_tn1;
     const T lk_J_tb1 = J_tb1;
@@ -1505,54 +1521,62 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
         }
     }
     // The post-impact state.
-    const T v_t1_p1 = lk_1 * sel_P_t;
-    const T v_n1_p1 = lk_1 * sel_P_n;
-    const T v_b1_p1 = lk_1 * sel_P_b;
-    const T w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1;
-    const T w_t1_p2 = w_t1_p1 * lk_J_tn1;
-    const T w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1;
-    const T w_t1_p4 = w_t1_p3 * lk_J_tt1;
-    const T w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1;
-    const T w_t1_p6 = w_t1_p5 * lk_J_tb1;
-    const T w_n1_p1 = w_t1_p1 * lk_J_nn1;
-    const T w_n1_p2 = lk_J_tn1 * w_t1_p3;
-    const T w_n1_p3 = w_t1_p5 * lk_J_nb1;
-    const T w_b1_p1 = w_t1_p1 * lk_J_nb1;
-    const T w_b1_p2 = w_t1_p3 * lk_J_tb1;
-    const T w_b1_p3 = w_t1_p5 * lk_J_bb1;
-    const T v_t2_p1 = sel_P_t * lk_2;
-    const T v_n2_p1 = sel_P_n * lk_2;
-    const T v_b2_p1 = sel_P_b * lk_2;
-    const T w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2;
-    const T w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2;
-    const T w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2;
-    const T w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2;
-    const T w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2;
-    const T w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2;
+    const T v_t1_p1 = lk_1 * lk_2;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T v_b1_p1 = v_t1_p1 * sel_P_b;
+    const T w_t1_p1 = lk_1 * r_b1;
+    const T w_t1_p2 = lk_1 * r_t1;
+    const T w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2;
+    const T w_t1_p4 = w_t1_p3 * lk_J_tn1;
+    const T w_t1_p5 = lk_1 * r_n1;
+    const T w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5;
+    const T w_t1_p7 = w_t1_p6 * lk_J_tt1;
+    const T w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2;
+    const T w_t1_p9 = w_t1_p8 * lk_J_tb1;
+    const T w_n1_p1 = w_t1_p3 * lk_J_nn1;
+    const T w_n1_p2 = lk_J_tn1 * w_t1_p6;
+    const T w_n1_p3 = w_t1_p8 * lk_J_nb1;
+    const T w_b1_p1 = w_t1_p3 * lk_J_nb1;
+    const T w_b1_p2 = w_t1_p6 * lk_J_tb1;
+    const T w_b1_p3 = w_t1_p8 * lk_J_bb1;
+    const T v_t2_p1 = lk_1 * lk_3;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T v_b2_p1 = sel_P_b * v_t2_p1;
+    const T w_t2_p1 = lk_1 * r_b2;
+    const T w_t2_p2 = lk_1 * r_n2;
+    const T w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2;
+    const T w_t2_p4 = lk_1 * r_t2;
+    const T w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4;
+    const T w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4;
+    const T w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2;
+    const T w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2;
+    const T w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2;
     const T energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1;
-    const T energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1;
+    const T energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1;
     const T energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1;
-    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_t1 = v_t1 - v_t1_p2;
     out.v_n1 = v_n1 - v_n1_p1;
     out.v_b1 = v_b1 - v_b1_p1;
-    out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6;
+    out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9;
     out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3;
     out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3;
-    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_t2 = v_t2_p2 + v_t2;
     out.v_n2 = v_n2_p1 + v_n2;
     out.v_b2 = v_b2_p1 + v_b2;
-    out.w_t2 = w_t2_p4;
+    out.w_t2 = w_t2_p7;
     out.w_n2 = w_n2_p1;
     out.w_b2 = w_b2_p1;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
-    out.tangential_impulse_b = sel_F_b;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
+    out.tangential_impulse_b = lk_1 * sel_F_b;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p4 - r_n2 * w_t2)) : T(0);
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t1_p2 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p7 - r_n2 * w_t2)) : T(0);
     out.regime = regime_now;
     const T check_sum = (((((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.v_t2 + out.v_n2))) + (((out.v_b2 + out.w_t2) + (out.w_n2 + out.w_b2)) + ((out.normal_impulse + out.tangential_impulse_t) + (out.tangential_impulse_n + out.tangential_impulse_b)))) + ((((out.approach_velocity + out.energy_lost) + (e + mu)) + ((m1 + I1_tt) + (I1_tn + I1_tb))) + (((I1_nn + I1_nb) + (I1_bb + r_t1)) + ((r_n1 + r_b1) + (v_t1 + v_n1))))) + (((((v_b1 + w_t1) + (w_n1 + w_b1)) + ((m2 + I2_tt) + (I2_tn + I2_tb))) + (((I2_nn + I2_nb) + (I2_bb + r_t2)) + ((r_n2 + r_b2) + (v_t2 + v_n2)))) + ((v_b2 + w_t2) + (w_n2 + w_b2)));
-    if (!detail::finite(check_sum))
+    if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.v_t2, out.v_n2, out.v_b2, out.w_t2, out.w_n2, out.w_b2, out.normal_impulse, out.tangential_impulse_t, out.tangential_impulse_n, out.tangential_impulse_b, out.approach_velocity, out.energy_lost, e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2))
         return fail(friction_status::overflow);
     return friction_status::ok;
 }
@@ -1595,24 +1619,26 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     const T J_nn2 = inv_D_2 * (I2_bb * I2_tt - I2_tb * I2_tb);
     const T J_nb2 = -(inv_D_2 * (I2_nb * I2_tt - I2_tn * I2_tb));
     const T J_bb2 = inv_D_2 * (I2_nn * I2_tt - I2_tn * I2_tn);
+    const T K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1;
+    const T K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2;
     const T inv_m1 = T(1) / m1;
     const T inv_m2 = T(1) / m2;
-    const T K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2);
+    const T K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale;
     const T K_tn_p1 = J_nb1 * r_t1;
     const T K_tn_p2 = J_nb2 * r_t2;
-    const T K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1;
-    const T K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2;
-    const T K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 * K_tn_p4;
-    const T K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
+    const T K_nn = K_scale * inv_K_scale;
     const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
     const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
     const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
     const T K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2;
-    const T K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4;
+    const T K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4);
     const T K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1;
     const T K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2;
-    const T K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2;
-    const T K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2;
+    const T K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2));
+    const T K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2);
     const T u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
@@ -1679,8 +1705,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     const T slide_b1 = keep_1_p1;
     const T slide_b2 = trig_a1_p2;
     const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
-    const T lk_1 = inv_m1;
-    const T lk_2 = inv_m2;
+    const T lk_1 = inv_K_scale;
+    const T lk_2 = inv_m1;
+    const T lk_3 = inv_m2;
     const T lk_J_tt1 = J_tt1;
     const T lk_J_tn1 = J_tn1;
     const T lk_J_tb1 = J_tb1;
@@ -1837,51 +1864,59 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
         }
     }
     // The post-impact state.
-    const T v_t1_p1 = lk_1 * sel_P_t;
-    const T v_n1_p1 = lk_1 * sel_P_n;
-    const T v_b1_p1 = lk_1 * sel_P_b;
-    const T w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1;
-    const T w_t1_p2 = w_t1_p1 * lk_J_tn1;
-    const T w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1;
-    const T w_t1_p4 = w_t1_p3 * lk_J_tt1;
-    const T w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1;
-    const T w_t1_p6 = w_t1_p5 * lk_J_tb1;
-    const T w_n1_p1 = w_t1_p1 * lk_J_nn1;
-    const T w_n1_p2 = lk_J_tn1 * w_t1_p3;
-    const T w_n1_p3 = w_t1_p5 * lk_J_nb1;
-    const T w_b1_p1 = w_t1_p1 * lk_J_nb1;
-    const T w_b1_p2 = w_t1_p3 * lk_J_tb1;
-    const T w_b1_p3 = w_t1_p5 * lk_J_bb1;
-    const T v_t2_p1 = sel_P_t * lk_2;
-    const T v_n2_p1 = sel_P_n * lk_2;
-    const T v_b2_p1 = sel_P_b * lk_2;
-    const T w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2;
-    const T w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2;
-    const T w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2;
-    const T w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2;
-    const T w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2;
-    const T w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2;
+    const T v_t1_p1 = lk_1 * lk_2;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T v_b1_p1 = v_t1_p1 * sel_P_b;
+    const T w_t1_p1 = lk_1 * r_b1;
+    const T w_t1_p2 = lk_1 * r_t1;
+    const T w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2;
+    const T w_t1_p4 = w_t1_p3 * lk_J_tn1;
+    const T w_t1_p5 = lk_1 * r_n1;
+    const T w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5;
+    const T w_t1_p7 = w_t1_p6 * lk_J_tt1;
+    const T w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2;
+    const T w_t1_p9 = w_t1_p8 * lk_J_tb1;
+    const T w_n1_p1 = w_t1_p3 * lk_J_nn1;
+    const T w_n1_p2 = lk_J_tn1 * w_t1_p6;
+    const T w_n1_p3 = w_t1_p8 * lk_J_nb1;
+    const T w_b1_p1 = w_t1_p3 * lk_J_nb1;
+    const T w_b1_p2 = w_t1_p6 * lk_J_tb1;
+    const T w_b1_p3 = w_t1_p8 * lk_J_bb1;
+    const T v_t2_p1 = lk_1 * lk_3;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T v_b2_p1 = sel_P_b * v_t2_p1;
+    const T w_t2_p1 = lk_1 * r_b2;
+    const T w_t2_p2 = lk_1 * r_n2;
+    const T w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2;
+    const T w_t2_p4 = lk_1 * r_t2;
+    const T w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4;
+    const T w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4;
+    const T w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2;
+    const T w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2;
+    const T w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2;
     const T energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1;
-    const T energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1;
+    const T energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1;
     const T energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1;
-    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_t1 = v_t1 - v_t1_p2;
     out.v_n1 = v_n1 - v_n1_p1;
     out.v_b1 = v_b1 - v_b1_p1;
-    out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6;
+    out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9;
     out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3;
     out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3;
-    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_t2 = v_t2_p2 + v_t2;
     out.v_n2 = v_n2_p1 + v_n2;
     out.v_b2 = v_b2_p1 + v_b2;
-    out.w_t2 = w_t2_p4;
+    out.w_t2 = w_t2_p7;
     out.w_n2 = w_n2_p1;
     out.w_b2 = w_b2_p1;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
-    out.tangential_impulse_b = sel_F_b;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
+    out.tangential_impulse_b = lk_1 * sel_F_b;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p4 - r_n2 * w_t2)) : T(0);
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t1_p2 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p7 - r_n2 * w_t2)) : T(0);
     out.regime = regime_now;
     return friction_status::ok;
 }

@@ -2,8 +2,8 @@
 //   impactgen codegen planar-friction --name planar_friction --namespace impactgen::generated
 // Closed forms of the impact with Coulomb friction (planar), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
-// Arithmetic of the straight-line parts: 26 add/sub, 33 mul, 7 div, 0 sqrt (shared steps, checks, candidates);
-//   24 add/sub, 30 mul, 0 div, 0 sqrt (post-impact state).
+// Arithmetic of the straight-line parts: 26 add/sub, 36 mul, 8 div, 0 sqrt (shared steps, checks, candidates);
+//   24 add/sub, 43 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
 
 #include <cmath>
@@ -893,9 +893,11 @@ template <typename T> struct planar_friction_input {
 //   inv_I2 = 1 / I2
 //   inv_m1 = 1 / m1
 //   inv_m2 = 1 / m2
-//   K_tt = r_n1 * r_n1 * inv_I1 + r_n2 * r_n2 * inv_I2 + inv_m1 + inv_m2
-//   K_tn = -(inv_I1 * r_n1 * r_t1 + inv_I2 * r_n2 * r_t2)
-//   K_nn = inv_m2 + inv_m1 + inv_I1 * r_t1 * r_t1 + inv_I2 * r_t2 * r_t2
+//   K_scale = r_t1 * r_t1 * inv_I1 + r_t2 * r_t2 * inv_I2 + inv_m1 + inv_m2
+//   inv_K_scale = 1 / K_scale
+//   K_tt = (inv_m2 + inv_m1 + inv_I1 * r_n1 * r_n1 + inv_I2 * r_n2 * r_n2) * inv_K_scale
+//   K_tn = -(inv_K_scale * (inv_I1 * r_t1 * r_n1 + inv_I2 * r_t2 * r_n2))
+//   K_nn = K_scale * inv_K_scale
 //   u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1
 //   u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1
 //   stick_D_K = K_tt * K_nn - K_tn * K_tn
@@ -938,8 +940,9 @@ template <typename T> struct planar_friction_input {
 //   c_slide_neg_cond2 = slide_neg_lambda
 //   lk_1 = inv_I1
 //   lk_2 = inv_I2
-//   lk_3 = inv_m1
-//   lk_4 = inv_m2
+//   lk_3 = inv_K_scale
+//   lk_4 = inv_m1
+//   lk_5 = inv_m2
 //   lk_K_nn = K_nn
 //   lk_u_n = u_n
 // mu = 0:
@@ -950,27 +953,29 @@ template <typename T> struct planar_friction_input {
 //   sel_P_n = N_0
 //   sel_F_n = 0
 // The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:
-//   v_t1_p1 = lk_3 * sel_P_t
-//   v_n1_p1 = lk_3 * sel_P_n
-//   w_b1_p1 = (sel_P_t * r_n1 - sel_P_n * r_t1) * lk_1
-//   v_t2_p1 = sel_P_t * lk_4
-//   v_n2_p1 = sel_P_n * lk_4
-//   w_b2_p1 = (sel_P_t * r_n2 - sel_P_n * r_t2) * lk_2 + w_b2
+//   v_t1_p1 = lk_3 * lk_4
+//   v_t1_p2 = v_t1_p1 * sel_P_t
+//   v_n1_p1 = v_t1_p1 * sel_P_n
+//   w_b1_p1 = (sel_P_t * lk_3 * r_n1 - sel_P_n * lk_3 * r_t1) * lk_1
+//   v_t2_p1 = lk_3 * lk_5
+//   v_t2_p2 = sel_P_t * v_t2_p1
+//   v_n2_p1 = sel_P_n * v_t2_p1
+//   w_b2_p1 = (sel_P_t * lk_3 * r_n2 - sel_P_n * lk_3 * r_t2) * lk_2 + w_b2
 //   energy_lost_p1 = w_b1_p1 - w_b1
-//   out.v_t1 = v_t1 - v_t1_p1
+//   out.v_t1 = v_t1 - v_t1_p2
 //   out.v_n1 = v_n1 - v_n1_p1
 //   out.w_b1 = w_b1 - w_b1_p1
-//   out.v_t2 = v_t2_p1 + v_t2
+//   out.v_t2 = v_t2_p2 + v_t2
 //   out.v_n2 = v_n2_p1 + v_n2
 //   out.w_b2 = w_b2_p1
-//   out.normal_impulse = sel_N
-//   out.tangential_impulse_t = sel_F_t
-//   out.tangential_impulse_n = sel_F_n
+//   out.normal_impulse = lk_3 * sel_N
+//   out.tangential_impulse_t = lk_3 * sel_F_t
+//   out.tangential_impulse_n = lk_3 * sel_F_n
 //   out.approach_velocity = lk_u_n
-//   out.energy_lost = sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * 2 - v_n1_p1 - w_b1 * r_t1) * (1/2) + (1/2) *
-//       sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * 2) - (1/2) * sel_P_t * (v_t1_p1 + r_n1 *
-//       energy_lost_p1 - w_b1 * r_n1 - v_t1 * 2) - (1/2) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2
-//       + v_t2 * 2)
+//   out.energy_lost = sel_P_n * lk_3 * (r_t1 * energy_lost_p1 + v_n1 * 2 - v_n1_p1 - w_b1 * r_t1) * (1/2) +
+//       (1/2) * sel_P_n * lk_3 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * 2) - (1/2) * sel_P_t * lk_3
+//       * (v_t1_p2 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * 2) - (1/2) * sel_P_t * lk_3 * (v_t2_p2 +
+//       r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * 2)
 
 namespace detail {
 /// What a failed call of planar_friction returns: the state unchanged (velocities as
@@ -1037,9 +1042,11 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     const T inv_I2 = T(1) / I2;
     const T inv_m1 = T(1) / m1;
     const T inv_m2 = T(1) / m2;
-    const T K_tt = r_n1 * r_n1 * inv_I1 + r_n2 * r_n2 * inv_I2 + inv_m1 + inv_m2;
-    const T K_tn = -(inv_I1 * r_n1 * r_t1 + inv_I2 * r_n2 * r_t2);
-    const T K_nn = inv_m2 + inv_m1 + inv_I1 * r_t1 * r_t1 + inv_I2 * r_t2 * r_t2;
+    const T K_scale = r_t1 * r_t1 * inv_I1 + r_t2 * r_t2 * inv_I2 + inv_m1 + inv_m2;
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + inv_I1 * r_n1 * r_n1 + inv_I2 * r_n2 * r_n2) * inv_K_scale;
+    const T K_tn = -(inv_K_scale * (inv_I1 * r_t1 * r_n1 + inv_I2 * r_t2 * r_n2));
+    const T K_nn = K_scale * inv_K_scale;
     const T u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
@@ -1086,8 +1093,9 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     const T c_slide_neg_cond2 = slide_neg_lambda;
     const T lk_1 = inv_I1;
     const T lk_2 = inv_I2;
-    const T lk_3 = inv_m1;
-    const T lk_4 = inv_m2;
+    const T lk_3 = inv_K_scale;
+    const T lk_4 = inv_m1;
+    const T lk_5 = inv_m2;
     const T lk_K_nn = K_nn;
     const T lk_u_n = u_n;
     // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
@@ -1145,27 +1153,29 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
         }
     }
     // The post-impact state.
-    const T v_t1_p1 = lk_3 * sel_P_t;
-    const T v_n1_p1 = lk_3 * sel_P_n;
-    const T w_b1_p1 = (sel_P_t * r_n1 - sel_P_n * r_t1) * lk_1;
-    const T v_t2_p1 = sel_P_t * lk_4;
-    const T v_n2_p1 = sel_P_n * lk_4;
-    const T w_b2_p1 = (sel_P_t * r_n2 - sel_P_n * r_t2) * lk_2 + w_b2;
+    const T v_t1_p1 = lk_3 * lk_4;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T w_b1_p1 = (sel_P_t * lk_3 * r_n1 - sel_P_n * lk_3 * r_t1) * lk_1;
+    const T v_t2_p1 = lk_3 * lk_5;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T w_b2_p1 = (sel_P_t * lk_3 * r_n2 - sel_P_n * lk_3 * r_t2) * lk_2 + w_b2;
     const T energy_lost_p1 = w_b1_p1 - w_b1;
-    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_t1 = v_t1 - v_t1_p2;
     out.v_n1 = v_n1 - v_n1_p1;
     out.w_b1 = w_b1 - w_b1_p1;
-    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_t2 = v_t2_p2 + v_t2;
     out.v_n2 = v_n2_p1 + v_n2;
     out.w_b2 = w_b2_p1;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
+    out.normal_impulse = lk_3 * sel_N;
+    out.tangential_impulse_t = lk_3 * sel_F_t;
+    out.tangential_impulse_n = lk_3 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_3 * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_3 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_3 * (v_t1_p2 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_3 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
     out.regime = regime_now;
     const T check_sum = ((((out.v_t1 + out.v_n1) + (out.w_b1 + out.v_t2)) + ((out.v_n2 + out.w_b2) + (out.normal_impulse + out.tangential_impulse_t))) + (((out.tangential_impulse_n + out.approach_velocity) + (out.energy_lost + e)) + ((mu + m1) + (I1 + r_t1)))) + ((((r_n1 + v_t1) + (v_n1 + w_b1)) + ((m2 + I2) + (r_t2 + r_n2))) + ((v_t2 + v_n2) + w_b2));
-    if (!detail::finite(check_sum))
+    if (!detail::finite(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.w_b1, out.v_t2, out.v_n2, out.w_b2, out.normal_impulse, out.tangential_impulse_t, out.tangential_impulse_n, out.approach_velocity, out.energy_lost, e, mu, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2))
         return fail(friction_status::overflow);
     return friction_status::ok;
 }
@@ -1190,9 +1200,11 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
     const T inv_I2 = T(1) / I2;
     const T inv_m1 = T(1) / m1;
     const T inv_m2 = T(1) / m2;
-    const T K_tt = r_n1 * r_n1 * inv_I1 + r_n2 * r_n2 * inv_I2 + inv_m1 + inv_m2;
-    const T K_tn = -(inv_I1 * r_n1 * r_t1 + inv_I2 * r_n2 * r_t2);
-    const T K_nn = inv_m2 + inv_m1 + inv_I1 * r_t1 * r_t1 + inv_I2 * r_t2 * r_t2;
+    const T K_scale = r_t1 * r_t1 * inv_I1 + r_t2 * r_t2 * inv_I2 + inv_m1 + inv_m2;
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + inv_I1 * r_n1 * r_n1 + inv_I2 * r_n2 * r_n2) * inv_K_scale;
+    const T K_tn = -(inv_K_scale * (inv_I1 * r_t1 * r_n1 + inv_I2 * r_t2 * r_n2));
+    const T K_nn = K_scale * inv_K_scale;
     const T u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
@@ -1239,8 +1251,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
     const T c_slide_neg_cond2 = slide_neg_lambda;
     const T lk_1 = inv_I1;
     const T lk_2 = inv_I2;
-    const T lk_3 = inv_m1;
-    const T lk_4 = inv_m2;
+    const T lk_3 = inv_K_scale;
+    const T lk_4 = inv_m1;
+    const T lk_5 = inv_m2;
     const T lk_K_nn = K_nn;
     const T lk_u_n = u_n;
     // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
@@ -1298,24 +1311,26 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
         }
     }
     // The post-impact state.
-    const T v_t1_p1 = lk_3 * sel_P_t;
-    const T v_n1_p1 = lk_3 * sel_P_n;
-    const T w_b1_p1 = (sel_P_t * r_n1 - sel_P_n * r_t1) * lk_1;
-    const T v_t2_p1 = sel_P_t * lk_4;
-    const T v_n2_p1 = sel_P_n * lk_4;
-    const T w_b2_p1 = (sel_P_t * r_n2 - sel_P_n * r_t2) * lk_2 + w_b2;
+    const T v_t1_p1 = lk_3 * lk_4;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T w_b1_p1 = (sel_P_t * lk_3 * r_n1 - sel_P_n * lk_3 * r_t1) * lk_1;
+    const T v_t2_p1 = lk_3 * lk_5;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T w_b2_p1 = (sel_P_t * lk_3 * r_n2 - sel_P_n * lk_3 * r_t2) * lk_2 + w_b2;
     const T energy_lost_p1 = w_b1_p1 - w_b1;
-    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_t1 = v_t1 - v_t1_p2;
     out.v_n1 = v_n1 - v_n1_p1;
     out.w_b1 = w_b1 - w_b1_p1;
-    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_t2 = v_t2_p2 + v_t2;
     out.v_n2 = v_n2_p1 + v_n2;
     out.w_b2 = w_b2_p1;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
+    out.normal_impulse = lk_3 * sel_N;
+    out.tangential_impulse_t = lk_3 * sel_F_t;
+    out.tangential_impulse_n = lk_3 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_3 * (r_t1 * energy_lost_p1 + v_n1 * T(2) - v_n1_p1 - w_b1 * r_t1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_3 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - v_n2_p1 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_3 * (v_t1_p2 + r_n1 * energy_lost_p1 - w_b1 * r_n1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_3 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2))) : T(0);
     out.regime = regime_now;
     return friction_status::ok;
 }
