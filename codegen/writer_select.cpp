@@ -35,9 +35,9 @@ std::string writer::select_text(const case_names &cn, const std::string &regime,
 std::string writer::merge_text() const
 {
     const case_names &sn = names_.front();
-    std::string size = "detail::abs_of(" + sn.P[0] + ")";
+    std::string size = "detail::abs_of<T>(" + sn.P[0] + ")";
     for (std::size_t a = 1; a < sn.P.size(); ++a)
-        size = "detail::max_of(" + size + ", detail::abs_of(" + sn.P[a] + "))";
+        size = "detail::max_of<T>(" + size + ", detail::abs_of<T>(" + sn.P[a] + "))";
     return "detail::boundary_tolerance<T>() * " + size;
 }
 
@@ -46,7 +46,7 @@ std::string writer::near_text(const case_names &cn) const
     const case_names &sn = names_.front();
     std::vector<std::string> parts;
     for (std::size_t a = 0; a < cn.P.size(); ++a)
-        parts.push_back("detail::abs_of(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
+        parts.push_back("detail::abs_of<T>(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
     return join(parts, " && ");
 }
 
@@ -166,7 +166,7 @@ void writer::emit_root_loop(const std::string &ind)
     h_ << indent(b_.em.code, ind);
     std::vector<std::string> slide_values = cn.cond;
     slide_values.push_back(cn.N);
-    h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
+    h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite<T>("
        << balanced_sum(slide_values) << ");\n";
     const std::string step = "(" + every_name_ + " ? 2 : 1)";
     if (stick) {
@@ -201,7 +201,7 @@ void writer::emit_unresolved(const std::string &ind)
         values.insert(values.end(), cn.cond.begin(), cn.cond.end());
     }
     values.insert(values.end(), trig_names_.begin(), trig_names_.end());
-    const std::string finite = "if (!detail::finite(" + balanced_sum(values) + ")" +
+    const std::string finite = "if (!detail::finite<T>(" + balanced_sum(values) + ")" +
                                (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) + ")\n";
     const std::string verdict =
         "return fail(" + count_name_ + " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
@@ -298,7 +298,7 @@ void writer::main_function(bool unchecked)
     const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
     const std::string mu_check = unchecked ? std::string()
-                                           : "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
+                                           : "    if (!(" + mu_name_ + " >= T(0) && detail::finite<T>(" + mu_name_ +
                                                  "))) // mu >= 0, finite\n        return "
                                                  "fail(friction_status::invalid_friction);\n";
     if (mu_input)
@@ -327,7 +327,7 @@ void writer::main_function(bool unchecked)
             terms.push_back(nm);
         // (a sum of finite values may overflow: then each is tested, as the smooth headers do)
         h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-        h_ << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
+        h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
         h_ << "        return fail(friction_status::overflow);\n";
     }
     h_ << "    return friction_status::ok;\n}\n\n";
