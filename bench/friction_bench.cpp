@@ -1,4 +1,4 @@
-// Impacts with Coulomb friction (codegen/friction.hpp), per named friction class, on the
+// Impacts with Coulomb friction (the writer codegen/writer.hpp), per named friction class, on the
 // same 4096 seeded random impacts:
 //   generated/<class>   the generated function (with_energy_lost = false: the outputs the
 //                       reference computes: velocities, impulses, regime, status)

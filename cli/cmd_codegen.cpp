@@ -2,7 +2,6 @@
 // closed form of a named class or problem file (see codegen/codegen.hpp).
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
-#include "codegen/friction.hpp"
 #include "names/identifier.hpp"
 
 #include <filesystem>

@@ -246,6 +246,22 @@ emit_options branchless_form(bool share_divisions, int optional_output)
     return o;
 }
 
+namespace
+{
+// The blocks of a symmetric tensor: axes coupled by a non-zero entry share a block.
+void tensor_blocks(const mat3 &J, int (&block_of)[3])
+{
+    for (int r = 0; r < 3; ++r)
+        for (int c = r + 1; c < 3; ++c)
+            if (!tidy(J[r][c]).is_zero()) {
+                const int from = block_of[c], to = block_of[r];
+                for (int &x : block_of)
+                    if (x == from)
+                        x = to;
+            }
+}
+} // namespace
+
 // The leading principal minors that make a symmetric tensor positive definite, block by
 // block: axes coupled by non-zero off-diagonal entries form a block (a diagonal tensor is
 // three blocks of one entry), and the tensor is positive definite when each block is. Per
@@ -257,14 +273,7 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, 
                                                                  bool with_determinant)
 {
     int block_of[3] = {0, 1, 2};
-    for (int r = 0; r < 3; ++r)
-        for (int c = r + 1; c < 3; ++c)
-            if (!tidy(J[r][c]).is_zero()) {
-                const int from = block_of[c], to = block_of[r];
-                for (int &x : block_of)
-                    if (x == from)
-                        x = to;
-            }
+    tensor_blocks(J, block_of);
     std::vector<std::pair<ex, std::string>> minors;
     for (int first = 0; first < 3; ++first) {
         std::vector<std::size_t> a;
@@ -282,6 +291,32 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, 
         }
         if (a.size() == 3 && with_determinant)
             minors.push_back({det(J), "determinant > 0, finite"});
+    }
+    return minors;
+}
+
+std::vector<std::pair<ex, std::string>> positive_semidefinite_minors(const mat3 &J,
+                                                                     const std::array<std::string, 3> &axes)
+{
+    int block_of[3] = {0, 1, 2};
+    tensor_blocks(J, block_of);
+    std::vector<std::pair<ex, std::string>> minors;
+    for (int first = 0; first < 3; ++first) {
+        std::vector<std::size_t> a;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (block_of[k] == first)
+                a.push_back(k);
+        for (std::size_t x : a)
+            minors.push_back({J[x][x], axes[x] + axes[x] + " entry >= 0, finite"});
+        for (std::size_t i = 0; i < a.size(); ++i)
+            for (std::size_t j = i + 1; j < a.size(); ++j) {
+                const std::size_t x = a[i], y = a[j];
+                minors.push_back({J[x][x] * J[y][y] - J[x][y] * J[y][x], "minor " + axes[x] + axes[x] + " " + axes[y] +
+                                                                             axes[y] + " - " + axes[x] + axes[y] +
+                                                                             "^2 >= 0, finite"});
+            }
+        if (a.size() == 3)
+            minors.push_back({det(J), "determinant >= 0, finite"});
     }
     return minors;
 }

@@ -31,6 +31,11 @@ std::string balanced_sum(std::vector<std::string> level);
 /// block (with the determinant of a block of all three axes only when with_determinant).
 std::vector<std::pair<GiNaC::ex, std::string>>
 positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes, bool with_determinant);
+/// Every principal minor of each block, each >= 0: a symmetric tensor positive semidefinite
+/// (an inverse inertia tensor of the engine convention: 0 for a static body, singular for
+/// one whose rotation is locked about some axes).
+std::vector<std::pair<GiNaC::ex, std::string>> positive_semidefinite_minors(const mat3 &J,
+                                                                            const std::array<std::string, 3> &axes);
 
 // A term of the finiteness sum of a branchless form: its text, when its value is ready
 // (an estimate of the latency from the inputs, in cycles) and whether the form may leave

@@ -130,8 +130,8 @@ bool planar_inverse_inertia(plan &pl, const body &b, lst &subs)
     if (!is_a<symbol>(old))
         throw option_error(option_error::inverse_inertia, "the moment of inertia of " + names::display_text(b.name) +
                                                               " is neither a number nor a single symbol");
-    symbol k =
-        inverse_symbol(pl, old, "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (> 0)");
+    symbol k = inverse_symbol(
+        pl, old, "inverse moment of inertia 1/I of " + b.name + " about its centre of mass (>= 0; 0: rotation locked)");
     subs.append(old == 1 / k);
     return true;
 }
@@ -381,7 +381,8 @@ void apply_inverse_mass(plan &pl)
         if (!is_a<symbol>(b.mass))
             throw option_error(option_error::inverse_mass, "the mass of " + names::display_text(b.name) +
                                                                " is neither a number nor a single symbol");
-        symbol im = inverse_symbol(pl, b.mass, "inverse mass 1/m of " + b.name + " (> 0)");
+        symbol im =
+            inverse_symbol(pl, b.mass, "inverse mass 1/m of " + b.name + " (>= 0; 0: a static or kinematic body)");
         subs.append(b.mass == 1 / im);
     }
     if (subs.nops() == 0)

@@ -82,7 +82,8 @@ struct check {
         unit_interval, ///< 0 <= x <= 1
         negative,      ///< x < 0
         normal_number, ///< x >= std::numeric_limits<T>::min(), finite: neither zero, denormal nor infinite
-        near_one       ///< |x - 1| <= unit_tolerance (the squared length of a unit vector rounded in float)
+        near_one,      ///< |x - 1| <= unit_tolerance (the squared length of a unit vector rounded in float)
+        nonnegative    ///< x >= 0, finite (an inverse mass or inertia of the engine convention: 0 is a static body)
     } kind;
     int op_id;
     std::string status; ///< enumerator of impact_status

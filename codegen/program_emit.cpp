@@ -472,6 +472,9 @@ private:
         case check::normal_number:
             add_unique(out_.normal_terms, x);
             break;
+        case check::nonnegative:
+            add_unique(out_.nonneg_terms, x);
+            break;
         case check::near_one:
             add_unique(out_.nonneg_terms, (p < 2 ? "(" + x + ")" : x) + " - " + unit_bound(-1));
             add_unique(out_.nonneg_terms, unit_bound(+1) + " - " + (p < 2 ? "(" + x + ")" : x));
@@ -548,6 +551,9 @@ private:
                 break;
             case check::unit_interval:
                 cond = x + " >= T(0) && " + x + " <= T(1)";
+                break;
+            case check::nonnegative:
+                cond = x + " >= T(0) && detail::finite(" + x + ")";
                 break;
             case check::negative:
                 cond = x + " < T(0)";

@@ -11,8 +11,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
 //                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
@@ -93,8 +93,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
@@ -444,6 +444,52 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(T e, T m1, T I1_tt, T I1_t
     out.normal_impulse = o_normal_impulse;
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// massive_3d without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, masses and moments of inertia > 0 (their
+/// inverses >= 0), inertia tensors positive definite (inverse tensors semidefinite), a
+/// normal neither zero, denormal nor too long: what massive_3d would not return
+/// invalid_* or non_finite_input for). On such inputs the result is bit for bit that of
+/// massive_3d whenever it returns ok; not_approaching and singular are still returned
+/// (they depend on the state), but no finiteness check guards the result (no overflow).
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d_unchecked(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
+{
+    auto fail = [&](impact_status why) noexcept {
+        detail::massive_3d_unchanged(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return why;
+    };
+    (void)fail; // a fully numeric problem may have no check left
+    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+    const T inv_D_1 = T(1) / D_1;
+    const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
+    const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
+    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * (I1_nn * I1_tt - I1_tn * I1_tn));
+    const T inv_m1 = T(1) / m1;
+    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    if (!(w_1 > T(0) && detail::finite(w_1))) // effective inverse mass k > 0, finite
+        return fail(impact_status::singular);
+    const T u_p1 = r_t1 * w_b1;
+    const T u_p2 = r_b1 * w_t1;
+    const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
+    if (!(u < T(0))) // the contact points approach: u < 0
+        return fail(impact_status::not_approaching);
+    const T N = -(u * (T(1) + e) / w_1);
+    const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
+    out.v_t1 = v_t1;
+    out.v_n1 = v_n1 - inv_m1 * N;
+    out.v_b1 = v_b1;
+    out.w_t1 = w_t1 - g_t1 * N;
+    out.w_n1 = w_n1 - g_n1 * N;
+    out.w_b1 = w_b1 - g_b1 * N;
+    out.normal_impulse = N;
+    out.approach_velocity = u;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     return impact_status::ok;
 }
 

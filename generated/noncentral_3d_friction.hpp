@@ -2,9 +2,9 @@
 //   impactgen codegen noncentral-3d-friction --name noncentral_3d_friction --namespace impactgen::generated
 // Closed forms of the impact with Coulomb friction (3-D, sliding direction found at run time), specialised;
 // the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.
-// Arithmetic of the straight-line parts: 113 add/sub, 180 mul, 5 div, 0 sqrt (shared steps, checks, candidates);
+// Arithmetic of the straight-line parts: 113 add/sub, 186 mul, 6 div, 0 sqrt (shared steps, checks, candidates);
 //   10 add/sub, 21 mul, 1 div, 0 sqrt per sliding direction (at most 4);
-//   74 add/sub, 78 mul, 0 div, 0 sqrt (post-impact state).
+//   74 add/sub, 96 mul, 0 div, 0 sqrt (post-impact state).
 #pragma once
 
 #include <cmath>
@@ -12,8 +12,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
 //                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
@@ -94,8 +94,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
@@ -192,8 +192,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_D0AC53DB_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_D0AC53DB_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -262,8 +262,10 @@ IMPACTGEN_FUNC constexpr friction_status friction_status_of(friction_status s) n
 /// 2^-16 in float) relative of each other count as that one solution.
 template <typename T> IMPACTGEN_FUNC T boundary_tolerance() noexcept
 {
-    using std::ldexp;
-    return ldexp(T(1), -(2 * std::numeric_limits<T>::digits / 3));
+    T r(1); // 2^-k by halving: exact, and for any scalar (an autodiff type has no ldexp)
+    for (int k = 2 * std::numeric_limits<T>::digits / 3; k > 0; --k)
+        r = r / T(2);
+    return r;
 }
 
 /// A unit tangent basis (t, b) of the plane normal to n (any length; n = 0 or not finite
@@ -314,7 +316,7 @@ struct trig2_stats {
 #define IMPACTGEN_TRIG2_COUNT(what) ((void)0)
 #endif
 
-template <typename T> IMPACTGEN_FUNC T abs_of(T x) noexcept { return x < T(0) ? -x : x; }
+template <typename T> IMPACTGEN_FUNC T abs_of(T x) noexcept { return x < T(0) ? T(-x) : x; }
 template <typename T> IMPACTGEN_FUNC T max_of(T x, T y) noexcept { return x < y ? y : x; }
 
 /// cos(r pi / 8), r = 0..4.
@@ -372,9 +374,9 @@ template <typename T> IMPACTGEN_FUNC T poly_root(const T* c, int deg, T lo, T hi
         return hi;
     T neg = flo < T(0) ? lo : hi, pos = flo < T(0) ? hi : lo; // p(neg) < 0 < p(pos)
     T x = (x0 - lo) * (x0 - hi) < T(0) ? x0 : (lo + hi) / T(2);
-    T dx_old = abs_of(hi - lo), dx = dx_old;
+    T dx_old = abs_of<T>(hi - lo), dx = dx_old;
     T f, df;
-    horner(c, deg, x, f, df);
+    horner<T>(c, deg, x, f, df);
     const int cap = std::numeric_limits<T>::digits + 16;
     int it = 0;
     for (; it < cap; ++it) {
@@ -386,16 +388,16 @@ template <typename T> IMPACTGEN_FUNC T poly_root(const T* c, int deg, T lo, T hi
             pos = x;
         const T newton = x - f / df;
         dx_old = dx;
-        if ((newton - neg) * (newton - pos) < T(0) && abs_of(T(2) * f) <= abs_of(dx_old * df)) {
-            dx = abs_of(x - newton);
+        if ((newton - neg) * (newton - pos) < T(0) && abs_of<T>(T(2) * f) <= abs_of<T>(dx_old * df)) {
+            dx = abs_of<T>(x - newton);
             x = newton;
         } else {
-            dx = abs_of(pos - neg) / T(2);
+            dx = abs_of<T>(pos - neg) / T(2);
             x = (pos + neg) / T(2);
         }
         if (dx <= tol)
             break;
-        horner(c, deg, x, f, df);
+        horner<T>(c, deg, x, f, df);
     }
 #ifdef IMPACTGEN_TRIG2_STATS
     trig2_stats::iterations() += it;
@@ -447,18 +449,18 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     IMPACTGEN_TRIG2_COUNT(circle);
     int kmax = 0;
     for (int k = 1; k < 16; ++k)
-        if (abs_of(g[k]) > abs_of(g[kmax]))
+        if (abs_of<T>(g[k]) > abs_of<T>(g[kmax]))
             kmax = k;
     T cc, sc;
-    unit_pi8((kmax + 8) & 15, cc, sc);
+    unit_pi8<T>((kmax + 8) & 15, cc, sc);
     T q[5];
-    trig2_chart(a0, a1, b1, a2, b2, cc, sc, q);
+    trig2_chart<T>(a0, a1, b1, a2, b2, cc, sc, q);
     for (int i = 1; i < 5; ++i)
         q[i] /= q[0];
     q[0] = T(1);
-    T B = abs_of(q[1]);
+    T B = abs_of<T>(q[1]);
     for (int i = 2; i < 5; ++i)
-        B = max_of(B, abs_of(q[i]));
+        B = max_of<T>(B, abs_of<T>(q[i]));
     B += T(1);
     const T eps = detail::machine_epsilon<T>();
     const T d1[4] = {T(4), T(3) * q[1], T(2) * q[2], q[3]}; // q'
@@ -479,31 +481,31 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     int nc = 0;
     crit[nc++] = -B;
     T prev;
-    horner(d1, 3, ends[0], prev, dd);
+    horner<T>(d1, 3, ends[0], prev, dd);
     for (int i = 1; i < ne; ++i) {
         T v;
-        horner(d1, 3, ends[i], v, dd);
+        horner<T>(d1, 3, ends[i], v, dd);
         if ((prev < T(0) && v > T(0)) || (prev > T(0) && v < T(0)))
-            crit[nc++] = poly_root(d1, 3, ends[i - 1], ends[i], prev, v, (ends[i - 1] + ends[i]) / T(2), T(2) * eps * (T(1) + abs_of(ends[i])));
+            crit[nc++] = poly_root<T>(d1, 3, ends[i - 1], ends[i], prev, v, (ends[i - 1] + ends[i]) / T(2), T(2) * eps * (T(1) + abs_of<T>(ends[i])));
         else if (v == T(0) && i + 1 < ne)
             crit[nc++] = ends[i];
         prev = v;
     }
     crit[nc++] = B;
     int n = 0;
-    horner(q, 4, crit[0], prev, dd);
+    horner<T>(q, 4, crit[0], prev, dd);
     for (int i = 1; i < nc && n < 4; ++i) {
         T v, t = T(0);
-        horner(q, 4, crit[i], v, dd);
+        horner<T>(q, 4, crit[i], v, dd);
         bool found = true;
         if ((prev < T(0) && v > T(0)) || (prev > T(0) && v < T(0)))
-            t = poly_root(q, 4, crit[i - 1], crit[i], prev, v, (crit[i - 1] + crit[i]) / T(2), T(2) * eps * (T(1) + abs_of(crit[i])));
+            t = poly_root<T>(q, 4, crit[i - 1], crit[i], prev, v, (crit[i - 1] + crit[i]) / T(2), T(2) * eps * (T(1) + abs_of<T>(crit[i])));
         else if (v == T(0) && i + 1 < nc)
             t = crit[i];
         else
             found = false;
         if (found) {
-            trig2_rotate(cc, sc, t, rc[n], rs[n]);
+            trig2_rotate<T>(cc, sc, t, rc[n], rs[n]);
             ++n;
         }
         prev = v;
@@ -550,16 +552,16 @@ template <typename T> IMPACTGEN_FUNC void trig2_at(T a0, T a1, T b1, T a2, T b2,
 template <typename T> IMPACTGEN_FUNC int trig2_classify(const trig2_arc<T>& a, T L1, T L2, T L3) noexcept
 {
     const T w = a.w;
-    const T L2a = detail::min_of(L2, max_of(abs_of(a.el), abs_of(a.eh)) + L3 * w / T(2)); // |g''| on the arc
-    const T L1a = detail::min_of(L1, max_of(abs_of(a.dl), abs_of(a.dh)) + L2a * w / T(2)); // |g'| on the arc
+    const T L2a = detail::min_of<T>(L2, max_of<T>(abs_of<T>(a.el), abs_of<T>(a.eh)) + L3 * w / T(2)); // |g''| on the arc
+    const T L1a = detail::min_of<T>(L1, max_of<T>(abs_of<T>(a.dl), abs_of<T>(a.dh)) + L2a * w / T(2)); // |g'| on the arc
     const T r3 = L3 * w * w / T(8);
     const T sd = a.dl < T(0) ? T(-1) : T(1);
-    const bool mono = abs_of(a.dl) + abs_of(a.dh) > L2a * w ||
+    const bool mono = abs_of<T>(a.dl) + abs_of<T>(a.dh) > L2a * w ||
                       (sd * a.dh > T(0) && sd * (a.dl + a.el * w / T(2)) > r3 && sd * (a.dh - a.eh * w / T(2)) > r3);
-    const bool conv = (a.el < T(0)) == (a.eh < T(0)) && a.el != T(0) && abs_of(a.el) + abs_of(a.eh) > L3 * w;
+    const bool conv = (a.el < T(0)) == (a.eh < T(0)) && a.el != T(0) && abs_of<T>(a.el) + abs_of<T>(a.eh) > L3 * w;
     if ((a.gl < T(0)) != (a.gh < T(0)))
         return mono || conv ? 1 : 2;
-    if (mono || abs_of(a.gl) + abs_of(a.gh) > L1a * w)
+    if (mono || abs_of<T>(a.gl) + abs_of<T>(a.gh) > L1a * w)
         return 0;
     // In units where g > 0 at the ends: G = sigma g.
     const T sg = a.gl < T(0) ? T(-1) : T(1);
@@ -596,7 +598,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
     T p0[4], p1[4], p2[4], p3[4], p4[4], t[4], lo[4], hi[4], th[4], step[4], inside[4];
     for (int j = 0; j < n; ++j) {
         T p[5];
-        trig2_chart(a0, a1, b1, a2, b2, cl[j], sl[j], p);
+        trig2_chart<T>(a0, a1, b1, a2, b2, cl[j], sl[j], p);
         p0[j] = p[0];
         p1[j] = p[1];
         p2[j] = p[2];
@@ -630,7 +632,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             const T halley = x - T(2) * f * f1 / (T(2) * f1 * f1 - f * f2);
             const bool in = (halley > lo[j] && halley < hi[j]) || f == T(0);
             const T next = f == T(0) ? x : in ? halley : (lo[j] + hi[j]) / T(2);
-            step[j] = abs_of(next - x);
+            step[j] = abs_of<T>(next - x);
             inside[j] = in ? T(1) : T(0);
             t[j] = next;
             done = done && in && step[j] <= tight * th[j];
@@ -642,14 +644,14 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             IMPACTGEN_TRIG2_COUNT(polished);
             const T p[5] = {p0[j], p1[j], p2[j], p3[j], p4[j]};
             T flo, fhi, dd;
-            horner(p, 4, lo[j], flo, dd);
-            horner(p, 4, hi[j], fhi, dd);
+            horner<T>(p, 4, lo[j], flo, dd);
+            horner<T>(p, 4, hi[j], fhi, dd);
             if ((flo < T(0)) != (fhi < T(0)))
-                t[j] = poly_root(p, 4, lo[j], hi[j], flo, fhi, t[j], T(2) * eps * th[j]);
+                t[j] = poly_root<T>(p, 4, lo[j], hi[j], flo, fhi, t[j], T(2) * eps * th[j]);
             else // the root is within rounding of an end of the bracket (p has the same computed sign at both)
-                t[j] = abs_of(flo) <= abs_of(fhi) ? lo[j] : hi[j];
+                t[j] = abs_of<T>(flo) <= abs_of<T>(fhi) ? lo[j] : hi[j];
         }
-        trig2_rotate(cl[j], sl[j], t[j], rc[j], rs[j]);
+        trig2_rotate<T>(cl[j], sl[j], t[j], rc[j], rs[j]);
     }
 }
 
@@ -679,7 +681,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
         return -2;
     // The roots do not change with the scale of g: divide by the largest coefficient, so
     // that the squares and bounds below neither overflow nor underflow.
-    const T m = max_of(max_of(max_of(abs_of(a0), abs_of(a1)), max_of(abs_of(b1), abs_of(a2))), abs_of(b2));
+    const T m = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(a0), abs_of<T>(a1)), max_of<T>(abs_of<T>(b1), abs_of<T>(a2))), abs_of<T>(b2));
     if (m == T(0))
         return -1;
     const T r = T(1) / m;
@@ -701,7 +703,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     // f(ends) + max|f'| w/2 < 0, hold no root wanted.
     unsigned drop = 0;
     if (keep != nullptr && detail::all_finite(keep[0], keep[1], keep[2], keep[3], keep[4])) {
-        const T mk = max_of(max_of(max_of(abs_of(keep[0]), abs_of(keep[1])), max_of(abs_of(keep[2]), abs_of(keep[3]))), abs_of(keep[4]));
+        const T mk = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(keep[0]), abs_of<T>(keep[1])), max_of<T>(abs_of<T>(keep[2]), abs_of<T>(keep[3]))), abs_of<T>(keep[4]));
         if (mk > T(0)) {
             const T rk = T(1) / mk;
             const T k0 = keep[0] * rk, k1 = keep[1] * rk, k2 = keep[2] * rk, k3 = keep[3] * rk, k4 = keep[4] * rk;
@@ -710,7 +712,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
             for (int k = 0; k < 17; ++k)
                 f[k] = k0 + k1 * uc[k] + k2 * us[k] + k3 * vc[k] + k4 * vs[k];
             for (int k = 0; k < 16; ++k)
-                drop |= static_cast<unsigned>(max_of(f[k], f[k + 1]) + half < T(0)) << k;
+                drop |= static_cast<unsigned>(max_of<T>(f[k], f[k + 1]) + half < T(0)) << k;
         }
     }
     if (drop == 0xFFFFu)
@@ -726,8 +728,8 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     const T L1w = L1 * w, L2w = L2 * w;
     for (int k = 0; k < 16; ++k) {
         const unsigned ch = static_cast<unsigned>((g[k] < T(0)) != (g[k + 1] < T(0)));
-        const unsigned mono = static_cast<unsigned>(abs_of(dg[k]) + abs_of(dg[k + 1]) > L2w);
-        const unsigned far = static_cast<unsigned>(abs_of(g[k]) + abs_of(g[k + 1]) > L1w);
+        const unsigned mono = static_cast<unsigned>(abs_of<T>(dg[k]) + abs_of<T>(dg[k + 1]) > L2w);
+        const unsigned far = static_cast<unsigned>(abs_of<T>(g[k]) + abs_of<T>(g[k + 1]) > L1w);
         change |= ch << k;
         open |= ((ch & ~mono) | (~ch & ~mono & ~far & 1u)) << k;
         zero |= static_cast<unsigned>(g[k] == T(0));
@@ -826,7 +828,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
 {
     using std::sqrt;
     // The direction does not change when m and b are scaled together.
-    const T sc = max_of(max_of(max_of(abs_of(m11), abs_of(m12)), max_of(abs_of(m21), abs_of(m22))), max_of(abs_of(b1), abs_of(b2)));
+    const T sc = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(m11), abs_of<T>(m12)), max_of<T>(abs_of<T>(m21), abs_of<T>(m22))), max_of<T>(abs_of<T>(b1), abs_of<T>(b2)));
     if (!(sc > T(0) && detail::finite(sc)))
         return false;
     const T r = T(1) / sc;
@@ -840,7 +842,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
     const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
     const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * detail::machine_epsilon<T>() * nb;
     // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
-    T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
+    T lo = T(0), hi = nb, l = max_of<T>(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
     for (int it = 0; it < 12; ++it) {
         // x = (a1 + l b1, a2 + l b2) = adj(m + l 1) b, q = det(m + l 1); the Newton step
         // psi / psi' = (q - |x|) |x|^2 / ((2 l + tr) |x|^2 - q (x.b)), psi < 0 where q < |x|.
@@ -856,7 +858,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
         T next = l - step;
         if (!(next > lo && next < hi))
             next = (lo + hi) / T(2);
-        if (abs_of(next - l) <= tol || q == xx) {
+        if (abs_of<T>(next - l) <= tol || q == xx) {
             const T inv = T(1) / xx;
             c = x1 * inv;
             s = x2 * inv;
@@ -1014,27 +1016,30 @@ template <typename T> struct noncentral_3d_friction_input {
 //   J_nb2 = -(inv_D_2 * (I2_nb * I2_tt - I2_tn * I2_tb))
 //   J_bb2_p1 = I2_nn * I2_tt - I2_tn * I2_tn
 //   J_bb2 = inv_D_2 * J_bb2_p1
+//   K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1
+//   K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2
 //   inv_m1 = 1 / m1
 //   inv_m2 = 1 / m2
-//   K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 -
-//       r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)
+//   K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1)
+//       - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2)
+//   inv_K_scale = 1 / K_scale
+//   K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) -
+//       r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale
 //   K_tn_p1 = J_nb1 * r_t1
 //   K_tn_p2 = J_nb2 * r_t2
-//   K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1
-//   K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2
-//   K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 *
-//       K_tn_p4
-//   K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 *
-//       (J_tb2 * r_t2 - J_tt2 * r_b2)
+//   K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 *
+//       (K_tn_p2 - J_tn2 * r_b2)))
+//   K_nn = K_scale * inv_K_scale
 //   K_tb_p1 = K_tn_p1 - J_tb1 * r_n1
 //   K_tb_p2 = K_tn_p2 - J_tb2 * r_n2
 //   K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1
 //   K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2
-//   K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4
+//   K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4)
 //   K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1
 //   K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2
-//   K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2
-//   K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2
+//   K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2))
+//   K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 *
+//       K_nb_p2)
 //   u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1
 //   u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1
 //   u_b = r_n1 * w_t1 + r_t2 * w_n2 + v_b2 - r_n2 * w_t2 - r_t1 * w_n1 - v_b1
@@ -1100,8 +1105,9 @@ template <typename T> struct noncentral_3d_friction_input {
 //   slide_b1 = keep_1_p1
 //   slide_b2 = trig_a1_p2
 //   unique_monotone = -(slide_m11_p1 * slide_m22_p1 * 31 + unique_monotone_p1 * unique_monotone_p1 * 8)
-//   lk_1 = inv_m1
-//   lk_2 = inv_m2
+//   lk_1 = inv_K_scale
+//   lk_2 = inv_m1
+//   lk_3 = inv_m2
 //   lk_J_tt1 = J_tt1
 //   lk_J_tn1 = J_tn1
 //   lk_J_tb1 = J_tb1
@@ -1149,57 +1155,66 @@ template <typename T> struct noncentral_3d_friction_input {
 //   sel_P_b = 0
 //   sel_F_b = 0
 // The post-impact state for the impulse sel_P (normal impulse sel_N, tangential sel_F) of the regime:
-//   v_t1_p1 = lk_1 * sel_P_t
-//   v_n1_p1 = lk_1 * sel_P_n
-//   v_b1_p1 = lk_1 * sel_P_b
-//   w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1
-//   w_t1_p2 = w_t1_p1 * lk_J_tn1
-//   w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1
-//   w_t1_p4 = w_t1_p3 * lk_J_tt1
-//   w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1
-//   w_t1_p6 = w_t1_p5 * lk_J_tb1
-//   w_n1_p1 = w_t1_p1 * lk_J_nn1
-//   w_n1_p2 = lk_J_tn1 * w_t1_p3
-//   w_n1_p3 = w_t1_p5 * lk_J_nb1
-//   w_b1_p1 = w_t1_p1 * lk_J_nb1
-//   w_b1_p2 = w_t1_p3 * lk_J_tb1
-//   w_b1_p3 = w_t1_p5 * lk_J_bb1
-//   v_t2_p1 = sel_P_t * lk_2
-//   v_n2_p1 = sel_P_n * lk_2
-//   v_b2_p1 = sel_P_b * lk_2
-//   w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2
-//   w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2
-//   w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2
-//   w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2
-//   w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2
-//   w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2
+//   v_t1_p1 = lk_1 * lk_2
+//   v_t1_p2 = v_t1_p1 * sel_P_t
+//   v_n1_p1 = v_t1_p1 * sel_P_n
+//   v_b1_p1 = v_t1_p1 * sel_P_b
+//   w_t1_p1 = lk_1 * r_b1
+//   w_t1_p2 = lk_1 * r_t1
+//   w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2
+//   w_t1_p4 = w_t1_p3 * lk_J_tn1
+//   w_t1_p5 = lk_1 * r_n1
+//   w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5
+//   w_t1_p7 = w_t1_p6 * lk_J_tt1
+//   w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2
+//   w_t1_p9 = w_t1_p8 * lk_J_tb1
+//   w_n1_p1 = w_t1_p3 * lk_J_nn1
+//   w_n1_p2 = lk_J_tn1 * w_t1_p6
+//   w_n1_p3 = w_t1_p8 * lk_J_nb1
+//   w_b1_p1 = w_t1_p3 * lk_J_nb1
+//   w_b1_p2 = w_t1_p6 * lk_J_tb1
+//   w_b1_p3 = w_t1_p8 * lk_J_bb1
+//   v_t2_p1 = lk_1 * lk_3
+//   v_t2_p2 = sel_P_t * v_t2_p1
+//   v_n2_p1 = sel_P_n * v_t2_p1
+//   v_b2_p1 = sel_P_b * v_t2_p1
+//   w_t2_p1 = lk_1 * r_b2
+//   w_t2_p2 = lk_1 * r_n2
+//   w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2
+//   w_t2_p4 = lk_1 * r_t2
+//   w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4
+//   w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4
+//   w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2
+//   w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2
+//   w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2
 //   energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1
-//   energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1
+//   energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1
 //   energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1
-//   out.v_t1 = v_t1 - v_t1_p1
+//   out.v_t1 = v_t1 - v_t1_p2
 //   out.v_n1 = v_n1 - v_n1_p1
 //   out.v_b1 = v_b1 - v_b1_p1
-//   out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6
+//   out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9
 //   out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3
 //   out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3
-//   out.v_t2 = v_t2_p1 + v_t2
+//   out.v_t2 = v_t2_p2 + v_t2
 //   out.v_n2 = v_n2_p1 + v_n2
 //   out.v_b2 = v_b2_p1 + v_b2
-//   out.w_t2 = w_t2_p4
+//   out.w_t2 = w_t2_p7
 //   out.w_n2 = w_n2_p1
 //   out.w_b2 = w_b2_p1
-//   out.normal_impulse = sel_N
-//   out.tangential_impulse_t = sel_F_t
-//   out.tangential_impulse_n = sel_F_n
-//   out.tangential_impulse_b = sel_F_b
+//   out.normal_impulse = lk_1 * sel_N
+//   out.tangential_impulse_t = lk_1 * sel_F_t
+//   out.tangential_impulse_n = lk_1 * sel_F_n
+//   out.tangential_impulse_b = lk_1 * sel_F_b
 //   out.approach_velocity = lk_u_n
-//   out.energy_lost = sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * 2 - r_b1 * energy_lost_p2 -
-//       v_n1_p1 - r_t1 * w_b1) * (1/2) + (1/2) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 -
-//       v_n2_p1 - r_b2 * w_t2 - v_n2 * 2) - (1/2) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1
-//       - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * 2) - (1/2) * sel_P_b * (v_b1_p1 + r_t1 *
-//       energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * 2) - (1/2) * sel_P_t *
-//       (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * 2 - r_b2 * w_n2_p1 - r_b2 * w_n2) - (1/2) * sel_P_b
-//       * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * 2 - r_n2 * w_t2_p4 - r_n2 * w_t2)
+//   out.energy_lost = sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * 2 - r_b1 *
+//       energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (1/2) + (1/2) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 *
+//       w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * 2) - (1/2) * sel_P_t * lk_1 * (v_t1_p2 + r_n1
+//       * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * 2) - (1/2) * sel_P_b *
+//       lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 *
+//       2) - (1/2) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * 2 - r_b2 * w_n2_p1 -
+//       r_b2 * w_n2) - (1/2) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * 2 - r_n2 *
+//       w_t2_p7 - r_n2 * w_t2)
 
 namespace detail {
 /// What a failed call of noncentral_3d_friction returns: the state unchanged (velocities as
@@ -1274,7 +1289,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
         detail::noncentral_3d_friction_unchanged(e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
         return detail::all_finite(e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2) ? detail::friction_status_of(why) : friction_status::non_finite_input;
     };
-    if (!(mu >= T(0) && detail::finite(mu))) // mu >= 0, finite
+    if (!(mu >= T(0) && detail::finite<T>(mu))) // mu >= 0, finite
         return fail(friction_status::invalid_friction);
     // Shared steps, checks, the candidates and their conditions.
     if (!(e >= T(0) && e <= T(1))) // 0 <= e <= 1
@@ -1319,24 +1334,26 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     if (!(J_bb2_p1 > T(0) && detail::finite(J_bb2_p1))) // inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite
         return fail(impact_status::invalid_inertia);
     const T J_bb2 = inv_D_2 * J_bb2_p1;
+    const T K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1;
+    const T K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2;
     const T inv_m1 = T(1) / m1;
     const T inv_m2 = T(1) / m2;
-    const T K_tt = r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) + inv_m1 + inv_m2 - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2);
+    const T K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale;
     const T K_tn_p1 = J_nb1 * r_t1;
     const T K_tn_p2 = J_nb2 * r_t2;
-    const T K_tn_p3 = J_bb1 * r_t1 - J_tb1 * r_b1;
-    const T K_tn_p4 = J_bb2 * r_t2 - J_tb2 * r_b2;
-    const T K_tn = r_b1 * (K_tn_p1 - J_tn1 * r_b1) + r_b2 * (K_tn_p2 - J_tn2 * r_b2) - r_n1 * K_tn_p3 - r_n2 * K_tn_p4;
-    const T K_nn = inv_m2 + inv_m1 + r_t1 * K_tn_p3 + r_t2 * K_tn_p4 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
+    const T K_nn = K_scale * inv_K_scale;
     const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
     const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
     const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
     const T K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2;
-    const T K_tb = r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4;
+    const T K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4);
     const T K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1;
     const T K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2;
-    const T K_nb = r_b1 * K_nb_p1 + r_b2 * K_nb_p2 - r_t1 * K_tb_p1 - r_t2 * K_tb_p2;
-    const T K_bb = inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2;
+    const T K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2));
+    const T K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2);
     const T u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
@@ -1403,8 +1420,9 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T slide_b1 = keep_1_p1;
     const T slide_b2 = trig_a1_p2;
     const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
-    const T lk_1 = inv_m1;
-    const T lk_2 = inv_m2;
+    const T lk_1 = inv_K_scale;
+    const T lk_2 = inv_m1;
+    const T lk_3 = inv_m2;
     const T lk_J_tt1 = J_tt1;
     const T lk_J_tn1 = J_tn1;
     const T lk_J_tb1 = J_tb1;
@@ -1459,7 +1477,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
         sel_F_b = c_stick_F_b;
         int n_apart = 0; // slides holding that are not the stick solution
         bool at_stick = stick_holds; // some candidate is the stick solution
-        const T merge = detail::boundary_tolerance<T>() * detail::max_of(detail::max_of(detail::abs_of(c_stick_P_t), detail::abs_of(c_stick_P_n)), detail::abs_of(c_stick_P_b));
+        const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n)), detail::abs_of<T>(c_stick_P_b));
         // The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),
         // only where lambda D may be > 0 (the filter keep_*).
         T root_c[4];
@@ -1513,8 +1531,8 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
                 const T c_slide_F_b = slide_P_b;
                 const T c_slide_cond1 = slide_D_s;
                 const T c_slide_cond2 = slide_lambda;
-                slides_finite = slides_finite && detail::finite((c_slide_cond1 + c_slide_cond2) + c_slide_N);
-                const bool slide_near = detail::abs_of(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of(c_slide_P_b - c_stick_P_b) <= merge;
+                slides_finite = slides_finite && detail::finite<T>((c_slide_cond1 + c_slide_cond2) + c_slide_N);
+                const bool slide_near = detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
                 at_stick = at_stick || slide_near;
                 if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
                     n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
@@ -1554,62 +1572,410 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
                 sel_P_b = c_stick_P_b;
                 sel_F_b = c_stick_F_b;
             } else {
-                if (!detail::finite((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
+                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
                     return fail(friction_status::overflow);
                 return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
             }
         }
     }
     // The post-impact state.
-    const T v_t1_p1 = lk_1 * sel_P_t;
-    const T v_n1_p1 = lk_1 * sel_P_n;
-    const T v_b1_p1 = lk_1 * sel_P_b;
-    const T w_t1_p1 = sel_P_t * r_b1 - sel_P_b * r_t1;
-    const T w_t1_p2 = w_t1_p1 * lk_J_tn1;
-    const T w_t1_p3 = sel_P_n * r_b1 - sel_P_b * r_n1;
-    const T w_t1_p4 = w_t1_p3 * lk_J_tt1;
-    const T w_t1_p5 = sel_P_t * r_n1 - sel_P_n * r_t1;
-    const T w_t1_p6 = w_t1_p5 * lk_J_tb1;
-    const T w_n1_p1 = w_t1_p1 * lk_J_nn1;
-    const T w_n1_p2 = lk_J_tn1 * w_t1_p3;
-    const T w_n1_p3 = w_t1_p5 * lk_J_nb1;
-    const T w_b1_p1 = w_t1_p1 * lk_J_nb1;
-    const T w_b1_p2 = w_t1_p3 * lk_J_tb1;
-    const T w_b1_p3 = w_t1_p5 * lk_J_bb1;
-    const T v_t2_p1 = sel_P_t * lk_2;
-    const T v_n2_p1 = sel_P_n * lk_2;
-    const T v_b2_p1 = sel_P_b * lk_2;
-    const T w_t2_p1 = sel_P_n * r_b2 - sel_P_b * r_n2;
-    const T w_t2_p2 = sel_P_t * r_n2 - sel_P_n * r_t2;
-    const T w_t2_p3 = sel_P_t * r_b2 - sel_P_b * r_t2;
-    const T w_t2_p4 = w_t2_p1 * lk_J_tt2 + w_t2_p2 * lk_J_tb2 + w_t2 - w_t2_p3 * lk_J_tn2;
-    const T w_n2_p1 = w_t2_p1 * lk_J_tn2 + w_t2_p2 * lk_J_nb2 + w_n2 - w_t2_p3 * lk_J_nn2;
-    const T w_b2_p1 = w_t2_p1 * lk_J_tb2 + w_t2_p2 * lk_J_bb2 + w_b2 - w_t2_p3 * lk_J_nb2;
+    const T v_t1_p1 = lk_1 * lk_2;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T v_b1_p1 = v_t1_p1 * sel_P_b;
+    const T w_t1_p1 = lk_1 * r_b1;
+    const T w_t1_p2 = lk_1 * r_t1;
+    const T w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2;
+    const T w_t1_p4 = w_t1_p3 * lk_J_tn1;
+    const T w_t1_p5 = lk_1 * r_n1;
+    const T w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5;
+    const T w_t1_p7 = w_t1_p6 * lk_J_tt1;
+    const T w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2;
+    const T w_t1_p9 = w_t1_p8 * lk_J_tb1;
+    const T w_n1_p1 = w_t1_p3 * lk_J_nn1;
+    const T w_n1_p2 = lk_J_tn1 * w_t1_p6;
+    const T w_n1_p3 = w_t1_p8 * lk_J_nb1;
+    const T w_b1_p1 = w_t1_p3 * lk_J_nb1;
+    const T w_b1_p2 = w_t1_p6 * lk_J_tb1;
+    const T w_b1_p3 = w_t1_p8 * lk_J_bb1;
+    const T v_t2_p1 = lk_1 * lk_3;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T v_b2_p1 = sel_P_b * v_t2_p1;
+    const T w_t2_p1 = lk_1 * r_b2;
+    const T w_t2_p2 = lk_1 * r_n2;
+    const T w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2;
+    const T w_t2_p4 = lk_1 * r_t2;
+    const T w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4;
+    const T w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4;
+    const T w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2;
+    const T w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2;
+    const T w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2;
     const T energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1;
-    const T energy_lost_p2 = w_t1_p4 + w_t1_p6 - w_t1_p2 - w_t1;
+    const T energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1;
     const T energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1;
-    out.v_t1 = v_t1 - v_t1_p1;
+    out.v_t1 = v_t1 - v_t1_p2;
     out.v_n1 = v_n1 - v_n1_p1;
     out.v_b1 = v_b1 - v_b1_p1;
-    out.w_t1 = w_t1_p2 + w_t1 - w_t1_p4 - w_t1_p6;
+    out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9;
     out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3;
     out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3;
-    out.v_t2 = v_t2_p1 + v_t2;
+    out.v_t2 = v_t2_p2 + v_t2;
     out.v_n2 = v_n2_p1 + v_n2;
     out.v_b2 = v_b2_p1 + v_b2;
-    out.w_t2 = w_t2_p4;
+    out.w_t2 = w_t2_p7;
     out.w_n2 = w_n2_p1;
     out.w_b2 = w_b2_p1;
-    out.normal_impulse = sel_N;
-    out.tangential_impulse_t = sel_F_t;
-    out.tangential_impulse_n = sel_F_n;
-    out.tangential_impulse_b = sel_F_b;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
+    out.tangential_impulse_b = lk_1 * sel_F_b;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (sel_P_n * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p4 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t1_p1 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * (v_t2_p1 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p4 - r_n2 * w_t2)) : T(0);
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t1_p2 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p7 - r_n2 * w_t2)) : T(0);
     out.regime = regime_now;
     const T check_sum = (((((out.v_t1 + out.v_n1) + (out.v_b1 + out.w_t1)) + ((out.w_n1 + out.w_b1) + (out.v_t2 + out.v_n2))) + (((out.v_b2 + out.w_t2) + (out.w_n2 + out.w_b2)) + ((out.normal_impulse + out.tangential_impulse_t) + (out.tangential_impulse_n + out.tangential_impulse_b)))) + ((((out.approach_velocity + out.energy_lost) + (e + mu)) + ((m1 + I1_tt) + (I1_tn + I1_tb))) + (((I1_nn + I1_nb) + (I1_bb + r_t1)) + ((r_n1 + r_b1) + (v_t1 + v_n1))))) + (((((v_b1 + w_t1) + (w_n1 + w_b1)) + ((m2 + I2_tt) + (I2_tn + I2_tb))) + (((I2_nn + I2_nb) + (I2_bb + r_t2)) + ((r_n2 + r_b2) + (v_t2 + v_n2)))) + ((v_b2 + w_t2) + (w_n2 + w_b2)));
-    if (!detail::finite(check_sum))
+    if (!detail::finite<T>(check_sum) && !detail::all_finite(out.v_t1, out.v_n1, out.v_b1, out.w_t1, out.w_n1, out.w_b1, out.v_t2, out.v_n2, out.v_b2, out.w_t2, out.w_n2, out.w_b2, out.normal_impulse, out.tangential_impulse_t, out.tangential_impulse_n, out.tangential_impulse_b, out.approach_velocity, out.energy_lost, e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2))
         return fail(friction_status::overflow);
+    return friction_status::ok;
+}
+
+/// noncentral_3d_friction without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, mu >= 0, masses and moments of inertia
+/// > 0, inertia tensors positive definite, a normal neither zero, denormal nor too long;
+/// what noncentral_3d_friction would not return invalid_* or non_finite_input for). On such inputs
+/// the result is bit for bit that of noncentral_3d_friction whenever it returns ok; the statuses that
+/// depend on the state (not_approaching, singular, no_solution, ambiguous, overflow of a
+/// candidate) are still returned, but no finiteness check guards the result.
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T e, T mu, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_friction_result<T>& out) noexcept
+{
+    using std::sqrt;
+    auto fail = [&](auto why) noexcept {
+        detail::noncentral_3d_friction_unchanged(e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return detail::friction_status_of(why);
+    };
+    // Shared steps, the checks of the state, the candidates and their conditions.
+    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+    const T inv_D_1 = T(1) / D_1;
+    const T J_tt1 = D_1_p1 * inv_D_1;
+    const T J_tn1 = -(D_1_p3 * inv_D_1);
+    const T J_tb1 = D_1_p2 * inv_D_1;
+    const T J_nn1 = inv_D_1 * (I1_bb * I1_tt - I1_tb * I1_tb);
+    const T J_nb1 = -(inv_D_1 * (I1_nb * I1_tt - I1_tn * I1_tb));
+    const T J_bb1 = inv_D_1 * (I1_nn * I1_tt - I1_tn * I1_tn);
+    const T D_2_p1 = I2_bb * I2_nn - I2_nb * I2_nb;
+    const T D_2_p2 = I2_nb * I2_tn - I2_nn * I2_tb;
+    const T D_2_p3 = I2_bb * I2_tn - I2_nb * I2_tb;
+    const T D_2 = D_2_p1 * I2_tt + I2_tb * D_2_p2 - I2_tn * D_2_p3;
+    const T inv_D_2 = T(1) / D_2;
+    const T J_tt2 = D_2_p1 * inv_D_2;
+    const T J_tn2 = -(D_2_p3 * inv_D_2);
+    const T J_tb2 = D_2_p2 * inv_D_2;
+    const T J_nn2 = inv_D_2 * (I2_bb * I2_tt - I2_tb * I2_tb);
+    const T J_nb2 = -(inv_D_2 * (I2_nb * I2_tt - I2_tn * I2_tb));
+    const T J_bb2 = inv_D_2 * (I2_nn * I2_tt - I2_tn * I2_tn);
+    const T K_scale_p1 = J_bb1 * r_t1 - J_tb1 * r_b1;
+    const T K_scale_p2 = J_bb2 * r_t2 - J_tb2 * r_b2;
+    const T inv_m1 = T(1) / m1;
+    const T inv_m2 = T(1) / m2;
+    const T K_scale = r_t1 * K_scale_p1 + r_t2 * K_scale_p2 + inv_m1 + inv_m2 - r_b1 * (J_tb1 * r_t1 - J_tt1 * r_b1) - r_b2 * (J_tb2 * r_t2 - J_tt2 * r_b2);
+    const T inv_K_scale = T(1) / K_scale;
+    const T K_tt = (inv_m2 + inv_m1 + r_n1 * (J_bb1 * r_n1 - J_nb1 * r_b1) + r_n2 * (J_bb2 * r_n2 - J_nb2 * r_b2) - r_b1 * (J_nb1 * r_n1 - J_nn1 * r_b1) - r_b2 * (J_nb2 * r_n2 - J_nn2 * r_b2)) * inv_K_scale;
+    const T K_tn_p1 = J_nb1 * r_t1;
+    const T K_tn_p2 = J_nb2 * r_t2;
+    const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
+    const T K_nn = K_scale * inv_K_scale;
+    const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
+    const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
+    const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
+    const T K_tb_p4 = J_nn2 * r_t2 - J_tn2 * r_n2;
+    const T K_tb = inv_K_scale * (r_n1 * K_tb_p1 + r_n2 * K_tb_p2 - r_b1 * K_tb_p3 - r_b2 * K_tb_p4);
+    const T K_nb_p1 = J_tn1 * r_t1 - J_tt1 * r_n1;
+    const T K_nb_p2 = J_tn2 * r_t2 - J_tt2 * r_n2;
+    const T K_nb = -(inv_K_scale * (r_t1 * K_tb_p1 + r_t2 * K_tb_p2 - r_b1 * K_nb_p1 - r_b2 * K_nb_p2));
+    const T K_bb = inv_K_scale * (inv_m2 + inv_m1 + r_t1 * K_tb_p3 + r_t2 * K_tb_p4 - r_n1 * K_nb_p1 - r_n2 * K_nb_p2);
+    const T u_t = r_b1 * w_n1 + r_n2 * w_b2 + v_t2 - r_b2 * w_n2 - r_n1 * w_b1 - v_t1;
+    const T u_n = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
+    if (!(u_n < T(0))) // the contact points approach: u_n < 0
+        return fail(impact_status::not_approaching);
+    const T u_b = r_n1 * w_t1 + r_t2 * w_n2 + v_b2 - r_n2 * w_t2 - r_t1 * w_n1 - v_b1;
+    const T stick_D_K_p1 = K_tn * K_nb - K_nn * K_tb;
+    const T stick_D_K_p2 = K_nn * K_bb - K_nb * K_nb;
+    const T stick_D_K_p3 = K_tn * K_bb - K_tb * K_nb;
+    const T stick_D_K = K_tb * stick_D_K_p1 + K_tt * stick_D_K_p2 - K_tn * stick_D_K_p3;
+    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
+        return fail(impact_status::singular);
+    const T stick_P_t_p1 = u_n + u_n * e;
+    const T inv_stick_D_K = T(1) / stick_D_K;
+    const T stick_P_t = -((u_b * stick_D_K_p1 + u_t * stick_D_K_p2 - stick_D_K_p3 * stick_P_t_p1) * inv_stick_D_K);
+    const T stick_P_n_p1 = K_tt * K_nb - K_tn * K_tb;
+    const T stick_P_n = inv_stick_D_K * (u_b * stick_P_n_p1 + u_t * stick_D_K_p3 - stick_P_t_p1 * (K_tt * K_bb - K_tb * K_tb));
+    const T stick_P_b = -(inv_stick_D_K * (u_b * (K_tt * K_nn - K_tn * K_tn) + u_t * stick_D_K_p1 - stick_P_t_p1 * stick_P_n_p1));
+    const T stick_F_n = stick_P_n - stick_P_n;
+    const T trig_a0_p1 = K_nb * u_t;
+    const T trig_a0_p2 = mu * trig_a0_p1 * (T(1) / T(2));
+    const T trig_a0_p3 = K_tn * u_b;
+    const T trig_a0_p4 = (T(1) / T(2)) * mu * trig_a0_p3;
+    const T trig_a1_p1 = T(1) + e;
+    const T trig_a1_p2 = K_nn * u_b - K_nb * u_n * trig_a1_p1;
+    const T trig_b1_p1 = trig_a1_p1 * K_tn * u_n;
+    const T trig_b1_p2 = K_nn * u_t;
+    const T trig_a2_p1 = trig_a1_p1 * K_tb * u_n;
+    const T trig_a2_p2 = mu * trig_a2_p1 - trig_a0_p2 - trig_a0_p4;
+    const T trig_b2_p1 = trig_a1_p1 * K_bb * u_n;
+    const T trig_b2_p2 = (T(1) / T(2)) * mu * trig_b2_p1;
+    const T trig_b2_p3 = K_tn * u_t;
+    const T trig_b2_p4 = (T(1) / T(2)) * mu * trig_b2_p3;
+    const T trig_b2_p5 = K_nb * u_b;
+    const T trig_b2_p6 = (T(1) / T(2)) * mu * trig_b2_p5;
+    const T trig_b2_p7 = trig_a1_p1 * K_tt * u_n;
+    const T trig_b2_p8 = (T(1) / T(2)) * mu * trig_b2_p7;
+    const T keep_1_p1 = trig_b1_p2 - trig_b1_p1;
+    const T slide_m11_p1 = trig_b2_p3 - trig_b2_p7;
+    const T slide_m22_p1 = trig_b2_p1 - trig_b2_p5;
+    const T unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * T(2);
+    const T c_stick_N = stick_P_n;
+    const T c_stick_P_t = stick_P_t;
+    const T c_stick_F_t = stick_P_t;
+    const T c_stick_P_n = stick_P_n;
+    const T c_stick_F_n = stick_F_n;
+    const T c_stick_P_b = stick_P_b;
+    const T c_stick_F_b = stick_P_b;
+    const T c_stick_cond1 = stick_P_n;
+    const T c_stick_cond2 = mu * stick_P_n * stick_P_n * mu - stick_F_n * stick_F_n - stick_P_b * stick_P_b - stick_P_t * stick_P_t;
+    const T trig_a0 = trig_a0_p2 - trig_a0_p4;
+    const T trig_a1 = trig_a1_p2;
+    const T trig_b1 = trig_b1_p1 - trig_b1_p2;
+    const T trig_a2 = trig_a2_p2;
+    const T trig_b2 = trig_b2_p2 + trig_b2_p4 - trig_b2_p6 - trig_b2_p8;
+    const T keep_0 = trig_b2_p2 + trig_b2_p8 - trig_b2_p6 - trig_b2_p4;
+    const T keep_1 = keep_1_p1;
+    const T keep_2 = trig_a1_p2;
+    const T keep_3 = trig_b2_p6 + trig_b2_p8 - trig_b2_p2 - trig_b2_p4;
+    const T keep_4 = trig_a2_p2;
+    const T slide_m11 = mu * slide_m11_p1;
+    const T slide_m12 = mu * (trig_a0_p1 - trig_a2_p1);
+    const T slide_m21 = -(mu * (trig_a2_p1 - trig_a0_p3));
+    const T slide_m22 = -(mu * slide_m22_p1);
+    const T slide_b1 = keep_1_p1;
+    const T slide_b2 = trig_a1_p2;
+    const T unique_monotone = -(slide_m11_p1 * slide_m22_p1 * T(31) + unique_monotone_p1 * unique_monotone_p1 * T(8));
+    const T lk_1 = inv_K_scale;
+    const T lk_2 = inv_m1;
+    const T lk_3 = inv_m2;
+    const T lk_J_tt1 = J_tt1;
+    const T lk_J_tn1 = J_tn1;
+    const T lk_J_tb1 = J_tb1;
+    const T lk_J_nn1 = J_nn1;
+    const T lk_J_nb1 = J_nb1;
+    const T lk_J_bb1 = J_bb1;
+    const T lk_J_tt2 = J_tt2;
+    const T lk_J_tn2 = J_tn2;
+    const T lk_J_tb2 = J_tb2;
+    const T lk_J_nn2 = J_nn2;
+    const T lk_J_nb2 = J_nb2;
+    const T lk_J_bb2 = J_bb2;
+    const T lk_K_tt = K_tt;
+    const T lk_K_tn = K_tn;
+    const T lk_K_nn = K_nn;
+    const T lk_K_tb = K_tb;
+    const T lk_K_nb = K_nb;
+    const T lk_K_bb = K_bb;
+    const T lk_u_t = u_t;
+    const T lk_u_n = u_n;
+    const T lk_u_b = u_b;
+    // The regime that holds: its impulse (world axes, on 2), normal and tangential impulse.
+    T sel_N = T(0);
+    T sel_P_t = T(0);
+    T sel_F_t = T(0);
+    T sel_P_n = T(0);
+    T sel_F_n = T(0);
+    T sel_P_b = T(0);
+    T sel_F_b = T(0);
+    impact_regime regime_now = impact_regime::smooth;
+    if (mu == T(0)) { // the smooth impact
+        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
+            return fail(impact_status::singular);
+        const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
+        sel_N = N_0;
+        sel_P_t = T(0);
+        sel_F_t = T(0);
+        sel_P_n = N_0;
+        sel_F_n = T(0);
+        sel_P_b = T(0);
+        sel_F_b = T(0);
+    } else {
+        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        int n_holding = static_cast<int>(stick_holds);
+        regime_now = stick_holds ? impact_regime::stick : impact_regime::slide;
+        sel_N = c_stick_N;
+        sel_P_t = c_stick_P_t;
+        sel_F_t = c_stick_F_t;
+        sel_P_n = c_stick_P_n;
+        sel_F_n = c_stick_F_n;
+        sel_P_b = c_stick_P_b;
+        sel_F_b = c_stick_F_b;
+        int n_apart = 0; // slides holding that are not the stick solution
+        bool at_stick = stick_holds; // some candidate is the stick solution
+        const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n)), detail::abs_of<T>(c_stick_P_b));
+        // The sliding directions: roots of g (cos and sin of the angle from e_t towards e_b),
+        // only where lambda D may be > 0 (the filter keep_*).
+        T root_c[4];
+        T root_s[4];
+        const T keep[5] = {keep_0, keep_1, keep_2, keep_3, keep_4};
+        // At most one solution when M + M^T is positive definite (with a margin;
+        // detail::slide_direction): then pass 0 takes the stick candidate when it
+        // holds, else the one slide; pass 1 (not unique, or the slide not confirmed within
+        // rounding) searches every direction and counts what holds.
+        const bool unique = ((static_cast<unsigned>(slide_m11 > T(0)) & static_cast<unsigned>(unique_monotone > T(0))) != 0u);
+        bool slides_finite = true;
+        for (int pass = unique ? 0 : 1; pass < 2; ++pass) {
+            int n_roots = 0;
+            if (pass == 0) {
+                if (!stick_holds && !detail::slide_direction(slide_m11, slide_m12, slide_m21, slide_m22, slide_b1, slide_b2, root_c[0], root_s[0]))
+                    continue;
+                n_roots = stick_holds ? 0 : 1;
+            } else {
+                n_roots = detail::trig2_roots(trig_a0, trig_a1, trig_b1, trig_a2, trig_b2, keep, root_c, root_s);
+            }
+            if (n_roots == -2) // a coefficient of g overflowed
+                return fail(friction_status::overflow);
+            // g = 0 identically: every direction satisfies it; a slide that holds in any of
+            // these four is one of infinitely many (ambiguous)
+            const bool every_direction = n_roots == -1;
+            if (every_direction) {
+                root_c[0] = T(1);
+                root_s[0] = T(0);
+                root_c[1] = T(0);
+                root_s[1] = T(1);
+                root_c[2] = T(-1);
+                root_s[2] = T(0);
+                root_c[3] = T(0);
+                root_s[3] = T(-1);
+                n_roots = 4;
+            }
+            for (int k = 0; k < n_roots; ++k) {
+                const T c_d = root_c[k];
+                const T s_d = root_s[k];
+                const T slide_D_s = lk_K_nn - c_d * lk_K_tn * mu - mu * lk_K_nb * s_d;
+                const T slide_N = -((e + T(1)) * lk_u_n / slide_D_s);
+                const T slide_P_t = -(mu * c_d * slide_N);
+                const T slide_P_b = -(s_d * mu * slide_N);
+                const T slide_lambda = -(s_d * (slide_N * (mu * c_d * lk_K_tb + s_d * mu * lk_K_bb - lk_K_nb) - lk_u_b) + c_d * (slide_N * (mu * c_d * lk_K_tt + s_d * mu * lk_K_tb - lk_K_tn) - lk_u_t));
+                const T c_slide_N = slide_N;
+                const T c_slide_P_t = slide_P_t;
+                const T c_slide_F_t = slide_P_t;
+                const T c_slide_P_n = slide_N;
+                const T c_slide_F_n = T(0);
+                const T c_slide_P_b = slide_P_b;
+                const T c_slide_F_b = slide_P_b;
+                const T c_slide_cond1 = slide_D_s;
+                const T c_slide_cond2 = slide_lambda;
+                slides_finite = slides_finite && detail::finite<T>((c_slide_cond1 + c_slide_cond2) + c_slide_N);
+                const bool slide_near = detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
+                at_stick = at_stick || slide_near;
+                if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
+                    n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
+                    n_holding += (every_direction ? 2 : 1);
+                    if (n_holding == (every_direction ? 2 : 1)) {
+                        regime_now = impact_regime::slide;
+                        sel_N = c_slide_N;
+                        sel_P_t = c_slide_P_t;
+                        sel_F_t = c_slide_F_t;
+                        sel_P_n = c_slide_P_n;
+                        sel_F_n = c_slide_F_n;
+                        sel_P_b = c_slide_P_b;
+                        sel_F_b = c_slide_F_b;
+                    }
+                }
+            }
+            if (pass == 0) {
+                if (n_holding == 1)
+                    break;
+                n_holding = static_cast<int>(stick_holds);
+                n_apart = 0;
+                at_stick = stick_holds;
+                slides_finite = true;
+            }
+        }
+        if (n_holding != 1) {
+            // On the stick/slide boundary within rounding (the stick candidate holding or a slide
+            // with its impulse, and nothing else holding): the stick solution.
+            if (n_apart == 0 && at_stick) {
+                n_holding = 1;
+                regime_now = impact_regime::stick;
+                sel_N = c_stick_N;
+                sel_P_t = c_stick_P_t;
+                sel_F_t = c_stick_F_t;
+                sel_P_n = c_stick_P_n;
+                sel_F_n = c_stick_F_n;
+                sel_P_b = c_stick_P_b;
+                sel_F_b = c_stick_F_b;
+            } else {
+                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
+                    return fail(friction_status::overflow);
+                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+            }
+        }
+    }
+    // The post-impact state.
+    const T v_t1_p1 = lk_1 * lk_2;
+    const T v_t1_p2 = v_t1_p1 * sel_P_t;
+    const T v_n1_p1 = v_t1_p1 * sel_P_n;
+    const T v_b1_p1 = v_t1_p1 * sel_P_b;
+    const T w_t1_p1 = lk_1 * r_b1;
+    const T w_t1_p2 = lk_1 * r_t1;
+    const T w_t1_p3 = sel_P_t * w_t1_p1 - sel_P_b * w_t1_p2;
+    const T w_t1_p4 = w_t1_p3 * lk_J_tn1;
+    const T w_t1_p5 = lk_1 * r_n1;
+    const T w_t1_p6 = sel_P_n * w_t1_p1 - sel_P_b * w_t1_p5;
+    const T w_t1_p7 = w_t1_p6 * lk_J_tt1;
+    const T w_t1_p8 = sel_P_t * w_t1_p5 - sel_P_n * w_t1_p2;
+    const T w_t1_p9 = w_t1_p8 * lk_J_tb1;
+    const T w_n1_p1 = w_t1_p3 * lk_J_nn1;
+    const T w_n1_p2 = lk_J_tn1 * w_t1_p6;
+    const T w_n1_p3 = w_t1_p8 * lk_J_nb1;
+    const T w_b1_p1 = w_t1_p3 * lk_J_nb1;
+    const T w_b1_p2 = w_t1_p6 * lk_J_tb1;
+    const T w_b1_p3 = w_t1_p8 * lk_J_bb1;
+    const T v_t2_p1 = lk_1 * lk_3;
+    const T v_t2_p2 = sel_P_t * v_t2_p1;
+    const T v_n2_p1 = sel_P_n * v_t2_p1;
+    const T v_b2_p1 = sel_P_b * v_t2_p1;
+    const T w_t2_p1 = lk_1 * r_b2;
+    const T w_t2_p2 = lk_1 * r_n2;
+    const T w_t2_p3 = sel_P_n * w_t2_p1 - sel_P_b * w_t2_p2;
+    const T w_t2_p4 = lk_1 * r_t2;
+    const T w_t2_p5 = sel_P_t * w_t2_p2 - sel_P_n * w_t2_p4;
+    const T w_t2_p6 = sel_P_t * w_t2_p1 - sel_P_b * w_t2_p4;
+    const T w_t2_p7 = w_t2_p3 * lk_J_tt2 + w_t2_p5 * lk_J_tb2 + w_t2 - w_t2_p6 * lk_J_tn2;
+    const T w_n2_p1 = w_t2_p3 * lk_J_tn2 + w_t2_p5 * lk_J_nb2 + w_n2 - w_t2_p6 * lk_J_nn2;
+    const T w_b2_p1 = w_t2_p3 * lk_J_tb2 + w_t2_p5 * lk_J_bb2 + w_b2 - w_t2_p6 * lk_J_nb2;
+    const T energy_lost_p1 = w_b1_p2 + w_b1_p3 - w_b1_p1 - w_b1;
+    const T energy_lost_p2 = w_t1_p7 + w_t1_p9 - w_t1_p4 - w_t1;
+    const T energy_lost_p3 = w_n1_p2 + w_n1_p3 - w_n1_p1 - w_n1;
+    out.v_t1 = v_t1 - v_t1_p2;
+    out.v_n1 = v_n1 - v_n1_p1;
+    out.v_b1 = v_b1 - v_b1_p1;
+    out.w_t1 = w_t1_p4 + w_t1 - w_t1_p7 - w_t1_p9;
+    out.w_n1 = w_n1_p1 + w_n1 - w_n1_p2 - w_n1_p3;
+    out.w_b1 = w_b1_p1 + w_b1 - w_b1_p2 - w_b1_p3;
+    out.v_t2 = v_t2_p2 + v_t2;
+    out.v_n2 = v_n2_p1 + v_n2;
+    out.v_b2 = v_b2_p1 + v_b2;
+    out.w_t2 = w_t2_p7;
+    out.w_n2 = w_n2_p1;
+    out.w_b2 = w_b2_p1;
+    out.normal_impulse = lk_1 * sel_N;
+    out.tangential_impulse_t = lk_1 * sel_F_t;
+    out.tangential_impulse_n = lk_1 * sel_F_n;
+    out.tangential_impulse_b = lk_1 * sel_F_b;
+    out.approach_velocity = lk_u_n;
+    out.energy_lost = with_energy_lost ? (sel_P_n * lk_1 * (r_t1 * energy_lost_p1 + r_b1 * w_t1 + v_n1 * T(2) - r_b1 * energy_lost_p2 - v_n1_p1 - r_t1 * w_b1) * (T(1) / T(2)) + (T(1) / T(2)) * sel_P_n * lk_1 * (r_t2 * w_b2_p1 + r_t2 * w_b2 - r_b2 * w_t2_p7 - v_n2_p1 - r_b2 * w_t2 - v_n2 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t1_p2 + r_n1 * energy_lost_p1 + r_b1 * w_n1 - r_b1 * energy_lost_p3 - r_n1 * w_b1 - v_t1 * T(2)) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b1_p1 + r_t1 * energy_lost_p3 + w_t1 * r_n1 - r_n1 * energy_lost_p2 - r_t1 * w_n1 - v_b1 * T(2)) - (T(1) / T(2)) * sel_P_t * lk_1 * (v_t2_p2 + r_n2 * w_b2_p1 + r_n2 * w_b2 + v_t2 * T(2) - r_b2 * w_n2_p1 - r_b2 * w_n2) - (T(1) / T(2)) * sel_P_b * lk_1 * (v_b2_p1 + r_t2 * w_n2_p1 + r_t2 * w_n2 + v_b2 * T(2) - r_n2 * w_t2_p7 - r_n2 * w_t2)) : T(0);
+    out.regime = regime_now;
     return friction_status::ok;
 }
 

@@ -11,8 +11,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
 //                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
@@ -93,8 +93,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
@@ -378,6 +378,48 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     out.R_y2 = o_R_y2;
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// pinned_planar without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, masses and moments of inertia > 0 (their
+/// inverses >= 0), inertia tensors positive definite (inverse tensors semidefinite), a
+/// normal neither zero, denormal nor too long: what pinned_planar would not return
+/// invalid_* or non_finite_input for). On such inputs the result is bit for bit that of
+/// pinned_planar whenever it returns ok; not_approaching and singular are still returned
+/// (they depend on the state), but no finiteness check guards the result (no overflow).
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar_unchecked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+{
+    auto fail = [&](impact_status why) noexcept {
+        detail::pinned_planar_unchanged(e, m1, l, v1, m2, out);
+        return why;
+    };
+    (void)fail; // a fully numeric problem may have no check left
+    const T w_1 = T(1) / m1;
+    const T I_E2_p1 = l * l;
+    const T I_E2 = I_E2_p1 * m2 * (T(1) / T(3));
+    const T inv_I_E2 = T(1) / I_E2;
+    const T w_2 = I_E2_p1 * inv_I_E2;
+    const T u = -v1;
+    if (!(u < T(0))) // the contact points approach: u < 0
+        return fail(impact_status::not_approaching);
+    const T k = w_1 + w_2;
+    if (!(k > T(0) && detail::finite(k))) // effective inverse mass k > 0, finite
+        return fail(impact_status::singular);
+    const T N = -(u * (T(1) + e) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T v_x2_p1 = w_2 * N;
+    out.v_x1 = v1 - w_1 * N;
+    out.v_y1 = T(0);
+    out.v_x2 = (T(1) / T(2)) * v_x2_p1;
+    out.v_y2 = T(0);
+    out.w_z2 = inv_I_E2 * l * N;
+    out.normal_impulse = N;
+    out.R_x2 = (T(1) / T(2)) * m2 * v_x2_p1 - N;
+    out.R_y2 = T(0);
+    out.approach_velocity = u;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     return impact_status::ok;
 }
 

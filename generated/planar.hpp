@@ -11,8 +11,8 @@
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
 //                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
@@ -93,8 +93,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
@@ -395,6 +395,47 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n
     out.normal_impulse = o_normal_impulse;
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// planar without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, masses and moments of inertia > 0 (their
+/// inverses >= 0), inertia tensors positive definite (inverse tensors semidefinite), a
+/// normal neither zero, denormal nor too long: what planar would not return
+/// invalid_* or non_finite_input for). On such inputs the result is bit for bit that of
+/// planar whenever it returns ok; not_approaching and singular are still returned
+/// (they depend on the state), but no finiteness check guards the result (no overflow).
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_unchecked(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
+{
+    auto fail = [&](impact_status why) noexcept {
+        detail::planar_unchanged(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
+        return why;
+    };
+    (void)fail; // a fully numeric problem may have no check left
+    const T inv_I1 = T(1) / I1;
+    const T inv_m1 = T(1) / m1;
+    const T w_1 = r_t1 * r_t1 * inv_I1 + inv_m1;
+    const T inv_I2 = T(1) / I2;
+    const T inv_m2 = T(1) / m2;
+    const T w_2 = r_t2 * r_t2 * inv_I2 + inv_m2;
+    const T u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
+    if (!(u < T(0))) // the contact points approach: u < 0
+        return fail(impact_status::not_approaching);
+    const T k = w_1 + w_2;
+    if (!(k > T(0) && detail::finite(k))) // effective inverse mass k > 0, finite
+        return fail(impact_status::singular);
+    const T N = -(u * (T(1) + e) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    out.v_t1 = v_t1;
+    out.v_n1 = v_n1 - inv_m1 * N;
+    out.w_b1 = w_b1 + inv_I1 * r_t1 * N;
+    out.v_t2 = v_t2;
+    out.v_n2 = v_n2 + inv_m2 * N;
+    out.w_b2 = w_b2 - inv_I2 * r_t2 * N;
+    out.normal_impulse = N;
+    out.approach_velocity = u;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     return impact_status::ok;
 }
 

@@ -3,16 +3,16 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 12 add/sub, 17 mul, 1 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 10 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 2 fma, 5 min (checks), 2 tests;
-//   batch loop: 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 2 fma, 5 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 2 fma, 6 min (checks), 2 tests;
+//   batch loop: 12 add/sub, 17 mul, 1 div, 0 sqrt + 9 add, 2 fma, 6 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
 
 namespace impactgen::generated {
 
-#ifndef IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_PREAMBLE_4F326668_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_PREAMBLE_E0D13B17_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 // Hooks the user may define before including a generated header:
 //   IMPACTGEN_HOST_DEVICE  where functions run: by default __host__ __device__
 //                   under a CUDA or HIP compiler (nvcc, hipcc, clang -x cuda), so
@@ -93,8 +93,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
@@ -213,15 +213,15 @@ template <typename T> struct planar_engine_result {
 /// The inputs of planar_engine by name (the same as its parameters).
 template <typename T> struct planar_engine_input {
     T e; ///< coefficient of restitution, 0 <= e <= 1
-    T inv_m1; ///< inverse mass 1/m of 1 (> 0)
-    T inv_I1; ///< inverse moment of inertia 1/I of 1 about its centre of mass (> 0)
+    T inv_m1; ///< inverse mass 1/m of 1 (>= 0; 0: a static or kinematic body)
+    T inv_I1; ///< inverse moment of inertia 1/I of 1 about its centre of mass (>= 0; 0: rotation locked)
     T r_t1; ///< centre of mass of 1, t
     T r_n1; ///< centre of mass of 1, n
     T v_t1; ///< velocity of the centre of mass of 1 before impact, t
     T v_n1; ///< velocity of the centre of mass of 1 before impact, n
     T w_b1; ///< angular velocity of 1 before impact, b
-    T inv_m2; ///< inverse mass 1/m of 2 (> 0)
-    T inv_I2; ///< inverse moment of inertia 1/I of 2 about its centre of mass (> 0)
+    T inv_m2; ///< inverse mass 1/m of 2 (>= 0; 0: a static or kinematic body)
+    T inv_I2; ///< inverse moment of inertia 1/I of 2 about its centre of mass (>= 0; 0: rotation locked)
     T r_t2; ///< centre of mass of 2, t
     T r_n2; ///< centre of mass of 2, n
     T v_t2; ///< velocity of the centre of mass of 2 before impact, t
@@ -296,13 +296,13 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1,
     (void)fail; // a fully numeric problem may have no check left
     if (!(e >= T(0) && e <= T(1))) // 0 <= e <= 1
         return fail(impact_status::invalid_restitution);
-    if (!(inv_m1 > T(0) && detail::finite(inv_m1))) // inverse mass of 1 > 0, finite
+    if (!(inv_m1 >= T(0) && detail::finite(inv_m1))) // inverse mass of 1 >= 0, finite
         return fail(impact_status::invalid_mass);
-    if (!(inv_I1 > T(0) && detail::finite(inv_I1))) // inverse moment of inertia of 1 > 0, finite
+    if (!(inv_I1 >= T(0) && detail::finite(inv_I1))) // inverse moment of inertia of 1 >= 0, finite
         return fail(impact_status::invalid_inertia);
-    if (!(inv_m2 > T(0) && detail::finite(inv_m2))) // inverse mass of 2 > 0, finite
+    if (!(inv_m2 >= T(0) && detail::finite(inv_m2))) // inverse mass of 2 >= 0, finite
         return fail(impact_status::invalid_mass);
-    if (!(inv_I2 > T(0) && detail::finite(inv_I2))) // inverse moment of inertia of 2 > 0, finite
+    if (!(inv_I2 >= T(0) && detail::finite(inv_I2))) // inverse moment of inertia of 2 >= 0, finite
         return fail(impact_status::invalid_inertia);
     const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
     const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
@@ -339,15 +339,15 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1,
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
-///   inv_m1: inverse mass 1/m of 1 (> 0)
-///   inv_I1: inverse moment of inertia 1/I of 1 about its centre of mass (> 0)
+///   inv_m1: inverse mass 1/m of 1 (>= 0; 0: a static or kinematic body)
+///   inv_I1: inverse moment of inertia 1/I of 1 about its centre of mass (>= 0; 0: rotation locked)
 ///   r_t1: centre of mass of 1, t
 ///   r_n1: centre of mass of 1, n
 ///   v_t1: velocity of the centre of mass of 1 before impact, t
 ///   v_n1: velocity of the centre of mass of 1 before impact, n
 ///   w_b1: angular velocity of 1 before impact, b
-///   inv_m2: inverse mass 1/m of 2 (> 0)
-///   inv_I2: inverse moment of inertia 1/I of 2 about its centre of mass (> 0)
+///   inv_m2: inverse mass 1/m of 2 (>= 0; 0: a static or kinematic body)
+///   inv_I2: inverse moment of inertia 1/I of 2 about its centre of mass (>= 0; 0: rotation locked)
 ///   r_t2: centre of mass of 2, t
 ///   r_n2: centre of mass of 2, n
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
@@ -371,9 +371,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1
     const T o_normal_impulse = N;
     const T o_approach_velocity = u;
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
+    // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse moment of inertia of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse moment of inertia of 2 >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2)) >= T(0)) &&
+                    (T(T(detail::min_of(T(-u), T(k)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
         return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
     out.v_t1 = o_v_t1;
@@ -385,6 +385,43 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1
     out.normal_impulse = o_normal_impulse;
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// planar_engine without the per-call validation, for inputs the caller validated once
+/// (contract: every input finite, 0 <= e <= 1, masses and moments of inertia > 0 (their
+/// inverses >= 0), inertia tensors positive definite (inverse tensors semidefinite), a
+/// normal neither zero, denormal nor too long: what planar_engine would not return
+/// invalid_* or non_finite_input for). On such inputs the result is bit for bit that of
+/// planar_engine whenever it returns ok; not_approaching and singular are still returned
+/// (they depend on the state), but no finiteness check guards the result (no overflow).
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine_unchecked(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
+{
+    auto fail = [&](impact_status why) noexcept {
+        detail::planar_engine_unchanged(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
+        return why;
+    };
+    (void)fail; // a fully numeric problem may have no check left
+    const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
+    const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
+    const T u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
+    if (!(u < T(0))) // the contact points approach: u < 0
+        return fail(impact_status::not_approaching);
+    const T k = w_1 + w_2;
+    if (!(k > T(0) && detail::finite(k))) // effective inverse mass k > 0, finite
+        return fail(impact_status::singular);
+    const T N = -(u * (e + T(1)) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    out.v_t1 = v_t1;
+    out.v_n1 = v_n1 - inv_m1 * N;
+    out.w_b1 = w_b1 + r_t1 * inv_I1 * N;
+    out.v_t2 = v_t2;
+    out.v_n2 = v_n2 + inv_m2 * N;
+    out.w_b2 = w_b2 - r_t2 * inv_I2 * N;
+    out.normal_impulse = N;
+    out.approach_velocity = u;
+    out.energy_lost = with_energy_lost ? T_lost : T(0);
     return impact_status::ok;
 }
 
@@ -449,9 +486,9 @@ IMPACTGEN_FUNC unsigned planar_engine_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_normal_impulse = N;
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-        // checks: 0 <= e <= 1; inverse mass of 1 > 0, finite; inverse moment of inertia of 1 > 0, finite; inverse mass of 2 > 0, finite; inverse moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0))) != 0u;
+        // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse moment of inertia of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse moment of inertia of 2 >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2)) >= T(0)) &
+                         static_cast<unsigned>(T(T(detail::min_of(T(-u), T(k)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_w_b1[i] = o_w_b1;

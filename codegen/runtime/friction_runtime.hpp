@@ -66,8 +66,10 @@ IMPACTGEN_FUNC constexpr friction_status friction_status_of(friction_status s) n
 /// 2^-16 in float) relative of each other count as that one solution.
 template <typename T> IMPACTGEN_FUNC T boundary_tolerance() noexcept
 {
-    using std::ldexp;
-    return ldexp(T(1), -(2 * std::numeric_limits<T>::digits / 3));
+    T r(1); // 2^-k by halving: exact, and for any scalar (an autodiff type has no ldexp)
+    for (int k = 2 * std::numeric_limits<T>::digits / 3; k > 0; --k)
+        r = r / T(2);
+    return r;
 }
 
 /// A unit tangent basis (t, b) of the plane normal to n (any length; n = 0 or not finite
@@ -118,7 +120,7 @@ struct trig2_stats {
 #define IMPACTGEN_TRIG2_COUNT(what) ((void)0)
 #endif
 
-template <typename T> IMPACTGEN_FUNC T abs_of(T x) noexcept { return x < T(0) ? -x : x; }
+template <typename T> IMPACTGEN_FUNC T abs_of(T x) noexcept { return x < T(0) ? T(-x) : x; }
 template <typename T> IMPACTGEN_FUNC T max_of(T x, T y) noexcept { return x < y ? y : x; }
 
 /// cos(r pi / 8), r = 0..4.
@@ -176,9 +178,9 @@ template <typename T> IMPACTGEN_FUNC T poly_root(const T* c, int deg, T lo, T hi
         return hi;
     T neg = flo < T(0) ? lo : hi, pos = flo < T(0) ? hi : lo; // p(neg) < 0 < p(pos)
     T x = (x0 - lo) * (x0 - hi) < T(0) ? x0 : (lo + hi) / T(2);
-    T dx_old = abs_of(hi - lo), dx = dx_old;
+    T dx_old = abs_of<T>(hi - lo), dx = dx_old;
     T f, df;
-    horner(c, deg, x, f, df);
+    horner<T>(c, deg, x, f, df);
     const int cap = std::numeric_limits<T>::digits + 16;
     int it = 0;
     for (; it < cap; ++it) {
@@ -190,16 +192,16 @@ template <typename T> IMPACTGEN_FUNC T poly_root(const T* c, int deg, T lo, T hi
             pos = x;
         const T newton = x - f / df;
         dx_old = dx;
-        if ((newton - neg) * (newton - pos) < T(0) && abs_of(T(2) * f) <= abs_of(dx_old * df)) {
-            dx = abs_of(x - newton);
+        if ((newton - neg) * (newton - pos) < T(0) && abs_of<T>(T(2) * f) <= abs_of<T>(dx_old * df)) {
+            dx = abs_of<T>(x - newton);
             x = newton;
         } else {
-            dx = abs_of(pos - neg) / T(2);
+            dx = abs_of<T>(pos - neg) / T(2);
             x = (pos + neg) / T(2);
         }
         if (dx <= tol)
             break;
-        horner(c, deg, x, f, df);
+        horner<T>(c, deg, x, f, df);
     }
 #ifdef IMPACTGEN_TRIG2_STATS
     trig2_stats::iterations() += it;
@@ -251,18 +253,18 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     IMPACTGEN_TRIG2_COUNT(circle);
     int kmax = 0;
     for (int k = 1; k < 16; ++k)
-        if (abs_of(g[k]) > abs_of(g[kmax]))
+        if (abs_of<T>(g[k]) > abs_of<T>(g[kmax]))
             kmax = k;
     T cc, sc;
-    unit_pi8((kmax + 8) & 15, cc, sc);
+    unit_pi8<T>((kmax + 8) & 15, cc, sc);
     T q[5];
-    trig2_chart(a0, a1, b1, a2, b2, cc, sc, q);
+    trig2_chart<T>(a0, a1, b1, a2, b2, cc, sc, q);
     for (int i = 1; i < 5; ++i)
         q[i] /= q[0];
     q[0] = T(1);
-    T B = abs_of(q[1]);
+    T B = abs_of<T>(q[1]);
     for (int i = 2; i < 5; ++i)
-        B = max_of(B, abs_of(q[i]));
+        B = max_of<T>(B, abs_of<T>(q[i]));
     B += T(1);
     const T eps = detail::machine_epsilon<T>();
     const T d1[4] = {T(4), T(3) * q[1], T(2) * q[2], q[3]}; // q'
@@ -283,31 +285,31 @@ IMPACTGEN_COLD IMPACTGEN_FUNC int trig2_roots_circle(T a0, T a1, T b1, T a2, T b
     int nc = 0;
     crit[nc++] = -B;
     T prev;
-    horner(d1, 3, ends[0], prev, dd);
+    horner<T>(d1, 3, ends[0], prev, dd);
     for (int i = 1; i < ne; ++i) {
         T v;
-        horner(d1, 3, ends[i], v, dd);
+        horner<T>(d1, 3, ends[i], v, dd);
         if ((prev < T(0) && v > T(0)) || (prev > T(0) && v < T(0)))
-            crit[nc++] = poly_root(d1, 3, ends[i - 1], ends[i], prev, v, (ends[i - 1] + ends[i]) / T(2), T(2) * eps * (T(1) + abs_of(ends[i])));
+            crit[nc++] = poly_root<T>(d1, 3, ends[i - 1], ends[i], prev, v, (ends[i - 1] + ends[i]) / T(2), T(2) * eps * (T(1) + abs_of<T>(ends[i])));
         else if (v == T(0) && i + 1 < ne)
             crit[nc++] = ends[i];
         prev = v;
     }
     crit[nc++] = B;
     int n = 0;
-    horner(q, 4, crit[0], prev, dd);
+    horner<T>(q, 4, crit[0], prev, dd);
     for (int i = 1; i < nc && n < 4; ++i) {
         T v, t = T(0);
-        horner(q, 4, crit[i], v, dd);
+        horner<T>(q, 4, crit[i], v, dd);
         bool found = true;
         if ((prev < T(0) && v > T(0)) || (prev > T(0) && v < T(0)))
-            t = poly_root(q, 4, crit[i - 1], crit[i], prev, v, (crit[i - 1] + crit[i]) / T(2), T(2) * eps * (T(1) + abs_of(crit[i])));
+            t = poly_root<T>(q, 4, crit[i - 1], crit[i], prev, v, (crit[i - 1] + crit[i]) / T(2), T(2) * eps * (T(1) + abs_of<T>(crit[i])));
         else if (v == T(0) && i + 1 < nc)
             t = crit[i];
         else
             found = false;
         if (found) {
-            trig2_rotate(cc, sc, t, rc[n], rs[n]);
+            trig2_rotate<T>(cc, sc, t, rc[n], rs[n]);
             ++n;
         }
         prev = v;
@@ -354,16 +356,16 @@ template <typename T> IMPACTGEN_FUNC void trig2_at(T a0, T a1, T b1, T a2, T b2,
 template <typename T> IMPACTGEN_FUNC int trig2_classify(const trig2_arc<T>& a, T L1, T L2, T L3) noexcept
 {
     const T w = a.w;
-    const T L2a = detail::min_of(L2, max_of(abs_of(a.el), abs_of(a.eh)) + L3 * w / T(2)); // |g''| on the arc
-    const T L1a = detail::min_of(L1, max_of(abs_of(a.dl), abs_of(a.dh)) + L2a * w / T(2)); // |g'| on the arc
+    const T L2a = detail::min_of<T>(L2, max_of<T>(abs_of<T>(a.el), abs_of<T>(a.eh)) + L3 * w / T(2)); // |g''| on the arc
+    const T L1a = detail::min_of<T>(L1, max_of<T>(abs_of<T>(a.dl), abs_of<T>(a.dh)) + L2a * w / T(2)); // |g'| on the arc
     const T r3 = L3 * w * w / T(8);
     const T sd = a.dl < T(0) ? T(-1) : T(1);
-    const bool mono = abs_of(a.dl) + abs_of(a.dh) > L2a * w ||
+    const bool mono = abs_of<T>(a.dl) + abs_of<T>(a.dh) > L2a * w ||
                       (sd * a.dh > T(0) && sd * (a.dl + a.el * w / T(2)) > r3 && sd * (a.dh - a.eh * w / T(2)) > r3);
-    const bool conv = (a.el < T(0)) == (a.eh < T(0)) && a.el != T(0) && abs_of(a.el) + abs_of(a.eh) > L3 * w;
+    const bool conv = (a.el < T(0)) == (a.eh < T(0)) && a.el != T(0) && abs_of<T>(a.el) + abs_of<T>(a.eh) > L3 * w;
     if ((a.gl < T(0)) != (a.gh < T(0)))
         return mono || conv ? 1 : 2;
-    if (mono || abs_of(a.gl) + abs_of(a.gh) > L1a * w)
+    if (mono || abs_of<T>(a.gl) + abs_of<T>(a.gh) > L1a * w)
         return 0;
     // In units where g > 0 at the ends: G = sigma g.
     const T sg = a.gl < T(0) ? T(-1) : T(1);
@@ -400,7 +402,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
     T p0[4], p1[4], p2[4], p3[4], p4[4], t[4], lo[4], hi[4], th[4], step[4], inside[4];
     for (int j = 0; j < n; ++j) {
         T p[5];
-        trig2_chart(a0, a1, b1, a2, b2, cl[j], sl[j], p);
+        trig2_chart<T>(a0, a1, b1, a2, b2, cl[j], sl[j], p);
         p0[j] = p[0];
         p1[j] = p[1];
         p2[j] = p[2];
@@ -434,7 +436,7 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             const T halley = x - T(2) * f * f1 / (T(2) * f1 * f1 - f * f2);
             const bool in = (halley > lo[j] && halley < hi[j]) || f == T(0);
             const T next = f == T(0) ? x : in ? halley : (lo[j] + hi[j]) / T(2);
-            step[j] = abs_of(next - x);
+            step[j] = abs_of<T>(next - x);
             inside[j] = in ? T(1) : T(0);
             t[j] = next;
             done = done && in && step[j] <= tight * th[j];
@@ -446,14 +448,14 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
             IMPACTGEN_TRIG2_COUNT(polished);
             const T p[5] = {p0[j], p1[j], p2[j], p3[j], p4[j]};
             T flo, fhi, dd;
-            horner(p, 4, lo[j], flo, dd);
-            horner(p, 4, hi[j], fhi, dd);
+            horner<T>(p, 4, lo[j], flo, dd);
+            horner<T>(p, 4, hi[j], fhi, dd);
             if ((flo < T(0)) != (fhi < T(0)))
-                t[j] = poly_root(p, 4, lo[j], hi[j], flo, fhi, t[j], T(2) * eps * th[j]);
+                t[j] = poly_root<T>(p, 4, lo[j], hi[j], flo, fhi, t[j], T(2) * eps * th[j]);
             else // the root is within rounding of an end of the bracket (p has the same computed sign at both)
-                t[j] = abs_of(flo) <= abs_of(fhi) ? lo[j] : hi[j];
+                t[j] = abs_of<T>(flo) <= abs_of<T>(fhi) ? lo[j] : hi[j];
         }
-        trig2_rotate(cl[j], sl[j], t[j], rc[j], rs[j]);
+        trig2_rotate<T>(cl[j], sl[j], t[j], rc[j], rs[j]);
     }
 }
 
@@ -483,7 +485,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
         return -2;
     // The roots do not change with the scale of g: divide by the largest coefficient, so
     // that the squares and bounds below neither overflow nor underflow.
-    const T m = max_of(max_of(max_of(abs_of(a0), abs_of(a1)), max_of(abs_of(b1), abs_of(a2))), abs_of(b2));
+    const T m = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(a0), abs_of<T>(a1)), max_of<T>(abs_of<T>(b1), abs_of<T>(a2))), abs_of<T>(b2));
     if (m == T(0))
         return -1;
     const T r = T(1) / m;
@@ -505,7 +507,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     // f(ends) + max|f'| w/2 < 0, hold no root wanted.
     unsigned drop = 0;
     if (keep != nullptr && detail::all_finite(keep[0], keep[1], keep[2], keep[3], keep[4])) {
-        const T mk = max_of(max_of(max_of(abs_of(keep[0]), abs_of(keep[1])), max_of(abs_of(keep[2]), abs_of(keep[3]))), abs_of(keep[4]));
+        const T mk = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(keep[0]), abs_of<T>(keep[1])), max_of<T>(abs_of<T>(keep[2]), abs_of<T>(keep[3]))), abs_of<T>(keep[4]));
         if (mk > T(0)) {
             const T rk = T(1) / mk;
             const T k0 = keep[0] * rk, k1 = keep[1] * rk, k2 = keep[2] * rk, k3 = keep[3] * rk, k4 = keep[4] * rk;
@@ -514,7 +516,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
             for (int k = 0; k < 17; ++k)
                 f[k] = k0 + k1 * uc[k] + k2 * us[k] + k3 * vc[k] + k4 * vs[k];
             for (int k = 0; k < 16; ++k)
-                drop |= static_cast<unsigned>(max_of(f[k], f[k + 1]) + half < T(0)) << k;
+                drop |= static_cast<unsigned>(max_of<T>(f[k], f[k + 1]) + half < T(0)) << k;
         }
     }
     if (drop == 0xFFFFu)
@@ -530,8 +532,8 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     const T L1w = L1 * w, L2w = L2 * w;
     for (int k = 0; k < 16; ++k) {
         const unsigned ch = static_cast<unsigned>((g[k] < T(0)) != (g[k + 1] < T(0)));
-        const unsigned mono = static_cast<unsigned>(abs_of(dg[k]) + abs_of(dg[k + 1]) > L2w);
-        const unsigned far = static_cast<unsigned>(abs_of(g[k]) + abs_of(g[k + 1]) > L1w);
+        const unsigned mono = static_cast<unsigned>(abs_of<T>(dg[k]) + abs_of<T>(dg[k + 1]) > L2w);
+        const unsigned far = static_cast<unsigned>(abs_of<T>(g[k]) + abs_of<T>(g[k + 1]) > L1w);
         change |= ch << k;
         open |= ((ch & ~mono) | (~ch & ~mono & ~far & 1u)) << k;
         zero |= static_cast<unsigned>(g[k] == T(0));
@@ -630,7 +632,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
 {
     using std::sqrt;
     // The direction does not change when m and b are scaled together.
-    const T sc = max_of(max_of(max_of(abs_of(m11), abs_of(m12)), max_of(abs_of(m21), abs_of(m22))), max_of(abs_of(b1), abs_of(b2)));
+    const T sc = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(m11), abs_of<T>(m12)), max_of<T>(abs_of<T>(m21), abs_of<T>(m22))), max_of<T>(abs_of<T>(b1), abs_of<T>(b2)));
     if (!(sc > T(0) && detail::finite(sc)))
         return false;
     const T r = T(1) / sc;
@@ -644,7 +646,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
     const T a1 = m22 * b1 - m12 * b2, a2 = m11 * b2 - m21 * b1; // adj(m) b
     const T nb = sqrt(b1 * b1 + b2 * b2), tol = T(4) * detail::machine_epsilon<T>() * nb;
     // l = |b| - b.m b / |b|^2: the root when m is a multiple of 1 (for large l, |x| ~ |b| / (l + b.m b / |b|^2))
-    T lo = T(0), hi = nb, l = max_of(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
+    T lo = T(0), hi = nb, l = max_of<T>(T(0), nb - (b1 * (m11 * b1 + m12 * b2) + b2 * (m21 * b1 + m22 * b2)) / (nb * nb));
     for (int it = 0; it < 12; ++it) {
         // x = (a1 + l b1, a2 + l b2) = adj(m + l 1) b, q = det(m + l 1); the Newton step
         // psi / psi' = (q - |x|) |x|^2 / ((2 l + tr) |x|^2 - q (x.b)), psi < 0 where q < |x|.
@@ -660,7 +662,7 @@ IMPACTGEN_FUNC bool slide_direction(T m11, T m12, T m21, T m22, T b1, T b2, T& c
         T next = l - step;
         if (!(next > lo && next < hi))
             next = (lo + hi) / T(2);
-        if (abs_of(next - l) <= tol || q == xx) {
+        if (abs_of<T>(next - l) <= tol || q == xx) {
             const T inv = T(1) / xx;
             c = x1 * inv;
             s = x2 * inv;

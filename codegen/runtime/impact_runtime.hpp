@@ -78,8 +78,8 @@ using wide_number = long double;
 enum class impact_status : int {
     ok = 0,
     non_finite_input,    ///< an input is infinite or NaN
-    invalid_mass,        ///< a mass (or inverse mass) is <= 0 or not finite
-    invalid_inertia,     ///< an inertia (or its determinant) is <= 0 or not finite
+    invalid_mass,        ///< a mass <= 0 (an inverse mass < 0) or not finite
+    invalid_inertia,     ///< an inertia not positive definite (an inverse one not semidefinite) or not finite
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)

@@ -2,7 +2,7 @@ cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 # Regenerates every checked-in header into WORK and compares bytes.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-# (the classes with friction too: codegen/friction.hpp)
+# (the classes with friction too: one writer, codegen/writer.hpp)
 set(classes central-direct central-oblique noncentral-3d massive-3d planar pinned-planar
             planar-friction ball-floor-friction noncentral-3d-friction)
 set(stale)

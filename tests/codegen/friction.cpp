@@ -1,4 +1,4 @@
-// The generated headers with Coulomb friction (codegen/friction.hpp) for the named
+// The generated headers with Coulomb friction (the writer codegen/writer.hpp) for the named
 // friction classes (planar-friction, ball-floor-friction, noncentral-3d-friction),
 // compiled into this test, against:
 //  - select_regime (symbolic/friction.hpp) evaluated exactly by CLN at the very inputs

@@ -1,6 +1,6 @@
 // detail::slide_direction, the sliding direction of a 3-D impact with friction whose
 // solution is provably unique (the friction preamble of every generated header with
-// friction; codegen/friction.cpp): with m = mu M (M + M^T positive definite) and b, the
+// friction; codegen/writer_stages.cpp): with m = mu M (M + M^T positive definite) and b, the
 // unit d and l > 0 with (m + l 1) d = b, when the stick candidate -m^{-1} b lies outside
 // the unit disc. Checked on seeded random m and b (anisotropic, non-symmetric, scaled
 // over 600 decades) against the equation itself, in float, double and long double.

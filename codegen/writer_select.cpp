@@ -1,13 +1,13 @@
-// The friction header writer (friction_writer.hpp): the main function, the regime
+// The one header writer (writer.hpp), a plan with a selection rule: the main function, the regime
 // selection (the closed-form candidates, the sliding-angle search, the root loop).
-#include "friction_writer.hpp"
+#include "writer.hpp"
 
-namespace impactgen::codegen::friction_detail
+namespace impactgen::codegen::writer_detail
 {
 
 // The conditions of a candidate, folded as unsigned (no branch implied, and nothing for
 // clang's -Wbitwise-instead-of-logical to say).
-std::string friction_writer::holds_text(const case_names &cn, const regime_case &c) const
+std::string writer::holds_text(const case_names &cn, const regime_case &c) const
 {
     std::vector<std::string> parts;
     for (std::size_t j = 0; j < cn.cond.size(); ++j)
@@ -19,7 +19,7 @@ std::string friction_writer::holds_text(const case_names &cn, const regime_case 
     return "((" + join(parts, " & ") + ") != 0u)";
 }
 
-std::string friction_writer::select_text(const case_names &cn, const std::string &regime, const std::string &ind) const
+std::string writer::select_text(const case_names &cn, const std::string &regime, const std::string &ind) const
 {
     std::string r = ind + regime_name_ + " = impact_regime::" + regime + ";\n";
     r += ind + sel_N_name_ + " = " + cn.N + ";\n";
@@ -32,28 +32,28 @@ std::string friction_writer::select_text(const case_names &cn, const std::string
 
 // The stick/slide boundary within rounding: a slide whose impulse is the stick
 // candidate's to within boundary_tolerance times its size is the same solution.
-std::string friction_writer::merge_text() const
+std::string writer::merge_text() const
 {
     const case_names &sn = names_.front();
-    std::string size = "detail::abs_of(" + sn.P[0] + ")";
+    std::string size = "detail::abs_of<T>(" + sn.P[0] + ")";
     for (std::size_t a = 1; a < sn.P.size(); ++a)
-        size = "detail::max_of(" + size + ", detail::abs_of(" + sn.P[a] + "))";
+        size = "detail::max_of<T>(" + size + ", detail::abs_of<T>(" + sn.P[a] + "))";
     return "detail::boundary_tolerance<T>() * " + size;
 }
 
-std::string friction_writer::near_text(const case_names &cn) const
+std::string writer::near_text(const case_names &cn) const
 {
     const case_names &sn = names_.front();
     std::vector<std::string> parts;
     for (std::size_t a = 0; a < cn.P.size(); ++a)
-        parts.push_back("detail::abs_of(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
+        parts.push_back("detail::abs_of<T>(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
     return join(parts, " && ");
 }
 
 // Counting the closed-form candidates that hold; they are selected without a branch (the
 // first that holds: stick when there is one, then the slides; the last when none does:
 // replaced below). Only the rare boundary and failure cases branch.
-void friction_writer::emit_closed_forms(const std::string &ind)
+void writer::emit_closed_forms(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     for (std::size_t i = 0; i < f_.cases.size(); ++i)
@@ -87,7 +87,7 @@ void friction_writer::emit_closed_forms(const std::string &ind)
 
 // The 3-D slide without closed form: its directions (pass 0: the one direction when the
 // solution is provably unique; pass 1: every root of g), each a candidate.
-void friction_writer::emit_angle_search(const std::string &ind)
+void writer::emit_angle_search(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const std::string i2 = ind + "    ", j2 = i2 + "    ";
@@ -153,7 +153,7 @@ void friction_writer::emit_angle_search(const std::string &ind)
 
 // The loop over the roots of g (inside the passes): the slide along each, counted when
 // it holds, the first selected.
-void friction_writer::emit_root_loop(const std::string &ind)
+void writer::emit_root_loop(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const case_names &cn = names_[static_cast<std::size_t>(angle_)];
@@ -166,7 +166,7 @@ void friction_writer::emit_root_loop(const std::string &ind)
     h_ << indent(b_.em.code, ind);
     std::vector<std::string> slide_values = cn.cond;
     slide_values.push_back(cn.N);
-    h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite("
+    h_ << i2 << slides_finite_name_ << " = " << slides_finite_name_ << " && detail::finite<T>("
        << balanced_sum(slide_values) << ");\n";
     const std::string step = "(" + every_name_ + " ? 2 : 1)";
     if (stick) {
@@ -187,7 +187,7 @@ void friction_writer::emit_root_loop(const std::string &ind)
 // stick candidate holding or a slide with its impulse, and nothing else holding) the
 // stick solution; else overflow when a candidate or condition is not finite (it decides
 // nothing), no_solution or ambiguous.
-void friction_writer::emit_unresolved(const std::string &ind)
+void writer::emit_unresolved(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const std::string i2 = ind + "    ";
@@ -201,7 +201,7 @@ void friction_writer::emit_unresolved(const std::string &ind)
         values.insert(values.end(), cn.cond.begin(), cn.cond.end());
     }
     values.insert(values.end(), trig_names_.begin(), trig_names_.end());
-    const std::string finite = "if (!detail::finite(" + balanced_sum(values) + ")" +
+    const std::string finite = "if (!detail::finite<T>(" + balanced_sum(values) + ")" +
                                (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) + ")\n";
     const std::string verdict =
         "return fail(" + count_name_ + " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
@@ -233,29 +233,74 @@ void friction_writer::emit_unresolved(const std::string &ind)
     h_ << ind << "}\n";
 }
 
-void friction_writer::main_function()
+// The selection among the candidates and the post-impact state: the same text in the
+// function and its unchecked variant, made once.
+const std::string &writer::selection_text()
 {
-    h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
-    h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
-    h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
-    h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
-    for (std::size_t i = 0; i < input_names_.size(); ++i)
-        h_ << "///   " << input_names_[i] << ": " << names::comment_text(input_meaning_[i]) << "\n";
-    h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
-       << params() << result() << "<T>& out) noexcept\n{\n";
+    if (!selection_.empty())
+        return selection_;
+    std::ostringstream text;
+    text.swap(h_); // write the selection into a stream of its own
+    h_ << "    // The regime that holds: its impulse (world axes, on "
+       << names::comment_text(q_.bodies[q_.contact().body2].name) << "), normal and tangential impulse.\n";
+    h_ << "    T " << sel_N_name_ << " = T(0);\n";
+    for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
+        h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
+    h_ << "    impact_regime " << regime_name_ << " = impact_regime::smooth;\n";
+    if (!mu_name_.empty()) {
+        h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
+        h_ << indent(s_.em.code, "    ");
+        h_ << "    } else {\n";
+    } else {
+        h_ << "    {\n";
+    }
+    const std::string ind = "        ";
+    emit_closed_forms(ind);
+    if (angle_ >= 0)
+        emit_angle_search(ind);
+    emit_unresolved(ind);
+    h_ << "    }\n";
+    h_ << "    // The post-impact state.\n";
+    h_ << c_.em.code;
+    h_ << "    out.regime = " << regime_name_ << ";\n";
+    text.swap(h_);
+    selection_ = text.str();
+    return selection_;
+}
+
+// The function (checked: every input and the result validated) or its unchecked variant
+// (the caller validated the inputs once: no check of restitution, friction, masses,
+// inertia, normal, nor of finiteness; the same arithmetic, the same selection).
+void writer::main_function(bool unchecked)
+{
+    if (unchecked) {
+        h_ << "/// " << o_.name << " without the per-call validation, for inputs the caller validated once\n";
+        h_ << "/// (contract: every input finite, 0 <= e <= 1, mu >= 0, masses and moments of inertia\n";
+        h_ << "/// > 0, inertia tensors positive definite, a normal neither zero, denormal nor too long;\n";
+        h_ << "/// what " << o_.name << " would not return invalid_* or non_finite_input for). On such inputs\n";
+        h_ << "/// the result is bit for bit that of " << o_.name << " whenever it returns ok; the statuses that\n";
+        h_ << "/// depend on the state (not_approaching, singular, no_solution, ambiguous, overflow of a\n";
+        h_ << "/// candidate) are still returned, but no finiteness check guards the result.\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC friction_status "
+           << o_.name << "_unchecked(" << params() << result() << "<T>& out) noexcept\n{\n";
+    } else {
+        h_ << "/// Post-impact state for the inputs below, with Coulomb friction at the contact; returns\n";
+        h_ << "/// friction_status::ok with out.regime the regime that holds, or why not (then out holds the\n";
+        h_ << "/// state unchanged: velocities as before, impulses zero). T: float, double or long double.\n";
+        h_ << "/// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).\n";
+        for (std::size_t i = 0; i < input_names_.size(); ++i)
+            h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
+        h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC friction_status " << o_.name << "("
+           << params() << result() << "<T>& out) noexcept\n{\n";
+    }
     h_ << "    using std::sqrt;\n";
-    h_ << "    auto fail = [&](auto why) noexcept {\n";
-    h_ << "        detail::" << o_.name << "_unchanged(" << args() << "out);\n";
-    if (input_names_.empty())
-        h_ << "        return detail::friction_status_of(why);\n";
-    else
-        h_ << "        return detail::all_finite(" << join(input_names_, ", ")
-           << ") ? detail::friction_status_of(why) : friction_status::non_finite_input;\n";
-    h_ << "    };\n";
+    fail_lambda("auto", "detail::friction_status_of", !unchecked);
     const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);
-    const std::string mu_check = "    if (!(" + mu_name_ + " >= T(0) && detail::finite(" + mu_name_ +
-                                 "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
+    const std::string mu_check = unchecked ? std::string()
+                                           : "    if (!(" + mu_name_ + " >= T(0) && detail::finite<T>(" + mu_name_ +
+                                                 "))) // mu >= 0, finite\n        return "
+                                                 "fail(friction_status::invalid_friction);\n";
     if (mu_input)
         h_ << mu_check;
     if (!basis_names_.empty()) {
@@ -268,43 +313,24 @@ void friction_writer::main_function()
             h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3
                << "];\n";
     }
-    h_ << "    // Shared steps, checks, the candidates and their conditions.\n";
-    h_ << a_.em.code;
+    h_ << (unchecked ? "    // Shared steps, the checks of the state, the candidates and their conditions.\n"
+                     : "    // Shared steps, checks, the candidates and their conditions.\n");
+    h_ << (unchecked ? a_unchecked_.code : a_.em.code);
     if (!mu_input && !mu_name_.empty())
         h_ << mu_check;
-    h_ << "    // The regime that holds: its impulse (world axes, on "
-       << names::comment_text(q_.bodies[q_.contact().body2].name) << "), normal and tangential impulse.\n";
-    h_ << "    T " << sel_N_name_ << " = T(0);\n";
-    for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
-        h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
-    h_ << "    impact_regime " << regime_name_ << " = impact_regime::smooth;\n";
-    std::string ind = "    ";
-    if (!mu_name_.empty()) {
-        h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
-        h_ << indent(s_.em.code, "    ");
-        h_ << "    } else {\n";
-        ind = "        ";
-    } else {
-        h_ << "    {\n";
-        ind = "        ";
+    h_ << selection_text();
+    if (!unchecked) {
+        std::vector<std::string> terms;
+        for (const code_output &of : outs_)
+            terms.push_back("out." + of.field);
+        for (const std::string &nm : input_names_)
+            terms.push_back(nm);
+        // (a sum of finite values may overflow: then each is tested, as the smooth headers do)
+        h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
+        h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
+        h_ << "        return fail(friction_status::overflow);\n";
     }
-    emit_closed_forms(ind);
-    if (angle_ >= 0)
-        emit_angle_search(ind);
-    emit_unresolved(ind);
-    h_ << "    }\n";
-    h_ << "    // The post-impact state.\n";
-    h_ << c_.em.code;
-    h_ << "    out.regime = " << regime_name_ << ";\n";
-    std::vector<std::string> terms;
-    for (const out_field &of : outs_)
-        terms.push_back("out." + of.field);
-    for (const std::string &nm : input_names_)
-        terms.push_back(nm);
-    h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-    h_ << "    if (!detail::finite(check_sum))\n";
-    h_ << "        return fail(friction_status::overflow);\n";
     h_ << "    return friction_status::ok;\n}\n\n";
 }
 
-} // namespace impactgen::codegen::friction_detail
+} // namespace impactgen::codegen::writer_detail

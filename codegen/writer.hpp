@@ -1,17 +1,20 @@
-// The friction header writer (friction.cpp, friction_stages.cpp, friction_select.cpp,
-// friction_text.cpp): its helpers, its programs (stage) and the class friction_writer.
-// Private to the codegen library; the design is described at the top of friction.cpp.
+// The one header writer (writer.cpp, writer_text.cpp, writer_straight.cpp, writer_stages.cpp,
+// writer_select.cpp): it emits any code plan (code_plan.hpp). The sections every header
+// has (banner, runtime, result and input structs, the unchanged state, the array and
+// struct forms, the batch form, the tables) are written once; the function's body by the
+// plan's selection rule: straight-line for `none` (a checked, a branchless fast and a
+// vectorised form), the candidates and the selection among them otherwise (the design at
+// the top of writer_stages.cpp). Private to the codegen library.
 #pragma once
 
+#include "code_plan.hpp"
 #include "form_text.hpp"
-#include "friction.hpp"
 #include "runtime.hpp"
 #include "text.hpp"
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
 #include "symbolic/decide.hpp"
-#include "symbolic/friction.hpp"
 #include "symbolic/named_classes.hpp"
 #include "symbolic/response.hpp"
 
@@ -24,19 +27,13 @@ namespace impactgen::codegen
 {
 using namespace GiNaC;
 
-namespace friction_detail
+namespace writer_detail
 {
 void add_counts(op_counts &a, const op_counts &b);
-using form_text::balanced_sum;
-using form_text::check_names;
-using form_text::command_line;
-using form_text::counts_text;
-using form_text::positive_definite_minors;
-using form_text::uses;
-using form_text::wrap_comment;
+using namespace form_text;
 std::string indent(const std::string &code, const std::string &by);
 bool depends_on(const ex &e, const exset &syms);
-void collect_symbols(const ex &e, exset &out);
+std::vector<check> state_checks(const std::vector<check> &checks);
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'
 // values, its outputs and checks, and the code emitted for them.
@@ -66,16 +63,7 @@ struct stage {
         return prog.lower(pool, pool.convert(e));
     }
     void output(const std::string &field, const ex &e) { outs.push_back({field, lower(e, field)}); }
-    void add_check(const ex &value, check::kind_t kind, const std::string &status, const std::string &comment)
-    {
-        if (is_a<numeric>(value))
-            return; // a constant was validated when the problem was read
-        checks.push_back({kind, lower(value, "check"), status, comment});
-    }
 };
-
-// ---------------------------------------------------------------------------
-// The writer
 
 // The state after the selected impulse: per body, per pivot (world axes).
 struct after_state {
@@ -90,39 +78,46 @@ struct case_names {
     std::vector<std::string> cond;
 };
 
-// ---------------------------------------------------------------------------
-// The writer
-
-class friction_writer
+class writer
 {
 public:
-    friction_writer(const problem &p, const options &o) : o_(o) { prepare(p); }
+    writer(code_plan cp, const options &o);
 
     header run();
 
 private:
-    struct out_field {
-        std::string field, meaning;
-        output_value::kind_t kind;
-        std::size_t index = 0;
-        int component = 0;
-        bool tangential = false;
-        int axis = 0;           // tangential: world axis
-        std::size_t smooth = 0; // index in the smooth plan's outputs (not tangential)
-    };
-
-    // ---- the problem, its regimes, the inputs and outputs
-    void prepare(const problem &p);
-    void order_inputs(const std::set<std::string> &friction_only);
-    void order_outputs();
+    bool straight() const { return cp_.rule == selection_rule::none; }
+    const char *status_type() const { return straight() ? "impact_status" : "friction_status"; }
 
     // ---- names (one scope for the function's names, one per struct)
     void name_everything();
+    void name_basis();
+    void name_straight();
     std::string case_prefix(const regime_case &c) const;
 
-    // ---- the four programs
+    // ---- checks (writer.cpp): the inputs' and the steps', in a program
+    void add_check(stage &s, const ex &value, check::kind_t kind, const std::string &status,
+                   const std::string &comment);
+    void add_checks(stage &s, const std::vector<step> &steps);
+
+    // ---- rule none: one straight-line program (writer_straight.cpp)
+    void lower_program();
+    void emit_forms();
+    bool needs_check(int id) const;
+    std::vector<int> ready_times() const;
+    std::vector<bool> implied_outputs(int energy) const;
+    void straight_banner();
+    void straight_formulas();
+    void checked_function();
+    void fast_function();
+    void unchecked_function();
+    void jacobian_function();
+    void straight_batch();
+
+    // ---- a selection rule: the candidates' programs (writer_stages.cpp)
     void build_stages();
     void split_steps();
+    void scale_response();
     void name_selected();
     std::vector<ex> stage_c_values(const after_state &after, const step *un) const;
     ex response_entry(const solution &s, int a, int b) const;
@@ -134,7 +129,6 @@ private:
     void downstream_names(stage &s, const std::map<ex, std::string, ex_is_less> &extra);
     void build_stage_a();
     void angle_outputs();
-    void add_checks();
     void build_stage_b();
     void build_stage_s();
     void build_stage_c();
@@ -142,69 +136,86 @@ private:
     void emit_one(stage &s, const emit_options &how);
     void emit_stages();
 
-    // ---- text
-    std::string params() const;
-    std::string args() const;
-    std::string result() const { return o_.name + "_result"; }
-    std::string input_struct() const { return o_.name + "_input"; }
-
-    void banner();
-
-    // The smooth headers' preamble (codegen/runtime/impact_runtime.hpp: impact_status,
-    // view, detail helpers) exactly as they write it, so that a friction header and smooth
-    // ones share one copy in a namespace, then codegen/runtime/friction_runtime.hpp under
-    // its own guard.
-    void preamble() { h_ << impact_preamble(o_.ns) << friction_preamble(o_.ns); }
-
-    void view_functions(const std::string &name, int rows, int cols, const std::vector<std::string> &entries,
-                        const std::vector<std::string> &fixed, const std::string &meaning);
-
-    void result_struct();
-    void formula_block();
+    // ---- a selection rule: the text of the candidates (writer_select.cpp, writer_text.cpp)
+    void candidates_banner();
+    void candidates_formulas();
     std::string frame_text(const vec3 &v) const;
-    void unchanged_function();
     std::string holds_text(const case_names &cn, const regime_case &c) const;
     std::string select_text(const case_names &cn, const std::string &regime, const std::string &ind) const;
     std::string merge_text() const;
     std::string near_text(const case_names &cn) const;
     void emit_closed_forms(const std::string &ind);
     std::string counted_text() const { return counted_.empty() ? std::string("0") : join(counted_, " + "); }
-
     void emit_angle_search(const std::string &ind);
     void emit_root_loop(const std::string &ind);
     void emit_unresolved(const std::string &ind);
-    void main_function();
-    void array_form();
-    void struct_form();
-    void batch_form();
+    const std::string &selection_text();
+    void main_function(bool unchecked);
+    void loop_batch();
+
+    // ---- the sections every header has (writer_text.cpp)
+    std::string params() const;
+    std::string args() const;
+    std::string result() const { return o_.name + "_result"; }
+    std::string input_struct() const { return o_.name + "_input"; }
+    std::string unchanged() const { return o_.name + "_unchanged"; }
+    std::string checked() const { return o_.name + "_checked"; }
+    void banner();
+    // The runtime every header needs (codegen/runtime/impact_runtime.hpp: impact_status,
+    // view, detail helpers), once per namespace; with candidates also
+    // codegen/runtime/friction_runtime.hpp under its own guard.
+    void preamble();
+    void view_functions(const std::string &name, int rows, int cols, const std::vector<std::string> &entries,
+                        const std::vector<std::string> &fixed, const std::string &meaning);
+    void group_view(const std::string &name, const group &g);
+    void result_struct();
+    void unchanged_function(const emitted &code);
+    void fail_lambda(const std::string &why_type, const std::string &status_of, bool inputs_checked);
+    void forwarding_form(bool by_name);
     void tables();
 
-    // ---- state
+    // ---- state: the plan
     const options &o_;
-    problem q_;
-    plan pl_;
-    derivation d_;
-    friction_solution f_;
+    code_plan cp_;
+    plan &pl_;
+    problem &q_;
+    derivation &d_;
+    impact_solution &f_;
+    std::vector<code_output> &outs_;
     int angle_ = -1;
-    std::vector<symbol> inputs_;
-    std::vector<std::string> input_meaning_, input_names_;
+    // ---- names
+    names::identifier_scope scope_, members_, in_members_;
+    std::vector<std::string> input_names_;
     std::map<ex, std::string, ex_is_less> input_ident_;
-    std::vector<out_field> outs_;
-    std::map<std::size_t, std::size_t> smooth_index_;
-    std::vector<std::size_t> tangential_index_;
+    std::vector<std::string> in_views_, out_views_; // member functions of the input and result structs, per group
+    std::string tangential_view_;
+    op_counts total_, checks_total_;
+    std::ostringstream h_;
+
+    // ---- rule none: the program and its forms
+    stage main_;
+    std::vector<std::string> step_names_;
+    std::map<std::string, std::string> local_of_, out_ptr_, in_ptr_; // output -> local / pointer; input -> pointer
+    std::string status_ptr_;
+    std::vector<std::string> jac_step_names_, wrt_names_;
+    std::vector<std::vector<std::string>> jac_local_; // [output][wrt] local of the derivative
+    std::vector<std::pair<std::string, int>> jac_outs_, outs_local_, unchanged_outs_;
+    emitted em_, fast_, batch_, jac_, unchanged_, unchecked_;
+    std::vector<std::string> sum_terms_;
+    std::vector<sum_term> fast_terms_, batch_terms_, jac_terms_;
+
+    // ---- a selection rule: the candidates' programs and names
     // A normal given as inputs (3-D): the tangent basis computed at run time.
     stage nb_;
     std::vector<std::string> basis_names_;
     std::string basis_t_name_, basis_b_name_;
-    names::identifier_scope scope_, members_, in_members_;
-    std::vector<std::string> in_views_, out_views_;
-    std::string tangential_view_;
     exset local_, a_step_syms_;
     std::vector<step> a_steps_, b_steps_, b_steps_linked_;
     std::vector<std::string> a_step_names_, b_step_names_;
     std::map<ex, std::string, ex_is_less> step_name_;
     std::vector<symbol> sel_P_, sel_F_;
     symbol sel_N_{"friction_N"};
+    ex scale_ = 0; // the scale of K (n.K n) the candidates divide it by, or 0
     std::vector<std::string> sel_P_names_, sel_F_names_;
     std::string sel_N_name_;
     std::vector<ex> c_values_;
@@ -228,9 +239,9 @@ private:
     std::string count_name_, stick_holds_name_, regime_name_, roots_c_name_, roots_s_name_, n_roots_name_, every_name_,
         edge_name_;
     stage a_, b_, s_, c_, u_;
-    op_counts total_;
-    std::ostringstream h_;
+    emitted a_unchecked_;   // stage A with only the checks of the state (the unchecked variant)
+    std::string selection_; // the selection and the post-impact state, as both functions write them
 };
 
-} // namespace friction_detail
+} // namespace writer_detail
 } // namespace impactgen::codegen

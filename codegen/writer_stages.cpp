@@ -1,17 +1,52 @@
-// The friction header writer (friction_writer.hpp): the straight-line programs of the
-// function (stages A, B, S, C and the unchanged state), their links and their checks.
-#include "friction_writer.hpp"
+// The one header writer (writer.hpp), a plan with a selection rule (first_that_holds,
+// sliding_angle): the straight-line programs of the function (stages A, B, S, C and the
+// unchanged state), their links and their checks.
+//
+// The emitted function, in order:
+//   1. stage A, one straight-line program (CSE over everything in it): the shared steps
+//      (K = K_1 + K_2 as the sum of the bodies' responses 1/m + (I^-1 (r x e)) x r, u, u_n),
+//      the validity checks of the smooth headers (restitution, masses, inertia, normal,
+//      approach, then det K > 0 for the stick candidate: status singular), every
+//      closed-form candidate (stick; planar: slides along +e_t and -e_t; 3-D isotropic: the
+//      slide along u_t) with its impulse and the values of its conditions, and for a 3-D
+//      slide without closed form the five coefficients of its angle equation
+//        g(theta) = a0 + a1 cos theta + b1 sin theta + a2 cos 2 theta + b2 sin 2 theta,
+//      derived here from symbolic/friction.hpp's g(c, s) (c = cos theta, s = sin theta;
+//      the coefficients of c^i s^j by differentiation at 0, then c^2 = (1 + cos 2 theta)/2,
+//      s^2 = (1 - cos 2 theta)/2, c s = sin 2 theta / 2), and those of lambda D, the
+//      sliding speed times the normal response, of the same form: the filter with which
+//      the root finder leaves out the arcs where no slide can hold (lambda D < 0);
+//   2. mu = 0 (unless mu is a constant): the frictionless impact (stage S), regime smooth;
+//   3. else the regime selection: each candidate holds when its conditions do (as
+//      derived: > 0 or >= 0); the closed forms are selected without a branch (the first
+//      that holds); the roots of g (detail::trig2_roots, codegen/runtime/friction_runtime.hpp) each
+//      give a slide candidate (stage B, a program in cos theta and sin theta) with its
+//      conditions; exactly one candidate holding is the answer, none is no_solution,
+//      several ambiguous -- but at the stick/slide boundary within rounding, where the
+//      stick candidate and a slide are one solution (impulses equal to within eps^(2/3)
+//      relative): there the answer is stick when nothing else holds; and a candidate or
+//      condition that is not finite makes the status overflow. Without a stick candidate
+//      (K singular identically: a body pinned at a fixed point struck by one that cannot
+//      move) the slides are the candidates: regime slide, no det K check, no boundary merge;
+//   4. the post-impact state for the impulse of that candidate (stage C, linear in it: the
+//      stick candidate's formulas, or without one symbolic/response.hpp's), the energy lost
+//      as minus the work of the contact impulse (1/2 P.(a + a') per free body), the
+//      finiteness of the result.
+// Values stages B, C and S need from stage A (its steps, and for B and C the powers with
+// negative or fractional exponents of stage A's values: 1/m, 1/I, 1/|n|, so that no
+// division or square root is done twice) are stage A outputs ("links"), named in a
+// canonical order. Every name goes through one identifier scope (names/identifier.hpp);
+// every expression is printed by emit_cpp from canonical trees (canonical.hpp), never in
+// GiNaC's order: the header is the same byte for byte in every process.
+#include "writer.hpp"
 
-namespace impactgen::codegen::friction_detail
+namespace impactgen::codegen::writer_detail
 {
 
-void friction_writer::build_stages()
+void writer::build_stages()
 {
     const problem &q = q_;
     const int dim = q.dimension;
-    for (std::size_t i = 0; i < f_.cases.size(); ++i)
-        if (f_.cases[i].needs_angle)
-            angle_ = static_cast<int>(i);
     split_steps();
 
     name_selected();
@@ -26,6 +61,16 @@ void friction_writer::build_stages()
     if (!un)
         throw std::logic_error("codegen friction: no approach velocity step");
     std::vector<ex> c_values = stage_c_values(after, un);
+    if (!scale_.is_zero()) { // the candidates' impulses are sigma times the impulse
+        lst unscale;
+        unscale.append(sel_N_ == sel_N_ / scale_);
+        for (std::size_t a = 0; a < sel_P_.size(); ++a) {
+            unscale.append(sel_P_[a] == sel_P_[a] / scale_);
+            unscale.append(sel_F_[a] == sel_F_[a] / scale_);
+        }
+        for (ex &v : c_values)
+            v = v.subs(unscale);
+    }
     // Stage S: mu = 0, the frictionless impact: N = -(1 + e) u_n / (n.K n), P = N n.
     const vec3 &n = d_.n_hat;
     mat3 K = zero_mat();
@@ -71,7 +116,7 @@ void friction_writer::build_stages()
     build_unchanged();
 }
 
-void friction_writer::split_steps()
+void writer::split_steps()
 {
     // Steps: stage A (every step of every case that does not depend on the sliding
     // angle, each once) and stage B (the angle case's own steps).
@@ -119,10 +164,50 @@ void friction_writer::split_steps()
     for (step &st : a_steps_)
         if (st.role == step_role::contact_response)
             st.value = response_entry(f_.shared, st.row, st.column);
+    scale_response();
+}
+
+// K scaled by sigma = n.K n (> 0 whenever a body can move; the smooth header's k, which
+// overflows where it does): the candidates see
+// K~ = K / sigma, so that det K~ neither under- nor overflows where K's entries are in
+// range (masses of 1e200 made det K about 1e-400: singular where the smooth header gives
+// the impact). Every candidate's impulse scales as K^-1 (it comes out sigma times the
+// impulse), its conditions keep their signs (each homogeneous in K and the impulse), and
+// the selected impulse is divided by sigma before the state after it (stage C). A sigma of
+// 0 or infinity makes K~ NaN: det K~ > 0 fails (singular), as k > 0 does in the smooth header.
+void writer::scale_response()
+{
+    auto first = std::find_if(a_steps_.begin(), a_steps_.end(),
+                              [](const step &st) { return st.role == step_role::contact_response; });
+    if (first == a_steps_.end())
+        return;
+    step sc;
+    sc.sym = symbol("friction_K_scale");
+    sc.role = step_role::contact_inverse_mass;
+    sc.meaning = "n.K n, the scale of the contact response K";
+    sc.value = 0;
+    for (const step &st : a_steps_)
+        if (st.role == step_role::contact_response) {
+            // (each entry as K has it: one fraction of the products of masses and inertia
+            // would under- or overflow where the sum does not)
+            const ex nn = tidy((st.row == st.column ? 1 : 2) * d_.n_hat[static_cast<std::size_t>(st.row)] *
+                               d_.n_hat[static_cast<std::size_t>(st.column)]);
+            if (!nn.is_zero())
+                sc.value += nn * st.value;
+        }
+    for (step &st : a_steps_)
+        if (st.role == step_role::contact_response)
+            st.value = st.value / sc.sym;
+    const std::size_t at = static_cast<std::size_t>(first - a_steps_.begin());
+    a_step_names_.insert(a_step_names_.begin() + static_cast<std::ptrdiff_t>(at), scope_.claim("K_scale"));
+    a_steps_.insert(a_steps_.begin() + static_cast<std::ptrdiff_t>(at), sc);
+    a_step_syms_.insert(sc.sym);
+    step_name_[sc.sym] = a_step_names_[at];
+    scale_ = sc.sym;
 }
 
 // The selected impulse (world, on body 2), normal impulse and tangential impulse.
-void friction_writer::name_selected()
+void writer::name_selected()
 {
     const problem &q = q_;
     const int dim = q.dimension;
@@ -143,11 +228,11 @@ void friction_writer::name_selected()
 
 // Stage C's outputs: the state after the impulse sel_P, the impulses, the approach
 // velocity and the energy lost.
-std::vector<ex> friction_writer::stage_c_values(const after_state &after, const step *un) const
+std::vector<ex> writer::stage_c_values(const after_state &after, const step *un) const
 {
     std::vector<ex> c_values(outs_.size());
     for (std::size_t k = 0; k < outs_.size(); ++k) {
-        const out_field &of = outs_[k];
+        const code_output &of = outs_[k];
         if (of.tangential) {
             c_values[k] = sel_F_[static_cast<std::size_t>(of.axis)];
             continue;
@@ -181,7 +266,7 @@ std::vector<ex> friction_writer::stage_c_values(const after_state &after, const 
 // opposite on body 1): K_i P = P/m_i + (I_i^{-1} (r_i x P)) x r_i (a pinned body: about
 // its pivot, without the first term), with the inverse inertia as the solution has it
 // (its steps for a full tensor, 1/I for a diagonal one).
-ex friction_writer::response_entry(const solution &s, int a, int b) const
+ex writer::response_entry(const solution &s, int a, int b) const
 {
     const problem &q = q_;
     ex k = 0;
@@ -206,7 +291,7 @@ ex friction_writer::response_entry(const solution &s, int a, int b) const
 // The inverse inertia of movable body i, not a particle (about its pivot when pinned), as
 // the solution s has it: its steps for a full tensor (or adj(J) / det(J) itself for a
 // tensor too simple to be a step), 1/I for a diagonal one.
-mat3 friction_writer::inverse_inertia(const solution &s, std::size_t i) const
+mat3 writer::inverse_inertia(const solution &s, std::size_t i) const
 {
     const problem &q = q_;
     const body &bd = q.bodies[i];
@@ -250,7 +335,7 @@ mat3 friction_writer::inverse_inertia(const solution &s, std::size_t i) const
 // -sel_P on body 1), linear in it: the stick candidate's formulas with its impulse
 // replaced when there is one, else the response layer's (symbolic/response.hpp, as
 // symbolic/friction.cpp finishes every candidate) with the shared steps' inverse inertia.
-after_state friction_writer::state_after_selected() const
+after_state writer::state_after_selected() const
 {
     const problem &q = q_;
     after_state r;
@@ -304,7 +389,7 @@ after_state friction_writer::state_after_selected() const
 // of the contact impulse, 1/2 Pi.(a + a') for a free body (Pi its impulse, a and a'
 // the velocities of its material point at O before and after), and for a pinned body
 // 1/2 m dv.(v + v') + 1/2 dw.I (w + w') (its pivot's impulse may work too).
-ex friction_writer::energy_lost(const after_state &after) const
+ex writer::energy_lost(const after_state &after) const
 {
     const problem &q = q_;
     ex work = 0;
@@ -331,7 +416,7 @@ ex friction_writer::energy_lost(const after_state &after) const
 
 // Powers of stage A values with a negative or fractional exponent become links; so do
 // the stage A steps an expression of stage B, C or S uses (linked in name_links).
-ex friction_writer::linkify(const ex &e)
+ex writer::linkify(const ex &e)
 {
     if (is_a<power>(e) && is_a<numeric>(e.op(1))) {
         const numeric x = ex_to<numeric>(e.op(1));
@@ -351,15 +436,15 @@ ex friction_writer::linkify(const ex &e)
     if (is_a<symbol>(e) || is_a<numeric>(e) || e.nops() == 0)
         return e;
     struct mapper : map_function {
-        friction_writer *w;
-        explicit mapper(friction_writer *w_) : w(w_) {}
+        writer *w;
+        explicit mapper(writer *w_) : w(w_) {}
         ex operator()(const ex &x) override { return w->linkify(x); }
     } m(this);
     return e.map(m);
 }
 
 // Names the links in a canonical order: by the canonical key of their values.
-void friction_writer::name_links()
+void writer::name_links()
 {
     canonical_pool scratch;
     std::map<ex, std::string, ex_is_less> names = input_ident_;
@@ -407,7 +492,7 @@ void friction_writer::name_links()
 }
 
 // The input names of a downstream stage: the inputs, the links, and extra locals.
-void friction_writer::downstream_names(stage &s, const std::map<ex, std::string, ex_is_less> &extra)
+void writer::downstream_names(stage &s, const std::map<ex, std::string, ex_is_less> &extra)
 {
     std::map<ex, std::string, ex_is_less> names = input_ident_;
     for (const auto &[sym, nm] : link_names_)
@@ -417,14 +502,14 @@ void friction_writer::downstream_names(stage &s, const std::map<ex, std::string,
     s.pool.set_input_names(names);
 }
 
-void friction_writer::build_stage_a()
+void writer::build_stage_a()
 {
     const problem &q = q_;
     const int dim = q.dimension;
     a_.pool.set_input_names(input_ident_);
     for (std::size_t i = 0; i < a_steps_.size(); ++i)
         a_.bind_step(a_steps_[i], a_step_names_[i]);
-    add_checks();
+    add_checks(a_, a_steps_);
     // mu as a value (when it is not simply an input or a number)
     const ex &mu = q.contact().friction();
     if (is_a<symbol>(mu) && input_ident_.count(mu)) {
@@ -469,7 +554,7 @@ void friction_writer::build_stage_a()
 
 // Stage A's outputs for the slide without closed form: the coefficients of its angle
 // equation, of the filter lambda D, and the values that show the solution unique.
-void friction_writer::angle_outputs()
+void writer::angle_outputs()
 {
     const problem &q = q_;
     const regime_case &c = f_.cases[static_cast<std::size_t>(angle_)];
@@ -550,57 +635,7 @@ void friction_writer::angle_outputs()
     }
 }
 
-// Validity checks as the smooth headers make them, and det K > 0 for the stick candidate.
-void friction_writer::add_checks()
-{
-    const problem &q = q_;
-    a_.add_check(q.restitution, check::unit_interval, "invalid_restitution", "0 <= e <= 1");
-    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
-        const body &b = q.bodies[i];
-        if (b.infinite_mass)
-            continue;
-        a_.add_check(b.mass, check::positive, "invalid_mass", "mass of " + b.name + " > 0, finite");
-        if (!b.particle && q.dimension == 2)
-            a_.add_check(b.inertia[2][2], check::positive, "invalid_inertia",
-                         "moment of inertia of " + b.name + " > 0, finite");
-    }
-    for (std::size_t i : {q.contact().body1, q.contact().body2}) {
-        const body &b = q.bodies[i];
-        if (q.dimension != 3 || b.particle || b.infinite_mass)
-            continue;
-        const pivot *pv = q.pivot_of(i);
-        const mat3 J = pv ? inertia_about(b, pv->point) : b.inertia;
-        const std::string what =
-            "inertia tensor of " + b.name + (q.pivot_of(i) ? " about its pivot" : "") + " positive definite: ";
-        for (const auto &[minor, text] : positive_definite_minors(J, q.axes, false))
-            a_.add_check(minor, check::positive, "invalid_inertia", what + text);
-    }
-    const ex nn = tidy(dot(q.contact().normal, q.contact().normal));
-    if (!is_constant(nn)) {
-        if (d_.normal_assumed_unit)
-            a_.add_check(nn, check::near_one, "invalid_normal", "the normal is a unit vector: |n.n - 1| <= 2^-17");
-        else
-            a_.add_check(nn, check::normal_number, "invalid_normal",
-                         "n.n a normal number: the normal neither zero, denormal nor too long");
-    }
-    for (const step &st : a_steps_) {
-        switch (st.role) {
-        case step_role::inertia_determinant:
-            a_.add_check(st.sym, check::positive, "invalid_inertia", "determinant of the inertia tensor > 0, finite");
-            break;
-        case step_role::approach_velocity:
-            a_.add_check(st.sym, check::negative, "not_approaching", "the contact points approach: u_n < 0");
-            break;
-        case step_role::response_determinant:
-            a_.add_check(st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
-            break;
-        default:
-            break;
-        }
-    }
-}
-
-void friction_writer::build_stage_b()
+void writer::build_stage_b()
 {
     if (angle_ < 0)
         return;
@@ -627,7 +662,7 @@ void friction_writer::build_stage_b()
     }
 }
 
-void friction_writer::build_stage_s()
+void writer::build_stage_s()
 {
     if (mu_name_.empty())
         return; // a constant mu > 0: never smooth
@@ -642,7 +677,7 @@ void friction_writer::build_stage_s()
     n0.value = s_N0_value_.subs(s_D0_ == d0.sym);
     const std::string n0_name = scope_.claim("N_0");
     s_.bind_step(n0, n0_name);
-    s_.add_check(d0.sym, check::positive, "singular", "mu = 0: n.K n > 0, finite");
+    add_check(s_, d0.sym, check::positive, "singular", "mu = 0: n.K n > 0, finite");
     s_.output(sel_N_name_, n0.sym);
     for (std::size_t a = 0; a < s_P0_.size(); ++a) {
         s_.output(sel_P_names_[a], s_P0_[a]);
@@ -650,7 +685,7 @@ void friction_writer::build_stage_s()
     }
 }
 
-void friction_writer::build_stage_c()
+void writer::build_stage_c()
 {
     std::map<ex, std::string, ex_is_less> extra;
     for (std::size_t a = 0; a < sel_P_.size(); ++a) {
@@ -663,16 +698,16 @@ void friction_writer::build_stage_c()
         c_.output(outs_[k].field, c_values_[k]);
 }
 
-void friction_writer::build_unchanged()
+void writer::build_unchanged()
 {
     u_.pool.set_input_names(input_ident_);
     for (std::size_t k = 0; k < outs_.size(); ++k)
-        u_.output(outs_[k].field, outs_[k].tangential ? ex(0) : pl_.unchanged[outs_[k].smooth]);
+        u_.output(outs_[k].field, outs_[k].tangential ? ex(0) : pl_.unchanged[outs_[k].base]);
 }
 
 // A stage's code with its outputs placed as the function uses them; the names it
 // declares are claimed.
-void friction_writer::emit_one(stage &s, const emit_options &how)
+void writer::emit_one(stage &s, const emit_options &how)
 {
     s.em = emit_cpp(s.prog, s.outs, s.checks, s.names, scope_.names(), how);
     for (const std::string &nm : s.em.declared)
@@ -684,7 +719,7 @@ void friction_writer::emit_one(stage &s, const emit_options &how)
 // Stages A, B and the normal's basis declare their outputs as locals; stage S assigns
 // the selected impulse (declared before it); stage C writes the result, the energy
 // lost under with_energy_lost.
-void friction_writer::emit_stages()
+void writer::emit_stages()
 {
     emit_options locals, assign, result;
     locals.outputs = output_placement::local;
@@ -694,6 +729,7 @@ void friction_writer::emit_stages()
             result.energy_output = static_cast<int>(k);
     if (!basis_names_.empty())
         nb_.em = emit_cpp(nb_.prog, nb_.outs, {}, {}, scope_.names(), locals);
+    const std::vector<std::string> before_a = scope_.names();
     emit_one(a_, locals);
     if (angle_ >= 0)
         emit_one(b_, locals);
@@ -701,6 +737,18 @@ void friction_writer::emit_stages()
         emit_one(s_, assign);
     emit_one(c_, result);
     u_.em = emit_cpp(u_.prog, u_.outs, {}, {}, scope_.names());
+    // Stage A of the unchecked variant: the same names as stage A where it declares no
+    // name stage A does not (the stages after it are written with stage A's declared);
+    // else names of its own.
+    a_unchecked_ = emit_cpp(a_.prog, a_.outs, state_checks(a_.checks), a_.names, before_a, locals);
+    const std::set<std::string> declared(a_.em.declared.begin(), a_.em.declared.end());
+    if (!std::all_of(a_unchecked_.declared.begin(), a_unchecked_.declared.end(),
+                     [&](const std::string &nm) { return declared.count(nm) > 0; })) {
+        a_unchecked_ = emit_cpp(a_.prog, a_.outs, state_checks(a_.checks), a_.names, scope_.names(), locals);
+        for (const std::string &nm : a_unchecked_.declared)
+            if (!scope_.taken(nm))
+                scope_.claim(nm);
+    }
     count_name_ = scope_.claim("n_holding");
     stick_holds_name_ = scope_.claim("stick_holds");
     regime_name_ = scope_.claim("regime_now");
@@ -720,4 +768,4 @@ void friction_writer::emit_stages()
     pass_name_ = scope_.claim("pass");
 }
 
-} // namespace impactgen::codegen::friction_detail
+} // namespace impactgen::codegen::writer_detail

@@ -1,0 +1,211 @@
+// The code plan (code_plan.hpp): the smooth plan of the problem, and with a law of several
+// candidates its derivation, candidates and selection rule, the inputs and outputs in the
+// header's order.
+#include "code_plan.hpp"
+
+#include "names/escape.hpp"
+#include "symbolic/named_classes.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace impactgen::codegen
+{
+using namespace GiNaC;
+
+void collect_symbols(const ex &e, exset &out)
+{
+    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+            out.insert(*it);
+}
+
+namespace
+{
+
+// The options a law with candidates cannot honour.
+void refuse_options(const options &o)
+{
+    if (o.inverse_inertia)
+        throw option_error(
+            option_error::inverse_inertia,
+            "the engine input convention is not offered for problems with friction (give masses and inertia)");
+    if (o.inverse_mass)
+        throw option_error(option_error::inverse_mass,
+                           "the engine input convention is not offered for problems with friction (give masses)");
+    if (o.jacobian || !o.wrt.empty())
+        throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
+                                                   "selection makes the impact map piecewise)");
+}
+
+// The inputs: the parameters in the order given, else the smooth order with the
+// symbols of mu right after those of e.
+void order_inputs(code_plan &cp, const options &o, const std::set<std::string> &friction_only)
+{
+    const problem &q = cp.prob;
+    const plan &pl = cp.base;
+    std::map<std::string, symbol> by_name;
+    for (const symbol &s : q.parameters())
+        by_name.emplace(s.get_name(), s);
+    const std::string mu_meaning = is_a<symbol>(q.contact().friction())
+                                       ? "coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)"
+                                       : "appears in the coefficient of friction mu";
+    auto smooth_meaning = [&](const symbol &s) -> std::string {
+        for (std::size_t i = 0; i < pl.inputs.size(); ++i)
+            if (pl.inputs[i].is_equal(s))
+                return pl.input_meaning[i];
+        return mu_meaning;
+    };
+    auto add_friction_only = [&]() {
+        for (const std::string &nm : friction_only) {
+            cp.inputs.push_back(by_name.at(nm));
+            cp.input_meaning.push_back(mu_meaning);
+        }
+    };
+    if (o.params_given) {
+        for (const std::string &nm : o.params) {
+            const symbol &s = by_name.at(nm);
+            cp.inputs.push_back(s);
+            cp.input_meaning.push_back(smooth_meaning(s));
+        }
+        return;
+    }
+    std::size_t at = 0;
+    exset esyms;
+    collect_symbols(q.restitution, esyms);
+    for (std::size_t i = 0; i < pl.inputs.size(); ++i)
+        if (esyms.count(pl.inputs[i]))
+            at = i + 1;
+    for (std::size_t i = 0; i < pl.inputs.size(); ++i) {
+        if (i == at)
+            add_friction_only();
+        cp.inputs.push_back(pl.inputs[i]);
+        cp.input_meaning.push_back(pl.input_meaning[i]);
+    }
+    if (at >= pl.inputs.size())
+        add_friction_only();
+}
+
+// The outputs: the smooth ones, with a tangential impulse the world components of the
+// tangential impulse right after the normal impulse.
+void order_outputs(code_plan &cp)
+{
+    const problem &q = cp.prob;
+    const bool candidates = cp.rule != selection_rule::none;
+    const std::string &b1 = q.bodies[q.contact().body1].name, &b2 = q.bodies[q.contact().body2].name;
+    for (std::size_t k = 0; k < cp.base.outputs.size(); ++k) {
+        code_output of;
+        static_cast<output_value &>(of) = cp.base.outputs[k];
+        of.base = k;
+        if (candidates && of.kind == output_value::normal_impulse)
+            of.meaning =
+                "normal impulse P.n >= 0 along the unit normal: on " + b2 + " along +n, on " + b1 + " along -n";
+        if (candidates && of.kind == output_value::approach_velocity)
+            of.meaning = "(v_B - v_A).n before impact along the unit normal (< 0)";
+        cp.base_index.push_back(cp.outputs.size());
+        cp.outputs.push_back(of);
+        if (!candidates || of.kind != output_value::normal_impulse)
+            continue;
+        for (int a = 0; a < q.dimension; ++a) {
+            const std::string &ax = q.axes[static_cast<std::size_t>(a)];
+            code_output tf;
+            tf.field = "tangential_impulse_" + ax;
+            tf.meaning =
+                "tangential (friction) impulse P - (P.n) n on " + b2 + " (on " + b1 + " its opposite), world " + ax;
+            tf.kind = output_value::normal_impulse;
+            tf.tangential = true;
+            tf.axis = a;
+            cp.tangential.push_back(cp.outputs.size());
+            cp.outputs.push_back(tf);
+        }
+    }
+}
+
+// A law with candidates: the problem specialised with its law, the smooth plan of the same
+// problem without it (the inputs in the smooth headers' order with their meanings, the
+// outputs, the vector views, the state a failed call returns), the candidates.
+code_plan candidates_plan(const problem &p, const options &o)
+{
+    refuse_options(o);
+    code_plan cp;
+    problem p0 = p;
+    // --params mu with a numeric coefficient: mu becomes the parameter.
+    if (o.params_given && std::find(o.params.begin(), o.params.end(), "mu") != o.params.end() &&
+        is_a<numeric>(p0.contact().friction())) {
+        bool taken = false;
+        for (const symbol &s : p0.parameters())
+            taken = taken || s.get_name() == "mu";
+        if (!taken)
+            p0.contact().set_friction(symbol_named("mu", "\\mu"));
+    }
+    cp.prob = specialise(p0, o);
+    const problem &q = cp.prob;
+    if (!q.has_friction())
+        throw input_error(
+            (q.source.empty() ? std::string("contact") : names::display_text(q.source) + ": contact") +
+            ".friction: the coefficient of friction is 0: generate the smooth header (codegen::generate)");
+    problem sq = q;
+    sq.contact().set_friction(0);
+    std::set<std::string> rest;
+    for (const symbol &s : sq.parameters())
+        rest.insert(s.get_name());
+    exset fsyms;
+    collect_symbols(q.contact().friction(), fsyms);
+    std::set<std::string> friction_only;
+    for (const ex &s : fsyms)
+        if (!rest.count(ex_to<symbol>(s).get_name()))
+            friction_only.insert(ex_to<symbol>(s).get_name());
+    options so = o;
+    so.set.clear();
+    so.params.clear();
+    for (const std::string &nm : o.params)
+        if (!friction_only.count(nm))
+            so.params.push_back(nm);
+    cp.base = make_plan(sq, so);
+    derive_options how;
+    how.unit_normal = o.unit_normal;
+    how.runtime_tangent_basis = true;
+    cp.deriv = derive(q, how);
+    cp.candidates = solve_friction(cp.deriv);
+    cp.rule = selection_rule::first_that_holds;
+    for (std::size_t i = 0; i < cp.candidates.cases.size(); ++i)
+        if (cp.candidates.cases[i].needs_angle) {
+            cp.angle = static_cast<int>(i);
+            cp.rule = selection_rule::sliding_angle;
+        }
+    order_inputs(cp, o, friction_only);
+    order_outputs(cp);
+    return cp;
+}
+
+} // namespace
+
+bool has_candidates(const problem &p, const options &o)
+{
+    if (!p.has_friction())
+        return false;
+    try {
+        options so = o;
+        so.params_given = false; // only --set can make mu 0
+        so.params.clear();
+        return specialise(p, so).has_friction();
+    } catch (const std::exception &) {
+        return true;
+    }
+}
+
+code_plan make_code_plan(const problem &p, const options &o)
+{
+    if (has_candidates(p, o))
+        return candidates_plan(p, o);
+    code_plan cp;
+    cp.base = make_plan(p, o);
+    cp.prob = cp.base.prob;
+    cp.inputs = cp.base.inputs;
+    cp.input_meaning = cp.base.input_meaning;
+    order_outputs(cp);
+    return cp;
+}
+
+} // namespace impactgen::codegen

@@ -1,0 +1,66 @@
+// The code plan: what one header computes, whatever the contact's law. The steps every
+// candidate shares, the candidates of the law (symbolic/friction.hpp's impact_solution)
+// and the rule that selects among them:
+//   none              one unconditioned candidate (a smooth contact): straight-line code,
+//                     a branchless fast path and a vectorised batch loop;
+//   first_that_holds  candidates in closed form with typed conditions (stick, the planar
+//                     or isotropic slides): the first whose conditions hold, no branch;
+//   sliding_angle     besides those, a 3-D slide whose direction is a root of a
+//                     trigonometric polynomial found at run time (detail::trig2_roots).
+// A new contact law adds its candidates in symbolic/ and, when they need it, a selection
+// rule here; the one writer (writer.hpp) emits any plan. No C++ text is made here.
+// Private to the codegen library.
+#pragma once
+
+#include "codegen.hpp"
+
+#include "symbolic/friction.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace impactgen::codegen
+{
+
+enum class selection_rule { none, first_that_holds, sliding_angle };
+
+/// An output of the header: the smooth plan's (its value in inputs and steps), or, with a
+/// tangential impulse, one of its world components (computed from the selected impulse).
+struct code_output : output_value {
+    bool tangential = false;
+    int axis = 0;         ///< tangential: world axis
+    std::size_t base = 0; ///< not tangential: index in plan::outputs
+};
+
+struct code_plan {
+    selection_rule rule = selection_rule::none;
+    /// The closed form of the problem without the law's own parameters (with friction: mu
+    /// = 0): its inputs and their meanings, outputs, vector views and the state a failed
+    /// call returns; rewritten for the engine input conventions.
+    plan base;
+    problem prob; ///< specialised, with its law
+    std::vector<GiNaC::symbol> inputs;
+    std::vector<std::string> input_meaning;
+    std::vector<code_output> outputs;
+    std::vector<std::size_t> base_index; ///< plan::outputs index -> index in outputs
+    std::vector<std::size_t> tangential; ///< indices in outputs of the tangential impulse
+    /// With a selection rule: the derivation (its tangent basis at run time when the normal
+    /// is an input), the candidates, and the one the sliding-angle solve finds (or -1).
+    derivation deriv;
+    impact_solution candidates;
+    int angle = -1;
+};
+
+/// True when the problem, with the options' --set values folded in, has a law with more
+/// than one candidate (Coulomb friction whose coefficient is not identically 0). A problem
+/// the options do not fit (an unknown symbol, say) counts when it has a coefficient at
+/// all, so that make_code_plan reports the error.
+bool has_candidates(const problem &p, const options &o);
+
+/// Every symbol in e, added to out.
+void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
+
+/// The code plan of a problem under the options (the names of generate()).
+code_plan make_code_plan(const problem &p, const options &o);
+
+} // namespace impactgen::codegen
