@@ -64,6 +64,94 @@ bool gauss(exmat A, exmat B, exmat &X)
     return true;
 }
 
+// Row reduction of [A | b] (A rows x cols): the rank, and whether the system is consistent.
+// With full column rank, x is its one solution.
+std::size_t reduce(exmat A, std::vector<ex> b, bool &consistent, std::vector<ex> &x)
+{
+    const std::size_t rows = A.size(), cols = rows ? A[0].size() : 0;
+    std::size_t rank = 0;
+    std::vector<std::size_t> pivot_col;
+    for (std::size_t c = 0; c < cols && rank < rows; ++c) {
+        std::size_t piv = rows;
+        for (std::size_t r = rank; r < rows && piv == rows; ++r)
+            if (nonzero(A[r][c]))
+                piv = r;
+        if (piv == rows)
+            continue;
+        std::swap(A[rank], A[piv]);
+        std::swap(b[rank], b[piv]);
+        const ex inv = simp(1 / A[rank][c]);
+        for (std::size_t j = c; j < cols; ++j)
+            A[rank][j] = simp(A[rank][j] * inv);
+        b[rank] = simp(b[rank] * inv);
+        for (std::size_t r = 0; r < rows; ++r) {
+            if (r == rank || A[r][c].is_zero())
+                continue;
+            const ex f = A[r][c];
+            for (std::size_t j = c; j < cols; ++j)
+                A[r][j] = simp(A[r][j] - f * A[rank][j]);
+            b[r] = simp(b[r] - f * b[rank]);
+        }
+        pivot_col.push_back(c);
+        ++rank;
+    }
+    consistent = true;
+    for (std::size_t r = rank; r < rows; ++r)
+        consistent = consistent && !nonzero(b[r]);
+    x.assign(cols, ex(0));
+    for (std::size_t k = 0; k < rank; ++k)
+        x[pivot_col[k]] = b[k];
+    return rank;
+}
+
+// The solutions of S x = B: the one of a regular S, else the basic ones (each choice of
+// columns left out at zero that leaves independent columns and a consistent system).
+std::vector<std::vector<ex>> basic_solutions(const exmat &S, const exmat &B)
+{
+    const std::size_t u = S.size();
+    exmat X;
+    if (gauss(S, B, X)) {
+        std::vector<ex> x;
+        for (const auto &row : X)
+            x.push_back(row[0]);
+        return {x};
+    }
+    std::vector<ex> b, x;
+    for (const auto &row : B)
+        b.push_back(row[0]);
+    bool consistent = false;
+    const std::size_t rank = reduce(S, b, consistent, x);
+    if (!consistent || rank == 0)
+        return {};
+    std::vector<std::vector<ex>> out;
+    // Subsets of `rank` columns kept, in lexicographic order (at most 256 tried).
+    std::vector<std::size_t> keep(rank);
+    for (std::size_t k = 0; k < rank; ++k)
+        keep[k] = k;
+    for (int tried = 0; tried < 256; ++tried) {
+        exmat A(u, std::vector<ex>(rank));
+        for (std::size_t r = 0; r < u; ++r)
+            for (std::size_t k = 0; k < rank; ++k)
+                A[r][k] = S[r][keep[k]];
+        std::vector<ex> y;
+        if (reduce(A, b, consistent, y) == rank && consistent) {
+            std::vector<ex> full(u, ex(0));
+            for (std::size_t k = 0; k < rank; ++k)
+                full[keep[k]] = y[k];
+            out.push_back(full);
+        }
+        std::size_t i = rank;
+        while (i > 0 && keep[i - 1] == u - rank + i - 1)
+            --i;
+        if (i == 0)
+            break;
+        ++keep[i - 1];
+        for (std::size_t k = i; k < rank; ++k)
+            keep[k] = keep[k - 1] + 1;
+    }
+    return out;
+}
+
 enum class row_kind { pivot, joint, normal, tangent };
 
 // A body's share of a row: the coefficients on its generalized velocity.
@@ -343,8 +431,12 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
     }
 }
 
-// Solves the candidate `choice` (contacts not considered carry no impulse): false when singular.
-bool solve_core(const model &m, const std::vector<ex> &q, const std::vector<bool> &considered, core &c)
+// Solves the candidate `choice` (contacts not considered carry no impulse). A square system
+// has one solution; a singular one (redundant contacts: a box flat on four corners, two sticking
+// corners) has a family, whose solutions with P >= 0 include a basic one (Caratheodory): one
+// candidate per choice of columns left out that makes the rest independent and consistent.
+std::vector<core> solve_core(const model &m, const std::vector<ex> &q, const std::vector<bool> &considered,
+                             const core &c)
 {
     const std::size_t nc = m.W.size();
     std::vector<std::vector<ex>> cols; // per unknown: its contact-row impulses per unit
@@ -372,7 +464,7 @@ bool solve_core(const model &m, const std::vector<ex> &q, const std::vector<bool
             }
     }
     const std::size_t u = cols.size();
-    exmat S(u, std::vector<ex>(u)), B(u, std::vector<ex>(1)), X;
+    exmat S(u, std::vector<ex>(u)), B(u, std::vector<ex>(1));
     for (std::size_t r = 0; r < u; ++r) {
         for (std::size_t k = 0; k < u; ++k) {
             ex s = 0;
@@ -383,23 +475,26 @@ bool solve_core(const model &m, const std::vector<ex> &q, const std::vector<bool
         }
         B[r][0] = target[r];
     }
-    if (!gauss(S, B, X))
-        return false;
-    c.lambda.assign(nc, ex(0));
-    for (std::size_t k = 0; k < u; ++k)
-        for (std::size_t j = 0; j < nc; ++j)
-            if (!cols[k][j].is_zero())
-                c.lambda[j] = simp(c.lambda[j] + cols[k][j] * X[k][0]);
-    c.w.assign(nc, ex(0));
-    for (std::size_t r = 0; r < nc; ++r) {
-        ex s = q[r];
-        for (std::size_t j = 0; j < nc; ++j)
-            if (!c.lambda[j].is_zero())
-                s += m.W[r][j] * c.lambda[j];
-        c.w[r] = simp(s);
+    std::vector<core> out;
+    for (const std::vector<ex> &x : basic_solutions(S, B)) {
+        core k = c;
+        k.lambda.assign(nc, ex(0));
+        for (std::size_t col = 0; col < u; ++col)
+            for (std::size_t j = 0; j < nc; ++j)
+                if (!cols[col][j].is_zero())
+                    k.lambda[j] = simp(k.lambda[j] + cols[col][j] * x[col]);
+        k.w.assign(nc, ex(0));
+        for (std::size_t r = 0; r < nc; ++r) {
+            ex sum = q[r];
+            for (std::size_t j = 0; j < nc; ++j)
+                if (!k.lambda[j].is_zero())
+                    sum += m.W[r][j] * k.lambda[j];
+            k.w[r] = simp(sum);
+        }
+        add_conditions(m, k, q, considered);
+        out.push_back(k);
     }
-    add_conditions(m, c, q, considered);
-    return true;
+    return out;
 }
 
 // Every row impulse (bilateral, then contacts) and the generalized velocities after.
@@ -520,6 +615,21 @@ bool same(const ex &a, const ex &b)
     return !nonzero(a - b);
 }
 
+// Every condition of the candidate holds (decided exactly), and a perfectly rough contact with
+// no normal impulse carries no tangential impulse.
+bool holds(const model &m, const core &c)
+{
+    for (const system_condition &k : c.conditions)
+        if (!condition_holds(k))
+            return false;
+    for (std::size_t i = 0; i < c.choice.size(); ++i)
+        if (c.choice[i].regime == contact_regime::stick && !nonzero(c.lambda[m.nrow[i]]))
+            for (std::size_t t : m.trows[i])
+                if (nonzero(c.lambda[t]))
+                    return false;
+    return true;
+}
+
 // A holding candidate of a numeric problem.
 struct holding {
     core c;
@@ -534,22 +644,14 @@ std::vector<holding> holding_candidates(const model &m, const std::vector<std::v
     const std::vector<ex> q = contact_velocities(m, gv);
     std::vector<holding> out;
     for_each_choice(m.p, considered, [&](const std::vector<option> &choice) {
-        core c;
-        c.choice = choice;
-        if (!solve_core(m, q, considered, c))
-            return;
-        for (const system_condition &k : c.conditions)
-            if (!condition_holds(k))
-                return;
-        // A perfectly rough contact with no normal impulse carries no tangential impulse.
-        for (std::size_t i = 0; i < choice.size(); ++i)
-            if (choice[i].regime == contact_regime::stick && !nonzero(c.lambda[m.nrow[i]]))
-                for (std::size_t t : m.trows[i])
-                    if (nonzero(c.lambda[t]))
-                        return;
-        holding h{c, {}, gv};
-        apply_impulses(m, c.lambda, h.all, h.gv);
-        out.push_back(h);
+        core start;
+        start.choice = choice;
+        for (const core &c : solve_core(m, q, considered, start))
+            if (holds(m, c)) {
+                holding h{c, {}, gv};
+                apply_impulses(m, c.lambda, h.all, h.gv);
+                out.push_back(h);
+            }
     });
     return out;
 }
@@ -685,16 +787,16 @@ std::vector<system_candidate> system_candidates(const problem &p)
     const std::vector<bool> considered(p.contacts.size(), true);
     std::vector<system_candidate> out;
     for_each_choice(p, considered, [&](const std::vector<option> &choice) {
-        core c;
-        c.choice = choice;
-        if (!solve_core(m, q, considered, c))
-            return;
-        std::vector<ex> all;
-        std::vector<std::vector<ex>> gv = m.gv0;
-        apply_impulses(m, c.lambda, all, gv);
-        system_candidate s = finish(m, choice, all, gv, c.w);
-        s.conditions = c.conditions;
-        out.push_back(s);
+        core start;
+        start.choice = choice;
+        for (const core &c : solve_core(m, q, considered, start)) {
+            std::vector<ex> all;
+            std::vector<std::vector<ex>> gv = m.gv0;
+            apply_impulses(m, c.lambda, all, gv);
+            system_candidate s = finish(m, choice, all, gv, c.w);
+            s.conditions = c.conditions;
+            out.push_back(s);
+        }
     });
     return out;
 }

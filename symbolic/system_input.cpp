@@ -91,10 +91,10 @@ void validate_joint(const problem &p, std::size_t k)
 
 void validate_system(const problem &p)
 {
-    for (std::size_t k = 0; k < p.contacts.size(); ++k)
-        validate_contact(p, k);
     for (std::size_t k = 0; k < p.joints.size(); ++k)
         validate_joint(p, k);
+    for (std::size_t k = 0; k < p.contacts.size(); ++k)
+        validate_contact(p, k);
     // An impact: at least one contact approaches ((v_B - v_A).n < 0), decided for numbers.
     bool approaches = false, unknown = false;
     std::string speeds;
