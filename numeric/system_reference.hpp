@@ -44,7 +44,8 @@ struct sys_problem {
     std::vector<sys_contact> contacts;
 };
 struct sys_answer {
-    int holding = 0; ///< active sets for which the law holds (0: none)
+    int holding = 0;  ///< active sets for which the law holds (0: none)
+    int singular = 0; ///< active sets whose system is singular (solved in the least-norm sense)
     std::vector<vec3> velocity, angular_velocity;
     std::vector<double> normal_impulse; ///< along the unit normal
 };
@@ -139,11 +140,17 @@ inline sys_answer solve_reference(const sys_problem &p, double tol = 1e-9)
         }
         Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
         if (m > 0) {
-            Eigen::FullPivLU<Eigen::MatrixXd> lu(A * Minv * A.transpose());
+            const Eigen::MatrixXd H = A * Minv * A.transpose();
+            Eigen::FullPivLU<Eigen::MatrixXd> lu(H);
             lu.setThreshold(1e-12);
-            if (!lu.isInvertible())
-                continue;
-            lambda = lu.solve(rhs);
+            if (lu.isInvertible()) {
+                lambda = lu.solve(rhs);
+            } else { // redundant rows: the least-norm impulses, if the velocities can be met at all
+                ++best.singular;
+                lambda = H.completeOrthogonalDecomposition().solve(rhs);
+                if ((H * lambda - rhs).norm() > 1e-9 * (1 + rhs.norm()))
+                    continue;
+            }
         }
         const Eigen::VectorXd v2 = v + Minv * A.transpose() * lambda;
         bool ok = true;
