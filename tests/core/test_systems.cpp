@@ -370,6 +370,17 @@ TEST(SystemsRandom, ClosedFormAgreesWithEigenReference)
                 const double wx = print::to_double(a.result.angular_velocity[b][k]), wy = r.angular_velocity[b](k);
                 EXPECT_NEAR(wx, wy, 1e-7 * (1 + std::abs(wy))) << text;
             }
+        // One e for every contact, none rough, the ground at rest: energy is never gained.
+        bool one_e = true, rough = false;
+        for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+            one_e = one_e && p.restitution_of(i) == p.restitution_of(0);
+            rough = rough || p.contacts[i].rough;
+        }
+        if (one_e && !rough) {
+            EXPECT_NE(decide(a.energy_before - a.energy_after), decision::negative) << text;
+            EXPECT_FALSE(a.energy_gain) << text;
+        }
+        EXPECT_EQ(a.energy_gain, decide(a.energy_after - a.energy_before) == decision::positive) << text;
         if (s < 60 && p.is_system())
             expect_residuals_zero(p, a.result);
     }
