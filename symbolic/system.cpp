@@ -16,9 +16,11 @@ using exmat = std::vector<std::vector<ex>>;
 constexpr std::size_t max_candidates = 4096;
 constexpr std::size_t max_steps = 64;
 
+// Every entry over a common denominator: the systems' closed forms are rational functions of a
+// few symbols, which stay small in that form (tidy() alone would leave nested fractions).
 ex simp(const ex &e)
 {
-    return tidy(e);
+    return is_constant(e) ? tidy(e) : normal(e);
 }
 
 // Decided non-zero: exactly for constants, identically for expressions with symbols.

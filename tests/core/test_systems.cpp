@@ -390,3 +390,61 @@ TEST(SystemsRandom, ClosedFormAgreesWithEigenReference)
     EXPECT_GT(solved, n / 3);
     EXPECT_LT(degenerate, solved / 10 + 1);
 }
+
+// Symbolic problems: every candidate in closed form with its conditions. The three balls'
+// all-acting candidate is the hand result in e, m, v; the compass gait with symbolic m and J,
+// its candidate {0 stick, 1 open} at m = 5, J = 5 * 0.97 / 12, is the numeric answer.
+TEST(Systems, SymbolicCandidatesAreTheClosedForms)
+{
+    const problem p = from_text(R"({"dimension": 2, "restitution": "e", "bodies": [
+        {"name": "a", "mass": "m", "position": [0, 0], "velocity": ["v", 0]},
+        {"name": "b", "mass": "m", "position": [2, 0], "velocity": [0, 0]},
+        {"name": "c", "mass": "m", "position": [4, 0], "velocity": [0, 0]}],
+      "contacts": [{"bodies": ["a", "b"], "point": [1, 0], "normal": [1, 0]},
+                   {"bodies": ["b", "c"], "point": [3, 0], "normal": [1, 0]}]})");
+    const ex e = symbol_named("e"), v = symbol_named("v");
+    bool found = false;
+    for (const system_candidate& c : system_candidates(p))
+        if (c.name() == "{0 smooth, 1 smooth}") {
+            found = true;
+            EXPECT_TRUE(GiNaC::normal(c.velocity[0][0] - (1 - 2 * e) * v / 3).is_zero()) << c.velocity[0][0];
+            EXPECT_TRUE(GiNaC::normal(c.velocity[2][0] - (1 + e) * v / 3).is_zero()) << c.velocity[2][0];
+            EXPECT_EQ(c.conditions.size(), 2u);
+        }
+    EXPECT_TRUE(found);
+    EXPECT_THROW(solve_system(p), input_error);
+
+    std::ifstream in(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    for (std::size_t at; (at = text.find(R"("mass": 5, "inertia": "5*0.97/12")")) != std::string::npos;)
+        text.replace(at, 33, R"("mass": "m", "inertia": "J")");
+    const problem s = from_text(text);
+    ASSERT_EQ(s.parameters().size(), 2u);
+    const system_answer numeric_answer = solve_system(from_file("compass-gait.json"));
+    const GiNaC::lst at{symbol_named("m") == 5, symbol_named("J") == ex(5) * GiNaC::numeric(97, 100) / 12};
+    found = false;
+    for (const system_candidate& c : system_candidates(s))
+        if (c.name() == "{0 stick, 1 open}") {
+            found = true;
+            for (std::size_t b = 0; b < 3; ++b)
+                EXPECT_EQ(c.angular_velocity[b][2].subs(at), numeric_answer.result.angular_velocity[b][2]);
+            EXPECT_EQ(c.normal_impulse[0].subs(at), numeric_answer.result.normal_impulse[0]);
+        }
+    EXPECT_TRUE(found);
+}
+
+// Sequential impacts with joints: one contact acting alone is the simultaneous answer.
+TEST(Systems, SequentialWithJointsIsTheSingleImpact)
+{
+    std::ifstream in(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/double-pendulum-struck.json");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    text.replace(text.find("\"dimension\""), 0, R"("impacts": "sequential", )");
+    const system_answer a = solve_system(from_text(text));
+    EXPECT_EQ(a.sequence, std::vector<std::size_t>{0});
+    EXPECT_EQ(a.result.normal_impulse[0], rational(21, 62));
+    EXPECT_EQ(a.result.velocity[2][0], rational(41, 62));
+}
