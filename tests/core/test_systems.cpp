@@ -448,3 +448,23 @@ TEST(Systems, SequentialWithJointsIsTheSingleImpact)
     EXPECT_EQ(a.result.normal_impulse[0], rational(21, 62));
     EXPECT_EQ(a.result.velocity[2][0], rational(41, 62));
 }
+
+// The rimless wheel (McGeer): spokes of length l = 1 at half-angle alpha (sin = 3/5, cos = 4/5),
+// m = 1, I = 1/2 about the centre, turning at w = -1 about the trailing foot T; the leading foot
+// S strikes, plastic and without slip, T rests on the ground. The published map is
+// w+ = (I + m l^2 cos 2 alpha) / (I + m l^2) w- (angular momentum about S conserved, T lifting
+// off): (1/2 + 7/25) / (3/2) * (-1) = -13/25.
+TEST(Systems, RimlessWheelMatchesThePublishedMap)
+{
+    // C = (0, 4/5), T = (-3/5, 0), S = (3/5, 0); v_C = w z x (C - T) = (4/5, -3/5).
+    const problem p = from_text(R"({"dimension": 2, "restitution": 0, "bodies": [
+        {"name": "ground", "mass": "inf", "position": [0, -1], "velocity": [0, 0]},
+        {"name": "wheel", "mass": 1, "inertia": "1/2", "position": [0, 0.8], "velocity": [0.8, -0.6], "angular_velocity": -1}],
+      "contacts": [{"bodies": ["ground", "wheel"], "point": [0.6, 0], "normal": [0, 1], "friction": "inf"},
+                   {"bodies": ["ground", "wheel"], "point": [-0.6, 0], "normal": [0, 1], "friction": "inf"}]})");
+    const system_answer a = solve_system(p);
+    EXPECT_EQ(a.result.angular_velocity[1][2], rational(-13, 25));
+    EXPECT_EQ(a.result.regimes[0], contact_regime::stick);
+    EXPECT_EQ(a.result.regimes[1], contact_regime::open);
+    expect_residuals_zero(p, a.result);
+}
