@@ -468,3 +468,20 @@ TEST(Systems, RimlessWheelMatchesThePublishedMap)
     EXPECT_EQ(a.result.regimes[1], contact_regime::open);
     expect_residuals_zero(p, a.result);
 }
+
+// The one-contact library entry points (what explain and codegen call) refuse a system with a
+// line naming it, never run on its first contact alone.
+TEST(Systems, OneContactEntryPointsRefuseASystem)
+{
+    const derivation d = derive(from_file("compass-gait.json"));
+    for (int k = 0; k < 2; ++k)
+        try {
+            if (k == 0)
+                solve(d);
+            else
+                solve_impact(d);
+            ADD_FAILURE() << "accepted";
+        } catch (const input_error& e) {
+            EXPECT_NE(std::string(e.what()).find("a system (several contacts)"), std::string::npos) << e.what();
+        }
+}
