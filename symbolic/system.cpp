@@ -784,6 +784,9 @@ std::string system_candidate::name() const
 
 std::vector<system_candidate> system_candidates(const problem &p)
 {
+    if (p.sequential)
+        throw input_error("impacts: sequential impacts have no closed-form candidates (which contact acts next "
+                          "depends on the numbers); 'impactgen solve' follows the chain of a numeric problem");
     const model m = build_model(p);
     const std::vector<ex> q = contact_velocities(m, m.gv0);
     const std::vector<bool> considered(p.contacts.size(), true);

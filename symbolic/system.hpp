@@ -75,8 +75,9 @@ struct system_answer {
 };
 
 /// Every candidate of the simultaneous law in closed form (symbolic or numeric problem);
-/// the ones whose linear system is singular are left out. Throws input_error for redundant
-/// joints, or too many candidate sets (more than 4096).
+/// a singular set gives its basic solutions. Throws input_error for redundant joints, too
+/// many candidate sets (more than 4096), or sequential impacts (no closed form: the chain
+/// depends on the numbers).
 std::vector<system_candidate> system_candidates(const problem &p);
 
 /// A numeric problem's answer: the candidate that holds, decided exactly (simultaneous), or

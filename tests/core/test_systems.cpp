@@ -92,6 +92,7 @@ TEST(Systems, ThreeBallsSequentialIsNewtonsCradle)
     EXPECT_EQ(a.result.velocity[1][0], 0);
     EXPECT_EQ(a.result.velocity[2][0], 1);
     EXPECT_EQ(a.sequence, (std::vector<std::size_t>{0, 1}));
+    EXPECT_THROW(system_candidates(from_text(three_balls("1", true))), input_error);
     const system_answer s = solve_system(from_text(three_balls("1", false)));
     EXPECT_NE(s.result.velocity[2][0], a.result.velocity[2][0]);
     // e = 1/2: the chain goes on until no contact approaches; momentum is kept, energy lost.
