@@ -68,7 +68,8 @@ bool gauss(exmat A, exmat B, exmat &X)
 
 // Row reduction of [A | b] (A rows x cols): the rank, and whether the system is consistent.
 // With full column rank, x is its one solution.
-std::size_t reduce(exmat A, std::vector<ex> b, bool &consistent, std::vector<ex> &x)
+std::size_t reduce(exmat A, std::vector<ex> b, bool &consistent, std::vector<ex> &x,
+                   std::vector<std::size_t> *pivots = nullptr)
 {
     const std::size_t rows = A.size(), cols = rows ? A[0].size() : 0;
     std::size_t rank = 0;
@@ -103,6 +104,8 @@ std::size_t reduce(exmat A, std::vector<ex> b, bool &consistent, std::vector<ex>
     x.assign(cols, ex(0));
     for (std::size_t k = 0; k < rank; ++k)
         x[pivot_col[k]] = b[k];
+    if (pivots)
+        *pivots = pivot_col;
     return rank;
 }
 
@@ -180,7 +183,8 @@ struct model {
     std::vector<ex> nlen;                        ///< per contact: |n_i|
     exmat W;                                     ///< the Delassus matrix of the contact rows
     exmat XJ;                                    ///< H_JJ^-1 H_JC: lambda_J = -XJ lambda_C
-    std::vector<std::vector<ex>> gv0;            ///< generalized velocity before impact, per body
+    bool redundant = false;           ///< dependent joint rows: left out (no impulse), the impulses not unique
+    std::vector<std::vector<ex>> gv0; ///< generalized velocity before impact, per body
 };
 
 // The coefficients of the velocity along a of body b's material point Q.
@@ -330,9 +334,27 @@ void setup_delassus(model &m)
         for (std::size_t j = 0; j < nc; ++j)
             HJC[i][j] = H[i][nb + j];
     }
-    if (!gauss(HJJ, HJC, m.XJ))
-        throw input_error("joints: the joints and pivots are redundant (or hold a particle by one point it "
-                          "cannot turn about): their impulses are not determined; remove the redundant ones");
+    if (!gauss(HJJ, HJC, m.XJ)) {
+        // Redundant joints (rows of A_J dependent, so H_JJ singular): the rows of an independent
+        // subset imply the others (which hold before impact), so the others are left out with
+        // no impulse -- one valid choice of impulses among many.
+        bool consistent = false;
+        std::vector<ex> x;
+        std::vector<std::size_t> keep;
+        reduce(HJJ, std::vector<ex>(nb, ex(0)), consistent, x, &keep);
+        exmat HK(keep.size(), std::vector<ex>(keep.size())), HC(keep.size()), XK;
+        for (std::size_t i = 0; i < keep.size(); ++i) {
+            for (std::size_t j = 0; j < keep.size(); ++j)
+                HK[i][j] = HJJ[keep[i]][keep[j]];
+            HC[i] = HJC[keep[i]];
+        }
+        if (!gauss(HK, HC, XK))
+            throw input_error("joints: the joints' and pivots' impulses cannot be determined");
+        m.XJ.assign(nb, std::vector<ex>(nc, ex(0)));
+        for (std::size_t i = 0; i < keep.size(); ++i)
+            m.XJ[keep[i]] = XK[i];
+        m.redundant = true;
+    }
     for (std::size_t i = 0; i < nc; ++i)
         for (std::size_t j = 0; j < nc; ++j) {
             ex s = m.W[i][j];
@@ -813,10 +835,12 @@ system_answer solve_system(const problem &p)
     system_answer a;
     if (p.sequential) {
         a = sequential_answer(m);
+        a.impulses_unique = a.impulses_unique && !m.redundant;
     } else {
         const std::vector<bool> considered(p.contacts.size(), true);
         const std::vector<holding> hs = holding_candidates(m, m.gv0, considered);
         const holding &h = choose(hs, a.impulses_unique, "");
+        a.impulses_unique = a.impulses_unique && !m.redundant;
         a.result = finish(m, h.c.choice, h.all, h.gv, h.c.w);
         a.result.conditions = h.c.conditions;
     }

@@ -75,7 +75,7 @@ struct system_answer {
 };
 
 /// Every candidate of the simultaneous law in closed form (symbolic or numeric problem);
-/// a singular set gives its basic solutions. Throws input_error for redundant joints, too
+/// a singular set gives its basic solutions. Throws input_error for too
 /// many candidate sets (more than 4096), or sequential impacts (no closed form: the chain
 /// depends on the numbers).
 std::vector<system_candidate> system_candidates(const problem &p);

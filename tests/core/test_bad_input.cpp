@@ -194,7 +194,6 @@ std::vector<bad_case> cases()
         {"joint_point_length", [] { return with(valid_system(), [](json& j) { j["joints"][0]["point"] = {1, 1, 0}; }); }, {"joints[0].point", "components"}},
         {"joint_both_infinite", [] { return with(valid_system(), [](json& j) { j["bodies"][1]["mass"] = "inf"; j["joints"][0]["bodies"] = {"ground", "a"}; }); }, {"joints[0].bodies", "infinite mass"}},
         {"joint_comes_apart", [] { return with(valid_system(), [](json& j) { j["bodies"][2]["velocity"] = {0, -2}; }); }, {"joints[0]", "comes apart before impact"}},
-        {"joints_redundant", [] { return with(valid_system(), [](json& j) { j["joints"].push_back(j["joints"][0]); }); }, {"joints", "redundant"}},
         {"contact_restitution_above_one", [] { return with(valid_system(), [](json& j) { j["contacts"][1]["restitution"] = 2; }); }, {"contacts[1].restitution", "[0, 1]"}},
         {"contacts_restitution_missing", [] { return with(valid_system(), [](json& j) { j.erase("restitution"); j["contacts"][0]["restitution"] = 1; }); }, {"missing key \"restitution\""}},
         {"contact_friction_negative", [] { return with(valid_system(), [](json& j) { j["contacts"][1]["friction"] = -1; }); }, {"contacts[1].friction", ">= 0"}},

@@ -486,3 +486,22 @@ TEST(Systems, OneContactEntryPointsRefuseASystem)
             EXPECT_NE(std::string(e.what()).find("a system (several contacts)"), std::string::npos) << e.what();
         }
 }
+
+// Redundant joints (the double pendulum's pin written twice): the velocities are those of one
+// pin, the joint impulses one valid split (impulses_unique false), the equations still hold.
+TEST(Systems, RedundantJointsGiveNonUniqueImpulses)
+{
+    std::ifstream in(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/double-pendulum-struck.json");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    const std::string pin = R"({ "bodies": ["upper", "lower"], "point": [0, -1] })";
+    text.replace(text.find(pin), pin.size(), pin + ", " + pin);
+    const problem p = from_text(text);
+    ASSERT_EQ(p.joints.size(), 2u);
+    const system_answer a = solve_system(p);
+    EXPECT_FALSE(a.impulses_unique);
+    EXPECT_EQ(a.result.normal_impulse[0], rational(21, 62));
+    EXPECT_EQ(a.result.angular_velocity[1][2], rational(45, 31));
+    expect_residuals_zero(p, a.result);
+}
