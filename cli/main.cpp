@@ -6,6 +6,7 @@
 #include "print/expression.hpp"
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/system.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -65,6 +66,11 @@ int cmd_solve(const std::string &what, bool json)
         throw input_error(what + ": solve needs numbers, but the problem has symbols (" +
                           impactgen::names::display_text(names, 120) + "); use 'impactgen formulas' for closed forms");
     }
+    if (p.is_system()) { // format version 3: several contacts, joints, sequential impacts
+        const system_answer a = solve_system(p);
+        std::cout << (json ? print::system_answer_json(p, a).dump(2) + "\n" : print::system_answer_text(p, a));
+        return 0;
+    }
     derivation d = derive(p);
     const regime_case c = select_candidate(d, solve_impact(d));
     if (json)
@@ -77,6 +83,13 @@ int cmd_solve(const std::string &what, bool json)
 int cmd_formulas(const std::string &what, const std::string &format, bool jacobian, const std::string &wrt)
 {
     problem p = load(what);
+    if (p.is_system()) { // format version 3: every candidate of the law with its conditions
+        if (jacobian)
+            refuse_system_for(p, "formulas --jacobian");
+        std::cout << (format == "json" ? print::system_formulas_json(p).dump(2) + "\n"
+                                       : print::system_formulas_text(p, format == "latex"));
+        return 0;
+    }
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {

@@ -171,3 +171,117 @@ std::string answer_text(const derivation &d, const solution &s, const regime_cas
 }
 
 } // namespace impactgen::print
+
+namespace impactgen::print
+{
+
+namespace
+{
+nlohmann::ordered_json vector_json(const valuer &val, const vec3 &v, int n, const std::string &key)
+{
+    nlohmann::ordered_json r = nlohmann::ordered_json::array();
+    for (int c = 0; c < n; ++c)
+        r.push_back(val(v[c], key));
+    return r;
+}
+} // namespace
+
+nlohmann::ordered_json system_answer_json(const problem &p, const system_answer &a)
+{
+    const solution none;
+    const valuer val{none, false};
+    const int n = p.dimension;
+    const system_candidate &r = a.result;
+    nlohmann::ordered_json out, bodies = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        const std::string key = "bodies." + names::display_text(p.bodies[i].name);
+        nlohmann::ordered_json b;
+        b["velocity"] = vector_json(val, r.velocity[i], n, key + ".velocity");
+        b["angular_velocity"] = n == 2 ? val(r.angular_velocity[i][2], key + ".angular_velocity")
+                                       : vector_json(val, r.angular_velocity[i], 3, key + ".angular_velocity");
+        bodies[p.bodies[i].name] = b;
+    }
+    out["bodies"] = bodies;
+    nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        const std::string key = "contacts[" + std::to_string(i) + "]";
+        contacts.push_back(
+            {{"normal_impulse", val(r.normal_impulse[i], key + ".normal_impulse")},
+             {"tangential_impulse", vector_json(val, r.tangential_impulse[i], n, key + ".tangential_impulse")},
+             {"regime", contact_regime_name(r.regimes[i])}});
+    }
+    out["contacts"] = contacts;
+    nlohmann::ordered_json joints = nlohmann::ordered_json::array(), pivots = nlohmann::ordered_json::array();
+    for (const vec3 &J : r.joint_impulses)
+        joints.push_back(vector_json(val, J, n, "joint_impulses"));
+    for (const vec3 &R : r.pivot_impulses)
+        pivots.push_back(vector_json(val, R, n, "pivot_impulses"));
+    out["joint_impulses"] = joints;
+    out["pivot_impulses"] = pivots;
+    out["kinetic_energy"] = {{"before", val(a.energy_before, "kinetic_energy.before")},
+                             {"after", val(a.energy_after, "kinetic_energy.after")},
+                             {"lost", val(a.energy_before - a.energy_after, "kinetic_energy.lost")}};
+    out["impulses_unique"] = a.impulses_unique;
+    if (a.sequential)
+        out["sequence"] = a.sequence;
+    if (a.energy_gain)
+        out["energy_gain"] = true;
+    return out;
+}
+
+std::string system_answer_text(const problem &p, const system_answer &a)
+{
+    std::ostringstream os;
+    auto show = [](const ex &e) {
+        ex v = surd_form(tidy(e));
+        std::string exact = parser_syntax(v);
+        try {
+            std::string dec = decimal(v);
+            return exact == dec ? exact : exact + " = " + dec;
+        } catch (const std::exception &) {
+            return exact;
+        }
+    };
+    auto show_vec = [&](const vec3 &v, int n) {
+        std::string r = "(";
+        for (int c = 0; c < n; ++c)
+            r += (c ? ", " : "") + show(v[c]);
+        return r + ")";
+    };
+    const system_candidate &r = a.result;
+    const int n = p.dimension;
+    os << "System of " << p.bodies.size() << " bodies, " << p.contacts.size() << " contact(s), " << p.joints.size()
+       << " joint(s), " << p.pivots.size() << " pivot(s); impacts " << (a.sequential ? "sequential" : "simultaneous")
+       << "\n\n";
+    if (a.sequential) {
+        os << "Sequence of contacts:";
+        for (std::size_t k : a.sequence)
+            os << " " << k;
+        os << "\n\n";
+    }
+    os << "After impact:\n";
+    for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+        os << "  " << p.bodies[i].name << ":\n";
+        os << "    velocity          " << show_vec(r.velocity[i], n) << "\n";
+        os << "    angular velocity  " << (n == 2 ? show(r.angular_velocity[i][2]) : show_vec(r.angular_velocity[i], 3))
+           << "\n";
+    }
+    for (std::size_t i = 0; i < p.contacts.size(); ++i)
+        os << "  contacts[" << i << "]  " << contact_regime_name(r.regimes[i]) << ", normal impulse "
+           << show(r.normal_impulse[i]) << ", tangential impulse " << show_vec(r.tangential_impulse[i], n) << "\n";
+    for (std::size_t j = 0; j < r.joint_impulses.size(); ++j)
+        os << "  joint impulse " << j << " on " << p.bodies[p.joints[j].body2].name << "  "
+           << show_vec(r.joint_impulses[j], n) << "\n";
+    for (std::size_t k = 0; k < r.pivot_impulses.size(); ++k)
+        os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(r.pivot_impulses[k], n)
+           << "\n";
+    if (!a.impulses_unique)
+        os << "  (the impulses are not unique: these are one valid choice; the velocities are unique)\n";
+    os << "Kinetic energy:\n";
+    os << "  before  " << show(a.energy_before) << "\n";
+    os << "  after   " << show(a.energy_after) << "\n";
+    os << "  lost    " << show(a.energy_before - a.energy_after) << (a.energy_gain ? "  (energy gained)" : "") << "\n";
+    return os.str();
+}
+
+} // namespace impactgen::print

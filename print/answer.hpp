@@ -3,6 +3,7 @@
 #pragma once
 
 #include "symbolic/friction.hpp"
+#include "symbolic/system.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -22,5 +23,11 @@ std::string answer_text(const derivation &d, const solution &s);
 std::string answer_text(const derivation &d, const regime_case &c);
 /// friction may be nullptr (smooth).
 std::string answer_text(const derivation &d, const solution &s, const regime_case *friction);
+
+/// The answer of a system (format version 3, a file with several contacts, joints, sequential
+/// impacts or a perfectly rough contact): bodies, contacts[], joint_impulses, pivot_impulses,
+/// kinetic_energy, impulses_unique, sequence (sequential only), energy_gain (when gained).
+nlohmann::ordered_json system_answer_json(const problem &p, const system_answer &a);
+std::string system_answer_text(const problem &p, const system_answer &a);
 
 } // namespace impactgen::print

@@ -290,3 +290,97 @@ nlohmann::ordered_json formulas_json(const derivation &d, const friction_solutio
 }
 
 } // namespace impactgen::print
+
+namespace impactgen::print
+{
+
+namespace
+{
+std::string sys_expr(const ex &e, bool latex)
+{
+    const ex v = surd_form(tidy(e));
+    if (!latex)
+        return parser_syntax(v);
+    std::ostringstream os;
+    os << GiNaC::latex << v;
+    return os.str();
+}
+
+// The quantities a system candidate reports, each with its name.
+std::vector<std::pair<std::string, ex>> system_values(const problem &p, const system_candidate &c)
+{
+    std::vector<std::pair<std::string, ex>> out;
+    const char *ax[3] = {"x", "y", "z"};
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        if (p.bodies[b].infinite_mass)
+            continue;
+        for (int k = 0; k < p.dimension; ++k)
+            out.push_back({"v'_" + std::string(ax[k]) + "," + p.bodies[b].name, c.velocity[b][k]});
+        if (p.bodies[b].particle)
+            continue;
+        if (p.dimension == 2)
+            out.push_back({"w'_" + p.bodies[b].name, c.angular_velocity[b][2]});
+        else
+            for (int k = 0; k < 3; ++k)
+                out.push_back({"w'_" + std::string(ax[k]) + "," + p.bodies[b].name, c.angular_velocity[b][k]});
+    }
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        out.push_back({"P_" + std::to_string(i), c.normal_impulse[i]});
+        if (c.regimes[i] == contact_regime::stick || c.regimes[i] == contact_regime::slide)
+            for (int k = 0; k < p.dimension; ++k)
+                out.push_back({"P_t" + std::string(ax[k]) + "," + std::to_string(i), c.tangential_impulse[i][k]});
+    }
+    for (std::size_t j = 0; j < c.joint_impulses.size(); ++j)
+        for (int k = 0; k < p.dimension; ++k)
+            out.push_back({"J_" + std::string(ax[k]) + "," + std::to_string(j), c.joint_impulses[j][k]});
+    for (std::size_t j = 0; j < c.pivot_impulses.size(); ++j)
+        for (int k = 0; k < p.dimension; ++k)
+            out.push_back({"R_" + std::string(ax[k]) + "," + std::to_string(j), c.pivot_impulses[j][k]});
+    return out;
+}
+} // namespace
+
+std::string system_formulas_text(const problem &p, bool latex)
+{
+    const std::vector<system_candidate> cs = system_candidates(p);
+    std::ostringstream os;
+    os << (latex ? "% " : "") << "System: " << p.contacts.size() << " contact(s), " << p.joints.size() << " joint(s), "
+       << p.pivots.size() << " pivot(s). Candidates of the law 0 <= P_i _|_ u'_i + e_i u_i >= 0, "
+       << "one per set of regimes (open, smooth, stick, slide); a candidate is the answer where its conditions "
+          "hold.\n";
+    for (const system_candidate &c : cs) {
+        os << "\n" << (latex ? "% " : "") << "Candidate " << c.name() << ":\n";
+        for (const auto &v : system_values(p, c))
+            os << (latex ? "" : "  ") << v.first << " = " << sys_expr(v.second, latex) << (latex ? " \\\\" : "")
+               << "\n";
+        os << (latex ? "% " : "  ") << "conditions:" << (c.conditions.empty() ? " none" : "") << "\n";
+        for (const system_condition &k : c.conditions)
+            os << (latex ? "% " : "    ") << k.meaning << ":  " << sys_expr(k.value, latex)
+               << (k.strict ? " > 0" : " >= 0") << "\n";
+    }
+    return os.str();
+}
+
+nlohmann::ordered_json system_formulas_json(const problem &p)
+{
+    nlohmann::ordered_json out, list = nlohmann::ordered_json::array();
+    for (const system_candidate &c : system_candidates(p)) {
+        nlohmann::ordered_json j, answer = nlohmann::ordered_json::object(), conds = nlohmann::ordered_json::array();
+        j["set"] = c.name();
+        nlohmann::ordered_json regimes = nlohmann::ordered_json::array();
+        for (contact_regime r : c.regimes)
+            regimes.push_back(contact_regime_name(r));
+        j["regimes"] = regimes;
+        for (const auto &v : system_values(p, c))
+            answer[v.first] = sys_expr(v.second, false);
+        j["answer"] = answer;
+        for (const system_condition &k : c.conditions)
+            conds.push_back({{"value", sys_expr(k.value, false)}, {"strict", k.strict}, {"meaning", k.meaning}});
+        j["conditions"] = conds;
+        list.push_back(j);
+    }
+    out["candidates"] = list;
+    return out;
+}
+
+} // namespace impactgen::print

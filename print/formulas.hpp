@@ -3,6 +3,7 @@
 #pragma once
 
 #include "symbolic/friction.hpp"
+#include "symbolic/system.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -30,5 +31,11 @@ bool stick_can_hold(const derivation &d, const friction_solution &f);
 /// stick impulse (which does not depend on mu). In the stick case's steps; for a planar
 /// problem |P_t| is written as an absolute value.
 GiNaC::ex stick_threshold(const derivation &d, const friction_solution &f);
+
+/// A system (format version 3): every candidate of the law (a regime per contact) with its
+/// closed form and the conditions under which it is the answer.
+std::string system_formulas_text(const problem &p, bool latex);
+/// {"candidates": [{"set", "regimes", "answer", "conditions"}]}: expressions in GiNaC's syntax.
+nlohmann::ordered_json system_formulas_json(const problem &p);
 
 } // namespace impactgen::print

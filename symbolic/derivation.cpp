@@ -548,6 +548,10 @@ derivation derive(const problem &p, const derive_options &options)
     validate(p);
     derivation d;
     d.prob = p;
+    if (p.is_system()) { // format version 3: bodies, joints, several contacts
+        derive_system(d);
+        return d;
+    }
     const std::size_t i1 = p.contact().body1, i2 = p.contact().body2;
     d.impulse_form = !p.pivots.empty();
     unit_normal_and_frame(d, options);

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "problem.hpp"
+#include "system.hpp"
 
 #include <string>
 #include <vector>
@@ -115,6 +116,19 @@ struct derivation {
     ex normal_impulse;               ///< the unknown N (impulse form only), else 0
     vec3 vA, vB, vA_after, vB_after; ///< contact point velocities
 
+    /// A system (problem::is_system, format version 3; system_derivation.cpp): `equations` are
+    /// each body's impulse-momentum with every joint, pivot and contact impulse acting on it
+    /// (angular momentum about the centre, or about the fixed pivot), then the joints' and the
+    /// pivots' velocity conditions; system_unknowns lists the unknowns (velocities after, then
+    /// the impulses); system_laws[i] is contact i's law in its acting form (restitution, then
+    /// no slip along each tangent for stick), system_tangents[i] its unit tangents.
+    bool system = false;
+    std::vector<std::pair<GiNaC::symbol, std::string>> system_unknowns;
+    std::vector<std::vector<equation>> system_laws;
+    std::vector<std::vector<vec3>> system_tangents;
+    std::vector<GiNaC::symbol> system_normal_impulse;               ///< P_i, along the unit normal
+    std::vector<std::vector<GiNaC::symbol>> system_tangent_impulse; ///< F_ik, along system_tangents[i][k]
+
     std::size_t count_equations() const { return equations.size(); }
     std::size_t count_unknowns() const { return unknowns.size(); }
     /// All the unknown symbols, in order.
@@ -136,6 +150,12 @@ struct derive_options {
 };
 
 derivation derive(const problem &p, const derive_options &options = {});
+
+/// The equations of a system (derive() calls it for problem::is_system).
+void derive_system(derivation &d);
+/// symbol == value for every unknown of a system's derivation at the candidate's values: the
+/// derived equations' residuals are then zero (tests).
+GiNaC::lst system_unknown_values(const derivation &d, const system_candidate &c);
 
 /// A body label as a subscript after another one: "1" stays "1", a longer label gets a comma
 /// (",ball"); the TeX form sets a long label as text.

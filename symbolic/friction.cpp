@@ -1,4 +1,5 @@
 #include "friction.hpp"
+#include "system.hpp"
 
 #include "decide.hpp"
 #include "names/escape.hpp"
@@ -525,6 +526,7 @@ const regime_case *impact_solution::stick() const
 
 impact_solution solve_impact(const derivation &d)
 {
+    refuse_system_for(d.prob, "the one-contact solver (explain, codegen)");
     if (d.prob.has_friction())
         return solve_friction(d);
     impact_solution s;

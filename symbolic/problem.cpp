@@ -2,6 +2,7 @@
 
 #include "decide.hpp"
 #include "names/escape.hpp"
+#include "system_input.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -431,9 +432,13 @@ std::vector<symbol> problem::parameters() const
         collect_v(c.point);
         collect_v(c.normal);
         collect(c.friction());
+        if (c.own_restitution)
+            collect(c.restitution);
     }
     for (const pivot &pv : pivots)
         collect_v(pv.point);
+    for (const joint &j : joints)
+        collect_v(j.point);
     std::vector<symbol> r;
     for (const ex &e : found)
         r.push_back(ex_to<symbol>(e));
@@ -506,10 +511,11 @@ void validate(const problem &p)
         throw input_error("dimension: must be 2 or 3");
     if (p.bodies.size() < 2)
         throw input_error("bodies: an impact needs two bodies, got " + std::to_string(p.bodies.size()));
+    const bool system = p.is_system();
     if (decided(p.restitution, "restitution", "e") == decision::negative ||
         decided(1 - p.restitution, "restitution", "1 - e") == decision::negative)
         throw input_error("restitution: e must lie in [0, 1], got " + show(p.restitution));
-    if (decided(p.contact().friction(), "contact.friction", "mu") == decision::negative)
+    if (!system && decided(p.contact().friction(), "contact.friction", "mu") == decision::negative)
         throw input_error("contact.friction: the coefficient of friction mu must be >= 0, got " +
                           show(p.contact().friction()));
     std::set<std::string> seen;
@@ -543,13 +549,15 @@ void validate(const problem &p)
                                   std::string(p.dimension == 2 ? " (must be > 0, or 0 for a particle)" : ""));
     }
     const contact_spec &c = p.contact();
-    if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
-        throw input_error("contact.bodies: unknown body");
-    if (c.body1 == c.body2)
-        throw input_error("contact.bodies: repeated body \"" + names::display_text(p.bodies[c.body1].name) +
-                          "\" (a body cannot strike itself)");
-    if (vanishes(dot(c.normal, c.normal), "contact.normal", "|n|^2"))
-        throw input_error("contact.normal: the normal must not be zero");
+    if (!system) {
+        if (c.body1 >= p.bodies.size() || c.body2 >= p.bodies.size())
+            throw input_error("contact.bodies: unknown body");
+        if (c.body1 == c.body2)
+            throw input_error("contact.bodies: repeated body \"" + names::display_text(p.bodies[c.body1].name) +
+                              "\" (a body cannot strike itself)");
+        if (vanishes(dot(c.normal, c.normal), "contact.normal", "|n|^2"))
+            throw input_error("contact.normal: the normal must not be zero");
+    }
     std::set<std::size_t> pinned;
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
         const pivot &pv = p.pivots[k];
@@ -572,6 +580,10 @@ void validate(const problem &p)
                 throw input_error(where + ": the pivot point of body \"" + bname +
                                   "\" moves before impact (v + w x (E - C) has component " + p.axes[i] + " = " +
                                   show(tidy(vE[i])) + "); a pivot is a fixed point");
+    }
+    if (system) {
+        validate_system(p);
+        return;
     }
     std::size_t b1 = c.body1, b2 = c.body2;
     if (p.immovable(b1) && p.immovable(b2))
@@ -690,9 +702,10 @@ contact_spec read_contact(const json_value &jc, problem &p, const std::string &w
     c.point = vector_of(require(jc, "point", where), d, where + ".point");
     c.normal = vector_of(require(jc, "normal", where), d, where + ".normal");
     if (const json_value *jf = jc.find("friction")) {
-        if (jf->is_string() && jf->text() == "inf")
-            throw input_error(where + ".friction: \"inf\" (a perfectly rough contact) is not solved yet; give a "
-                                      "coefficient mu >= 0");
+        if (jf->is_string() && jf->text() == "inf") {
+            c.rough = true; // a perfectly rough contact: symbolic/system.hpp solves it
+            return c;
+        }
         c.set_friction(scalar(*jf, where + ".friction"));
         // mu = 0 (exactly, however written) is the smooth impact, unchanged
         if (is_constant(c.friction()) && decide(c.friction()) == decision::zero)
@@ -719,16 +732,25 @@ void read_contacts(const json_value &root, problem &p, bool &restitution_given)
         throw input_error(std::string("contacts: expected a list, got ") + json_value::kind_name(list->type()));
     if (list->items().empty())
         throw input_error("contacts: an impact needs at least one contact, got an empty list");
-    if (list->items().size() > 1)
-        throw input_error("contacts: " + std::to_string(list->items().size()) +
-                          " contacts acting in one impact are not solved yet; give one contact");
-    const json_value &jc = list->items()[0];
-    p.contacts = {read_contact(jc, p, "contacts[0]", true)};
-    if (jc.is_object())
-        if (const json_value *je = jc.find("restitution")) {
-            p.restitution = scalar(*je, "contacts[0].restitution");
-            restitution_given = true;
+    if (list->items().size() > limits::contacts)
+        throw input_error("contacts: " + std::to_string(list->items().size()) + " contacts; at most " +
+                          std::to_string(limits::contacts) + " are read");
+    p.contacts.clear();
+    restitution_given = true;
+    for (std::size_t k = 0; k < list->items().size(); ++k) {
+        const json_value &jc = list->items()[k];
+        const std::string where = "contacts[" + std::to_string(k) + "]";
+        p.contacts.push_back(read_contact(jc, p, where, true));
+        const json_value *je = jc.find("restitution");
+        if (je) {
+            p.contacts.back().own_restitution = true;
+            p.contacts.back().restitution = scalar(*je, where + ".restitution");
         }
+        restitution_given = restitution_given && je;
+    }
+    // One contact of its own restitution: the one-contact pipeline reads the problem's.
+    if (p.contacts.size() == 1 && p.contacts[0].own_restitution)
+        p.restitution = p.contacts[0].restitution;
 }
 
 // Optional "title" and "description": a person's words for the problem.
@@ -747,18 +769,13 @@ std::string read_text(const json_value &root, const char *key)
     return v->text();
 }
 
-// Keys of version 3 that describe systems not solved yet: refused, never ignored.
-void refuse_systems(const json_value &root)
+// "impacts": simultaneous (the default) or sequential.
+void read_impacts(const json_value &root, problem &p)
 {
-    if (const json_value *j = root.find("joints"))
-        if (!j->is_array() || !j->items().empty())
-            throw input_error("joints: joints between bodies are not solved yet (pivots to the fixed frame are)");
     if (const json_value *i = root.find("impacts")) {
         if (!i->is_string() || (i->text() != "simultaneous" && i->text() != "sequential"))
             throw input_error("impacts: expected \"simultaneous\" or \"sequential\"");
-        if (i->text() == "sequential")
-            throw input_error("impacts: \"sequential\" impacts are not solved yet; one contact is one impact "
-                              "(omit the key)");
+        p.sequential = i->text() == "sequential";
     }
 }
 
@@ -799,7 +816,7 @@ problem read_problem(const std::string &text, const std::string &source)
                       "", p.warnings);
     p.title = read_text(root, "title");
     p.description = read_text(root, "description");
-    refuse_systems(root);
+    read_impacts(root, p);
     if (const json_value *u = root.find("units")) {
         // Optional: the unit system of every number, for the prose of explain
         // (kg, m, s, N·s, J). Only "SI" is known; the values are not converted.
@@ -843,6 +860,7 @@ problem read_problem(const std::string &text, const std::string &source)
     if (!top_e && !own_e)
         throw input_error("problem: missing key \"restitution\" (at the top level or in every contact)");
     read_pivots(root, p);
+    read_joints(root, p);
     const std::size_t symbols = p.parameters().size();
     if (symbols > limits::symbols)
         throw input_error("problem: " + std::to_string(symbols) + " distinct symbols; at most " +
@@ -871,6 +889,34 @@ problem load_problem_file(const std::string &path)
     }
 }
 
+namespace detail
+{
+std::size_t body_index_of(const problem &p, const json_value &v, const std::string &where)
+{
+    return body_index(p, v, where);
+}
+vec3 read_vector(const json_value &v, int dim, const std::string &where)
+{
+    return vector_of(v, dim, where);
+}
+const json_value &required(const json_value &obj, const std::string &key, const std::string &where)
+{
+    return require(obj, key, where);
+}
+decision decided_sign(const ex &e, const std::string &where, const std::string &what)
+{
+    return decided(e, where, what);
+}
+bool is_zero_exactly(const ex &e, const std::string &where, const std::string &what)
+{
+    return vanishes(e, where, what);
+}
+std::string show_value(const ex &e)
+{
+    return show(e);
+}
+} // namespace detail
+
 problem substitute(const problem &p, const ex &values)
 {
     problem q = p;
@@ -888,9 +934,12 @@ problem substitute(const problem &p, const ex &values)
         sv(c.point);
         sv(c.normal);
         c.set_friction(c.friction().subs(values));
+        c.restitution = c.restitution.subs(values);
     }
     for (pivot &pv : q.pivots)
         sv(pv.point);
+    for (joint &j : q.joints)
+        sv(j.point);
     return q;
 }
 

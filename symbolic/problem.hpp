@@ -26,6 +26,8 @@ inline constexpr std::size_t name_length = 64;         ///< bytes of a body name
 inline constexpr std::size_t bodies = 64;              ///< bodies in one problem
 inline constexpr std::size_t symbols = 64;             ///< distinct symbols in one problem
 inline constexpr int exponent = 64;                    ///< |exponent| on a symbol or an expression (x^64)
+inline constexpr std::size_t contacts = 64;            ///< contacts in one problem
+inline constexpr std::size_t joints = 64;              ///< joints between bodies in one problem
 } // namespace limits
 
 /// The one symbol of a given name, shared by every problem in the process
@@ -58,6 +60,14 @@ struct pivot {
     vec3 point = zero_vec(); ///< the fixed point E
 };
 
+/// A joint between two bodies (format version 3): a pin in 2-D, a ball joint in 3-D. The two
+/// bodies' material points at `point` move together after impact; the joint's impulse acts on
+/// body 2 and its opposite on body 1.
+struct joint {
+    std::size_t body1 = 0, body2 = 1;
+    vec3 point = zero_vec();
+};
+
 /// The laws a contact can obey. Each is a type; a law that needs more than these (another
 /// restitution law, a friction law) is one more alternative of contact_law.
 struct frictionless {
@@ -73,6 +83,12 @@ struct contact_spec {
     vec3 point = zero_vec();          ///< the contact point O
     vec3 normal = zero_vec();         ///< from body 1 into body 2; any non-zero length
     contact_law law = frictionless{}; ///< the contact's law
+    /// "friction": "inf" (format version 3): a perfectly rough contact, which never slips while it
+    /// carries an impulse (law stays frictionless: friction() is 0 for it).
+    bool rough = false;
+    /// A `contacts` entry's own "restitution" (own_restitution), else the problem's.
+    bool own_restitution = false;
+    ex restitution = 0;
 
     /// Coulomb's coefficient of the law, 0 for a frictionless contact.
     ex friction() const
@@ -96,6 +112,10 @@ struct problem {
     std::vector<contact_spec> contacts{contact_spec{}};
     /// The joints to the fixed frame (pins in 2-D, ball joints in 3-D).
     std::vector<pivot> pivots;
+    /// The joints between bodies (format version 3).
+    std::vector<joint> joints;
+    /// "impacts": "sequential": the contacts act one at a time (format version 3).
+    bool sequential = false;
     std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
     std::string units;                 ///< "" (none given) or "SI": the unit system of every number (prose only)
     std::vector<std::string> warnings; ///< e.g. keys that were ignored
@@ -108,6 +128,21 @@ struct problem {
     bool is_numeric() const { return parameters().empty(); }
     /// True when the contact has a friction coefficient that is not identically 0.
     bool has_friction() const { return !contact().friction().is_zero(); }
+    /// A system (format version 3): several contacts, joints, sequential impacts or a perfectly
+    /// rough contact. Systems are solved by symbolic/system.hpp; every other problem by the
+    /// one-contact pipeline, unchanged.
+    bool is_system() const
+    {
+        bool rough = false;
+        for (const contact_spec &c : contacts)
+            rough = rough || c.rough;
+        return contacts.size() > 1 || !joints.empty() || sequential || rough;
+    }
+    /// Newton's e of contact k: its own, else the problem's.
+    ex restitution_of(std::size_t k) const
+    {
+        return contacts[k].own_restitution ? contacts[k].restitution : restitution;
+    }
     /// The pivot of a body, or nullptr.
     const pivot *pivot_of(std::size_t body) const;
     /// True when the impulse cannot move the body (infinite mass, or a pinned particle).

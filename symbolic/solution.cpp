@@ -1,4 +1,5 @@
 #include "solution.hpp"
+#include "system.hpp"
 
 #include "names/escape.hpp"
 
@@ -304,6 +305,7 @@ ex work_of_impulse(const derivation &d, const smooth_side (&sides)[2], const ex 
 solution solve(const derivation &d)
 {
     const problem &p = d.prob;
+    refuse_system_for(p, "the one-contact solver (explain, codegen)");
     if (p.has_friction()) {
         std::ostringstream mu;
         mu << p.contact().friction();

@@ -217,11 +217,12 @@ private:
 
 void fuzzer::load_examples()
 {
-    const fs::path dir = fs::path(IMPACTGEN_SOURCE_DIR) / "examples" / "problems";
     std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().extension() == ".json")
-            files.push_back(entry.path());
+    // The one-contact examples and the systems of format version 3 (joints, contact lists, sequential).
+    for (const char* sub : {"problems", "systems"})
+        for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / "examples" / sub))
+            if (entry.path().extension() == ".json")
+                files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     for (const fs::path& f : files) {
         std::ifstream in(f);
@@ -485,7 +486,9 @@ void fuzzer::run_command(const command& c, bool pristine_seed)
     } else if (c.label == "formulas --format json") {
         try {
             json j = json::parse(r.out);
-            if (!j.is_object() || !j.contains("bodies") || !j.contains("normal_impulse"))
+            // A system's formulas are its candidates (format version 3).
+            const bool system = j.is_object() && j.contains("candidates") && j["candidates"].is_array();
+            if (!system && (!j.is_object() || !j.contains("bodies") || !j.contains("normal_impulse")))
                 violation(bad_output, c.label, "the formulas object lacks bodies or normal_impulse", &r, "formulas json lacks keys");
         } catch (const std::exception& e) {
             violation(bad_output, c.label, std::string("stdout is not JSON: ") + e.what(), &r, "formulas json does not parse");

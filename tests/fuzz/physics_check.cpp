@@ -155,6 +155,100 @@ real kinetic_energy(const rbody& b, const rvec& v, const rvec& w)
     return t;
 }
 
+// A system (format version 3): each body's impulse-momentum with every impulse of the answer
+// (contacts, joints, pivots), the joints together and the pivots at rest after impact, and
+// per contact the law: N_i >= 0, "open" exactly when N_i = 0, u'_i + e_i u_i >= 0 with equality
+// where N_i > 0 (simultaneous), no contact approaching at the end (sequential).
+void check_system(checker& ck, const problem& p, const json& a, const std::vector<rbody>& bodies)
+{
+    const int dim = p.dimension;
+    const std::size_t nb = bodies.size();
+    std::vector<rvec> F(nb, rvec{0, 0, 0}), M(nb, rvec{0, 0, 0});
+    std::vector<real> scale(nb, 0);
+    auto act = [&](std::size_t b, const rvec& q, const rvec& P) {
+        F[b] = F[b] + P;
+        M[b] = M[b] + cross(q - bodies[b].c, P);
+        scale[b] += norm(P) * (1 + norm(q - bodies[b].c));
+    };
+    const json cs = a.value("contacts", json());
+    if (!cs.is_array() || cs.size() != p.contacts.size()) {
+        ck.fail("contacts: expected a list of " + std::to_string(p.contacts.size()));
+        return;
+    }
+    std::vector<real> N(p.contacts.size());
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        const contact_spec& c = p.contacts[i];
+        const std::string w = "contacts[" + std::to_string(i) + "]";
+        rvec n = ck.value(c.normal, w + ".normal");
+        n = (1 / norm(n)) * n;
+        N[i] = ck.number(cs[i].value("normal_impulse", json()), "answer " + w + ".normal_impulse");
+        if (!(N[i] >= 0))
+            ck.fail(w + ": normal_impulse < 0");
+        if ((cs[i].value("regime", json()) == "open") != (N[i] == 0))
+            ck.fail(w + ": regime \"open\" is not the same as no normal impulse");
+        const rvec P = N[i] * n + ck.vector(cs[i].value("tangential_impulse", json()), dim, "answer " + w);
+        const rvec q = ck.value(c.point, w + ".point");
+        act(c.body2, q, P);
+        act(c.body1, q, real(-1) * P);
+    }
+    const json js = a.value("joint_impulses", json()), ps = a.value("pivot_impulses", json());
+    if (!js.is_array() || js.size() != p.joints.size() || !ps.is_array() || ps.size() != p.pivots.size()) {
+        ck.fail("joint_impulses or pivot_impulses: not one per joint and pivot");
+        return;
+    }
+    auto after = [&](std::size_t b, const rvec& q) { return point_velocity(bodies[b], bodies[b].v1, bodies[b].w1, q); };
+    auto before = [&](std::size_t b, const rvec& q) { return point_velocity(bodies[b], bodies[b].v, bodies[b].w, q); };
+    auto speed = [&](std::size_t b, const rvec& q) {
+        return point_speed_scale(bodies[b], bodies[b].v, bodies[b].w, q) +
+               point_speed_scale(bodies[b], bodies[b].v1, bodies[b].w1, q);
+    };
+    for (std::size_t j = 0; j < p.joints.size(); ++j) {
+        const rvec q = ck.value(p.joints[j].point, "joint point");
+        const rvec J = ck.vector(js[j], dim, "answer joint_impulses");
+        act(p.joints[j].body2, q, J);
+        act(p.joints[j].body1, q, real(-1) * J);
+        ck.near_zero(after(p.joints[j].body2, q) - after(p.joints[j].body1, q),
+                     speed(p.joints[j].body1, q) + speed(p.joints[j].body2, q), "joint together after impact", dim);
+    }
+    for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+        const rvec q = ck.value(p.pivots[k].point, "pivot point");
+        act(p.pivots[k].body, q, ck.vector(ps[k], dim, "answer pivot_impulses"));
+        ck.near_zero(after(p.pivots[k].body, q), speed(p.pivots[k].body, q), "pivot at rest after impact", dim);
+    }
+    for (std::size_t b = 0; b < nb; ++b) {
+        const rbody& B = bodies[b];
+        if (B.infinite)
+            continue;
+        const real sc = scale[b] + B.m * (norm(B.v) + norm(B.v1));
+        ck.near_zero(B.m * (B.v1 - B.v) - F[b], sc, "impulse-momentum of " + B.name, dim);
+        const rvec dL = mul(B.I, B.w1 - B.w) - M[b];
+        const real sl = sc + frobenius(B.I) * (norm(B.w) + norm(B.w1));
+        if (!B.particle && dim == 2)
+            ck.near_zero(dL[2], sl, "angular impulse-momentum of " + B.name);
+        else if (!B.particle)
+            ck.near_zero(dL, sl, "angular impulse-momentum of " + B.name, 3);
+    }
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        const contact_spec& c = p.contacts[i];
+        rvec n = ck.value(c.normal, "normal");
+        n = (1 / norm(n)) * n;
+        const rvec q = ck.value(c.point, "point");
+        const real u = dot(before(c.body2, q) - before(c.body1, q), n);
+        const real u1 = dot(after(c.body2, q) - after(c.body1, q), n);
+        const real e = ck.value(p.restitution_of(i), "restitution");
+        const real sc = speed(c.body1, q) + speed(c.body2, q);
+        const std::string w = "contacts[" + std::to_string(i) + "]";
+        if (p.sequential) {
+            if (u1 < -tolerance * sc)
+                ck.fail(w + ": still approaching after the sequence");
+        } else if (u1 + e * u < -tolerance * sc) {
+            ck.fail(w + ": u' + e u < 0 (the contact passes through)");
+        } else if (N[i] > 0) {
+            ck.near_zero(u1 + e * u, sc, w + ": restitution where the contact acts");
+        }
+    }
+}
+
 } // namespace
 
 std::vector<std::string> check_answer(const std::string& problem_text, const std::string& answer_text)
@@ -210,6 +304,10 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
             b.w1 = ck.vector(ab.value("angular_velocity", json()), 3, "answer " + where + ".angular_velocity");
     }
 
+    if (p.is_system()) {
+        check_system(ck, p, a, bodies);
+        return ck.failures;
+    }
     const real e = ck.value(p.restitution, "restitution");
     const rvec o = ck.value(p.contact().point, "contact.point");
     rvec n = ck.value(p.contact().normal, "contact.normal");
