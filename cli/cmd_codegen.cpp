@@ -4,6 +4,7 @@
 #include "codegen/codegen.hpp"
 #include "codegen/friction.hpp"
 #include "names/identifier.hpp"
+#include "symbolic/routh.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -32,6 +33,7 @@ int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
 {
     using namespace impactgen;
     problem p = cli::load(a.what);
+    require_newton_for_output(p, "codegen");
     codegen::options o;
     o.source = a.what;
     o.version = IMPACTGEN_VERSION;

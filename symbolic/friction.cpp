@@ -3,6 +3,7 @@
 #include "decide.hpp"
 #include "names/escape.hpp"
 #include "response.hpp"
+#include "routh.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -525,8 +526,12 @@ const regime_case *impact_solution::stick() const
 
 impact_solution solve_impact(const derivation &d)
 {
-    if (d.prob.has_friction())
+    if (d.prob.has_friction()) {
+        if (follows_process(d.prob.contact().law_of_restitution))
+            return solve_routh(d); // Poisson's or the energetic law: Routh's process (routh.hpp)
+        refuse_wedging(d);
         return solve_friction(d);
+    }
     impact_solution s;
     s.mu = 0;
     s.n_hat = d.n_hat;
@@ -551,6 +556,9 @@ impact_solution solve_impact(const derivation &d)
 regime_case select_candidate(const derivation &d, const impact_solution &s)
 {
     if (s.cases.size() == 1 && s.cases.front().kind == regime::smooth && s.cases.front().conditions.empty())
+        return s.cases.front();
+    // Routh's process of a numeric problem: its one phase sequence, decided exactly (routh.hpp).
+    if (follows_process(s.law) && s.cases.size() == 1 && s.cases.front().process_conditions.empty())
         return s.cases.front();
     return select_regime(d, s);
 }

@@ -77,6 +77,11 @@ struct regime_case {
     bool needs_angle = false;
     GiNaC::symbol dir_c{"c_d"}, dir_s{"s_d"};
     ex angle_equation; ///< g, in steps and dir_c, dir_s
+    /// Poisson's or the energetic law with friction (symbolic/routh.hpp): the phases of the process
+    /// in order (empty for newton), and the conditions that select this phase sequence (empty for a
+    /// numeric problem, whose one sequence was decided exactly).
+    std::vector<process_phase> process;
+    std::vector<process_condition> process_conditions;
 };
 
 /// The one solution type of an impact, whatever the contact's law: the steps every
@@ -91,6 +96,9 @@ struct impact_solution {
     vec3 n_hat, e_t, e_b;           ///< the unit contact frame (e_b zero in 2-D)
     bool isotropic = false;         ///< 3-D: K isotropic on the tangent plane and uncoupled from n
     std::vector<regime_case> cases; ///< the candidates: stick first (when there is one), then the slides
+    /// The contact's restitution law. With friction and poisson or energetic, `cases` are the phase
+    /// sequences of Routh's process (symbolic/routh.hpp): one for a numeric problem, decided exactly.
+    restitution_law law = newton_restitution{};
 
     /// The stick candidate, or nullptr (a smooth contact, or K singular).
     const regime_case *stick() const;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "json_value.hpp"
+#include "restitution_law.hpp"
 #include "vector_algebra.hpp"
 
 #include <string>
@@ -73,6 +74,8 @@ struct contact_spec {
     vec3 point = zero_vec();          ///< the contact point O
     vec3 normal = zero_vec();         ///< from body 1 into body 2; any non-zero length
     contact_law law = frictionless{}; ///< the contact's law
+    /// How restitution is measured ("law": newton, poisson, energetic), a choice apart from `law`.
+    restitution_law law_of_restitution = newton_restitution{};
 
     /// Coulomb's coefficient of the law, 0 for a frictionless contact.
     ex friction() const
