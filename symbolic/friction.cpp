@@ -553,6 +553,11 @@ impact_solution solve_impact(const derivation &d)
     return s;
 }
 
+decision decide_condition(const ex &value)
+{
+    return condition_sign(value);
+}
+
 regime_case select_candidate(const derivation &d, const impact_solution &s)
 {
     if (s.cases.size() == 1 && s.cases.front().kind == regime::smooth && s.cases.front().conditions.empty())

@@ -27,6 +27,7 @@
 // naming them. mu = 0 is the smooth impact of solution.hpp, unchanged.
 #pragma once
 
+#include "decide.hpp"
 #include "solution.hpp"
 
 #include <string>
@@ -130,6 +131,11 @@ regime_case select_regime(const derivation &d, const friction_solution &f);
 /// without closed form gives one case per sliding angle that holds). Throws input_error
 /// when a condition cannot be decided or the problem has symbols.
 std::vector<regime_case> holding_regimes(const derivation &d, const friction_solution &f);
+
+/// The sign of a constant condition: decide() (decide.hpp), and where its magnitude bound leaves
+/// double's range (a term of 10^-400 from a tiny mu) CLN floats at 60 and 120 digits that agree
+/// to 30 digits; else the undecided decision.
+decision decide_condition(const ex &value);
 
 /// The conditions of the case, as values (inputs substituted), for tests.
 std::vector<ex> condition_values(const regime_case &c, const ex &input_values = GiNaC::lst{});

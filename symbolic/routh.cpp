@@ -63,7 +63,7 @@ std::vector<std::pair<int, process_condition>> walker::signs(const ex &x, int ze
                                                              const std::string &meaning) const
 {
     const ex v = value(x);
-    const decision d = is_constant(v) ? decide(tidy(v)) : decision::symbolic;
+    const decision d = is_constant(v) ? decide_condition(tidy(v)) : decision::symbolic;
     switch (d) {
     case decision::positive:
         return {{1, {}}};
@@ -210,10 +210,18 @@ void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &
         xf = fix((1 + in_.e) * st.seq.compression_impulse - st.P);
     } else {
         const ex R = fix(-in_.e * in_.e * st.seq.compression_work - st.Wr);
-        if (from_zero)
+        const ex un = value(st.un);
+        if (from_zero || (is_constant(un) && decide(tidy(un)) == decision::zero)) {
+            // From u_n = 0 the work b x^2 / 2 grows only where b > 0 (b = 0: a stick with K
+            // singular, whose normal velocity stays 0 and restores nothing).
+            if (!from_zero && !symbolic_ && decide_condition(tidy(value(sl.b))) != decision::positive &&
+                decide(tidy(value(R))) != decision::zero)
+                throw input_error(where_ + ": the contact sticks with its normal velocity held at 0 (the contact "
+                                           "response K is singular): the energetic law's restitution never ends");
             xf = fix(sqrt(2 * R / sl.b));
-        else
+        } else {
             xf = fix(2 * R / (st.un + sqrt(st.un * st.un + 2 * sl.b * R)));
+        }
     }
     if (!stops) {
         advance(st, sl, xf);
