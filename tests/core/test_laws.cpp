@@ -6,6 +6,7 @@
 #include "numeric/process_integrator.hpp"
 #include "print/answer.hpp"
 #include "sampling.hpp"
+#include "symbolic/named_classes.hpp"
 #include "symbolic/routh.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,9 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <algorithm>
 
 using namespace impactgen;
 using namespace GiNaC;
@@ -509,4 +513,195 @@ TEST(PipelineRandom, ClosedFormAgreesWithIntegrationAndWithNewtonOnOnePhase)
                 refused, one_phase, newton_equal);
     EXPECT_GT(solved, count / 2); // about half the random pairs do not approach ("not an impact")
     EXPECT_GT(newton_equal, one_phase / 2);
+}
+
+// ---- the symbolic phase sequences select the numeric answer ------------------------------
+
+// rod-rough-floor (symbols m, l, theta, v_t, v_n, w, mu, e): for numbers, exactly one of the
+// printed phase sequences has every condition true, and it is the answer solve gives for the
+// same numbers (decided exactly there; here the conditions are evaluated at 30 digits, samples
+// within 1e-12 of a boundary skipped).
+TEST(Laws, SymbolicSequencesSelectTheNumericAnswer)
+{
+    const problem p = find_named_class("rod-rough-floor")->build();
+    const derivation d = derive(p);
+    const impact_solution s = solve_impact(d);
+    ASSERT_GE(s.cases.size(), 6u);
+    std::mt19937 g(impactgen::testing::seed_from_env() + 11);
+    const ex angles[3] = {Pi / 6, Pi / 4, Pi / 3};
+    int checked = 0;
+    for (int k = 0; k < 40; ++k) {
+        std::uniform_int_distribution<int> pick(0, 2);
+        auto sym = [](const char *n) { return symbol_named(n); };
+        const lst values{sym("m") == uniform(1, 5, 4), sym("l") == uniform(1, 2, 4), sym("theta") == angles[pick(g)],
+                         sym("v_t") == uniform(-2, 2, 4), sym("v_n") == -uniform(1, 3, 4), sym("w") == uniform(-2, 2, 4),
+                         sym("mu") == uniform(1, 40, 1) / 20, sym("e") == uniform(0, 1, 20)};
+        regime_case numeric_answer;
+        try {
+            numeric_answer = answer_of(substitute(p, values));
+        } catch (const input_error &) {
+            continue; // not an impact for these values
+        }
+        int holding = 0;
+        bool boundary = false;
+        const regime_case *held = nullptr;
+        for (const regime_case &c : s.cases) {
+            bool all = true;
+            for (const process_condition &pc : c.process_conditions) {
+                const double v = dbl(c.sol.expand_steps(pc.value).subs(values));
+                boundary = boundary || std::abs(v) < 1e-12;
+                all = all && (pc.strict ? v > 0 : v >= 0);
+            }
+            if (all) {
+                ++holding;
+                held = &c;
+            }
+        }
+        if (boundary)
+            continue;
+        ASSERT_EQ(holding, 1) << "values " << values;
+        ++checked;
+        ASSERT_EQ(held->process.size(), numeric_answer.process.size()) << values;
+        for (std::size_t i = 0; i < held->process.size(); ++i)
+            EXPECT_EQ(held->process[i].kind, numeric_answer.process[i].kind) << values;
+        EXPECT_NEAR(dbl(held->sol.expand_steps(held->sol.normal_impulse).subs(values)),
+                    dbl(numeric_answer.sol.normal_impulse), 1e-12 * (1 + dbl(numeric_answer.sol.normal_impulse)))
+            << values;
+    }
+    EXPECT_GT(checked, 20);
+}
+
+// ---- the command line -------------------------------------------------------------------
+
+struct run_result {
+    int code = 0;
+    std::string out, err;
+};
+
+run_result run_cli(const std::string &args)
+{
+    const std::string err_path = "/tmp/impactgen_laws_err_" + std::to_string(::getpid());
+    run_result r;
+    FILE *f = ::popen((std::string(IMPACTGEN_CLI) + " " + args + " 2>" + err_path).c_str(), "r");
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+        r.out.append(buf, n);
+    const int status = ::pclose(f);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = read_text(err_path);
+    std::remove(err_path.c_str());
+    return r;
+}
+
+std::string write_temp(const std::string &name, const std::string &text)
+{
+    const std::string path = "/tmp/impactgen_laws_" + std::to_string(::getpid()) + "_" + name + ".json";
+    std::ofstream(path) << text;
+    return path;
+}
+
+std::string with_law_text(const std::string &path, const std::string &law)
+{
+    json j = json::parse(read_text(path));
+    j["contact"]["law"] = law;
+    return j.dump();
+}
+
+void expect_one_line_refusal(const run_result &r, const std::string &part)
+{
+    EXPECT_EQ(r.code, 1);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+}
+
+TEST(LawsCli, ExplainAndCodegenRefusePoissonAndEnergeticWithFriction)
+{
+    for (const char *law : {"poisson", "energetic"}) {
+        const std::string path =
+            write_temp(law, with_law_text(IMPACTGEN_SOURCE_DIR "/examples/friction/rod-slips.json", law));
+        expect_one_line_refusal(run_cli("explain " + path), "contact.law");
+        expect_one_line_refusal(run_cli("codegen " + path), "contact.law");
+        expect_one_line_refusal(run_cli("formulas --jacobian " + path), "contact.law");
+        const run_result solved = run_cli("solve --json " + path);
+        EXPECT_EQ(solved.code, 0) << solved.err;
+        std::remove(path.c_str());
+    }
+    expect_one_line_refusal(run_cli("explain rod-rough-floor"), "contact.law: \"energetic\"");
+}
+
+// A smooth contact takes any law with the same answer everywhere: solve, formulas, explain and
+// codegen print byte for byte what they print for newton (the same file path, so the banners match).
+TEST(LawsCli, SmoothContactPrintsTheSameUnderEveryLaw)
+{
+    for (const char *file : {"/examples/problems/hinged-rod.json", "/examples/problems/wall-oblique-3d.json"}) {
+        const std::string src = std::string(IMPACTGEN_SOURCE_DIR) + file;
+        const std::string path = write_temp("smooth", with_law_text(src, "newton"));
+        std::vector<std::string> newton;
+        const std::vector<std::string> commands = {"solve --json ", "formulas ", "explain ", "codegen "};
+        for (const std::string &cmd : commands)
+            newton.push_back(run_cli(cmd + path).out);
+        for (const char *law : {"poisson", "energetic"}) {
+            write_temp("smooth", with_law_text(src, law));
+            for (std::size_t k = 0; k < commands.size(); ++k) {
+                const run_result r = run_cli(commands[k] + path);
+                EXPECT_TRUE(!r.out.empty() || k == 0) << commands[k] << file << ": " << r.err; // solve needs numbers
+                EXPECT_EQ(r.out, newton[k]) << commands[k] << file << " " << law;
+            }
+        }
+        std::remove(path.c_str());
+    }
+}
+
+TEST(LawsCli, AnswerKeysProcessRegimeAndEnergyGain)
+{
+    const run_result r = run_cli("solve --json " IMPACTGEN_SOURCE_DIR "/examples/laws/rod-slip-reverses.json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json a = json::parse(r.out);
+    EXPECT_EQ(a.at("regime"), "reverse");
+    ASSERT_EQ(a.at("process").size(), 2u);
+    EXPECT_EQ(a["process"][0].at("phase"), "slide");
+    EXPECT_EQ(a["process"][1].at("phase"), "reverse");
+    EXPECT_NEAR(a["process"][0].at("normal_impulse_end").get<double>(), 125.0 / 253, 1e-15);
+    EXPECT_EQ(a["process"][1].at("normal_impulse_end"), a.at("normal_impulse"));
+    EXPECT_FALSE(a.contains("energy_gain"));
+    // Newton on the spinning rod gains energy; the two laws followed through the impact do not.
+    const std::string gains = IMPACTGEN_SOURCE_DIR "/examples/laws/rod-gains-energy.json";
+    const json n = json::parse(run_cli("solve --json " + gains).out);
+    EXPECT_EQ(n.value("energy_gain", false), true);
+    EXPECT_LT(n["kinetic_energy"]["lost"].get<double>(), 0);
+    EXPECT_FALSE(n.contains("process"));
+    for (const char *law : {"poisson", "energetic"}) {
+        const std::string path = write_temp(law, with_law_text(gains, law));
+        const json l = json::parse(run_cli("solve --json " + path).out);
+        EXPECT_FALSE(l.contains("energy_gain")) << law;
+        EXPECT_GT(l["kinetic_energy"]["lost"].get<double>(), 0) << law;
+        EXPECT_EQ(l.at("regime"), "stick") << law;
+        std::remove(path.c_str());
+    }
+    // A Newton answer that loses energy carries no energy_gain.
+    const json lost = json::parse(run_cli("solve --json " IMPACTGEN_SOURCE_DIR "/examples/friction/rod-slips.json").out);
+    EXPECT_FALSE(lost.contains("energy_gain"));
+}
+
+// A rod pinned at E = (-1, 1) whose end O = (0, 0) is struck by a wall moving at (-1, 1): the
+// end can only move along (1, 1), and with mu >= 1 the friction impulse P_n (-mu s, 1) turns the
+// impulse along the rod (mu = 1) or sticks it with det K = 0: u_n never reaches 0, the impulse
+// would grow without bound. Refused under every law, naming the key.
+TEST(LawsCli, WedgingContactIsRefusedUnderEveryLaw)
+{
+    for (const char *mu : {"1", "1.5"})
+        for (const char *law : {"newton", "poisson", "energetic"}) {
+            const std::string text = std::string(R"({"dimension": 2, "restitution": 0.5, "bodies": [
+              {"name": "wall", "mass": "inf", "position": [0, -1], "velocity": [-1, 1]},
+              {"name": "rod", "mass": 1, "inertia": "1/6", "position": [-0.5, 0.5], "velocity": [0, 0]}],
+              "pivots": [{"body": "rod", "point": [-1, 1]}],
+              "contact": {"bodies": ["wall", "rod"], "point": [0, 0], "normal": [0, 1], "friction": )") +
+                                     mu + R"(, "law": ")" + law + "\"}}";
+            const std::string path = write_temp("wedge", text);
+            const run_result r = run_cli("solve --json " + path);
+            expect_one_line_refusal(r, "contact.friction: the contact wedges");
+            std::remove(path.c_str());
+        }
 }
