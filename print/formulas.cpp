@@ -166,7 +166,8 @@ std::string process_text(const derivation &d, const friction_solution &f)
         }
     }
     os << "\nOther values (a slide whose normal velocity does not grow and whose slip never stops) wedge: "
-          "no finite impulse ends the compression.\n";
+          "no finite impulse ends the compression.\nWithout slip before impact (u_t = 0) the process starts "
+          "sticking when mu K_tt >= |K_tn|, else sliding along the sign of K_tn.\n";
     return os.str();
 }
 

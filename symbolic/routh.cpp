@@ -272,8 +272,10 @@ std::vector<process_sequence> walker::run()
     if (!no_slip) {
         for (const auto &[o, cond] : signs(in_.ut, 1, process_test::initial_slip, "the initial slip u_t")) {
             walk_state b = st;
-            if (!cond.meaning.empty())
+            if (!cond.meaning.empty()) { // u_t = 0 starts without slip: strict on both sides
                 b.seq.conditions.push_back(cond);
+                b.seq.conditions.back().strict = true;
+            }
             phase(b, phase_kind::slide, o);
         }
         return out_;

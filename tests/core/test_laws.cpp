@@ -260,8 +260,13 @@ void compare_with_integration(const std::string &law, int count, compared &c)
     }
 }
 
+// The default count, a tenth of it in the sanitized build (IMPACTGEN_LAWS_SANITIZED), capped by
+// IMPACTGEN_SAMPLES.
 int random_count(int fallback)
 {
+#if IMPACTGEN_LAWS_SANITIZED
+    fallback = std::max(1, fallback / 10);
+#endif
     return std::min(fallback, impactgen::testing::samples_from_env(fallback));
 }
 
