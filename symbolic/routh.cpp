@@ -281,9 +281,13 @@ std::vector<process_sequence> walker::run()
         return out_;
     }
     st.ut = 0;
-    if (!symbolic_ && decide(tidy(value(in_.Ktt))) == decision::zero)
-        throw input_error(where_ + ": the contact response K_tt is 0 and the contact does not slip: the tangential "
-                                   "impulse is not determined");
+    if (!symbolic_ && decide(tidy(value(in_.Ktt))) == decision::zero) {
+        if (compression_only_) // Newton's wedge check: the friction solver says why it cannot answer
+            return out_;
+        throw input_error(where_ + ": the contact response K is singular (K_tt = 0: the contact point cannot move "
+                                   "tangentially) and the contact does not slip: the tangential impulse is not "
+                                   "determined");
+    }
     for (const auto &[o, cond] :
          signs(in_.mu * in_.mu * in_.Ktt * in_.Ktt - in_.Ktn * in_.Ktn, 1, process_test::sticks_at_start,
                "starting without slip, the sticking ratio is inside the cone: "
