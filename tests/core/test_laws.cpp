@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -19,7 +21,6 @@
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
-#include <algorithm>
 
 using namespace impactgen;
 using namespace GiNaC;
@@ -95,7 +96,7 @@ void add_body_response(num K[3])
     const num I = m * uniform(1, 40, 20) / 20; // radius of gyration^2 in [1/20, 2]
     const num rt = uniform(-2, 2, 50), rn = uniform(-2, 2, 50);
     const num gt = -rn, gn = rt; // z x r: the lever's turn
-    if (k <= 5) { // free body: 1/m + g g^T / I
+    if (k <= 5) {                // free body: 1/m + g g^T / I
         K[0] += 1 / m + gt * gt / I, K[1] += gt * gn / I, K[2] += 1 / m + gn * gn / I;
     } else if (k == 6) { // particle
         K[0] += 1 / m, K[2] += 1 / m;
@@ -128,7 +129,7 @@ sample random_sample()
     const int k = pick(rng());
     const num delta = k % 3 == 0 ? num(0) : (k % 3 == 1 ? num(1, 1000000) : num(-1, 1000000));
     if (k == 0) {
-        s.ut = 0; // starting without slip
+        s.ut = 0;        // starting without slip
     } else if (k <= 3) { // mu at the sticking ratio |K_tn| / K_tt (and 1e-6 on either side)
         s.mu = abs(s.K[1]) / s.K[0] * (1 + delta);
         s.near_boundary = true;
@@ -149,6 +150,7 @@ sample random_sample()
 struct compared {
     int samples = 0, agreed = 0, refused = 0, phases_compared = 0;
     double worst_impulse = 0, worst_velocity = 0;
+    double closed_seconds = 0, integration_seconds = 0; // measurements, printed (not asserted)
 };
 
 // The closed form for the sample, or false when refused (wedging, an undetermined impulse).
@@ -205,9 +207,15 @@ void compare_with_integration(const std::string &law, int count, compared &c)
         Eigen::Matrix<real, 2, 2> W;
         W << s.K[2].to_double(), s.K[1].to_double(), s.K[1].to_double(), s.K[0].to_double();
         const Eigen::Matrix<real, 2, 1> u0(s.un.to_double(), s.ut.to_double());
+        const auto t0 = std::chrono::steady_clock::now();
         const auto r = impactgen::numeric::integrate_process<real>(W, u0, s.mu.to_double(), s.e.to_double(),
                                                                    numeric_law(law), 400);
-        if (!closed_form(s, law, q)) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const bool solved = closed_form(s, law, q);
+        const auto t2 = std::chrono::steady_clock::now();
+        c.integration_seconds += std::chrono::duration<double>(t1 - t0).count();
+        c.closed_seconds += std::chrono::duration<double>(t2 - t1).count();
+        if (!solved) {
             ++c.refused;
             // Refused only where K is singular (a pinned body against an immovable one): the
             // wedge needs det K = 0 (see routh.hpp).
@@ -221,8 +229,8 @@ void compare_with_integration(const std::string &law, int count, compared &c)
         const double scale_P = std::abs(Pn) + std::abs(Pt);
         const double Kmax = std::max({std::abs(W(0, 0)), std::abs(W(0, 1)), std::abs(W(1, 1))});
         const double scale_u = u0.norm() + Kmax * scale_P;
-        const double dP = std::max(std::abs(Pn - double(r.normal_impulse)), std::abs(Pt - double(r.tangential))) /
-                          scale_P;
+        const double dP =
+            std::max(std::abs(Pn - double(r.normal_impulse)), std::abs(Pt - double(r.tangential))) / scale_P;
         const double du = std::max(std::abs(dbl(q.normal_velocity) - double(r.velocity_after[0])),
                                    std::abs(dbl(q.tangential_velocity) - double(r.velocity_after[1]))) /
                           scale_u;
@@ -237,9 +245,9 @@ void compare_with_integration(const std::string &law, int count, compared &c)
             c.worst_impulse = std::max(c.worst_impulse, dP);
         const bool ok = (singular || dP < 1e-8) && du < 1e-8;
         c.agreed += ok;
-        EXPECT_TRUE(ok) << law << " sample " << k << ": P (" << Pn << ", " << Pt << ") vs (" << r.normal_impulse
-                        << ", " << r.tangential << "), K = (" << s.K[0] << ", " << s.K[1] << ", " << s.K[2]
-                        << "), u = (" << s.ut << ", " << s.un << "), mu = " << s.mu << ", e = " << s.e;
+        EXPECT_TRUE(ok) << law << " sample " << k << ": P (" << Pn << ", " << Pt << ") vs (" << r.normal_impulse << ", "
+                        << r.tangential << "), K = (" << s.K[0] << ", " << s.K[1] << ", " << s.K[2] << "), u = ("
+                        << s.ut << ", " << s.un << "), mu = " << s.mu << ", e = " << s.e;
         if (s.near_boundary)
             continue;
         std::vector<int> a, b;
@@ -286,6 +294,9 @@ TEST_P(ProcessRandom, ClosedFormAgreesWithIntegration)
     std::printf("%s: %d samples, %d agree, %d refused (K singular), %d phase lists compared; worst relative "
                 "difference: impulse %.2e, velocity %.2e\n",
                 law.c_str(), c.samples, c.agreed, c.refused, c.phases_compared, c.worst_impulse, c.worst_velocity);
+    std::printf("%s: closed form in exact arithmetic %.1f us per sample, integration (long double, 400+ steps) "
+                "%.1f us\n",
+                law.c_str(), 1e6 * c.closed_seconds / c.samples, 1e6 * c.integration_seconds / c.samples);
     EXPECT_EQ(c.agreed + c.refused, c.samples);
     EXPECT_LT(c.refused, c.samples / 20) << "nearly every sample is solved";
     EXPECT_GT(c.phases_compared, c.samples / 2);
@@ -371,8 +382,8 @@ TEST(Laws, RodSlipsMatchesTheHandDerivation)
 TEST(Laws, SmoothContactsAnswerTheSameUnderEveryLaw)
 {
     int files = 0;
-    for (const char *name : {"hinged-rod", "pinned-3d", "plate-struck-obliquely", "puck-block-34",
-                             "spinning-spheres", "wall-oblique-3d"}) {
+    for (const char *name : {"hinged-rod", "pinned-3d", "plate-struck-obliquely", "puck-block-34", "spinning-spheres",
+                             "wall-oblique-3d"}) {
         const std::string path = std::string(IMPACTGEN_SOURCE_DIR "/examples/problems/") + name + ".json";
         const problem base = with_law(path, "newton");
         ASSERT_FALSE(base.has_friction());
@@ -465,7 +476,8 @@ TEST(PipelineRandom, ClosedFormAgreesWithIntegrationAndWithNewtonOnOnePhase)
                 const std::string m = err.what();
                 EXPECT_TRUE(m.find("not an impact") != std::string::npos || m.find("wedges") != std::string::npos ||
                             m.find("can move") != std::string::npos || m.find("not determined") != std::string::npos)
-                    << m << "\n" << text;
+                    << m << "\n"
+                    << text;
                 continue;
             }
             ++solved;
@@ -474,12 +486,12 @@ TEST(PipelineRandom, ClosedFormAgreesWithIntegrationAndWithNewtonOnOnePhase)
             ASSERT_TRUE(a.process.ok) << text;
             double scale = 0, worst = 0;
             for (std::size_t i = 0; i < p.bodies.size(); ++i)
-                scale = std::max({scale, q.bodies[i].velocity.norm(), a.velocity[i].norm(),
-                                  std::abs(a.angular_velocity[i][2])});
+                scale = std::max(
+                    {scale, q.bodies[i].velocity.norm(), a.velocity[i].norm(), std::abs(a.angular_velocity[i][2])});
             for (std::size_t i = 0; i < p.bodies.size(); ++i) {
                 for (int ax = 0; ax < 2; ++ax)
-                    worst = std::max(worst,
-                                     std::abs(dbl(c.sol.expand_steps(c.sol.after[i].velocity[ax])) - a.velocity[i][ax]));
+                    worst = std::max(
+                        worst, std::abs(dbl(c.sol.expand_steps(c.sol.after[i].velocity[ax])) - a.velocity[i][ax]));
                 worst = std::max(worst, std::abs(dbl(c.sol.expand_steps(c.sol.after[i].angular_velocity[2])) -
                                                  a.angular_velocity[i][2]));
             }
@@ -501,8 +513,9 @@ TEST(PipelineRandom, ClosedFormAgreesWithIntegrationAndWithNewtonOnOnePhase)
                 const regime_case n = select_candidate(dn, solve_impact(dn));
                 for (std::size_t i = 0; i < p.bodies.size(); ++i)
                     for (int ax = 0; ax < 3; ++ax) {
-                        EXPECT_EQ(decide(tidy(c.sol.after[i].velocity[ax] - n.sol.expand_steps(n.sol.after[i].velocity[ax]))),
-                                  decision::zero)
+                        EXPECT_EQ(
+                            decide(tidy(c.sol.after[i].velocity[ax] - n.sol.expand_steps(n.sol.after[i].velocity[ax]))),
+                            decision::zero)
                             << text;
                         EXPECT_EQ(decide(tidy(c.sol.after[i].angular_velocity[ax] -
                                               n.sol.expand_steps(n.sol.after[i].angular_velocity[ax]))),
@@ -538,8 +551,9 @@ TEST(Laws, SymbolicSequencesSelectTheNumericAnswer)
     for (int k = 0; k < 40; ++k) {
         std::uniform_int_distribution<int> pick(0, 2);
         auto sym = [](const char *n) { return symbol_named(n); };
-        const lst values{sym("m") == uniform(1, 5, 4), sym("l") == uniform(1, 2, 4), sym("theta") == angles[pick(g)],
-                         sym("v_t") == uniform(-2, 2, 4), sym("v_n") == -uniform(1, 3, 4), sym("w") == uniform(-2, 2, 4),
+        const lst values{sym("m") == uniform(1, 5, 4),        sym("l") == uniform(1, 2, 4),
+                         sym("theta") == angles[pick(g)],     sym("v_t") == uniform(-2, 2, 4),
+                         sym("v_n") == -uniform(1, 3, 4),     sym("w") == uniform(-2, 2, 4),
                          sym("mu") == uniform(1, 40, 1) / 20, sym("e") == uniform(0, 1, 20)};
         regime_case numeric_answer;
         try {
@@ -686,7 +700,8 @@ TEST(LawsCli, AnswerKeysProcessRegimeAndEnergyGain)
         std::remove(path.c_str());
     }
     // A Newton answer that loses energy carries no energy_gain.
-    const json lost = json::parse(run_cli("solve --json " IMPACTGEN_SOURCE_DIR "/examples/friction/rod-slips.json").out);
+    const json lost =
+        json::parse(run_cli("solve --json " IMPACTGEN_SOURCE_DIR "/examples/friction/rod-slips.json").out);
     EXPECT_FALSE(lost.contains("energy_gain"));
 }
 
