@@ -6,6 +6,7 @@
 #include "cli/commands.hpp"
 #include "print/explain.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/routh.hpp"
 #include "symbolic/system.hpp"
 
 #include <iostream>
@@ -30,6 +31,7 @@ void register_explain(CLI::App &app, std::function<int()> &action)
         action = [opt] {
             problem p = load(opt->what);
             refuse_system_for(p, "explain");
+            require_newton_for_output(p, "explain");
             derivation d = derive(p);
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);

@@ -5,6 +5,7 @@
 #include "codegen/codegen.hpp"
 #include "names/escape.hpp"
 #include "print/canonical.hpp"
+#include "symbolic/routh.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -75,6 +76,7 @@ std::string entry_name(const codegen::plan &pl, const codegen::output_value &ov,
 
 codegen::plan jacobian_plan_for(const problem &p, const std::string &wrt)
 {
+    require_newton_for_output(p, "formulas --jacobian");
     codegen::options o;
     o.name = "formulas";
     o.jacobian = true;

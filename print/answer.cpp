@@ -46,6 +46,36 @@ struct valuer {
     }
 };
 
+// A moving body of infinite mass (a bat, a moving wall) can do work on the others.
+bool moving_infinite_mass(const problem &p)
+{
+    for (const body &b : p.bodies)
+        if (b.infinite_mass && !b.at_rest())
+            return true;
+    return false;
+}
+
+// Version 3, restitution laws: "process" and its last phase as "regime" (poisson, energetic), or
+// "energy_gain": true on a Newton answer with friction whose kinetic energy rises.
+void add_process_keys(const derivation &d, const regime_case &c, const valuer &val, bool symbolic,
+                      nlohmann::ordered_json &out)
+{
+    if (!c.process.empty()) {
+        nlohmann::ordered_json phases = nlohmann::ordered_json::array();
+        for (const process_phase &ph : c.process)
+            phases.push_back(
+                {{"phase", phase_name(ph.kind)}, {"normal_impulse_end", val(ph.normal_impulse_end, "process")}});
+        out["process"] = phases;
+        out["regime"] = phase_name(c.process.back().kind);
+        return;
+    }
+    if (symbolic || follows_process(d.prob.contact().law_of_restitution) || moving_infinite_mass(d.prob))
+        return;
+    const ex gain = tidy(c.sol.expand_steps(c.sol.energy_after - c.sol.energy_before));
+    if (is_constant(gain) && decide(gain) == decision::positive)
+        out["energy_gain"] = true;
+}
+
 } // namespace
 
 nlohmann::ordered_json answer_json(const derivation &d, const solution &s, bool symbolic)
@@ -103,6 +133,7 @@ nlohmann::ordered_json answer_json(const derivation &d, const regime_case &c, bo
         t.push_back(val(c.tangential_impulse[k], "tangential_impulse"));
     out["tangential_impulse"] = t;
     out["regime"] = regime_name(c.kind);
+    add_process_keys(d, c, val, symbolic, out);
     return out;
 }
 
@@ -145,7 +176,12 @@ std::string answer_text(const derivation &d, const solution &s, const regime_cas
     if (friction)
         os << ", mu = " << parser_syntax(p.contact().friction());
     os << "\n\n";
-    if (friction)
+    if (friction && !friction->process.empty()) { // Routh's process (poisson, energetic)
+        os << "Restitution law: " << law_name(p.contact().law_of_restitution) << "\nProcess:";
+        for (const process_phase &ph : friction->process)
+            os << " " << phase_name(ph.kind) << " to N = " << show(ph.normal_impulse_end) << ";";
+        os << "\nRegime: " << phase_name(friction->process.back().kind) << "\n\n";
+    } else if (friction)
         os << "Regime: " << regime_name(friction->kind)
            << (friction->name == regime_name(friction->kind) ? std::string() : " (" + friction->name + ")") << "\n\n";
     os << "After impact:\n";
@@ -167,6 +203,13 @@ std::string answer_text(const derivation &d, const solution &s, const regime_cas
     os << "  before  " << show(s.energy_before) << "\n";
     os << "  after   " << show(s.energy_after) << "\n";
     os << "  lost    " << show(s.energy_lost) << "\n";
+    if (friction && friction->process.empty() && !follows_process(p.contact().law_of_restitution) &&
+        !moving_infinite_mass(p)) {
+        const ex gain = tidy(s.expand_steps(s.energy_after - s.energy_before));
+        if (is_constant(gain) && decide(gain) == decision::positive)
+            os << "Newton's law with friction creates energy here (Kane's paradox); the laws \"poisson\" and "
+                  "\"energetic\" follow the impact through its duration.\n";
+    }
     return os.str();
 }
 

@@ -120,6 +120,108 @@ std::vector<case_line> case_results(const derivation &d, const regime_case &c)
 
 } // namespace
 
+// ---- restitution laws through the impact (poisson, energetic: Routh's process) -------
+
+namespace
+{
+
+bool is_process(const derivation &d, const friction_solution &f)
+{
+    return d.prob.has_friction() && follows_process(f.law);
+}
+
+std::string phases_text(const regime_case &c)
+{
+    std::string r;
+    for (const process_phase &ph : c.process)
+        r += (r.empty() ? "" : " -> ") + std::string(phase_name(ph.kind));
+    return r;
+}
+
+std::string process_text(const derivation &d, const friction_solution &f)
+{
+    std::ostringstream os;
+    const problem &p = d.prob;
+    os << p.source << ": impact with Coulomb friction mu = " << canonical_text(f.mu) << ", restitution law "
+       << law_name(f.law) << " (Routh's process), " << f.cases.size() << " phase sequence"
+       << (f.cases.size() == 1 ? "" : "s") << "; exactly one holds\n";
+    os << "unit normal n = (" << canonical_text(f.n_hat[0]) << ", " << canonical_text(f.n_hat[1])
+       << "), tangent e_t = (" << canonical_text(f.e_t[0]) << ", " << canonical_text(f.e_t[1]) << ")\n\n";
+    for (const step &st : f.shared.steps)
+        os << symbol_text(st.sym.get_name()) << " = " << canonical_text(st.value) << "\n    (" << st.meaning << ")\n";
+    for (std::size_t ci = 0; ci < f.cases.size(); ++ci) {
+        const regime_case &c = f.cases[ci];
+        os << "\nSequence " << ci + 1 << ": " << phases_text(c) << "\n";
+        for (const process_phase &ph : c.process)
+            os << "  " << phase_name(ph.kind) << " ends at N = " << canonical_text(ph.normal_impulse_end) << "\n";
+        os << "  N = " << canonical_text(c.sol.normal_impulse) << "\n  F = " << canonical_text(c.tangential_scalar)
+           << "\n";
+        for (const case_line &l : case_results(d, c))
+            os << "  " << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n";
+        if (!c.process_conditions.empty()) {
+            os << "  holds when:\n";
+            for (const process_condition &pc : c.process_conditions)
+                os << "    " << pc.meaning << ":  " << canonical_text(pc.value) << (pc.strict ? " > 0" : " >= 0")
+                   << "\n";
+        }
+    }
+    os << "\nOther values (a slide whose normal velocity does not grow and whose slip never stops) wedge: "
+          "no finite impulse ends the compression.\nWithout slip before impact (u_t = 0) the process starts "
+          "sticking when mu K_tt >= |K_tn|, else sliding along the sign of K_tn.\n";
+    return os.str();
+}
+
+std::string process_latex(const derivation &d, const friction_solution &f)
+{
+    std::ostringstream os;
+    os << "% impactgen formulas -- " << d.prob.source << ": Coulomb friction, restitution law " << law_name(f.law)
+       << " (Routh's process)\n\\begin{align*}\n";
+    for (std::size_t k = 0; k < f.shared.steps.size(); ++k)
+        os << "  " << symbol_latex(f.shared.steps[k].sym) << " &= " << canonical_latex(f.shared.steps[k].value)
+           << (k + 1 < f.shared.steps.size() ? " \\\\" : "") << "\n";
+    os << "\\end{align*}\n";
+    for (const regime_case &c : f.cases) {
+        os << "% phase sequence: " << phases_text(c) << "\n\\begin{align*}\n";
+        os << "  N &= " << canonical_latex(c.sol.normal_impulse)
+           << " \\\\\n  F &= " << canonical_latex(c.tangential_scalar);
+        for (const process_condition &pc : c.process_conditions)
+            os << " \\\\\n  " << canonical_latex(pc.value) << " &" << (pc.strict ? ">" : "\\geq") << " 0";
+        os << "\n\\end{align*}\n";
+    }
+    return os.str();
+}
+
+nlohmann::ordered_json process_json(const derivation &d, const friction_solution &f)
+{
+    nlohmann::ordered_json out;
+    out["friction"] = canonical_parser(f.mu);
+    out["law"] = law_name(f.law);
+    out["steps"] = nlohmann::ordered_json::array();
+    for (const step &st : f.shared.steps)
+        out["steps"].push_back(
+            {{"name", st.sym.get_name()}, {"value", canonical_parser(st.value)}, {"meaning", st.meaning}});
+    out["sequences"] = nlohmann::ordered_json::array();
+    for (const regime_case &c : f.cases) {
+        nlohmann::ordered_json r;
+        r["process"] = nlohmann::ordered_json::array();
+        for (const process_phase &ph : c.process)
+            r["process"].push_back(
+                {{"phase", phase_name(ph.kind)}, {"normal_impulse_end", canonical_parser(ph.normal_impulse_end)}});
+        r["normal_impulse"] = canonical_parser(c.sol.normal_impulse);
+        r["tangential_impulse"] = canonical_parser(c.tangential_scalar);
+        r["conditions"] = nlohmann::ordered_json::array();
+        for (const process_condition &pc : c.process_conditions)
+            r["conditions"].push_back({{"expression", canonical_parser(pc.value)},
+                                       {"relation", pc.strict ? ">" : ">="},
+                                       {"meaning", pc.meaning}});
+        out["sequences"].push_back(r);
+    }
+    (void)d;
+    return out;
+}
+
+} // namespace
+
 bool stick_can_hold(const derivation &d, const friction_solution &f)
 {
     (void)d;
@@ -144,6 +246,8 @@ std::string formulas_text(const derivation &d, const friction_solution &f)
 {
     if (!d.prob.has_friction()) // a smooth contact: its one candidate
         return formulas_text(d, f.cases.front().sol);
+    if (is_process(d, f))
+        return process_text(d, f);
     std::ostringstream os;
     const problem &p = d.prob;
     os << p.source << ": impact with Coulomb friction mu = " << canonical_text(f.mu) << ", " << f.cases.size()
@@ -192,6 +296,8 @@ std::string formulas_latex(const derivation &d, const friction_solution &f)
 {
     if (!d.prob.has_friction()) // a smooth contact: its one candidate
         return formulas_latex(d, f.cases.front().sol);
+    if (is_process(d, f))
+        return process_latex(d, f);
     std::ostringstream os;
     const problem &p = d.prob;
     os << "% impactgen formulas -- " << p.source << ": impact with Coulomb friction\n";
@@ -227,6 +333,8 @@ nlohmann::ordered_json formulas_json(const derivation &d, const friction_solutio
 {
     if (!d.prob.has_friction()) // a smooth contact: its one candidate, as solve --json writes it
         return answer_json(d, f.cases.front().sol, true);
+    if (is_process(d, f))
+        return process_json(d, f);
     const problem &p = d.prob;
     nlohmann::ordered_json out;
     out["friction"] = canonical_parser(f.mu);

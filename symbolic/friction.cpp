@@ -4,6 +4,7 @@
 #include "decide.hpp"
 #include "names/escape.hpp"
 #include "response.hpp"
+#include "routh.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -527,8 +528,12 @@ const regime_case *impact_solution::stick() const
 impact_solution solve_impact(const derivation &d)
 {
     refuse_system_for(d.prob, "the one-contact solver (explain, codegen)");
-    if (d.prob.has_friction())
+    if (d.prob.has_friction()) {
+        if (follows_process(d.prob.contact().law_of_restitution))
+            return solve_routh(d); // Poisson's or the energetic law: Routh's process (routh.hpp)
+        refuse_wedging(d);
         return solve_friction(d);
+    }
     impact_solution s;
     s.mu = 0;
     s.n_hat = d.n_hat;
@@ -550,9 +555,17 @@ impact_solution solve_impact(const derivation &d)
     return s;
 }
 
+decision decide_condition(const ex &value)
+{
+    return condition_sign(value);
+}
+
 regime_case select_candidate(const derivation &d, const impact_solution &s)
 {
     if (s.cases.size() == 1 && s.cases.front().kind == regime::smooth && s.cases.front().conditions.empty())
+        return s.cases.front();
+    // Routh's process of a numeric problem: its one phase sequence, decided exactly (routh.hpp).
+    if (follows_process(s.law) && s.cases.size() == 1 && s.cases.front().process_conditions.empty())
         return s.cases.front();
     return select_regime(d, s);
 }

@@ -27,6 +27,7 @@
 // naming them. mu = 0 is the smooth impact of solution.hpp, unchanged.
 #pragma once
 
+#include "decide.hpp"
 #include "solution.hpp"
 
 #include <string>
@@ -77,6 +78,11 @@ struct regime_case {
     bool needs_angle = false;
     GiNaC::symbol dir_c{"c_d"}, dir_s{"s_d"};
     ex angle_equation; ///< g, in steps and dir_c, dir_s
+    /// Poisson's or the energetic law with friction (symbolic/routh.hpp): the phases of the process
+    /// in order (empty for newton), and the conditions that select this phase sequence (empty for a
+    /// numeric problem, whose one sequence was decided exactly).
+    std::vector<process_phase> process;
+    std::vector<process_condition> process_conditions;
 };
 
 /// The one solution type of an impact, whatever the contact's law: the steps every
@@ -91,6 +97,9 @@ struct impact_solution {
     vec3 n_hat, e_t, e_b;           ///< the unit contact frame (e_b zero in 2-D)
     bool isotropic = false;         ///< 3-D: K isotropic on the tangent plane and uncoupled from n
     std::vector<regime_case> cases; ///< the candidates: stick first (when there is one), then the slides
+    /// The contact's restitution law. With friction and poisson or energetic, `cases` are the phase
+    /// sequences of Routh's process (symbolic/routh.hpp): one for a numeric problem, decided exactly.
+    restitution_law law = newton_restitution{};
 
     /// The stick candidate, or nullptr (a smooth contact, or K singular).
     const regime_case *stick() const;
@@ -122,6 +131,11 @@ regime_case select_regime(const derivation &d, const friction_solution &f);
 /// without closed form gives one case per sliding angle that holds). Throws input_error
 /// when a condition cannot be decided or the problem has symbols.
 std::vector<regime_case> holding_regimes(const derivation &d, const friction_solution &f);
+
+/// The sign of a constant condition: decide() (decide.hpp), and where its magnitude bound leaves
+/// double's range (a term of 10^-400 from a tiny mu) CLN floats at 60 and 120 digits that agree
+/// to 30 digits; else the undecided decision.
+decision decide_condition(const ex &value);
 
 /// The conditions of the case, as values (inputs substituted), for tests.
 std::vector<ex> condition_values(const regime_case &c, const ex &input_values = GiNaC::lst{});

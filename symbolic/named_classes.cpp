@@ -182,7 +182,44 @@ problem ball_floor_friction()
     return with_friction(p, "ball-floor-friction");
 }
 
+// The classic of slip reversal (Stronge, Impact Mechanics, ch. 5): a slender rod (mass m, length
+// l, I = m l^2 / 12) at the angle theta to a rough floor strikes it with its lower end O; restitution
+// by Stronge's energetic coefficient, followed through the impact.
+problem rod_rough_floor()
+{
+    problem p = base("rod-rough-floor", 2);
+    const ex m = S("m"), l = S("l"), th = S("theta", "\\theta");
+    body floor;
+    floor.name = floor.label = "floor";
+    floor.infinite_mass = true;
+    floor.mass = 0;
+    floor.position = {0, -l, 0};
+    body rod;
+    rod.name = rod.label = "rod";
+    rod.mass = m;
+    rod.particle = false;
+    rod.inertia[2][2] = m * l * l / 12;
+    rod.position = {l * cos(th) / 2, l * sin(th) / 2, 0};
+    rod.velocity = {S("v_t", "v_{t}"), S("v_n", "v_{n}"), 0};
+    rod.angular_velocity[2] = S("w", "\\omega");
+    p.bodies = {floor, rod};
+    p = with_friction(p, "rod-rough-floor");
+    p.contact().law_of_restitution = energetic_restitution{};
+    return p;
+}
+
 } // namespace
+
+const std::vector<named_class> &law_classes()
+{
+    static const std::vector<named_class> all = {
+        {"rod-rough-floor",
+         "a slender rod falls on a rough floor at an angle; its end slips, sticks or reverses (energetic law, "
+         "Routh's process)",
+         rod_rough_floor},
+    };
+    return all;
+}
 
 const std::vector<named_class> &friction_classes()
 {
@@ -217,6 +254,9 @@ const named_class *find_named_class(const std::string &name)
         if (c.name == name)
             return &c;
     for (const named_class &c : friction_classes())
+        if (c.name == name)
+            return &c;
+    for (const named_class &c : law_classes())
         if (c.name == name)
             return &c;
     return nullptr;

@@ -20,6 +20,9 @@ struct named_class {
 const std::vector<named_class> &named_classes();
 /// Past the notes: the classes with Coulomb friction (format version 2).
 const std::vector<named_class> &friction_classes();
+/// Past the notes: the classes whose restitution law is followed through the impact (version 3,
+/// "law"; symbolic/routh.hpp).
+const std::vector<named_class> &law_classes();
 /// The class of that name (smooth or with friction), or nullptr.
 const named_class *find_named_class(const std::string &name);
 

@@ -1,6 +1,7 @@
 #include "problem.hpp"
 
 #include "decide.hpp"
+#include "law_reader.hpp"
 #include "names/escape.hpp"
 #include "system_input.hpp"
 
@@ -690,9 +691,9 @@ contact_spec read_contact(const json_value &jc, problem &p, const std::string &w
     if (!jc.is_object())
         throw input_error(where + ": expected an object, got " + json_value::kind_name(jc.type()));
     if (own_restitution)
-        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction", "restitution"}, where, p.warnings);
+        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction", "restitution", "law"}, where, p.warnings);
     else
-        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction"}, where, p.warnings);
+        warn_unknown_keys(jc, {"bodies", "point", "normal", "friction", "law"}, where, p.warnings);
     contact_spec c;
     const json_value &cb = require(jc, "bodies", where);
     if (!cb.is_array() || cb.items().size() != 2)
@@ -701,6 +702,7 @@ contact_spec read_contact(const json_value &jc, problem &p, const std::string &w
     c.body2 = body_index(p, cb.items()[1], where + ".bodies[1]");
     c.point = vector_of(require(jc, "point", where), d, where + ".point");
     c.normal = vector_of(require(jc, "normal", where), d, where + ".normal");
+    read_law_of_restitution(jc, where, c);
     if (const json_value *jf = jc.find("friction")) {
         if (jf->is_string() && jf->text() == "inf") {
             c.rough = true; // a perfectly rough contact: symbolic/system.hpp solves it
@@ -732,6 +734,7 @@ void read_contacts(const json_value &root, problem &p, bool &restitution_given)
         throw input_error(std::string("contacts: expected a list, got ") + json_value::kind_name(list->type()));
     if (list->items().empty())
         throw input_error("contacts: an impact needs at least one contact, got an empty list");
+    refuse_process_laws_in_systems(*list);
     if (list->items().size() > limits::contacts)
         throw input_error("contacts: " + std::to_string(list->items().size()) + " contacts; at most " +
                           std::to_string(limits::contacts) + " are read");
@@ -866,6 +869,7 @@ problem read_problem(const std::string &text, const std::string &source)
         throw input_error("problem: " + std::to_string(symbols) + " distinct symbols; at most " +
                           std::to_string(limits::symbols) + " are read");
     validate(p);
+    check_law_of_restitution(p);
     return p;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "json_value.hpp"
+#include "restitution_law.hpp"
 #include "vector_algebra.hpp"
 
 #include <string>
@@ -89,6 +90,8 @@ struct contact_spec {
     /// A `contacts` entry's own "restitution" (own_restitution), else the problem's.
     bool own_restitution = false;
     ex restitution = 0;
+    /// How restitution is measured ("law": newton, poisson, energetic), a choice apart from `law`.
+    restitution_law law_of_restitution = newton_restitution{};
 
     /// Coulomb's coefficient of the law, 0 for a frictionless contact.
     ex friction() const

@@ -2,6 +2,7 @@
 
 #include "decide.hpp"
 #include "names/escape.hpp"
+#include "restitution_law.hpp"
 
 #include <sstream>
 
@@ -364,8 +365,22 @@ void setup_delassus(model &m)
         }
 }
 
+// Poisson's and the energetic law follow one frictional contact through the impact; a
+// system (joints, several contacts, sequential impacts, "inf") with such a contact is refused.
+void refuse_process_laws(const problem &p)
+{
+    for (std::size_t k = 0; k < p.contacts.size(); ++k) {
+        const contact_spec &c = p.contacts[k];
+        if (follows_process(c.law_of_restitution) && (c.rough || !c.friction().is_zero()))
+            throw input_error("contacts[" + std::to_string(k) + "].law: \"" + law_name(c.law_of_restitution) +
+                              "\" with friction is solved for one contact without joints; in a system only "
+                              "\"newton\" (or a smooth contact) is solved");
+    }
+}
+
 model build_model(const problem &p)
 {
+    refuse_process_laws(p);
     model m;
     m.p = p;
     setup_bodies(m);

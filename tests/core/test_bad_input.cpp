@@ -184,6 +184,8 @@ std::vector<bad_case> cases()
         {"file_too_large", [] { return with(valid(), [](json& j) { j["description"] = std::string(70000, 'x'); }); }, {"at most 65536"}},
         // Systems (format version 3)
         {"contacts_too_many", [] { return with(valid_system(), [](json& j) { j["contacts"] = many(j["contacts"][0], 65); }); }, {"contacts", "at most 64"}},
+        {"system_process_law_with_friction", [] { return with(valid_system(), [](json& j) { j["contacts"][1]["law"] = "poisson"; j["contacts"].erase(0); }); }, {"contacts[0].law", "poisson", "one contact without joints"}},
+        {"system_energetic_law_rough", [] { return with(valid_system(), [](json& j) { j["contacts"][0]["law"] = "energetic"; j["contacts"][0]["friction"] = "inf"; }); }, {"law"}},
         {"joints_not_a_list", [] { return with(valid_system(), [](json& j) { j["joints"] = 3; }); }, {"joints", "expected a list"}},
         {"joints_too_many", [] { return with(valid_system(), [](json& j) { j["joints"] = many(j["joints"][0], 65); }); }, {"joints", "at most 64"}},
         {"joint_not_an_object", [] { return with(valid_system(), [](json& j) { j["joints"][0] = 1; }); }, {"joints[0]", "expected an object"}},
@@ -220,6 +222,21 @@ std::vector<bad_case> cases()
                          {"bodies": ["ball", "right"], "point": [0, 0], "normal": [1, 0]}]})"); }, {"impacts", "64 steps"}},
         {"separating", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {-5, 0}; }); }, {"not an impact", "separate"}},
         {"resting", [] { return with(valid(), [](json& j) { j["bodies"][0]["velocity"] = {0, 3}; }); }, {"not an impact", "rest"}},
+        // Restitution laws (format version 3, "law"): an unknown name, and poisson/energetic where
+        // the process has no closed form (3-D friction, "friction": "inf", several contacts).
+        {"law_unknown", [] { return with(valid(), [](json& j) { j["contact"]["law"] = "stronge"; }); }, {"contact.law", "unknown law \"stronge\""}},
+        {"law_not_text", [] { return with(valid(), [](json& j) { j["contact"]["law"] = 2; }); }, {"contact.law", "expected \"newton\""}},
+        {"law_unknown_in_contacts", [] { return with(valid(), [](json& j) { j["contact"]["law"] = "Poisson"; j["contacts"] = json::array({j["contact"]}); j.erase("contact"); }); }, {"contacts[0].law", "unknown law"}},
+        {"law_poisson_3d_friction", [] { return with(valid3d(), [](json& j) { j["contact"]["law"] = "poisson"; j["contact"]["friction"] = 0.3; }); }, {"contact.law", "\"poisson\"", "2-D only"}},
+        {"law_energetic_3d_friction", [] { return with(valid3d(), [](json& j) { j["contact"]["law"] = "energetic"; j["contact"]["friction"] = "mu"; }); }, {"contact.law", "\"energetic\"", "2-D only"}},
+        {"law_poisson_friction_inf", [] { return with(valid(), [](json& j) { j["contact"]["law"] = "poisson"; j["contact"]["friction"] = "inf"; }); }, {"contact.law", "\"inf\""}},
+        {"law_energetic_several_contacts", [] { return with(valid(), [](json& j) {
+             json c2 = j["contact"];
+             c2["point"] = {0, -1.5};
+             j["contact"]["law"] = "energetic";
+             j["contact"]["friction"] = 0.5;
+             j["contacts"] = json::array({c2, j["contact"]});
+             j.erase("contact"); }); }, {"contacts[1].law", "\"energetic\"", "one contact"}},
     };
 }
 

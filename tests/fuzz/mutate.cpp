@@ -509,7 +509,7 @@ void rename_body(json& p, const std::string& from, const std::string& to, bool d
 
 std::string mutate_once(json& p, engine& rng)
 {
-    switch (pick(rng, 14)) {
+    switch (pick(rng, 15)) {
     case 0:
     case 1:
     case 2: { // a leaf value becomes hostile
@@ -606,6 +606,17 @@ std::string mutate_once(json& p, engine& rng)
         else
             a.push_back(chance(rng, 0.5) ? json(0) : plausible_value(rng));
         return "vector length";
+    }
+    case 13: { // a restitution law (format version 3), valid or not, now and then with friction
+        if (!p.contains("contact") || !p["contact"].is_object())
+            break;
+        static const std::vector<json> laws = {"newton", "poisson", "energetic", "energetic", "poisson",
+                                               "Poisson", "stronge", "", 3, nullptr, json::array()};
+        p["contact"]["law"] = one_of(rng, laws);
+        if (chance(rng, 0.6))
+            p["contact"]["friction"] =
+                one_of(rng, std::vector<json>{0, 0.2, 0.5, 1, 2, "1/3", "sqrt(2)/2", "inf", -1, "mu"});
+        return "law";
     }
     default: { // a body's mass becomes infinite, or bodies change order
         json* bodies = bodies_of(p);

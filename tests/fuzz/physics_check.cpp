@@ -12,10 +12,14 @@
 //   - restitution at O: (v'_B - v'_A).n^ = -e (v_B - v_A).n^ with
 //     v_P = v + w x (P - C) (a particle's spin does not move its contact point,
 //     an infinite mass's spin does), and the contact points approached;
+//   - with "law": "poisson" or "energetic" and friction, instead of Newton's restitution: the
+//     points do not approach after impact, the impulse lies in the friction cone, and "process"
+//     ends at N with the regime as its last phase;
 //   - N >= 0; every pivot point at rest after impact;
 //   - kinetic energy of the bodies of finite mass before and after as the
 //     answer says, before - after = lost, lost >= 0 unless a body of infinite
-//     mass moves (then it may do work on the others).
+//     mass moves (then it may do work on the others) or the answer says "energy_gain" (Newton's
+//     law with friction, and only then).
 // Everything is computed in long double from the problem's values, each
 // evaluated to double (as the answer's values are).
 #include "physics_check.hpp"
@@ -309,6 +313,8 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
         return ck.failures;
     }
     const real e = ck.value(p.restitution, "restitution");
+    // Poisson's or the energetic law with friction: restitution is not Newton's ratio of velocities.
+    const bool process_law = follows_process(p.contact().law_of_restitution) && p.has_friction();
     const rvec o = ck.value(p.contact().point, "contact.point");
     rvec n = ck.value(p.contact().normal, "contact.normal");
     n = (1 / norm(n)) * n;
@@ -390,7 +396,25 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
                            point_speed_scale(A, A.v1, A.w1, o) + point_speed_scale(B, B.v1, B.w1, o);
         if (u > tolerance * scale)
             ck.fail("solved a problem whose contact points do not approach ((v_B - v_A).n > 0)");
-        ck.near_zero(u1 + e * u, scale, "restitution: (v'_B - v'_A).n = -e (v_B - v_A).n");
+        if (!process_law) {
+            ck.near_zero(u1 + e * u, scale, "restitution: (v'_B - v'_A).n = -e (v_B - v_A).n");
+        } else { // Routh's process (poisson, energetic): the points part, within the cone, process ends at N
+            if (u1 < -tolerance * scale)
+                ck.fail("law " + std::string(law_name(p.contact().law_of_restitution)) +
+                        ": the contact points still approach after impact");
+            const real mu = ck.value(p.contact().friction(), "contact.friction");
+            const real Pt = norm(P - N * n);
+            if (Pt > mu * N + tolerance * (norm(P) + 1e-300))
+                ck.fail("the tangential impulse lies outside the friction cone");
+            const json& pr = a.value("process", json());
+            if (!pr.is_array() || pr.empty() || !pr.back().is_object())
+                ck.fail("law " + std::string(law_name(p.contact().law_of_restitution)) + " with friction: no process");
+            else if (pr.back().value("phase", json()) != a.value("regime", json()))
+                ck.fail("regime is not the last phase of the process");
+            else
+                ck.near_zero(ck.number(pr.back().value("normal_impulse_end", json()), "process") - N, std::abs(N),
+                             "the last phase ends at the normal impulse");
+        }
     }
 
     // Kinetic energy of the bodies of finite mass.
@@ -409,7 +433,11 @@ std::vector<std::string> check_answer(const std::string& problem_text, const std
         ck.near_zero(b0 - before, scale, "kinetic_energy.before = sum of 1/2 m v.v + 1/2 w.I w");
         ck.near_zero(a0 - after, scale, "kinetic_energy.after = sum of 1/2 m v'.v' + 1/2 w'.I w'");
         ck.near_zero(b0 - a0 - lost, scale, "kinetic_energy: before - after = lost");
-        if (!infinite_moves && lost < -tolerance * scale)
+        // Newton's law with friction may gain energy (Kane's paradox): then the answer says so.
+        const bool gain = a.value("energy_gain", false);
+        if (gain && (process_law || !p.has_friction() || infinite_moves || lost >= 0))
+            ck.fail("energy_gain: true on an answer that may not carry it (or loses energy)");
+        if (!infinite_moves && !gain && lost < -tolerance * scale)
             ck.fail("kinetic_energy.lost < 0 with no moving body of infinite mass");
     }
     return ck.failures;
