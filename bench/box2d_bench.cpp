@@ -113,8 +113,8 @@ bool read_manifold(pair_case& c)
     return false;
 }
 
-// The Eigen reference's answer and planar_friction's inputs for the contact as read.
-bool exact_answer(pair_case& c)
+// The contact as the Eigen reference takes it.
+nm::problem<double> reference_problem(const pair_case& c)
 {
     nm::problem<double> p;
     p.dimension = 2;
@@ -132,6 +132,13 @@ bool exact_answer(pair_case& c)
     }
     p.point = {c.point.x, c.point.y, 0};
     p.normal = {c.nx, c.ny, 0};
+    return p;
+}
+
+// The Eigen reference's answer and planar_friction's inputs for the contact as read.
+bool exact_answer(pair_case& c)
+{
+    const nm::problem<double> p = reference_problem(c);
     const nm::friction_answer<double> a = nm::solve_friction(p);
     if (a.status != nm::friction_status::ok)
         return false;
@@ -341,25 +348,8 @@ void eigen(benchmark::State& st, const std::string& kind)
 {
     const std::vector<pair_case>& set = cases(kind);
     std::vector<nm::problem<double>> problems;
-    for (const pair_case& c : set) {
-        nm::problem<double> p;
-        p.dimension = 2;
-        p.restitution = c.e;
-        p.friction = c.mu;
-        for (int i = 0; i < 2; ++i) {
-            nm::body<double> b;
-            b.particle = false;
-            b.mass = c.mass[i];
-            b.inertia(2, 2) = c.inertia[i];
-            b.position = {c.position[i].x, c.position[i].y, 0};
-            b.velocity = {c.velocity[i].x, c.velocity[i].y, 0};
-            b.angular_velocity = {0, 0, c.spin[i]};
-            p.bodies.push_back(b);
-        }
-        p.point = {c.point.x, c.point.y, 0};
-        p.normal = {c.nx, c.ny, 0};
-        problems.push_back(p);
-    }
+    for (const pair_case& c : set)
+        problems.push_back(reference_problem(c));
     std::size_t i = 0;
     for (auto _ : st)
         benchmark::DoNotOptimize(nm::solve_friction(problems[i++ % problems.size()]));

@@ -40,6 +40,9 @@ std::string find_sentence(const problem &p, format f);
 std::vector<std::string> short_answers(const exercise &e, format f);
 /// The decimal of an exact value, 4 significant digits ("-0.1429").
 std::string decimal4(const GiNaC::ex &value);
+
+/// Digits after the point of q when q is a terminating decimal (denominator 2^a 5^b), else -1.
+int decimal_places(const GiNaC::numeric &q);
 /// The figure of an exercise: TikZ or SVG.
 std::string figure_of(const problem &p, format f);
 

@@ -3,6 +3,8 @@
 
 #include "print/expression.hpp"
 
+#include "exercises/detail.hpp"
+
 #include <cmath>
 #include <string>
 
@@ -13,23 +15,6 @@ using namespace GiNaC;
 namespace
 {
 
-/// The number of decimal digits after the point of q when q is a terminating decimal
-/// (its denominator 2^a 5^b), else -1.
-int decimal_places(const numeric &q)
-{
-    numeric den = q.denom();
-    int twos = 0, fives = 0;
-    while (den.is_even()) {
-        den = den / 2;
-        ++twos;
-    }
-    while (irem(den, numeric(5)).is_zero()) {
-        den = den / 5;
-        ++fives;
-    }
-    return den == 1 ? std::max(twos, fives) : -1;
-}
-
 /// An exact value as JSON: an integer, a decimal that reads back exactly (at most 15
 /// significant digits), else an expression string in GiNaC's syntax ("1/3", "sqrt(2)/2").
 nlohmann::ordered_json value_json(const ex &e)
@@ -39,7 +24,7 @@ nlohmann::ordered_json value_json(const ex &e)
         if (q.is_integer() && abs(q) < numeric(1000000000))
             return q.to_long();
         if (q.is_rational()) {
-            const int places = decimal_places(q);
+            const int places = detail::decimal_places(q);
             // digits before the point + places <= 15: the double's shortest form is exact
             if (places >= 0 && places <= 6 && abs(q) < numeric(1000000))
                 return q.to_double();

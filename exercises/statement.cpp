@@ -14,22 +14,6 @@ using namespace GiNaC;
 namespace
 {
 
-/// Digits after the point of a terminating decimal (denominator 2^a 5^b), else -1.
-int places(const numeric &q)
-{
-    numeric den = q.denom();
-    int twos = 0, fives = 0;
-    while (den.is_even()) {
-        den = den / 2;
-        ++twos;
-    }
-    while (irem(den, numeric(5)).is_zero()) {
-        den = den / 5;
-        ++fives;
-    }
-    return den == 1 ? std::max(twos, fives) : -1;
-}
-
 std::string digits(const numeric &n)
 {
     std::ostringstream os;
@@ -97,7 +81,7 @@ std::string text::number(const ex &value) const
     std::string body;
     if (is_a<numeric>(value) && ex_to<numeric>(value).is_rational()) {
         const numeric &q = ex_to<numeric>(value);
-        const int p = places(q);
+        const int p = decimal_places(q);
         const std::string minus = q.is_negative() ? (f_ == format::tex ? "-" : "\u2212") : "";
         if (q.is_integer())
             body = minus + digits(abs(q));
@@ -141,7 +125,7 @@ text &text::approx(const ex &value)
 {
     num(value);
     if (is_a<numeric>(value) && ex_to<numeric>(value).is_rational()) {
-        const int p = places(ex_to<numeric>(value));
+        const int p = decimal_places(ex_to<numeric>(value));
         if (p >= 0 && p <= 4)
             return *this;
     }
@@ -279,6 +263,21 @@ std::string figure_of(const problem &p, format f)
 {
     const figure::drawing g = figure::draw(derive(p));
     return f == format::tex ? figure::to_tikz(g) : figure::to_svg(g);
+}
+
+int decimal_places(const numeric &q)
+{
+    numeric den = q.denom();
+    int twos = 0, fives = 0;
+    while (den.is_even()) {
+        den = den / 2;
+        ++twos;
+    }
+    while (irem(den, numeric(5)).is_zero()) {
+        den = den / 5;
+        ++fives;
+    }
+    return den == 1 ? std::max(twos, fives) : -1;
 }
 
 } // namespace impactgen::exercises::detail
