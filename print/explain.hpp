@@ -95,6 +95,7 @@ struct block {
     std::vector<paragraph> items; ///< list
     std::vector<math_row> math;   ///< rows
     figure_art art;               ///< figure
+    bool boxed = false;           ///< rows: the results, set in a frame (a box in every format)
 };
 
 struct section {
@@ -115,6 +116,12 @@ struct section {
         blocks.push_back({block::rows, {}, {}, r, {}});
         return *this;
     }
+    /// Rows in a box: the results a reader looks for first.
+    section &boxed_rows(const std::vector<math_row> &r)
+    {
+        blocks.push_back({block::rows, {}, {}, r, {}, true});
+        return *this;
+    }
     section &picture(const figure_art &a)
     {
         blocks.push_back({block::figure, {}, {}, {}, a});
@@ -122,8 +129,14 @@ struct section {
     }
 };
 
+/// How much of the derivation a document shows: `summary` is one page (the set-up, the
+/// figure, the results in a box and the closed forms in the problem's symbols), `full`
+/// the whole derivation.
+enum class level { summary, full };
+
 struct document {
     std::string title;
+    level depth = level::full; ///< a summary's figure is drawn smaller, to keep it to one page
     std::vector<section> sections;
 };
 
@@ -144,7 +157,8 @@ bool notes_example(const std::string &class_name, worked_example &out);
 /// candidate, and the results (explain_law.hpp). `example` (optional, may be null): values
 /// to substitute into every step of a symbolic problem at the end. A numeric problem is
 /// taught in symbols first, then with its numbers.
-document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr);
+document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr,
+                 level depth = level::full);
 
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)

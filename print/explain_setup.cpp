@@ -107,7 +107,8 @@ std::vector<paragraph> body_list(const problem &p)
 
 // The contact point and frame, the figure, and the frame components of the inputs and
 // inertia tensors.
-void frame_paragraphs(section &sec, const derivation &d, const contact_frame_view &view)
+// A summary (`brief`) shows no equations: nothing is said of their components.
+void frame_paragraphs(section &sec, const derivation &d, const contact_frame_view &view, bool brief = false)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
@@ -131,6 +132,8 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
                 "$e_n$ or $e_b$.");
     else if (d.frame_is_world)
         frame.w(" These are world axes (up to sign), so components can be read off directly.");
+    else if (brief)
+        ;
     else if (view.active)
         frame.t(
             p.dimension == 3
@@ -265,6 +268,16 @@ section detail::setup_section(const derivation &d, const setup_parts &law)
     why_count(sec, d, law);
     for (const paragraph &q : law.closing)
         sec.para(q);
+    return sec;
+}
+
+section detail::setup_summary(const derivation &d, const setup_parts &law)
+{
+    section sec{"Set-up", {}};
+    contact_frame_view none;
+    setup_intro(sec, d, law);
+    sec.list(body_list(d.prob));
+    frame_paragraphs(sec, d, none, true);
     return sec;
 }
 
