@@ -96,6 +96,7 @@ struct block {
     std::vector<math_row> math;   ///< rows
     figure_art art;               ///< figure
     bool boxed = false;           ///< rows: the results, set in a frame (a box in every format)
+    bool packed = false;          ///< rows: definitions, as many a line as fit (LaTeX), notes beside
 };
 
 struct section {
@@ -122,6 +123,12 @@ struct section {
         blocks.push_back({block::rows, {}, {}, r, {}, true});
         return *this;
     }
+    /// Definitions set compactly: as many a line as fit, each note beside its row.
+    section &packed_rows(const std::vector<math_row> &r)
+    {
+        blocks.push_back({block::rows, {}, {}, r, {}, false, true});
+        return *this;
+    }
     section &picture(const figure_art &a)
     {
         blocks.push_back({block::figure, {}, {}, {}, a});
@@ -136,8 +143,8 @@ enum class level { summary, full };
 
 struct document {
     std::string title;
-    level depth = level::full; ///< a summary's figure is drawn smaller, to keep it to one page
     std::vector<section> sections;
+    level depth = level::full; ///< a summary is set more tightly (LaTeX), to keep it to one page
 };
 
 /// Values for a worked example in the symbols of a problem (symbol == value).

@@ -268,7 +268,8 @@ std::string explain_html(const document &doc)
                 os << "</figure>\n";
                 break;
             case block::rows: {
-                const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
+                const bool plain = !b.boxed && detail::rows_are_plain(b.math),
+                           bare = !b.boxed && detail::rows_are_bare(b.math);
                 if (bare) {
                     for (const math_row &r : b.math)
                         os << "<div class=\"eq\">" << row_block(r) << "</div>\n";

@@ -47,6 +47,7 @@ struct setup_parts {
     std::optional<paragraph> count_item;                   ///< the impulses' line in the count of unknowns
     std::string count_terms;                               ///< its terms in the sum, " + 1 + 2"
     std::vector<paragraph> closing;                        ///< the set-up's last paragraphs
+    bool brief = false;                                    ///< a summary's set-up: the facts without comment
 };
 
 /// A contact law's chapter of the document: the sections it writes in each slot.

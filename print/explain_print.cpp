@@ -492,13 +492,14 @@ std::string latex_rows(const std::vector<math_row> &rows, std::set<std::string> 
 
 // Rows each in a frame (\\boxed) with its note beside it, as many a line as fit (the results
 // of a summary); the display may break between lines.
-std::string latex_boxed(const std::vector<math_row> &rows)
+std::string latex_boxed(const std::vector<math_row> &rows, bool boxed = true)
 {
     std::vector<std::string> lines;
     double width = 0;
     for (const math_row &r : rows) {
         const std::string note = tex_spans(r.note, false), formula = one_line(tex_row_parts(r));
-        const std::string item = "\\boxed{" + formula + "}" + (note.empty() ? "" : "\\ \\text{\\small " + note + "}");
+        const std::string item =
+            (boxed ? "\\boxed{" + formula + "}" : formula) + (note.empty() ? "" : "\\ \\text{\\small " + note + "}");
         const double w = tex_width(formula) + 1 + (note.empty() ? 0 : tex_width(note, 0.92, true) + 1);
         if (!lines.empty() && width + 3 + w <= row_budget_em) {
             lines.back() += " \\qquad " + item;
@@ -681,9 +682,14 @@ std::string explain_latex(const document &doc)
     os << "\\setlength{\\parindent}{0pt}\n"
           "\\setlength{\\parskip}{0.5em}\n"
           "\\setlength{\\emergencystretch}{3em}\n"
-          "\\allowdisplaybreaks\n"
-          "\\title{"
-       << tex_words(doc.title)
+          "\\allowdisplaybreaks\n";
+    if (doc.depth == level::summary) // one page: a plain title line, less space around displays and headings
+        os << "\\makeatletter\\renewcommand\\@maketitle{\\begin{center}{\\LARGE\\@title\\par}\\end{center}}"
+              "\\renewcommand\\section{\\@startsection{section}{1}{0pt}{1.2ex plus .5ex}{0.6ex}{\\large\\bfseries}}"
+              "\\makeatother\n"
+              "\\AtBeginDocument{\\setlength{\\abovedisplayskip}{4pt}\\setlength{\\belowdisplayskip}{4pt}}\n"
+              "\\setlength{\\parskip}{0.3em}\n";
+    os << "\\title{" << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
     for (const section &sec : doc.sections) {
@@ -702,8 +708,8 @@ std::string explain_latex(const document &doc)
             case block::figure:
                 // scaled down to the line when it is wider, never up
                 os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
-                if (doc.depth == level::summary) // a summary's figure at most 5 cm high
-                    os << "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}{\\usebox{\\figurebox}}}"
+                if (doc.depth == level::summary) // a summary's figure at most 4 cm high
+                    os << "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}{\\usebox{\\figurebox}}}"
                           "\\fi\n";
                 os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
                       "\\else\\usebox{\\figurebox}\\fi\n";
@@ -712,6 +718,10 @@ std::string explain_latex(const document &doc)
                 os << "\\end{center}\n";
                 break;
             case block::rows: {
+                if (b.boxed || b.packed) { // each row (in a \\boxed), its note beside it, several a line
+                    os << latex_boxed(b.math, b.boxed);
+                    break;
+                }
                 const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
                 if (bare) {
                     os << "\\begin{gather*}\n";
@@ -730,10 +740,7 @@ std::string explain_latex(const document &doc)
                     os << "\\end{itemize}\n";
                     break;
                 }
-                if (b.boxed) // the results: each row in a \\boxed, its note beside it; may break between rows
-                    os << latex_boxed(b.math);
-                else
-                    os << latex_rows(b.math, labelled);
+                os << latex_rows(b.math, labelled);
                 break;
             }
             }

@@ -38,7 +38,9 @@ void setup_intro(section &sec, const derivation &d, const setup_parts &law)
         strikes.t("point $B$ of ").w(body_ref(p, i2)).t(" strikes point $A$ of ").w(body_ref(p, i1));
     else
         strikes.t("point $A$ of ").w(body_ref(p, i1)).t(" strikes point $B$ of ").w(body_ref(p, i2));
-    sec.para(strikes.t(". The impulsive forces change the velocities instantly without changing the positions."));
+    sec.para(law.brief ? strikes.w(".")
+                       : strikes.t(". The impulsive forces change the velocities instantly without changing the "
+                                   "positions."));
     if (is_a<symbol>(p.restitution))
         sec.para(paragraph().t("Newton's coefficient of restitution is ").m(p.restitution).t(" ($0 ≤ e ≤ 1$)."));
     else
@@ -115,8 +117,10 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
     paragraph frame;
     frame.t("The contact point $O$ = ");
     vector_span(frame, p.contact().point, dim);
-    frame.t(
-        " is a geometric point, fixed in the inertial frame, where $A$ and $B$ coincide. The contact frame: $e_n$ = ");
+    frame.t(brief
+                ? ", where $A$ and $B$ coincide; $e_n$ = "
+                : " is a geometric point, fixed in the inertial frame, where $A$ and $B$ coincide. The contact frame: "
+                  "$e_n$ = ");
     vector_span(frame, d.n_hat, dim);
     frame.t(" (the common normal, from body 1 into body 2), $e_t$ along ");
     vector_span(frame, d.t_dir, dim);
@@ -275,7 +279,9 @@ section detail::setup_summary(const derivation &d, const setup_parts &law)
 {
     section sec{"Set-up", {}};
     contact_frame_view none;
-    setup_intro(sec, d, law);
+    setup_parts brief = law;
+    brief.brief = true;
+    setup_intro(sec, d, brief);
     sec.list(body_list(d.prob));
     frame_paragraphs(sec, d, none, true);
     return sec;

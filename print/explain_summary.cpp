@@ -4,6 +4,7 @@
 // -- else through the named steps it needs; then the problem's (or the example's) numbers.
 #include "explain_law.hpp"
 
+#include "canonical.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
 
@@ -117,6 +118,24 @@ std::vector<math_row> step_rows(const problem &p, const solution &s, const std::
     return rows;
 }
 
+// Rows whose value is 0 merged into one, "v′_y1 = R_y2 = 0", after the others.
+std::vector<math_row> zeros_merged(const std::vector<math_row> &rows)
+{
+    std::vector<math_row> out;
+    std::string text, tex;
+    for (const math_row &r : rows) {
+        if (r.rel == "=" && r.lhs_note.text.empty() && !r.has_then && r.rhs.is_zero() && is_a<symbol>(r.lhs)) {
+            text += canonical_text(r.lhs) + " = ";
+            tex += symbol_latex(ex_to<symbol>(r.lhs)) + " = ";
+        } else {
+            out.push_back(r);
+        }
+    }
+    if (!text.empty())
+        out.push_back(formula_row(text + "0", tex + "0"));
+    return out;
+}
+
 paragraph case_heading(const regime_case &c)
 {
     paragraph q;
@@ -163,7 +182,7 @@ void numbers(section &sec, const explain_input &in)
         r.note.w(unit(p, quantity_of(unknowns[i].kind)));
         rows.push_back(r);
     }
-    sec.boxed_rows(rows);
+    sec.boxed_rows(zeros_merged(rows));
 }
 
 // Every value of x's own steps (the candidate's, not the shared ones) substituted, last first:
@@ -217,33 +236,105 @@ bool candidates_by_impulse(section &sec, const explain_input &in)
         if (!shared.count(st.sym) && first.unknown_values.has(st.sym))
             impulse.push_back(st.sym);
     std::vector<ex> values;
-    std::vector<std::vector<math_row>> boxes;
+    std::vector<math_row> impulses; // every regime's, its name on the symbol: P_t^stick
     for (const regime_case &c : in.s.cases) {
-        std::vector<math_row> rows;
+        const std::string tex = c.kind == regime::stick ? "\\text{stick}"
+                                : c.sign > 0            ? "\\text{slide}+"
+                                : c.sign < 0            ? "\\text{slide}-"
+                                                        : "\\text{slide}";
+        const std::string text = c.kind == regime::stick ? "stick"
+                                 : c.sign > 0            ? "slide along +e_t"
+                                 : c.sign < 0            ? "slide along -e_t"
+                                                         : "slide";
         for (const ex &sym : impulse)
             for (const step &st : c.sol.steps)
                 if (st.sym.get_name() == ex_to<symbol>(sym).get_name()) {
                     const ex v = through_own_steps(c.sol, shared, st.value);
-                    rows.push_back(row(sym, v, "", step_note(in.d.prob, st)));
+                    math_row r = row(sym, v);
+                    r.lhs_note = {canonical_text(sym) + " (" + text + ")", symbol_latex(st.sym) + "^{" + tex + "}"};
+                    impulses.push_back(r);
                     values.push_back(v);
                 }
-        boxes.push_back(rows);
     }
-    const std::vector<math_row> with = shared_rows(in.d.prob, in.s.shared, values);
+    std::vector<math_row> with = shared_rows(in.d.prob, in.s.shared, values);
     if (!with.empty()) {
-        sec.para(paragraph().w("With"));
-        sec.rows(with);
+        for (math_row &r : with) { // K_tt = 1/m1 + 1/m2 + r_n1²/I1 + ... reads flatter than over one denominator
+            r.note = paragraph();
+            const ex flat = expand(r.rhs);
+            if (printable(flat, closed_form_nodes))
+                r.rhs = flat;
+        }
+        sec.para(paragraph().t("With the entries of the contact response $~~K$ (the change of the relative velocity "
+                               "$~u = ~v_B - ~v_A$ of the contact points per unit impulse on body 2) and $~u$ "
+                               "before impact:"));
+        sec.packed_rows(with);
     }
     std::vector<math_row> unknowns;
     for (std::size_t i = 0; i < in.d.unknowns.size() && i < first.unknown_values.nops(); ++i)
         unknowns.push_back(row(in.d.unknowns[i].sym, first.unknown_values.op(i).rhs()));
     sec.para(paragraph().w("In every regime:"));
-    sec.boxed_rows(unknowns);
-    for (std::size_t k = 0; k < boxes.size(); ++k) {
-        sec.para(case_heading(in.s.cases[k]));
-        sec.boxed_rows(boxes[k]);
-    }
+    sec.boxed_rows(zeros_merged(unknowns));
+    sec.para(paragraph().t("The impulse in each regime, stick ($u′_t = 0$) or slide; the contact sticks when the "
+                           "stick impulse has $|P_t| ≤ μ P_n$, else it slides:"));
+    sec.boxed_rows(impulses);
     return true;
+}
+
+// The rows of a summary in vector form, for free bodies whose steps are too many to list (3-D
+// bodies with full inertia tensors): r_i = O - C_i locates the contact point from body i's
+// centre of mass; the impulse P acts on body 2 and -P on body 1.
+void vector_form(section &sec, const explain_input &in)
+{
+    const bool friction = in.s.cases.size() > 1;
+    const std::string e_n = "\\hat{\\underline{e}}_n", P = friction ? "\\underline{P}" : "N\\," + e_n;
+    const std::string Pt = friction ? "P" : "N e_n";
+    paragraph with;
+    with.t("With $~r_1 = O - C1$ and $~r_2 = O - C2$ (the contact point seen from each centre of mass), $~u = ~v_B - "
+           "~v_A$ the relative velocity of the contact points before impact and $u_n = ~u·e_n$");
+    if (friction)
+        with.t(", and $~~K$ the contact response ($~u + ~~K ~P$ is the relative velocity after impact)");
+    sec.para(with.w(":"));
+    std::vector<math_row> rows;
+    if (!friction)
+        rows.push_back(formula_row("N = -(1 + e) u_n/(w_1 + w_2),  w_i = 1/m_i + (r_i × e_n)·I_i⁻¹(r_i × e_n)",
+                                   "N = -\\frac{(1 + e)\\,u_n}{w_1 + w_2},\\quad w_i = \\frac{1}{m_i} + "
+                                   "(\\underline{r}_i \\times " +
+                                       e_n +
+                                       ")\\cdot\\underline{\\underline{I}}_i^{-1}"
+                                       "(\\underline{r}_i \\times " +
+                                       e_n + ")"));
+    const std::size_t ids[2] = {in.d.prob.contact().body1, in.d.prob.contact().body2};
+    for (int k = 0; k < 2; ++k) {
+        const body &b = in.d.prob.bodies[ids[k]];
+        const std::string i = std::to_string(k + 1), sign = k ? " + " : " - ";
+        if (b.infinite_mass) {
+            rows.push_back(formula_row("v′_C" + i + " = v_C" + i + ",  ω′_" + i + " = ω_" + i,
+                                       "\\underline{v}'_{C" + i + "} = \\underline{v}_{C" + i +
+                                           "},\\quad \\underline{\\omega}'_" + i + " = \\underline{\\omega}_" + i,
+                                       "(infinite mass)"));
+            continue;
+        }
+        std::string text = "v′_C" + i + " = v_C" + i + sign + Pt + "/m_" + i,
+                    tex = "\\underline{v}'_{C" + i + "} = \\underline{v}_{C" + i + "}" + sign + "\\frac{" + P + "}{m_" +
+                          i + "}";
+        if (!b.particle) {
+            text += ",  ω′_" + i + " = ω_" + i + sign + "I_" + i + "⁻¹(r_" + i + " × " + Pt + ")";
+            tex += ",\\quad \\underline{\\omega}'_" + i + " = \\underline{\\omega}_" + i + sign +
+                   "\\underline{\\underline{I}}_" + i + "^{-1}(\\underline{r}_" + i + " \\times " + P + ")";
+        }
+        rows.push_back(formula_row(text, tex));
+    }
+    if (friction) {
+        rows.push_back(formula_row("stick (u′_t = 0): P = -K⁻¹(u + e u_n e_n)",
+                                   "\\text{stick } (u'_t = 0):\\quad \\underline{P} = -\\underline{\\underline{K}}^{-1}"
+                                   "(\\underline{u} + e\\,u_n " +
+                                       e_n + ")"));
+        rows.push_back(formula_row("slide along d: P = N (e_n - μ d),  N = -(1 + e) u_n/(e_n·K(e_n - μ d))",
+                                   "\\text{slide along } \\hat{\\underline{d}}:\\quad \\underline{P} = N(" + e_n +
+                                       " - \\mu\\hat{\\underline{d}}),\\quad N = -\\frac{(1 + e)\\,u_n}{" + e_n +
+                                       "\\cdot\\underline{\\underline{K}}(" + e_n + " - \\mu\\hat{\\underline{d}})}"));
+    }
+    sec.boxed_rows(rows);
 }
 
 } // namespace
@@ -251,26 +342,41 @@ bool candidates_by_impulse(section &sec, const explain_input &in)
 section summary_results(const explain_input &in)
 {
     section sec{"Results", {}};
+    section parts{"", {}};
     const bool several = in.s.cases.size() > 1;
-    sec.para(paragraph().t("A prime marks a value after impact; $~v$ is the velocity of a centre of mass, $ω$ an "
-                           "angular velocity, $R$ a pivot's impulse; the subscripts name the axis and the body."));
-    for (const regime_case &c : in.s.cases) {
-        if (several && candidates_by_impulse(sec, in))
-            break;
+    paragraph legend;
+    legend.t("A prime marks a value after impact; $~v$ is the velocity of a centre of mass, $ω$ an angular velocity");
+    if (several)
+        legend.t(", $~P$ the contact impulse on body 2");
+    if (!in.d.prob.pivots.empty())
+        legend.t(", $R$ a pivot's impulse");
+    sec.para(legend.t("; the subscripts name the axis and the body."));
+    // several candidates: the unknowns once in the impulse's components where they read the same
+    const bool by_impulse = several && candidates_by_impulse(parts, in);
+    for (std::size_t k = 0; k < in.s.cases.size() && !by_impulse; ++k) {
+        const regime_case &c = in.s.cases[k];
         std::vector<bool> used(c.sol.steps.size(), false);
         const std::vector<math_row> rows = candidate_rows(in.d, c.sol, used);
         if (several)
-            sec.para(case_heading(c));
+            parts.para(case_heading(c));
         const std::vector<math_row> steps = step_rows(in.d.prob, c.sol, used);
         if (!steps.empty()) {
-            sec.para(paragraph().w("With"));
-            sec.rows(steps);
+            parts.para(paragraph().w("With"));
+            parts.packed_rows(steps);
         }
-        sec.boxed_rows(rows);
+        parts.boxed_rows(zeros_merged(rows));
     }
-    if (several)
-        sec.para(paragraph().t(
-            "The contact sticks when the stick candidate's impulse has $|P_t| ≤ μ P_n$; else it slides."));
+    if (several && !by_impulse)
+        parts.para(paragraph().t("The contact sticks when the stick impulse has $|P_t| ≤ μ P_n$; else it slides."));
+    // too many steps to list (bodies with full inertia tensors): the vector form instead
+    std::size_t listed = 0;
+    for (const block &b : parts.blocks)
+        listed += b.k == block::rows && !b.boxed ? b.math.size() : 0;
+    if (listed > 5 && in.d.prob.pivots.empty())
+        vector_form(sec, in);
+    else
+        for (block &b : parts.blocks)
+            sec.blocks.push_back(b);
     numbers(sec, in);
     return sec;
 }
