@@ -64,11 +64,18 @@ std::vector<paragraph> body_list(const problem &p)
         const body &b = p.bodies[i];
         paragraph q;
         q.w(body_ref(p, i) + ": ");
+        // A body of infinite mass has no inertia to speak of: at rest it is a fixed body (the
+        // floor, a wall), moving it has the motion given (its spin, where it has one, moves B).
+        if (b.infinite_mass && b.at_rest() && !p.pivot_of(i)) {
+            bodies.push_back(q.w("infinite mass, at rest: a fixed body, the impulse cannot move it."));
+            continue;
+        }
         if (b.infinite_mass)
             q.w("infinite mass (its motion is given; the impulse cannot change it)");
         else
             q.t("mass ").m(b.mass).w(unit_of(quantity::mass, b.mass));
-        if (b.particle) {
+        if (b.infinite_mass) {
+        } else if (b.particle) {
             q.w(", a particle (no rotational inertia)");
         } else if (dim == 2) {
             q.t(", moment of inertia about $C$ (along $e_b$) ")
@@ -87,7 +94,10 @@ std::vector<paragraph> body_list(const problem &p)
         vector_span(q, b.position, dim).w(unit_of(quantity::length, b.position[0], b.position[1], b.position[2]));
         q.t("; before impact $~v_C$ = ");
         vector_span(q, b.velocity, dim).w(unit_of(quantity::velocity, b.velocity[0], b.velocity[1], b.velocity[2]));
-        if (!b.particle || b.infinite_mass) {
+        bool spins = !b.particle;
+        for (int k = 0; k < 3; ++k)
+            spins = spins || (b.infinite_mass && !b.angular_velocity[k].is_zero());
+        if (spins) {
             q.t(", $ω$ = ");
             if (dim == 2)
                 q.m(b.angular_velocity[2]);

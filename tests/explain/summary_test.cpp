@@ -172,3 +172,22 @@ TEST(Cli, ExplainLevelSummaryAndRefusal)
     EXPECT_NE(status, 0);
     EXPECT_NE(bad.find("--level"), std::string::npos) << bad;
 }
+
+// Issue 25, defect 6: a body of infinite mass is never "a particle (no rotational inertia)",
+// and the floor at rest is a fixed body, without a centre of mass or a velocity to read.
+TEST(Prose, InfiniteMassIsNotAParticle)
+{
+    for (const char *name : {"ball-floor-friction", "massive-3d"})
+        for (level depth : {level::full, level::summary}) {
+            const std::string text = explain_text(summary_of(name, depth));
+            std::size_t at = text.find("infinite mass");
+            ASSERT_NE(at, std::string::npos) << name;
+            const std::string item = text.substr(at, text.find("\n  - ", at) - at);
+            EXPECT_EQ(item.find("particle"), std::string::npos) << name << ": " << item;
+            if (std::string(name) == "ball-floor-friction") {
+                EXPECT_EQ(item.find("centre of mass"), std::string::npos) << item;
+                EXPECT_EQ(item.find("ω"), std::string::npos) << item;
+                EXPECT_NE(item.find("fixed body"), std::string::npos) << item;
+            }
+        }
+}
