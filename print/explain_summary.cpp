@@ -164,7 +164,15 @@ void numbers(section &sec, const explain_input &in)
             const regime_case c = select_candidate(*nd, *ns);
             sol = c.sol;
             if (ns->cases.size() > 1)
-                sec.para(paragraph().w("With the problem's numbers the regime that holds is: " + c.name + "."));
+                sec.para(paragraph()
+                             .t("With the problem's numbers the contact ")
+                             .t(c.kind == regime::stick ? "sticks"
+                                : c.sign > 0            ? "slides along $+e_t$"
+                                : c.sign < 0            ? "slides along $-e_t$"
+                                                        : "slides")
+                             .w("."));
+            if (ns->cases.size() > 1 && slip_stops_or_reverses(*nd, c))
+                sec.para(slip_warning(c.kind == regime::stick));
         } catch (const std::exception &e) {
             sec.para(paragraph().w("With the problem's numbers no single regime holds: " + std::string(e.what())));
             return;

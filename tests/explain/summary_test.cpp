@@ -191,3 +191,31 @@ TEST(Prose, InfiniteMassIsNotAParticle)
             }
         }
 }
+
+namespace
+{
+document explain_file(const std::string &path, level depth)
+{
+    const problem p = read_problem(latex_tools::read_file(fs::path(IMPACTGEN_SOURCE_DIR) / path), "x.json");
+    const derivation d = derive(p);
+    return explain(d, solve_impact(d), nullptr, depth);
+}
+} // namespace
+
+// Issue 25, defect 10 (issue 23): a slip that reverses (rod-slips: it slips along +e_t before and
+// slides along -e_t after) or stops (ball-backspin sticks) carries the warning that the answer is
+// Newton's law at the end of the impact and Routh's differs; a slide that keeps its direction
+// (tests/explain/ball-floor.json) does not.
+TEST(Prose, SlipThatStopsOrReversesIsWarnedOf)
+{
+    for (level depth : {level::full, level::summary}) {
+        const std::string reverses = explain_text(explain_file("examples/friction/rod-slips.json", depth));
+        EXPECT_NE(reverses.find("the slip of the contact points reverses"), std::string::npos);
+        EXPECT_NE(reverses.find("Routh"), std::string::npos);
+        const std::string stops = explain_text(explain_file("examples/friction/ball-backspin.json", depth));
+        EXPECT_NE(stops.find("the slip of the contact points stops"), std::string::npos);
+        const std::string keeps = explain_text(explain_file("tests/explain/ball-floor.json", depth));
+        EXPECT_EQ(keeps.find("Caution: the slip"), std::string::npos);
+        EXPECT_NE(keeps.find("slide along +e_t"), std::string::npos); // it does slide: the test means something
+    }
+}
