@@ -661,34 +661,29 @@ std::string explain_latex(const document &doc)
     const bool figures = has_figures(doc);
     std::set<std::string> labelled;
     std::ostringstream os;
-    // A hand-out: A4 with 2.5 cm margins (row_budget_em assumes that text
+    // A hand-out: 10 pt on A4 with 2 cm margins (row_budget_em assumes that text
     // width), Computer Modern in its Type 1 outlines (OT1: T1 would need cm-super
     // or lmodern, which texlive-latex-base does not have, and fall back to bitmaps),
     // emergency stretch for paragraphs with long formulas in them. Every package
     // is in texlive-latex-base, tikz (only with a figure) in texlive-pictures.
     os << "% Written by impactgen explain. Compile with pdflatex (needs amsmath, geometry, hyperref"
-       << (figures ? "; tikz for the figure" : "")
-       << ").\n"
-       // a summary in 10 pt with 2 cm margins, to keep it to one page (its text is no wider than row_budget_em)
-       << (doc.depth == level::summary ? "\\documentclass[10pt,a4paper]{article}\n"
-                                         "\\usepackage[margin=2cm]{geometry}\n"
-                                       : "\\documentclass[11pt,a4paper]{article}\n"
-                                         "\\usepackage[margin=2.5cm]{geometry}\n")
+       << (figures ? "; tikz for the figure" : "") << ").\n"
+       << "\\documentclass[10pt,a4paper]{article}\n"
+          "\\usepackage[margin=2cm]{geometry}\n"
        << "\\usepackage{amsmath}\n";
     if (figures)
         os << "\\usepackage{tikz}\n"
               "\\newsavebox{\\figurebox}\n";
     os << "\\usepackage[hidelinks]{hyperref}\n"; // equation references link to their equations
     os << "\\setlength{\\parindent}{0pt}\n"
-          "\\setlength{\\parskip}{0.5em}\n"
           "\\setlength{\\emergencystretch}{3em}\n"
           "\\allowdisplaybreaks\n";
-    if (doc.depth == level::summary) // one page: a plain title line, less space around displays and headings
-        os << "\\makeatletter\\renewcommand\\@maketitle{\\begin{center}{\\LARGE\\@title\\par}\\end{center}}"
-              "\\renewcommand\\section{\\@startsection{section}{1}{0pt}{1.2ex plus .5ex}{0.6ex}{\\large\\bfseries}}"
-              "\\makeatother\n"
-              "\\AtBeginDocument{\\setlength{\\abovedisplayskip}{4pt}\\setlength{\\belowdisplayskip}{4pt}}\n"
-              "\\setlength{\\parskip}{0.3em}\n";
+    // a hand-out: a plain title line, less space around displays and headings (a summary: one page)
+    os << "\\makeatletter\\renewcommand\\@maketitle{\\begin{center}{\\LARGE\\@title\\par}\\end{center}}"
+          "\\renewcommand\\section{\\@startsection{section}{1}{0pt}{1.2ex plus .5ex}{0.6ex}{\\large\\bfseries}}"
+          "\\makeatother\n"
+          "\\AtBeginDocument{\\setlength{\\abovedisplayskip}{4pt}\\setlength{\\belowdisplayskip}{4pt}}\n"
+          "\\setlength{\\parskip}{0.3em}\n";
     os << "\\title{" << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
@@ -708,9 +703,11 @@ std::string explain_latex(const document &doc)
             case block::figure:
                 // scaled down to the line when it is wider, never up
                 os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
-                if (doc.depth == level::summary) // a summary's figure at most 4 cm high
-                    os << "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}{\\usebox{\\figurebox}}}"
-                          "\\fi\n";
+                // at most 4 cm high in a summary, 5 cm in a full document
+                os << (doc.depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
+                                                     "{\\usebox{\\figurebox}}}\\fi\n"
+                                                   : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
+                                                     "{\\usebox{\\figurebox}}}\\fi\n");
                 os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
                       "\\else\\usebox{\\figurebox}\\fi\n";
                 if (!b.art.caption.empty())
@@ -718,7 +715,10 @@ std::string explain_latex(const document &doc)
                 os << "\\end{center}\n";
                 break;
             case block::rows: {
-                if (b.boxed || b.packed) { // each row (in a \\boxed), its note beside it, several a line
+                bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
+                for (const math_row &r : b.math)
+                    fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
+                if ((b.boxed || b.packed) && fits) { // each row (in a \\boxed), its note beside it, several a line
                     os << latex_boxed(b.math, b.boxed);
                     break;
                 }

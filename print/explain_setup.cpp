@@ -161,6 +161,9 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
         frame.t(" The equations below are written in world components; the contact-frame components "
                 "of a velocity are $v_t = ~v·e_t$ and $v_n = ~v·e_n$; the numbers at the end give "
                 "them for both bodies.");
+    if (!brief) // one convention for every position vector of the document (issue 25, defect 5)
+        frame.t(" A position vector $~r_PQ = Q - P$ goes from the point $P$ to the point $Q$: $~r_CO = O - C$ "
+                "locates the contact point from a centre of mass.");
     sec.para(frame);
     sec.picture(figure_of(d));
     if (view.active && !view.inputs.empty()) {
@@ -231,7 +234,7 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
             else if (u.owner == i && u.kind == unknown_kind::angular_velocity)
                 ++nw;
         paragraph q;
-        q.w(body_ref(p, i) + ": " + std::to_string(nv + nw) + " unknowns");
+        q.w(std::to_string(nv + nw) + " unknowns");
         if (b.infinite_mass)
             q.t(i == p.contact().body2 ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
                                          "$~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
@@ -252,6 +255,26 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
             q.t(" (the pin at $E$ also ties $~v′_C$ to $~ω′$: $~v′_C = ~ω′ × ~r_EC$)");
         why.push_back(q);
         sum += (sum.empty() ? "" : " + ") + std::to_string(nv + nw);
+    }
+    // the same for both bodies: said once (issue 25, defect 9)
+    auto words_of = [](const paragraph &q) {
+        std::string out;
+        for (const span &x : q.spans)
+            out += std::to_string(x.k) + x.text + x.formula.tex + "|";
+        return out;
+    };
+    if (words_of(why[0]) == words_of(why[1])) {
+        paragraph both;
+        both.w(body_ref(p, i1) + " and " + body_ref(p, i2) + ", each: ");
+        both.spans.insert(both.spans.end(), why[0].spans.begin(), why[0].spans.end());
+        why = {both};
+    } else {
+        for (std::size_t k = 0; k < 2; ++k) {
+            paragraph named;
+            named.w(body_ref(p, k ? i2 : i1) + ": ");
+            named.spans.insert(named.spans.end(), why[k].spans.begin(), why[k].spans.end());
+            why[k] = named;
+        }
     }
     if (law.count_item) {
         why.push_back(*law.count_item);

@@ -219,3 +219,26 @@ TEST(Prose, SlipThatStopsOrReversesIsWarnedOf)
         EXPECT_NE(keeps.find("slide along +e_t"), std::string::npos); // it does slide: the test means something
     }
 }
+
+// Issue 25, defect 5: one convention for position vectors, r_PQ = Q - P, defined once where
+// vectors first appear and used by the text (the contact points as r_C1A = A - C1, no longer
+// r_AC1 beside r_OC = C - O).
+TEST(Prose, PositionVectorsOneDefinedConvention)
+{
+    std::vector<std::string> texts; // LaTeX, where a vector is \underline{r} and a coordinate r_t1 is not
+    for (const named_class &c : named_classes())
+        texts.push_back(explain_latex(summary_of(c.name, level::full)));
+    for (const char *f : {"examples/problems/hinged-rod.json", "examples/friction/rod-slips.json"})
+        texts.push_back(explain_latex(explain_file(f, level::full)));
+    const std::string definition = "A position vector $\\underline{r}_{PQ}=Q-P$ goes from the point";
+    for (const std::string &text : texts) {
+        const std::size_t at = text.find(definition);
+        ASSERT_NE(at, std::string::npos) << text.substr(0, 300);
+        EXPECT_EQ(text.find(definition, at + 1), std::string::npos) << "defined twice";
+        // no position vector before its definition, none in the opposite order
+        EXPECT_EQ(text.substr(0, at).find("\\underline{r}"), std::string::npos);
+        for (const char *reversed :
+             {"\\underline{r}_{AC", "\\underline{r}_{BC", "\\underline{r}_{A", "\\underline{r}_{B"})
+            EXPECT_EQ(text.find(reversed), std::string::npos) << reversed;
+    }
+}
