@@ -59,6 +59,8 @@ paragraph step_note(const problem &p, const step &st);
 enum class quantity { mass, inertia, length, velocity, angular_velocity, impulse, energy };
 /// " kg", " m/s", ... (with the leading space), or "" when the problem gives no units.
 std::string unit(const problem &p, quantity q);
+/// The unit of a step's value (" N·s", " 1/kg", ...), or "" without "units": "SI".
+std::string step_unit(const problem &p, step_role role);
 /// The units of a problem in words: "SI (masses in kg, ...)".
 std::string units_key(const problem &p);
 

@@ -249,6 +249,7 @@ std::vector<math_row> step_rows(const context &c, const regime_case &rc, const c
             r.has_then = true;
             r.then = v;
         }
+        r.note.w(step_unit(c.numeric_d ? c.numeric_d->prob : c.d.prob, s.role)); // issue 25, defect 9
         rows.push_back(r);
     }
     return rows;

@@ -454,7 +454,9 @@ std::string latex_rows(const std::vector<math_row> &rows, std::set<std::string> 
             column = std::max(column, l.left);
         tags = std::max(tags, l.tag_width);
         if (!l.note.empty())
-            notes = std::max(notes, tex_width(l.note, 0.92, true));
+            // a margin for inline math in a note, which runs wider than its estimate
+            notes =
+                std::max(notes, (l.note.find('$') == std::string::npos ? 1.0 : 1.2) * tex_width(l.note, 0.92, true));
         all.push_back(l);
     }
     // one line each: a short lhs and its right side beside the lhs column, with the tag

@@ -459,6 +459,7 @@ void numbers_walk(section &sec, const derivation &d, const solution &s, const ex
         ex formula = s.steps[i].value.subs(values);
         ex v = surd_form(impactgen::tidy(steps.op(i).rhs()));
         math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
+        out.note.w(step_unit(d.prob, s.steps[i].role)); // issue 25, defect 9: units on every step
         if (!is_a<numeric>(formula) && printable(formula)) {
             out.rhs = formula;
             out.has_then = true;

@@ -19,10 +19,8 @@ std::string tex_rel(const std::string &rel);
 
 // Widths are in em of the 10pt body font.
 constexpr double em_pt = 10.0;
-// The text width the layout plans for: 41.6 em, 416 pt of the 484 pt line (A4 with 2 cm
-// margins); the model was measured against 41.6 em lines and its notes beside a row run
-// wider than it estimates, so the rest is kept as a margin.
-constexpr double text_width_em = 455.24 / 10.95;
+// The text width: A4 with 2 cm margins (geometry), 170 mm = 483.7 pt.
+constexpr double text_width_em = 483.69 / em_pt;
 // What a displayed row may fill: the text width less a margin for what the
 // glyph model cannot know (kerning, large delimiters).
 constexpr double row_budget_em = text_width_em - 1.5;

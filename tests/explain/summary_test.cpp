@@ -242,3 +242,36 @@ TEST(Prose, PositionVectorsOneDefinedConvention)
             EXPECT_EQ(text.find(reversed), std::string::npos) << reversed;
     }
 }
+
+// Issue 25, defect 9: with "units": "SI" every intermediate step with a number carries its unit
+// (hinged-rod: N·s on the normal impulse, J on the energy lost, kg⁻¹ on the inverse masses),
+// and a fraction among the answers has its decimal beside it.
+TEST(Prose, UnitsOnIntermediateStepsAndDecimalsBesideFractions)
+{
+    const std::string text = explain_text(explain_file("examples/problems/hinged-rod.json", level::full));
+    const std::size_t from = text.find("Step by step"), to = text.find("The unknowns:");
+    ASSERT_NE(from, std::string::npos);
+    ASSERT_NE(to, std::string::npos);
+    const std::string steps = text.substr(from, to - from);
+    for (const char *u : {"≈ 2.57143 N·s", "≈ 1.28571 J", "≈ 1.5 kg⁻¹", "kg·m²"})
+        EXPECT_NE(steps.find(u), std::string::npos) << u << " not in\n" << steps;
+    // every step row's note has a unit: count the rows (a line starting "  X = ") and the units
+    int rows = 0, units = 0;
+    std::size_t at = 0;
+    while ((at = steps.find("\n  ", at)) != std::string::npos) {
+        ++at;
+        const std::size_t end = steps.find('\n', at);
+        const std::string line = steps.substr(at, end - at);
+        if (line.rfind("        ", 0) == 0) {
+            units += line.find("N·s") != std::string::npos || line.find(" J") != std::string::npos ||
+                     line.find("kg") != std::string::npos || line.find("m/s") != std::string::npos;
+        } else if (line.find(" = ") != std::string::npos) {
+            ++rows;
+        }
+    }
+    EXPECT_GE(rows, 5);
+    EXPECT_EQ(units, rows) << steps;
+    const std::string answers = text.substr(to);
+    EXPECT_NE(answers.find("= 27/14"), std::string::npos);
+    EXPECT_NE(answers.find("≈ 1.92857"), std::string::npos);
+}
