@@ -275,3 +275,16 @@ TEST(Prose, UnitsOnIntermediateStepsAndDecimalsBesideFractions)
     EXPECT_NE(answers.find("= 27/14"), std::string::npos);
     EXPECT_NE(answers.find("≈ 1.92857"), std::string::npos);
 }
+
+// The full document of a two-particle class, tightened: 5 pages before issue 25's work, 3 now
+// (the target is 2; see the report of branch handout). Guards the tightening against regressions.
+TEST(Summary, FullLatexCompilesToAtMostThreePagesForCentralDirect)
+{
+    if (!latex_tools::have_pdflatex())
+        GTEST_SKIP() << latex_tools::no_pdflatex_message();
+    const latex_tools::compiled out =
+        latex_tools::compile(explain_latex(summary_of("central-direct", level::full)), "full-central-direct");
+    ASSERT_EQ(out.status, 0);
+    EXPECT_LE(out.pages, 3);
+    EXPECT_EQ(out.overfull_hbox, 0);
+}
