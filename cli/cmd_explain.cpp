@@ -1,4 +1,4 @@
-// impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex|html]:
+// impactgen explain CLASS|PROBLEM.json [--format text|markdown|latex|html] [--level summary|full]:
 // the derivation walked through the way the lecture notes do it; with Coulomb
 // friction, the way textbooks solve it (stick, else slide; every regime).
 // html is one self-contained page (inline CSS, MathML, no script) to open in
@@ -20,6 +20,7 @@ void register_explain(CLI::App &app, std::function<int()> &action)
     struct options {
         std::string what;
         std::string format = "text";
+        std::string level = "full";
     };
     auto opt = std::make_shared<options>();
     auto *cmd = app.add_subcommand("explain", "Walk through the derivation and solution the way the lecture notes do");
@@ -27,6 +28,10 @@ void register_explain(CLI::App &app, std::function<int()> &action)
     cmd->add_option("--format", opt->format,
                     "text (default), markdown, latex (a complete document) or html (one self-contained page, MathML)")
         ->check(CLI::IsMember({"text", "markdown", "latex", "html"}));
+    cmd->add_option("--level", opt->level,
+                    "full (default): the whole derivation; summary: one page, the set-up, the figure, the "
+                    "results in a box and their closed forms")
+        ->check(CLI::IsMember({"summary", "full"}));
     cmd->callback([opt, &action] {
         action = [opt] {
             problem p = load(opt->what);
@@ -35,7 +40,9 @@ void register_explain(CLI::App &app, std::function<int()> &action)
             derivation d = derive(p);
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
-            const print::document doc = print::explain(d, solve_impact(d), has_example ? &example : nullptr);
+            const print::document doc =
+                print::explain(d, solve_impact(d), has_example ? &example : nullptr,
+                               opt->level == "summary" ? print::level::summary : print::level::full);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

@@ -420,6 +420,43 @@ figure_art figure_of(const derivation &d)
     return art;
 }
 
+std::string step_unit(const problem &p, step_role role)
+{
+    if (p.units != "SI")
+        return "";
+    switch (role) {
+    case step_role::lever_arm:
+        return " m";
+    case step_role::pivot_inertia:
+        return " kg·m²";
+    case step_role::angular_response:
+        return " kg⁻¹·m⁻¹";
+    case step_role::inverse_inertia:
+        return " (kg·m²)⁻¹";
+    case step_role::effective_inverse_mass:
+    case step_role::contact_inverse_mass:
+    case step_role::contact_response:
+    case step_role::slide_denominator:
+        return " kg⁻¹";
+    case step_role::response_determinant:
+        return " (kg²)⁻¹";
+    case step_role::approach_velocity:
+    case step_role::relative_velocity:
+    case step_role::separation_velocity:
+        return " m/s";
+    case step_role::normal_impulse:
+    case step_role::impulse_component:
+    case step_role::tangential_impulse:
+        return " N·s";
+    case step_role::energy_lost:
+        return " J";
+    case step_role::slide_direction:
+    case step_role::inertia_determinant: // (kg·m²)³: not worth a unit on a hand-out
+        return "";
+    }
+    return "";
+}
+
 std::string unit(const problem &p, quantity q)
 {
     if (p.units != "SI")

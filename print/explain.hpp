@@ -95,6 +95,8 @@ struct block {
     std::vector<paragraph> items; ///< list
     std::vector<math_row> math;   ///< rows
     figure_art art;               ///< figure
+    bool boxed = false;           ///< rows: the results, set in a frame (a box in every format)
+    bool packed = false;          ///< rows: definitions, as many a line as fit (LaTeX), notes beside
 };
 
 struct section {
@@ -115,6 +117,18 @@ struct section {
         blocks.push_back({block::rows, {}, {}, r, {}});
         return *this;
     }
+    /// Rows in a box: the results a reader looks for first.
+    section &boxed_rows(const std::vector<math_row> &r)
+    {
+        blocks.push_back({block::rows, {}, {}, r, {}, true});
+        return *this;
+    }
+    /// Definitions set compactly: as many a line as fit, each note beside its row.
+    section &packed_rows(const std::vector<math_row> &r)
+    {
+        blocks.push_back({block::rows, {}, {}, r, {}, false, true});
+        return *this;
+    }
     section &picture(const figure_art &a)
     {
         blocks.push_back({block::figure, {}, {}, {}, a});
@@ -122,10 +136,16 @@ struct section {
     }
 };
 
+/// How much of the derivation a document shows: `summary` is one page (the set-up, the
+/// figure, the results in a box and the closed forms in the problem's symbols), `full`
+/// the whole derivation.
+enum class level { summary, full };
+
 struct document {
     std::string title;
     std::vector<section> sections;
     std::string description = ""; ///< shown under the title (the problem's "description"), or ""
+    level depth = level::full; ///< a summary is set more tightly (LaTeX), to keep it to one page
 };
 
 /// Values for a worked example in the symbols of a problem (symbol == value).
@@ -145,7 +165,8 @@ bool notes_example(const std::string &class_name, worked_example &out);
 /// candidate, and the results (explain_law.hpp). `example` (optional, may be null): values
 /// to substitute into every step of a symbolic problem at the end. A numeric problem is
 /// taught in symbols first, then with its numbers.
-document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr);
+document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr,
+                 level depth = level::full);
 
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)

@@ -59,8 +59,17 @@ paragraph step_note(const problem &p, const step &st);
 enum class quantity { mass, inertia, length, velocity, angular_velocity, impulse, energy };
 /// " kg", " m/s", ... (with the leading space), or "" when the problem gives no units.
 std::string unit(const problem &p, quantity q);
+/// The unit of a step's value (" N·s", " 1/kg", ...), or "" without "units": "SI".
+std::string step_unit(const problem &p, step_role role);
 /// The units of a problem in words: "SI (masses in kg, ...)".
 std::string units_key(const problem &p);
+
+/// Whether the slip of the contact points stops (the answer sticks) or reverses (slides
+/// against the slip before impact) during the impact, from the answer's velocities before and
+/// after (a numeric problem; false when they are not numbers or nothing slips before impact).
+bool slip_stops_or_reverses(const derivation &d, const regime_case &answer);
+/// The warning such an answer carries: Newton's law at the end of the impact, not Routh's.
+paragraph slip_warning(bool stick);
 
 /// How many components of pivot impulses are unknowns.
 std::size_t pivot_impulse_count(const derivation &d);

@@ -10,6 +10,61 @@
 #include <cmath>
 #include <cstdio>
 
+namespace impactgen::print::detail
+{
+using namespace GiNaC;
+
+// Issue 23 / 25 (defect 10): whether the slip of the contact points stops (stick) or reverses
+// (a slide against the slip before impact) during the impact, from the answer's own
+// velocities: u = v_B - v_A at the contact point before and after, their tangential parts.
+bool slip_stops_or_reverses(const derivation &d, const regime_case &sel)
+{
+    const problem &p = d.prob;
+    const vec3 O = p.contact().point;
+    auto contact_velocity = [&](const vec3 &v, const vec3 &w, std::size_t i) {
+        return v + cross(w, O - p.bodies[i].position);
+    };
+    const std::size_t a = p.contact().body1, b = p.contact().body2;
+    const vec3 before = contact_velocity(p.bodies[b].velocity, p.bodies[b].angular_velocity, b) -
+                        contact_velocity(p.bodies[a].velocity, p.bodies[a].angular_velocity, a);
+    auto after_of = [&](std::size_t i) {
+        vec3 v, w;
+        for (int k = 0; k < 3; ++k) {
+            v[k] = sel.sol.expand_steps(sel.sol.after[i].velocity[k]);
+            w[k] = sel.sol.expand_steps(sel.sol.after[i].angular_velocity[k]);
+        }
+        return contact_velocity(v, w, i);
+    };
+    const vec3 after = after_of(b) - after_of(a);
+    auto tangential = [&](const vec3 &u) {
+        const ex un = dot(u, d.n_hat);
+        vec3 t;
+        for (int k = 0; k < 3; ++k)
+            t[k] = u[k] - un * d.n_hat[k];
+        return t;
+    };
+    const vec3 ut = tangential(before), ut2 = tangential(after);
+    const ex slip = evalf(dot(ut, ut)), same = evalf(dot(ut, ut2));
+    if (!is_a<numeric>(slip) || !is_a<numeric>(same) || ex_to<numeric>(slip).to_double() <= 1e-24)
+        return false; // no slip before impact (or not a number): nothing stops or reverses
+    return sel.kind == regime::stick || ex_to<numeric>(same).to_double() < 0;
+}
+
+paragraph slip_warning(bool stick)
+{
+    return paragraph()
+        .w("Caution: ")
+        .t(stick ? "the slip of the contact points stops during this impact (the answer sticks, $u′_t = 0$). "
+                 : "the slip of the contact points reverses during this impact (the tangential relative velocity "
+                   "$u′_t$ after impact points against $u_t$ before it). ")
+        .t("The answer assumes Newton's law of restitution between the velocities at the start and at the end of "
+           "the impact, with Coulomb's law for the impulse as a whole. Following the impact through its course "
+           "(Routh's method: the slip, and the friction force against it, change as the normal impulse grows) "
+           "gives a different answer here.");
+}
+
+} // namespace impactgen::print::detail
+
 namespace impactgen::print::friction_detail
 {
 namespace
@@ -194,6 +249,7 @@ std::vector<math_row> step_rows(const context &c, const regime_case &rc, const c
             r.has_then = true;
             r.then = v;
         }
+        r.note.w(step_unit(c.numeric_d ? c.numeric_d->prob : c.d.prob, s.role)); // issue 25, defect 9
         rows.push_back(r);
     }
     return rows;
@@ -472,6 +528,8 @@ std::vector<section> numbers_sections(const context &c)
         return {sec};
     }
     sec.para(verdict_paragraph(c, sel));
+    if (slip_stops_or_reverses(c.numeric_d ? *c.numeric_d : c.d, sel))
+        sec.para(slip_warning(sel.kind == regime::stick));
     section ans = answer_section(c, sel);
     return {sec, ans};
 }

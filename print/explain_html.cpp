@@ -56,6 +56,7 @@ const char *const style = R"css(
   .eq > .tag { grid-column: 3; text-align: right; }
   .eq mtd { text-align: left; } /* a broken row: its lines start at the left, continuations indented */
   .eq:target { background: #fff6d5; }
+  .results { border: 2px solid #222; border-radius: 0.3em; padding: 0.2em 1em; margin: 1em 0; background: #fafafa; } /* the boxed results */
   .note { margin: -0.35em 0 0.9em 4em; font-size: 0.88em; color: #555; }
   figure { margin: 1.5em 0; text-align: center; }
   figure svg { max-width: 100%; height: auto; }
@@ -270,7 +271,8 @@ std::string explain_html(const document &doc)
                 os << "</figure>\n";
                 break;
             case block::rows: {
-                const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
+                const bool plain = !b.boxed && detail::rows_are_plain(b.math),
+                           bare = !b.boxed && detail::rows_are_bare(b.math);
                 if (bare) {
                     for (const math_row &r : b.math)
                         os << "<div class=\"eq\">" << row_block(r) << "</div>\n";
@@ -285,6 +287,8 @@ std::string explain_html(const document &doc)
                     os << "</ul>\n";
                     break;
                 }
+                if (b.boxed)
+                    os << "<div class=\"results\">\n";
                 for (const math_row &r : b.math) {
                     os << "<div class=\"eq\"";
                     if (!r.tag.empty() && ids.insert(eq_id(r.tag)).second)
@@ -297,6 +301,8 @@ std::string explain_html(const document &doc)
                     if (!note.empty())
                         os << "<p class=\"note\">" << note << "</p>\n";
                 }
+                if (b.boxed)
+                    os << "</div>\n";
                 break;
             }
             }

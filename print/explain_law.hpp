@@ -34,6 +34,8 @@ struct explain_input {
     const derivation *numeric_d = nullptr;
     const impact_solution *numeric_s = nullptr;
     std::optional<worked_example> numbers;
+    /// How much of the derivation the document shows.
+    level depth = level::full;
 };
 
 /// The law's parts of the set-up section (explain_setup.cpp writes the rest).
@@ -45,6 +47,7 @@ struct setup_parts {
     std::optional<paragraph> count_item;                   ///< the impulses' line in the count of unknowns
     std::string count_terms;                               ///< its terms in the sum, " + 1 + 2"
     std::vector<paragraph> closing;                        ///< the set-up's last paragraphs
+    bool brief = false;                                    ///< a summary's set-up: the facts without comment
 };
 
 /// A contact law's chapter of the document: the sections it writes in each slot.
@@ -76,5 +79,10 @@ std::unique_ptr<law_chapter> chapter(const coulomb &, const explain_input &in);
 
 /// Section 1, the set-up: bodies, contact frame, unknowns and their count, with the law's parts.
 section setup_section(const derivation &d, const setup_parts &law);
+/// The set-up of a summary: what strikes what, the bodies, the contact frame and the figure.
+section setup_summary(const derivation &d, const setup_parts &law);
+/// The results of a summary (explain_summary.cpp): every unknown in a box, in closed form
+/// in the problem's symbols where it is short, and the problem's or example's numbers.
+section summary_results(const explain_input &in);
 
 } // namespace impactgen::print::detail

@@ -454,7 +454,9 @@ std::string latex_rows(const std::vector<math_row> &rows, std::set<std::string> 
             column = std::max(column, l.left);
         tags = std::max(tags, l.tag_width);
         if (!l.note.empty())
-            notes = std::max(notes, tex_width(l.note, 0.92, true));
+            // a margin for inline math in a note, which runs wider than its estimate
+            notes =
+                std::max(notes, (l.note.find('$') == std::string::npos ? 1.0 : 1.2) * tex_width(l.note, 0.92, true));
         all.push_back(l);
     }
     // one line each: a short lhs and its right side beside the lhs column, with the tag
@@ -490,6 +492,31 @@ std::string latex_rows(const std::vector<math_row> &rows, std::set<std::string> 
     return out + "\\end{align*}\n";
 }
 
+// Rows each in a frame (\\boxed) with its note beside it, as many a line as fit (the results
+// of a summary); the display may break between lines.
+std::string latex_boxed(const std::vector<math_row> &rows, bool boxed = true)
+{
+    std::vector<std::string> lines;
+    double width = 0;
+    for (const math_row &r : rows) {
+        const std::string note = tex_spans(r.note, false), formula = one_line(tex_row_parts(r));
+        const std::string item =
+            (boxed ? "\\boxed{" + formula + "}" : formula) + (note.empty() ? "" : "\\ \\text{\\small " + note + "}");
+        const double w = tex_width(formula) + 1 + (note.empty() ? 0 : tex_width(note, 0.92, true) + 1);
+        if (!lines.empty() && width + 3 + w <= row_budget_em) {
+            lines.back() += " \\qquad " + item;
+            width += 3 + w;
+        } else {
+            lines.push_back(item);
+            width = w;
+        }
+    }
+    std::string out = "\\begin{gather*}\n";
+    for (std::size_t k = 0; k < lines.size(); ++k)
+        out += "  " + lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
+    return out + "\\end{gather*}\n";
+}
+
 bool has_figures(const document &doc)
 {
     for (const section &sec : doc.sections)
@@ -497,6 +524,55 @@ bool has_figures(const document &doc)
             if (b.k == block::figure)
                 return true;
     return false;
+}
+
+// Rows for a terminal: tag, formula, and the note beside a short definition or under the row.
+std::string text_rows(const std::vector<math_row> &rows)
+{
+    std::ostringstream os;
+    std::size_t tag_width = 0;
+    for (const math_row &r : rows)
+        tag_width = std::max(tag_width, r.tag.empty() ? std::size_t(0) : columns(r.tag) + 2);
+    for (const math_row &r : rows) {
+        std::string tag = r.tag.empty() ? "" : "(" + r.tag + ")";
+        std::string line =
+            "  " + tag + std::string(tag_width - columns(tag) + (tag_width ? 2 : 0), ' ') + text_row_left(r);
+        if (!r.rel.empty())
+            line += " " + r.rel + " " + math_text(r.rhs);
+        if (r.has_then)
+            line += " = " + math_text(r.then);
+        std::string note = text_spans(r.note);
+        if (note.empty()) {
+            os << line << "\n";
+        } else if (r.rel.empty() && r.lhs_note.text.empty() && columns(line) < 22) {
+            os << wrap(harden(line + std::string(22 - columns(line), ' ')) + note, "", std::string(24, ' '));
+        } else {
+            os << line << "\n" << wrap(note, std::string(tag_width + 8, ' '), std::string(tag_width + 8, ' '));
+        }
+    }
+    return os.str();
+}
+
+// Lines in a frame of box-drawing characters (the results of a summary).
+std::string text_box(const std::string &lines)
+{
+    std::vector<std::string> all;
+    std::size_t width = 0, from = 0;
+    while (from < lines.size()) {
+        std::size_t to = lines.find('\n', from);
+        if (to == std::string::npos)
+            to = lines.size();
+        all.push_back(lines.substr(from, to - from));
+        width = std::max(width, columns(all.back()));
+        from = to + 1;
+    }
+    std::string bar;
+    for (std::size_t k = 0; k < width + 2; ++k)
+        bar += "\u2500";
+    std::string out = "  \u250c" + bar + "\u2510\n";
+    for (const std::string &l : all)
+        out += "  \u2502 " + l + std::string(width - columns(l), ' ') + " \u2502\n";
+    return out + "  \u2514" + bar + "\u2518\n";
 }
 
 } // namespace
@@ -524,28 +600,11 @@ std::string explain_text(const document &doc)
                 break;
             case block::rows: {
                 os << "\n";
-                std::size_t tag_width = 0;
-                for (const math_row &r : b.math)
-                    tag_width = std::max(tag_width, r.tag.empty() ? std::size_t(0) : columns(r.tag) + 2);
-                for (const math_row &r : b.math) {
-                    std::string tag = r.tag.empty() ? "" : "(" + r.tag + ")";
-                    std::string line = "  " + tag + std::string(tag_width - columns(tag) + (tag_width ? 2 : 0), ' ') +
-                                       text_row_left(r);
-                    if (!r.rel.empty())
-                        line += " " + r.rel + " " + math_text(r.rhs);
-                    if (r.has_then)
-                        line += " = " + math_text(r.then);
-                    std::string note = text_spans(r.note);
-                    if (note.empty()) {
-                        os << line << "\n";
-                    } else if (r.rel.empty() && r.lhs_note.text.empty() && columns(line) < 22) {
-                        os << wrap(harden(line + std::string(22 - columns(line), ' ')) + note, "",
-                                   std::string(24, ' '));
-                    } else {
-                        os << line << "\n"
-                           << wrap(note, std::string(tag_width + 8, ' '), std::string(tag_width + 8, ' '));
-                    }
+                if (b.boxed) {
+                    os << text_box(text_rows(b.math));
+                    break;
                 }
+                os << text_rows(b.math);
                 break;
             }
             }
@@ -577,6 +636,14 @@ std::string explain_markdown(const document &doc)
                 break;
             case block::rows:
                 os << "\n";
+                if (b.boxed) { // a quoted block, one row a line, every formula in one $$ line
+                    for (const math_row &r : b.math) {
+                        std::string note = tex_spans(r.note, true);
+                        os << "> $$" << one_line(tex_row_parts(r)) << "$$" << (note.empty() ? "" : " " + note)
+                           << "\n>\n";
+                    }
+                    break;
+                }
                 for (const math_row &r : b.math) {
                     std::string note = tex_spans(r.note, true);
                     if (r.rel.empty() && r.tag.empty()) {
@@ -600,26 +667,30 @@ std::string explain_latex(const document &doc)
     const bool figures = has_figures(doc);
     std::set<std::string> labelled;
     std::ostringstream os;
-    // A hand-out: A4 with 2.5 cm margins (row_budget_em assumes that text
+    // A hand-out: 10 pt on A4 with 2 cm margins (row_budget_em assumes that text
     // width), Computer Modern in its Type 1 outlines (OT1: T1 would need cm-super
     // or lmodern, which texlive-latex-base does not have, and fall back to bitmaps),
     // emergency stretch for paragraphs with long formulas in them. Every package
     // is in texlive-latex-base, tikz (only with a figure) in texlive-pictures.
     os << "% Written by impactgen explain. Compile with pdflatex (needs amsmath, geometry, hyperref"
        << (figures ? "; tikz for the figure" : "") << ").\n"
-       << "\\documentclass[11pt,a4paper]{article}\n"
-          "\\usepackage[margin=2.5cm]{geometry}\n"
-          "\\usepackage{amsmath}\n";
+       << "\\documentclass[10pt,a4paper]{article}\n"
+          "\\usepackage[margin=2cm]{geometry}\n"
+       << "\\usepackage{amsmath}\n";
     if (figures)
         os << "\\usepackage{tikz}\n"
               "\\newsavebox{\\figurebox}\n";
     os << "\\usepackage[hidelinks]{hyperref}\n"; // equation references link to their equations
     os << "\\setlength{\\parindent}{0pt}\n"
-          "\\setlength{\\parskip}{0.5em}\n"
           "\\setlength{\\emergencystretch}{3em}\n"
-          "\\allowdisplaybreaks\n"
-          "\\title{"
-       << tex_words(doc.title)
+          "\\allowdisplaybreaks\n";
+    // a hand-out: a plain title line, less space around displays and headings (a summary: one page)
+    os << "\\makeatletter\\renewcommand\\@maketitle{\\begin{center}{\\LARGE\\@title\\par}\\end{center}}"
+          "\\renewcommand\\section{\\@startsection{section}{1}{0pt}{1.2ex plus .5ex}{0.6ex}{\\large\\bfseries}}"
+          "\\makeatother\n"
+          "\\AtBeginDocument{\\setlength{\\abovedisplayskip}{4pt}\\setlength{\\belowdisplayskip}{4pt}}\n"
+          "\\setlength{\\parskip}{0.3em}\n";
+    os << "\\title{" << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
     if (!doc.description.empty())
@@ -639,15 +710,26 @@ std::string explain_latex(const document &doc)
                 break;
             case block::figure:
                 // scaled down to the line when it is wider, never up
-                os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n"
-                   << b.art.tikz
-                   << "%\n}%\n\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
+                os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
+                // at most 4 cm high in a summary, 5 cm in a full document
+                os << (doc.depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
+                                                     "{\\usebox{\\figurebox}}}\\fi\n"
+                                                   : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
+                                                     "{\\usebox{\\figurebox}}}\\fi\n");
+                os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
                       "\\else\\usebox{\\figurebox}\\fi\n";
                 if (!b.art.caption.empty())
                     os << "\\par{\\small " << tex_words(b.art.caption) << "}\n";
                 os << "\\end{center}\n";
                 break;
             case block::rows: {
+                bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
+                for (const math_row &r : b.math)
+                    fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
+                if ((b.boxed || b.packed) && fits) { // each row (in a \\boxed), its note beside it, several a line
+                    os << latex_boxed(b.math, b.boxed);
+                    break;
+                }
                 const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
                 if (bare) {
                     os << "\\begin{gather*}\n";

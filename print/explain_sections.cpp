@@ -135,6 +135,19 @@ paragraph group_why(const problem &p, const equation &first, std::size_t i, cons
     return why;
 }
 
+// Smooth contact for both bodies at once.
+paragraph smooth_bodies_why(const problem &p)
+{
+    std::string title = principle_name(principle::smooth_contact);
+    title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+    return paragraph()
+        .w(title + ": ")
+        .t(p.dimension == 3 ? "the bodies are smooth, so no impulse acts on either body along $e_t$ or $e_b$: each "
+                              "centre-of-mass velocity along them is unchanged."
+                            : "the bodies are smooth, so no impulse acts on either body along $e_t$: each "
+                              "centre-of-mass velocity along $e_t$ is unchanged.");
+}
+
 // The formulas a group of equations starts from (angular momentum, a fixed pivot,
 // restitution at the contact points).
 void group_formulas(section &sec, const derivation &d, const contact_frame_view &view, const equation &first,
@@ -172,21 +185,21 @@ void group_formulas(section &sec, const derivation &d, const contact_frame_view 
             "centres of mass. As $A$ and $C1$ are both points of body 1, and $B$ and $C2$ of body 2:"));
         const vec3 &n = d.n_hat;
         std::vector<math_row> pv_rows;
-        pv_rows.push_back(note_row("v_An = (v_C1 + ω1 × r_AC1)·e_n",
+        pv_rows.push_back(note_row("v_An = (v_C1 + ω1 × r_C1A)·e_n",
                                    "v_{An} = (\\underline{v}_{C_1} + \\underline{\\omega}_1 \\times "
-                                   "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                   "\\underline{r}_{C_1A})\\cdot\\hat{\\underline{e}}_n",
                                    view.apply(tidy_expand(dot(d.vA, n)))));
-        pv_rows.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_AC1)·e_n",
+        pv_rows.push_back(note_row("v′_An = (v′_C1 + ω′1 × r_C1A)·e_n",
                                    "v'_{An} = (\\underline{v}'_{C_1} + \\underline{\\omega}'_1 \\times "
-                                   "\\underline{r}_{AC_1})\\cdot\\hat{\\underline{e}}_n",
+                                   "\\underline{r}_{C_1A})\\cdot\\hat{\\underline{e}}_n",
                                    view.apply(tidy_expand(dot(d.vA_after, n)))));
-        pv_rows.push_back(note_row("v_Bn = (v_C2 + ω2 × r_BC2)·e_n",
+        pv_rows.push_back(note_row("v_Bn = (v_C2 + ω2 × r_C2B)·e_n",
                                    "v_{Bn} = (\\underline{v}_{C_2} + \\underline{\\omega}_2 \\times "
-                                   "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                   "\\underline{r}_{C_2B})\\cdot\\hat{\\underline{e}}_n",
                                    view.apply(tidy_expand(dot(d.vB, n)))));
-        math_row last = note_row("v′_Bn = (v′_C2 + ω′2 × r_BC2)·e_n",
+        math_row last = note_row("v′_Bn = (v′_C2 + ω′2 × r_C2B)·e_n",
                                  "v'_{Bn} = (\\underline{v}'_{C_2} + \\underline{\\omega}'_2 \\times "
-                                 "\\underline{r}_{BC_2})\\cdot\\hat{\\underline{e}}_n",
+                                 "\\underline{r}_{C_2B})\\cdot\\hat{\\underline{e}}_n",
                                  view.apply(tidy_expand(dot(d.vB_after, n))));
         if (p.bodies[i2].infinite_mass || p.immovable(i2))
             last.note.t("$B$ is on a body the impulse cannot move: $v′_Bn = v_Bn$");
@@ -217,12 +230,27 @@ void remark_list(section &sec, const derivation &d)
                 .t(" are unchanged: a finite impulse cannot change the motion of an infinite mass, so "
                    "it gives no angular momentum equation either.");
             break;
-        case remark_kind::particle_no_rotation:
-            q.w(who).t(" is a particle (no rotational inertia): it has no angular velocity unknowns, and its "
-                       "angular momentum "
-                       "about $O$, $~r_OC × m ~v_C$, changes only through $~v_C$, which the other equations fix: "
-                       "it gives no new equation.");
+        case remark_kind::particle_no_rotation: {
+            // every particle in one item (issue 25, defect 9)
+            std::vector<std::size_t> particles;
+            for (const remark &o : d.remarks)
+                if (o.kind == remark_kind::particle_no_rotation)
+                    particles.push_back(o.body);
+            if (particles.front() != r.body)
+                continue;
+            if (particles.size() == 1) {
+                q.w(who).t(" is a particle (no rotational inertia): it has no angular velocity unknowns, and its "
+                           "angular momentum about $O$, $~r_OC × m ~v_C$, changes only through $~v_C$, which the "
+                           "other equations fix: it gives no new equation.");
+                break;
+            }
+            for (std::size_t k = 0; k < particles.size(); ++k)
+                q.w((k == 0 ? "" : k + 1 == particles.size() ? " and " : ", ") + body_ref(p, particles[k]));
+            q.t(" are particles (no rotational inertia): they have no angular velocity unknowns, and the angular "
+                "momentum of each about $O$, $~r_OC × m ~v_C$, changes only through its $~v_C$, which the other "
+                "equations fix: it gives no new equation.");
             break;
+        }
         case remark_kind::pinned_particle:
             q.w(who).t(" is a particle pinned at a fixed point: it cannot rotate, so it cannot move, and its pivot "
                        "takes the whole contact impulse.");
@@ -261,12 +289,16 @@ section detail::equations_section(const derivation &d)
     while (k < view.equations.size()) {
         const equation &first = *view.equations[k].source;
         std::vector<math_row> rows;
+        bool several_bodies = false;
         std::size_t j = k;
         for (; j < view.equations.size(); ++j) {
             const framed_equation &f = view.equations[j];
             const equation &eq = *f.source;
-            if (eq.why != first.why || eq.bodies != first.bodies)
+            // smooth contact: one paragraph for every body (issue 25, defect 9: said once, not per body)
+            if (eq.why != first.why || (eq.bodies != first.bodies && first.why != principle::smooth_contact))
                 break;
+            if (eq.bodies != first.bodies)
+                several_bodies = true;
             math_row r = row(f.lhs, f.rhs, eq.label);
             if (!f.axis.empty())
                 along(r.note.t("component along "), f.axis);
@@ -274,7 +306,7 @@ section detail::equations_section(const derivation &d)
         }
         const std::size_t i = first.bodies.empty() ? no_body : first.bodies[0];
         const pivot *pv = i == no_body ? nullptr : p.pivot_of(i);
-        const paragraph why = group_why(p, first, i, pv);
+        const paragraph why = several_bodies ? smooth_bodies_why(p) : group_why(p, first, i, pv);
         sec.para(why);
         group_formulas(sec, d, view, first, i, pv);
         sec.rows(rows);
@@ -292,26 +324,15 @@ section detail::solution_section(const derivation &d, const solution &s)
     sec.para(paragraph().w(
         std::to_string(d.count_equations()) + " equations for " + std::to_string(d.count_unknowns()) +
         " unknowns: " + (ok ? "the count matches, the system can be solved." : "THE COUNT DOES NOT MATCH.")));
+    // the general closed form said once, in words and symbols (issue 25, defect 9: no rows that the
+    // steps below repeat)
     sec.para(paragraph().t(
         "Every unknown changes linearly with the normal impulse $N$ (= $∫N dt$ along $e_n$): a free body gets "
-        "$~v′_C = ~v_C ± N e_n/m$ and $~ω′ = ~ω ± N ~~I⁻¹(~r × e_n)$, a pinned body turns about $E$. "
-        "Restitution then fixes $N$. In closed form, through named intermediates:"));
-    math_row w_row = note_row("w_i = 1/m_i + (r_i × e_n)·I_i⁻¹(r_i × e_n)",
-                              "w_i = \\frac{1}{m_i} + (\\underline{r}_i\\times\\hat{\\underline{e}}_n)\\cdot "
-                              "\\underline{\\underline{I}}_i^{-1}(\\underline{r}_i\\times\\hat{\\underline{e}}_n)",
-                              0);
-    w_row.note.t("effective inverse mass of body $i$ at the contact point along $e_n$, $~r_i = O - C_i$; about the "
-                 "pivot $E$ for a pinned body "
-                 "(without $1/m_i$); 0 for a body the impulse cannot move");
-    math_row u_row =
-        note_row("u = (v_B - v_A)·e_n", "u = (\\underline{v}_B - \\underline{v}_A)\\cdot\\hat{\\underline{e}}_n", 0);
-    u_row.note.t("normal velocity of approach, negative for an impact");
-    math_row n_row = note_row("N = -(1 + e)·u/(w_1 + w_2)", "N = -\\frac{(1 + e)\\,u}{w_1 + w_2}", 0);
-    n_row.note.t("the restitution equation solved for the normal impulse");
-    sec.rows({w_row, u_row, n_row});
-    // The notation rows above carry no value: mark them by an empty relation.
-    for (math_row &r : sec.blocks.back().math)
-        r.rel = "";
+        "$~v′_C = ~v_C ± N e_n/m$ and $~ω′ = ~ω ± N ~~I⁻¹(~r × e_n)$, a pinned body turns about $E$. Restitution "
+        "then fixes $N = -(1 + e) u/(w_1 + w_2)$, with $u = (~v_B - ~v_A)·e_n$ the normal velocity of approach "
+        "and $w_i = 1/m_i + (~r_i × e_n)·~~I_i⁻¹(~r_i × e_n)$ the effective inverse mass of body $i$ at the "
+        "contact point along $e_n$, $~r_i = O - C_i$ (about the pivot $E$ for a pinned body, without $1/m_i$; 0 "
+        "for a body the impulse cannot move)."));
 
     std::vector<math_row> steps;
     const contact_frame_view view = contact_frame_view_of(d);
@@ -323,10 +344,10 @@ section detail::solution_section(const derivation &d, const solution &s)
     sec.para(paragraph().w("The steps, in order:"));
     sec.rows(steps);
     std::vector<math_row> unknowns;
-    for (const frame_component &u : view.unknowns)
-        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values)), "", component_note(u)));
-    sec.para(paragraph().w("Each unknown:"));
-    sec.rows(unknowns);
+    for (const frame_component &u : view.unknowns) // their meanings: the set-up's list
+        unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values))));
+    sec.para(paragraph().w("Each unknown (as listed in the set-up):"));
+    sec.packed_rows(unknowns);
     return sec;
 }
 namespace
@@ -438,6 +459,7 @@ void numbers_walk(section &sec, const derivation &d, const solution &s, const ex
         ex formula = s.steps[i].value.subs(values);
         ex v = surd_form(impactgen::tidy(steps.op(i).rhs()));
         math_row out = row(s.steps[i].sym, v, "", decimal_note(v));
+        out.note.w(step_unit(d.prob, s.steps[i].role)); // issue 25, defect 9: units on every step
         if (!is_a<numeric>(formula) && printable(formula)) {
             out.rhs = formula;
             out.has_then = true;
@@ -626,11 +648,11 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
     sec.para(paragraph().w("Kinetic energy lost (bodies of finite mass), the work of the contact impulse:"));
     std::vector<math_row> energy;
     const step *lost_step = find_step(se, step_role::energy_lost);
-    if (lost_step)
-        energy.push_back(row(lost_step->sym, lost_step->value));
     ex textbook = kk.is_zero() ? ex(0) : (1 - e_sym * e_sym) * pow(u, 2) / (2 * kk);
     bool textbook_ok =
         !kk.is_zero() && u_step && vanishes_identically(se, lost - expand_some(se, textbook, core), "the energy check");
+    if (lost_step && !textbook_ok) // else the step (section 4) is not repeated: its textbook form follows
+        energy.push_back(row(lost_step->sym, lost_step->value));
     if (textbook_ok && lost_step) {
         math_row r = row(lost_step->sym, textbook);
         r.note.t("with $N = -(1 + e) u/k$ substituted and simplified: $1 - e² ≥ 0$ and $k > 0$, so $T_lost ≥ 0$");
@@ -672,16 +694,14 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
             energy.push_back(r);
     } else if (lost_step) {
         math_row r = row(lost_step->sym, at_one);
-        r.note.t("at $e = 1$");
+        r.note.t(at_one.is_zero() ? "at $e = 1$: the elastic impact conserves kinetic energy" : "at $e = 1$");
         energy.push_back(r);
     }
     sec.rows(energy);
     sec.para(paragraph().t(
         "The energy before impact is $T = Σ (1/2 m |~v_C|² + 1/2 ~ω·~~I_C ~ω)$ over the bodies of finite mass, "
         "and after it $T′ = T - T_lost$."));
-    if (at_one.is_zero())
-        sec.para(paragraph().t("At $e = 1$ no energy is lost: the elastic impact conserves kinetic energy."));
-    else
+    if (!at_one.is_zero())
         sec.para(paragraph().t(
             "At $e = 1$ the loss is not zero: a moving body of infinite mass does work on the other body, and "
             "its own energy is not counted."));

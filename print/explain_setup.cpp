@@ -38,7 +38,9 @@ void setup_intro(section &sec, const derivation &d, const setup_parts &law)
         strikes.t("point $B$ of ").w(body_ref(p, i2)).t(" strikes point $A$ of ").w(body_ref(p, i1));
     else
         strikes.t("point $A$ of ").w(body_ref(p, i1)).t(" strikes point $B$ of ").w(body_ref(p, i2));
-    sec.para(strikes.t(". The impulsive forces change the velocities instantly without changing the positions."));
+    sec.para(law.brief ? strikes.w(".")
+                       : strikes.t(". The impulsive forces change the velocities instantly without changing the "
+                                   "positions."));
     if (is_a<symbol>(p.restitution))
         sec.para(paragraph().t("Newton's coefficient of restitution is ").m(p.restitution).t(" ($0 ≤ e ≤ 1$)."));
     else
@@ -62,11 +64,18 @@ std::vector<paragraph> body_list(const problem &p)
         const body &b = p.bodies[i];
         paragraph q;
         q.w(body_ref(p, i) + ": ");
+        // A body of infinite mass has no inertia to speak of: at rest it is a fixed body (the
+        // floor, a wall), moving it has the motion given (its spin, where it has one, moves B).
+        if (b.infinite_mass && b.at_rest() && !p.pivot_of(i)) {
+            bodies.push_back(q.w("infinite mass, at rest: a fixed body, the impulse cannot move it."));
+            continue;
+        }
         if (b.infinite_mass)
             q.w("infinite mass (its motion is given; the impulse cannot change it)");
         else
             q.t("mass ").m(b.mass).w(unit_of(quantity::mass, b.mass));
-        if (b.particle) {
+        if (b.infinite_mass) {
+        } else if (b.particle) {
             q.w(", a particle (no rotational inertia)");
         } else if (dim == 2) {
             q.t(", moment of inertia about $C$ (along $e_b$) ")
@@ -85,7 +94,10 @@ std::vector<paragraph> body_list(const problem &p)
         vector_span(q, b.position, dim).w(unit_of(quantity::length, b.position[0], b.position[1], b.position[2]));
         q.t("; before impact $~v_C$ = ");
         vector_span(q, b.velocity, dim).w(unit_of(quantity::velocity, b.velocity[0], b.velocity[1], b.velocity[2]));
-        if (!b.particle || b.infinite_mass) {
+        bool spins = !b.particle;
+        for (int k = 0; k < 3; ++k)
+            spins = spins || (b.infinite_mass && !b.angular_velocity[k].is_zero());
+        if (spins) {
             q.t(", $ω$ = ");
             if (dim == 2)
                 q.m(b.angular_velocity[2]);
@@ -107,15 +119,18 @@ std::vector<paragraph> body_list(const problem &p)
 
 // The contact point and frame, the figure, and the frame components of the inputs and
 // inertia tensors.
-void frame_paragraphs(section &sec, const derivation &d, const contact_frame_view &view)
+// A summary (`brief`) shows no equations: nothing is said of their components.
+void frame_paragraphs(section &sec, const derivation &d, const contact_frame_view &view, bool brief = false)
 {
     const problem &p = d.prob;
     const int dim = p.dimension;
     paragraph frame;
     frame.t("The contact point $O$ = ");
     vector_span(frame, p.contact().point, dim);
-    frame.t(
-        " is a geometric point, fixed in the inertial frame, where $A$ and $B$ coincide. The contact frame: $e_n$ = ");
+    frame.t(brief
+                ? ", where $A$ and $B$ coincide; $e_n$ = "
+                : " is a geometric point, fixed in the inertial frame, where $A$ and $B$ coincide. The contact frame: "
+                  "$e_n$ = ");
     vector_span(frame, d.n_hat, dim);
     frame.t(" (the common normal, from body 1 into body 2), $e_t$ along ");
     vector_span(frame, d.t_dir, dim);
@@ -131,6 +146,8 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
                 "$e_n$ or $e_b$.");
     else if (d.frame_is_world)
         frame.w(" These are world axes (up to sign), so components can be read off directly.");
+    else if (brief)
+        ;
     else if (view.active)
         frame.t(
             p.dimension == 3
@@ -144,6 +161,9 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
         frame.t(" The equations below are written in world components; the contact-frame components "
                 "of a velocity are $v_t = ~v·e_t$ and $v_n = ~v·e_n$; the numbers at the end give "
                 "them for both bodies.");
+    if (!brief) // one convention for every position vector of the document (issue 25, defect 5)
+        frame.t(" A position vector $~r_PQ = Q - P$ goes from the point $P$ to the point $Q$: $~r_CO = O - C$ "
+                "locates the contact point from a centre of mass.");
     sec.para(frame);
     sec.picture(figure_of(d));
     if (view.active && !view.inputs.empty()) {
@@ -214,7 +234,7 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
             else if (u.owner == i && u.kind == unknown_kind::angular_velocity)
                 ++nw;
         paragraph q;
-        q.w(body_ref(p, i) + ": " + std::to_string(nv + nw) + " unknowns");
+        q.w(std::to_string(nv + nw) + " unknowns");
         if (b.infinite_mass)
             q.t(i == p.contact().body2 ? " -- infinite mass: a finite impulse does not affect it, $~v′_C = ~v_C$ and "
                                          "$~ω′ = ~ω$ (the notes' $m2 → ∞$ case)"
@@ -235,6 +255,26 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
             q.t(" (the pin at $E$ also ties $~v′_C$ to $~ω′$: $~v′_C = ~ω′ × ~r_EC$)");
         why.push_back(q);
         sum += (sum.empty() ? "" : " + ") + std::to_string(nv + nw);
+    }
+    // the same for both bodies: said once (issue 25, defect 9)
+    auto words_of = [](const paragraph &q) {
+        std::string out;
+        for (const span &x : q.spans)
+            out += std::to_string(x.k) + x.text + x.formula.tex + "|";
+        return out;
+    };
+    if (words_of(why[0]) == words_of(why[1])) {
+        paragraph both;
+        both.w(body_ref(p, i1) + " and " + body_ref(p, i2) + ", each: ");
+        both.spans.insert(both.spans.end(), why[0].spans.begin(), why[0].spans.end());
+        why = {both};
+    } else {
+        for (std::size_t k = 0; k < 2; ++k) {
+            paragraph named;
+            named.w(body_ref(p, k ? i2 : i1) + ": ");
+            named.spans.insert(named.spans.end(), why[k].spans.begin(), why[k].spans.end());
+            why[k] = named;
+        }
     }
     if (law.count_item) {
         why.push_back(*law.count_item);
@@ -265,6 +305,18 @@ section detail::setup_section(const derivation &d, const setup_parts &law)
     why_count(sec, d, law);
     for (const paragraph &q : law.closing)
         sec.para(q);
+    return sec;
+}
+
+section detail::setup_summary(const derivation &d, const setup_parts &law)
+{
+    section sec{"Set-up", {}};
+    contact_frame_view none;
+    setup_parts brief = law;
+    brief.brief = true;
+    setup_intro(sec, d, brief);
+    sec.list(body_list(d.prob));
+    frame_paragraphs(sec, d, none, true);
     return sec;
 }
 

@@ -17,10 +17,10 @@ std::string math_latex(const GiNaC::ex &e);
 /// A row's relation as TeX ("→" as \to, ...) (explain_print.cpp).
 std::string tex_rel(const std::string &rel);
 
-// Widths are in em of the 11pt body font (10.95pt).
-constexpr double em_pt = 10.95;
-// The text width: A4 with 2.5 cm margins (geometry), 160 mm = 455.2 pt.
-constexpr double text_width_em = 455.24 / em_pt;
+// Widths are in em of the 10pt body font.
+constexpr double em_pt = 10.0;
+// The text width: A4 with 2 cm margins (geometry), 170 mm = 483.7 pt.
+constexpr double text_width_em = 483.69 / em_pt;
 // What a displayed row may fill: the text width less a margin for what the
 // glyph model cannot know (kerning, large delimiters).
 constexpr double row_budget_em = text_width_em - 1.5;

@@ -17,7 +17,7 @@
 namespace impactgen::print::layout {
 // The width model of the LaTeX layout (print/explain_print.cpp), declared here
 // only: the printers need no header for it, the tests check against it.
-double estimated_width_em(const std::string& tex); ///< the estimated width of math TeX, em of 11pt
+double estimated_width_em(const std::string& tex); ///< the estimated width of math TeX, em of the 10pt body font
 double row_budget_em();                            ///< what a displayed line may fill, em
 } // namespace impactgen::print::layout
 
