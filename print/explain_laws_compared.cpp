@@ -7,6 +7,7 @@
 #include "symbolic/decide.hpp"
 
 #include <array>
+#include <cstdio>
 #include <exception>
 #include <functional>
 
@@ -30,9 +31,21 @@ bool moving_infinite(const problem &p)
     return false;
 }
 
+// x in the candidate's numbers: exact when rational, else a float.
 ex value(const regime_case &c, const ex &x)
 {
-    return tidy(c.sol.expand_steps(x)).evalf();
+    const ex v = tidy(c.sol.expand_steps(x));
+    return is_a<numeric>(v) && ex_to<numeric>(v).is_rational() ? v : v.evalf();
+}
+
+// v to six significant digits, as notation (a column of the comparison).
+paragraph &digits(paragraph &q, const ex &v)
+{
+    const ex x = v.evalf();
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.6g", is_a<numeric>(x) ? ex_to<numeric>(x).to_double() : 0.0);
+    std::string s = std::string(buf) == "-0" ? "0" : buf;
+    return q.n(s, s);
 }
 
 // The problem solved under each law, or empty when one of them cannot be solved.
@@ -107,18 +120,21 @@ section table_section(const derivation &nd, const std::vector<law_answer> &laws)
                 vec3 v;
                 for (int a = 0; a < 3; ++a)
                     v[a] = value(c, c.sol.after[b].velocity[a]);
-                vector_span(q, v, 2);
+                digits(q.w("("), v[0]).w(", ");
+                digits(q, v[1]).w(")");
             }));
         items.push_back(quantity_item(
             "angular velocity of " + body_ref(p, b) + " after", laws,
-            [&](paragraph &q, const regime_case &c) { q.m(value(c, c.sol.after[b].angular_velocity[2])); }));
+            [&](paragraph &q, const regime_case &c) { digits(q, value(c, c.sol.after[b].angular_velocity[2])); }));
     }
-    items.push_back(quantity_item("normal impulse", laws,
-                                  [&](paragraph &q, const regime_case &c) { q.m(value(c, c.sol.normal_impulse)); }));
-    items.push_back(quantity_item("tangential impulse along e_t", laws,
-                                  [&](paragraph &q, const regime_case &c) { q.m(value(c, c.tangential_scalar)); }));
+    items.push_back(quantity_item("normal impulse", laws, [&](paragraph &q, const regime_case &c) {
+        digits(q, value(c, c.sol.normal_impulse));
+    }));
+    items.push_back(quantity_item("tangential impulse along e_t", laws, [&](paragraph &q, const regime_case &c) {
+        digits(q, value(c, c.tangential_scalar));
+    }));
     items.push_back(quantity_item("kinetic energy lost", laws, [&](paragraph &q, const regime_case &c) {
-        q.m(value(c, c.sol.energy_before - c.sol.energy_after));
+        digits(q, value(c, c.sol.energy_before - c.sol.energy_after));
     }));
     sec.list(items);
     return sec;

@@ -112,14 +112,19 @@ math_row value_of(const std::string &text, const std::string &tex, const ex &v, 
     if (!printable(v))
         r.rhs = symbol("(too long to print)");
     r.note = note;
-    if (r.note.spans.empty() && is_a<numeric>(v) && !ex_to<numeric>(v).is_integer())
+    if (r.note.spans.empty() && is_a<numeric>(v) && ex_to<numeric>(v).is_rational() && !ex_to<numeric>(v).is_integer())
         r.note = decimal_note(v);
     return r;
 }
 
-ex shown(const ex &v, bool numeric)
+// A value as the document shows it: exact when it is a rational number or has symbols, else a
+// float.
+ex shown(const ex &v, bool numbers)
 {
-    return numeric ? ex(v.evalf()) : tidy(v);
+    const ex x = tidy(v);
+    if (!numbers || (is_a<numeric>(x) && ex_to<numeric>(x).is_rational()))
+        return x;
+    return x.evalf();
 }
 
 double num(const ex &v)
@@ -342,6 +347,19 @@ std::vector<section> process_chapter_impl::results() const
               value_of("T", "T", shown(before, true), paragraph().w("kinetic energy before")),
               value_of("T'", "T'", shown(after, true), paragraph().w("kinetic energy after")),
               value_of("T - T'", "T - T'", shown(before - after, true), paragraph().w("kinetic energy lost"))});
+    std::vector<paragraph> bodies;
+    const problem &p = in.d.prob;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b)
+        if (!p.bodies[b].infinite_mass) {
+            vec3 v;
+            for (int a = 0; a < 3; ++a)
+                v[a] = shown(c.sol.expand_steps(c.sol.after[b].velocity[a]), true);
+            paragraph q;
+            q.w(body_ref(p, b) + " after impact: ").t("$v'_C$ = ");
+            vector_span(q, v, 2).t(", $ω'$ = ").m(shown(c.sol.expand_steps(c.sol.after[b].angular_velocity[2]), true));
+            bodies.push_back(q.w("."));
+        }
+    res.list(bodies);
     return {sec, res};
 }
 
