@@ -130,7 +130,7 @@ section table_section(const derivation &nd, const std::vector<law_answer> &laws)
     items.push_back(quantity_item("normal impulse", laws, [&](paragraph &q, const regime_case &c) {
         digits(q, value(c, c.sol.normal_impulse));
     }));
-    items.push_back(quantity_item("tangential impulse along e_t", laws, [&](paragraph &q, const regime_case &c) {
+    items.push_back(quantity_item("friction impulse", laws, [&](paragraph &q, const regime_case &c) {
         digits(q, value(c, c.tangential_scalar));
     }));
     items.push_back(quantity_item("kinetic energy lost", laws, [&](paragraph &q, const regime_case &c) {

@@ -73,14 +73,14 @@ std::array<ex, 3> slopes(const process_inputs &q, phase_kind k, int s)
     return {-sg * q.mu, tidy(q.Ktn - sg * q.mu * q.Ktt), tidy(q.Knn - sg * q.mu * q.Ktn)};
 }
 
-std::string phase_words(phase_kind k, int s)
+// "slide: the contact slips along +e_t", as prose.
+paragraph &phase_words(paragraph &q, phase_kind k, int s)
 {
-    const std::string along = s > 0 ? "+e_t" : "-e_t", against = s > 0 ? "-e_t" : "+e_t";
     if (k == phase_kind::slide)
-        return "slide: the contact slips along " + along;
+        return q.w("slide: the contact slips along ").t(s > 0 ? "$+e_t$" : "$-e_t$");
     if (k == phase_kind::reverse)
-        return "reverse: the slip has stopped and, unable to stick, turns to " + against;
-    return "stick: the slip has stopped and the impulse ratio lies inside the friction cone";
+        return q.w("reverse: the slip has stopped and, unable to stick, turns to ").t(s > 0 ? "$-e_t$" : "$+e_t$");
+    return q.w("stick: the slip has stopped and the impulse ratio lies inside the friction cone");
 }
 
 paragraph condition_words(const process_condition &pc)
@@ -197,7 +197,7 @@ std::vector<section> process_chapter_impl::statement() const
         "impulse grows against the slip, $μ$ times as fast as the normal impulse; while it sticks, $u_t$ stays 0 "
         "and the ratio of the two impulses must lie inside the cone. The slip may stop during the impact: then "
         "the contact sticks if it can, else it slides back (a reversal)."));
-    sec.rows({formula_row("dP_t = -s μ dP_n", "dP_{t} = -s\\,\\mu\\,dP_{n}", "sliding along s e_t"),
+    sec.rows({formula_row("dP_t = -s μ dP_n", "dP_{t} = -s\\,\\mu\\,dP_{n}", "sliding along $s e_t$"),
               formula_row("|dP_t| ≤ μ dP_n", "|dP_{t}| \\le \\mu\\,dP_{n}", "sticking")});
     sec.para(paragraph().t("Compression ends where $u_n = 0$, at $P_n = P_c$. Restitution ends by the law:"));
     if (poisson(in.s.law))
@@ -229,7 +229,7 @@ std::vector<section> process_chapter_impl::equations() const
         {formula_row(
              "du_t/dP_n = K_tn - s μ K_tt,  du_n/dP_n = K_nn - s μ K_tn",
              "\\frac{du_{t}}{dP_{n}} = K_{tn} - s\\mu K_{tt},\\quad \\frac{du_{n}}{dP_{n}} = K_{nn} - s\\mu K_{tn}",
-             "sliding along s e_t"),
+             "sliding along $s e_t$"),
          formula_row(
              "du_t/dP_n = 0,  du_n/dP_n = (K_tt K_nn - K_tn²)/K_tt",
              "\\frac{du_{t}}{dP_{n}} = 0,\\quad \\frac{du_{n}}{dP_{n}} = \\frac{K_{tt}K_{nn} - K_{tn}^{2}}{K_{tt}}",
@@ -259,10 +259,9 @@ section process_chapter_impl::sequence_section(std::size_t k) const
     for (std::size_t j = 0; j < c.process.size(); ++j) {
         const process_phase &ph = c.process[j];
         const std::array<ex, 3> r = slopes(q, ph.kind, s);
-        sec.para(paragraph()
-                     .w("Phase " + std::to_string(j + 1) + ", " + phase_words(ph.kind, s) + ", from ")
-                     .m(shown(start, numeric))
-                     .t(" to the normal impulse below:"));
+        paragraph q;
+        q.w("Phase " + std::to_string(j + 1) + ", ");
+        sec.para(phase_words(q, ph.kind, s).w(", from ").m(shown(start, numeric)).w(" to the normal impulse below:"));
         sec.rows({value_of("dP_t/dP_n", "dP_{t}/dP_{n}", shown(r[0], numeric)),
                   value_of("du_t/dP_n", "du_{t}/dP_{n}", shown(r[1], numeric)),
                   value_of("du_n/dP_n", "du_{n}/dP_{n}", shown(r[2], numeric)),
@@ -332,10 +331,10 @@ std::vector<section> process_chapter_impl::results() const
                            "numbered points are:"));
     std::vector<paragraph> items;
     for (std::size_t j = 0; j < pts.size(); ++j) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%zu: %s, P_n = %.4g, u_t = %.4g, u_n = %.4g", j, pts[j].label.c_str(),
-                      pts[j].pn, pts[j].ut, pts[j].un);
-        items.push_back(paragraph().w(buf));
+        char text[160], tex[200];
+        std::snprintf(text, sizeof text, "P_n = %.4g, u_t = %.4g, u_n = %.4g", pts[j].pn, pts[j].ut, pts[j].un);
+        std::snprintf(tex, sizeof tex, "P_{n} = %.4g,\\ u_{t} = %.4g,\\ u_{n} = %.4g", pts[j].pn, pts[j].ut, pts[j].un);
+        items.push_back(paragraph().w(std::to_string(j) + ": " + pts[j].label + ", ").n(text, tex));
     }
     sec.list(items);
     sec.picture(process_figure(pts, "The relative velocity of the contact points during the impact"));
