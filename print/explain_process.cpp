@@ -139,6 +139,13 @@ std::pair<ex, ex> velocity_at(const process_inputs &q, const ex &pt, const ex &p
     return {q.ut + q.Ktt * pt + q.Ktn * pn, q.un + q.Ktn * pt + q.Knn * pn};
 }
 
+// Numbers the rows of the section's last block of rows, in order: (first), (first + 1), ...
+void number_rows(section &sec, int first)
+{
+    for (math_row &r : sec.blocks.back().math)
+        r.tag = std::to_string(first++);
+}
+
 class process_chapter_impl : public law_chapter
 {
     const explain_input &in;
@@ -199,6 +206,7 @@ std::vector<section> process_chapter_impl::statement() const
         "the contact sticks if it can, else it slides back (a reversal)."));
     sec.rows({formula_row("dP_t = -s μ dP_n", "dP_{t} = -s\\,\\mu\\,dP_{n}", "sliding along $s e_t$"),
               formula_row("|dP_t| ≤ μ dP_n", "|dP_{t}| \\le \\mu\\,dP_{n}", "sticking")});
+    number_rows(sec, 1);
     sec.para(paragraph().t("Compression ends where $u_n = 0$, at $P_n = P_c$. Restitution ends by the law:"));
     if (poisson(in.s.law))
         sec.rows({formula_row("P_n = (1 + e) P_c", "P_{n} = (1 + e)\\,P_{c}",
@@ -208,6 +216,7 @@ std::vector<section> process_chapter_impl::statement() const
             {formula_row("W_r = -e² W_c,  W = ∫ u_n dP_n", "W_{r} = -e^{2}\\,W_{c},\\quad W = \\int u_{n}\\,dP_{n}",
                          "energetic: the work given back is e² times the work absorbed; it never creates "
                          "energy")});
+    number_rows(sec, 3);
     return {sec};
 }
 
@@ -219,6 +228,7 @@ std::vector<section> process_chapter_impl::equations() const
                            "of the contact points by the contact response $K$, written in the contact frame:"));
     sec.rows({formula_row("u_t(P) = u_t + K_tt P_t + K_tn P_n", "u_{t}(P) = u_{t} + K_{tt} P_{t} + K_{tn} P_{n}"),
               formula_row("u_n(P) = u_n + K_tn P_t + K_nn P_n", "u_{n}(P) = u_{n} + K_{tn} P_{t} + K_{nn} P_{n}")});
+    number_rows(sec, 4);
     sec.para(paragraph().t("with $u_t$, $u_n$ the velocities before impact and"));
     sec.rows({value_of("K_tt", "K_{tt}", shown(q.Ktt, numeric)), value_of("K_tn", "K_{tn}", shown(q.Ktn, numeric)),
               value_of("K_nn", "K_{nn}", shown(q.Knn, numeric)), value_of("u_t", "u_{t}", shown(q.ut, numeric)),
@@ -234,6 +244,7 @@ std::vector<section> process_chapter_impl::equations() const
              "du_t/dP_n = 0,  du_n/dP_n = (K_tt K_nn - K_tn²)/K_tt",
              "\\frac{du_{t}}{dP_{n}} = 0,\\quad \\frac{du_{n}}{dP_{n}} = \\frac{K_{tt}K_{nn} - K_{tn}^{2}}{K_{tt}}",
              "sticking")});
+    number_rows(sec, 6);
     return {sec};
 }
 
