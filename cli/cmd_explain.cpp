@@ -36,7 +36,6 @@ void register_explain(CLI::App &app, std::function<int()> &action)
         action = [opt] {
             problem p = load(opt->what);
             refuse_system_for(p, "explain");
-            require_newton_for_output(p, "explain");
             derivation d = derive(p);
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);

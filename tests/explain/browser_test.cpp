@@ -164,7 +164,7 @@ std::vector<page> pages()
     for (const auto* list : {&named_classes(), &friction_classes()})
         for (const named_class& c : *list)
             out.push_back({c.name, c.name});
-    for (const char* dir : {"examples/problems", "examples/friction"}) {
+    for (const char* dir : {"examples/problems", "examples/friction", "examples/laws"}) {
         std::vector<fs::path> files;
         for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
             if (entry.path().extension() == ".json")

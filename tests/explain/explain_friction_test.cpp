@@ -37,7 +37,7 @@ struct explained {
 explained explain_problem(const problem& p)
 {
     derivation d = derive(p);
-    friction_solution f = solve_friction(d);
+    friction_solution f = solve_impact(d); // the law's solver: Routh's process for poisson and energetic
     document doc = explain(d, f);
     return {d, f, doc};
 }
@@ -358,9 +358,10 @@ TEST(FrictionGolden, EveryClassAndExampleEveryFormat)
         docs.push_back({fs::path(file).stem().string(), explain_file(file).doc});
     // the example problems with friction, named by file name alone
     std::vector<fs::path> examples;
-    for (const auto& f : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / "examples/friction"))
-        if (f.path().extension() == ".json")
-            examples.push_back(f.path());
+    for (const char* examples_dir : {"examples/friction", "examples/laws"})
+        for (const auto& f : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / examples_dir))
+            if (f.path().extension() == ".json")
+                examples.push_back(f.path());
     std::sort(examples.begin(), examples.end());
     for (const fs::path& f : examples)
         docs.push_back({f.stem().string(), explain_problem(read_problem(read_file(f), f.filename().string())).doc});

@@ -53,7 +53,7 @@ std::vector<std::pair<std::string, document>> every_document()
     for (const named_class& c : friction_classes())
         docs.push_back({c.name, document_of(c.build(), c.name)});
     std::vector<fs::path> files;
-    for (const char* dir : {"examples/problems", "examples/friction", "tests/explain"})
+    for (const char* dir : {"examples/problems", "examples/friction", "examples/laws", "tests/explain"})
         for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
             if (entry.path().extension() == ".json")
                 files.push_back(entry.path());

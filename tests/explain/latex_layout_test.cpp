@@ -33,11 +33,11 @@ document explain_any(const problem& p, const std::string& class_name)
 
 const std::string source_dir = IMPACTGEN_SOURCE_DIR;
 
-// The problem files, sorted: examples/problems/*.json, examples/friction/*.json, tests/explain/*.json.
+// The problem files, sorted: examples/problems/*.json, examples/friction/*.json, examples/laws/*.json, tests/explain/*.json.
 std::vector<fs::path> problem_files()
 {
     std::vector<fs::path> out;
-    for (const char* dir : {"/examples/problems", "/examples/friction", "/tests/explain"}) {
+    for (const char* dir : {"/examples/problems", "/examples/friction", "/examples/laws", "/tests/explain"}) {
         std::vector<fs::path> here;
         for (const auto& entry : fs::directory_iterator(source_dir + dir))
             if (entry.path().extension() == ".json")

@@ -1,0 +1,34 @@
+// The document's parts for the restitution laws followed through the impact (Routh's process,
+// symbolic/routh.hpp): the chapter of a contact with friction whose law is poisson or
+// energetic (explain_process.cpp), the figure of its velocity path
+// (explain_process_figure.cpp), and, for Newton's law with friction, why it can gain energy
+// and the three laws side by side (explain_laws_compared.cpp). Private to the print library.
+#pragma once
+
+#include "explain_law.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impactgen::print::detail
+{
+
+/// The chapter of a contact with friction and law poisson or energetic.
+std::unique_ptr<law_chapter> process_chapter(const explain_input &in);
+
+/// One point of the relative velocity's path: the normal impulse and (u_t, u_n) there.
+struct path_point {
+    double pn = 0, ut = 0, un = 0;
+    std::string label; ///< "start", "slip stops", "compression ends", "end", ...
+};
+
+/// The path of (u_t, u_n), piecewise linear in P_n, drawn in TikZ and SVG with its points marked.
+figure_art process_figure(const std::vector<path_point> &path, const std::string &caption);
+
+/// After the results of a numeric planar problem with friction under Newton's law: why it gains
+/// energy (when it does) and the three laws side by side, each solved by the library. Empty
+/// otherwise.
+std::vector<section> laws_compared(const explain_input &in);
+
+} // namespace impactgen::print::detail
