@@ -43,9 +43,9 @@ void writer::preamble()
 void writer::candidates_banner()
 {
     const char *kind = cp_.rule == selection_rule::process ? "planar, restitution followed through the impact"
-                       : angle_ >= 0         ? "3-D, sliding direction found at run time"
-                       : q_.dimension == 2 ? "planar"
-                                           : "3-D, the contact response isotropic: sliding along u_t";
+                       : angle_ >= 0                       ? "3-D, sliding direction found at run time"
+                       : q_.dimension == 2                 ? "planar"
+                                                           : "3-D, the contact response isotropic: sliding along u_t";
     h_ << "// Closed forms of the impact with Coulomb friction (" << kind << "), specialised;\n";
     h_ << "// the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.\n";
     h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula)
@@ -123,8 +123,8 @@ void writer::result_struct()
 void writer::process_intro()
 {
     h_ << "// Routh's process (impactgen's symbolic/routh.hpp): P = P_n n + P_t e_t the impulse on body 2\n";
-    h_ << "// (-P on body 1), u the relative velocity v_B - v_A of the contact points, e_t = ("
-       << frame_text(d_.t_dir) << "),\n";
+    h_ << "// (-P on body 1), u the relative velocity v_B - v_A of the contact points, e_t = (" << frame_text(d_.t_dir)
+       << "),\n";
     h_ << "// K_tt, K_tn, K_nn the contact response K = K_1 + K_2 in (e_t, n), u_t = u.e_t, u_n = u.n < 0.\n";
     h_ << "// As P_n grows, u is linear in it within a phase: slide along the slip s (dP_t = -s mu dP_n),\n";
     h_ << "// stick (u_t = 0, dP_t = -K_tn / K_tt dP_n) or reverse; compression ends at u_n = 0 (P_c, work\n";
