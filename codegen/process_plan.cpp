@@ -6,7 +6,10 @@
 #include "code_plan.hpp"
 
 #include "names/escape.hpp"
+#include "symbolic/decide.hpp"
 #include "symbolic/routh.hpp"
+
+#include <array>
 
 namespace impactgen::codegen
 {
@@ -31,6 +34,15 @@ impact_solution process_candidates(const derivation &d)
         if (st.role == step_role::approach_velocity)
             un = st.sym;
     }
+    // u's components as solve_friction has them: a step, or (atomic) the value itself; the
+    // normal axis's is the approach velocity's step.
+    std::array<bool, 3> found{false, false, false};
+    for (const step &st : f.shared.steps)
+        if (st.role == step_role::relative_velocity && st.row >= 0 && st.column < 0)
+            found[static_cast<std::size_t>(st.row)] = true;
+    for (std::size_t a = 0; a < static_cast<std::size_t>(p.dimension); ++a)
+        if (!found[a])
+            u[a] = d.n_hat[a].is_equal(1) && !un.is_zero() ? un : tidy(d.vB[a] - d.vA[a]);
     const vec3 &n = d.n_hat, &t = d.t_dir;
     process_inputs in;
     in.Ktt = dot(t, mul(K, t));

@@ -14,6 +14,8 @@
 
 #include "rod_rough_floor_energetic.hpp"
 #include "rod_rough_floor_poisson.hpp"
+#include "rod_slip_reverses_energetic.hpp"
+#include "rod_slip_reverses_poisson.hpp"
 
 #include <gtest/gtest.h>
 
@@ -262,6 +264,23 @@ TEST(codegen_laws, rod_slip_reverses_example)
     const rod r{0.5, 0.2, 1, 1.0 / 12, 0.3, 0.4, 1, -2, 0};
     EXPECT_NEAR(run<double>(law::poisson, r).N, 1.436, 5e-4);
     EXPECT_NEAR(run<double>(law::energetic, r).N, 1.456, 5e-4);
+}
+
+// The same example as a numeric problem (no inputs): the sequence decided exactly at generation.
+TEST(codegen_laws, numeric_problem_headers)
+{
+    const rod r{0.5, 0.2, 1, 1.0 / 12, 0.3, 0.4, 1, -2, 0};
+    gen::rod_slip_reverses_poisson_result<double> p{};
+    gen::rod_slip_reverses_energetic_result<double> en{};
+    ASSERT_EQ(gen::rod_slip_reverses_poisson<double>(p), friction_status::ok);
+    ASSERT_EQ(gen::rod_slip_reverses_energetic<double>(en), friction_status::ok);
+    const outcome<double> ps = run<double>(law::poisson, r), es = run<double>(law::energetic, r);
+    EXPECT_NEAR(p.normal_impulse, ps.N, 1e-14);
+    EXPECT_NEAR(p.tangential_impulse_x, ps.Ft, 1e-14);
+    EXPECT_NEAR(en.normal_impulse, es.N, 1e-14);
+    EXPECT_NEAR(en.tangential_impulse_x, es.Ft, 1e-14);
+    EXPECT_EQ(p.regime, gen::impact_regime::slide); // the last phase: reverse
+    EXPECT_GT(en.energy_lost, 0);
 }
 
 TEST(codegen_laws, header_is_deterministic)
