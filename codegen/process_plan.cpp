@@ -55,7 +55,21 @@ impact_solution process_candidates(const derivation &d)
     in.law = p.contact().law_of_restitution;
     const std::string where =
         (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") + ".friction";
-    for (const process_sequence &q : routh_process(in, where)) {
+    std::vector<process_sequence> sequences = routh_process(in, where);
+    if (!in.ut.is_zero() && !is_constant(in.ut)) {
+        // The walk takes a u_t in symbols to slip (u_t > 0 or < 0); a contact that does not slip
+        // before impact (u_t = 0 at run time: u_t >= 0 and -u_t >= 0) starts as the walk without
+        // slip says.
+        process_inputs still = in;
+        still.ut = 0;
+        for (process_sequence q : routh_process(still, where)) {
+            q.conditions.insert(q.conditions.begin(),
+                                {{in.ut, false, process_test::initial_slip, "no initial slip: u_t >= 0"},
+                                 {-in.ut, false, process_test::initial_slip, "no initial slip: -u_t >= 0"}});
+            sequences.push_back(q);
+        }
+    }
+    for (const process_sequence &q : sequences) {
         if (q.wedges)
             continue;
         regime_case c;

@@ -266,6 +266,32 @@ TEST(codegen_laws, rod_slip_reverses_example)
     EXPECT_NEAR(run<double>(law::energetic, r).N, 1.456, 5e-4);
 }
 
+// A contact that does not slip before impact (u_t = 0 at run time): the sequences that start
+// without slip (stick inside the cone, else a slide along sign K_tn), as the integrator does.
+TEST(codegen_laws, no_initial_slip)
+{
+    std::mt19937_64 g(5);
+    int compared = 0;
+    for (law l : {law::poisson, law::energetic})
+        for (int i = 0; i < 2000; ++i) {
+            rod r = random_rod(g, 0);
+            r.w = 0;
+            r.vt = 0; // u_t = v_t + w y = 0 exactly
+            if (!(r.un() < 0))
+                continue;
+            const auto ref = reference(l, r);
+            const outcome<double> o = run<double>(l, r);
+            if (!ref.ok)
+                continue;
+            ASSERT_EQ(o.status, friction_status::ok) << i;
+            const double size = std::abs(ref.normal_impulse) + std::abs(ref.tangential);
+            EXPECT_LE(std::abs(o.N - ref.normal_impulse), 1e-6 * size) << i;
+            EXPECT_LE(std::abs(o.Ft - ref.tangential), 1e-6 * size) << i;
+            ++compared;
+        }
+    EXPECT_GT(compared, 2000);
+}
+
 // The same example as a numeric problem (no inputs): the sequence decided exactly at generation.
 TEST(codegen_laws, numeric_problem_headers)
 {
