@@ -18,6 +18,7 @@
 #include "rod_slip_reverses_poisson.hpp"
 
 #include <gtest/gtest.h>
+#include <unsupported/Eigen/AutoDiff>
 
 #include <cmath>
 #include <fstream>
@@ -290,6 +291,65 @@ TEST(codegen_laws, no_initial_slip)
             ++compared;
         }
     EXPECT_GT(compared, 2000);
+}
+
+// Eigen's AutoDiffScalar: inside a phase sequence the derivatives of N and P_t by every input
+// equal central differences of the double function (where the regime is the same either side).
+TEST(codegen_laws, autodiff_derivatives)
+{
+    using ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 9, 1>>;
+    std::mt19937_64 g(9);
+    int compared = 0, differ = 0;
+    for (law l : {law::poisson, law::energetic})
+        for (int i = 0; i < 200; ++i) {
+            const rod r = random_rod(g, 0);
+            double x[9] = {r.e, r.mu, r.m, r.J, r.x, r.y, r.vt, r.vn, r.w};
+            ad a[9];
+            for (int j = 0; j < 9; ++j)
+                a[j] = ad(x[j], 9, j);
+            ad N, Ft;
+            friction_status st;
+            if (l == law::poisson) {
+                gen::rod_rough_floor_poisson_result<ad> o{};
+                st = gen::rod_rough_floor_poisson<ad>(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], o);
+                N = o.normal_impulse;
+                Ft = o.tangential_impulse_x;
+            } else {
+                gen::rod_rough_floor_energetic_result<ad> o{};
+                st = gen::rod_rough_floor_energetic<ad>(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], o);
+                N = o.normal_impulse;
+                Ft = o.tangential_impulse_x;
+            }
+            const outcome<double> o0 = run<double>(l, r);
+            if (st != friction_status::ok || o0.status != friction_status::ok)
+                continue;
+            EXPECT_EQ(N.value(), o0.N);
+            for (int j = 0; j < 9; ++j) {
+                const double h = 1e-6 * (1 + std::abs(x[j]));
+                double xp[9], xm[9];
+                std::copy(x, x + 9, xp);
+                std::copy(x, x + 9, xm);
+                xp[j] += h;
+                xm[j] -= h;
+                const rod rp{xp[0], xp[1], xp[2], xp[3], xp[4], xp[5], xp[6], xp[7], xp[8]};
+                const rod rm{xm[0], xm[1], xm[2], xm[3], xm[4], xm[5], xm[6], xm[7], xm[8]};
+                const outcome<double> op = run<double>(l, rp), om = run<double>(l, rm);
+                if (op.status != friction_status::ok || om.status != friction_status::ok || op.regime != o0.regime ||
+                    om.regime != o0.regime)
+                    continue;
+                const double fdN = (op.N - om.N) / (2 * h), fdF = (op.Ft - om.Ft) / (2 * h);
+                // A phase boundary inside the step changes the slope (the regime alone does not
+                // show it): such steps are counted, and must be rare on problems of kind 0.
+                const double tolN = 1e-4 * (1 + std::abs(fdN)) * (1 + std::abs(o0.N));
+                const double tolF = 1e-4 * (1 + std::abs(fdF)) * (1 + std::abs(o0.N));
+                if (std::abs(N.derivatives()[j] - fdN) > tolN || std::abs(Ft.derivatives()[j] - fdF) > tolF)
+                    ++differ;
+                ++compared;
+            }
+        }
+    EXPECT_GT(compared, 2000);
+    EXPECT_LT(differ, compared / 100) << differ << " of " << compared;
+    std::printf("[ autodiff ] %d derivatives compared, %d across a phase boundary\n", compared, differ);
 }
 
 // The same example as a numeric problem (no inputs): the sequence decided exactly at generation.
