@@ -167,6 +167,13 @@ code_plan candidates_plan(const problem &p, const options &o)
     how.unit_normal = o.unit_normal;
     how.runtime_tangent_basis = true;
     cp.deriv = derive(q, how);
+    if (follows_process(q.contact().law_of_restitution)) {
+        cp.candidates = process_candidates(cp.deriv);
+        cp.rule = selection_rule::process;
+        order_inputs(cp, o, friction_only);
+        order_outputs(cp);
+        return cp;
+    }
     cp.candidates = solve_friction(cp.deriv);
     cp.rule = selection_rule::first_that_holds;
     for (std::size_t i = 0; i < cp.candidates.cases.size(); ++i)

@@ -6,7 +6,10 @@
 //   first_that_holds  candidates in closed form with typed conditions (stick, the planar
 //                     or isotropic slides): the first whose conditions hold, no branch;
 //   sliding_angle     besides those, a 3-D slide whose direction is a root of a
-//                     trigonometric polynomial found at run time (detail::trig2_roots).
+//                     trigonometric polynomial found at run time (detail::trig2_roots);
+//   process           the phase sequences of Routh's process (poisson, energetic with
+//                     friction, symbolic/routh.hpp): the first whose conditions hold, no
+//                     branch; the regime is its last phase (stick or slide).
 // A new contact law adds its candidates in symbolic/ and, when they need it, a selection
 // rule here; the one writer (writer.hpp) emits any plan. No C++ text is made here.
 // Private to the codegen library.
@@ -22,7 +25,7 @@
 namespace impactgen::codegen
 {
 
-enum class selection_rule { none, first_that_holds, sliding_angle };
+enum class selection_rule { none, first_that_holds, sliding_angle, process };
 
 /// An output of the header: the smooth plan's (its value in inputs and steps), or, with a
 /// tangential impulse, one of its world components (computed from the selected impulse).
@@ -59,6 +62,12 @@ bool has_candidates(const problem &p, const options &o);
 
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
+
+/// The candidates of Routh's process (process_plan.cpp): the phase sequences of the
+/// derivation's contact, in the shared steps of its friction solution; the wedging
+/// sequences left out (none holding is no_solution). Throws input_error when every
+/// sequence wedges.
+impact_solution process_candidates(const derivation &d);
 
 /// The code plan of a problem under the options (the names of generate()).
 code_plan make_code_plan(const problem &p, const options &o);

@@ -212,6 +212,8 @@ std::vector<check> state_checks(const std::vector<check> &checks)
 
 std::string writer::case_prefix(const regime_case &c) const
 {
+    if (!c.process.empty())
+        return "seq_";
     if (c.kind == regime::stick)
         return "stick_";
     if (c.sign > 0)

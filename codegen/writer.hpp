@@ -139,6 +139,8 @@ private:
     // ---- a selection rule: the text of the candidates (writer_select.cpp, writer_text.cpp)
     void candidates_banner();
     void candidates_formulas();
+    void process_intro();
+    void conditions_and_steps();
     std::string frame_text(const vec3 &v) const;
     std::string holds_text(const case_names &cn, const regime_case &c) const;
     std::string select_text(const case_names &cn, const std::string &regime, const std::string &ind) const;

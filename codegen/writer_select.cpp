@@ -66,7 +66,16 @@ void writer::emit_closed_forms(const std::string &ind)
     for (const std::string &hname : holds_)
         counted_.push_back("static_cast<int>(" + hname + ")");
     h_ << ind << "int " << count_name_ << " = " << counted_text() << ";\n";
-    if (stick)
+    if (cp_.rule == selection_rule::process) {
+        // Routh's process: the regime is the last phase of the sequence selected.
+        std::string r = "impact_regime::slide";
+        for (std::size_t k = closed_.size(); k-- > 0;)
+            if (f_.cases[closed_[k]].process.back().kind == phase_kind::stick)
+                r = holds_[k] + " ? impact_regime::stick : " + r;
+            else if (r != "impact_regime::slide")
+                r = holds_[k] + " ? impact_regime::slide : " + r;
+        h_ << ind << regime_name_ << " = " << r << ";\n";
+    } else if (stick)
         h_ << ind << regime_name_ << " = " << stick_holds_name_ << " ? impact_regime::stick : impact_regime::slide;\n";
     else
         h_ << ind << regime_name_ << " = impact_regime::slide; // no stick candidate (K singular)\n";
@@ -205,6 +214,15 @@ void writer::emit_unresolved(const std::string &ind)
                                (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) + ")\n";
     const std::string verdict =
         "return fail(" + count_name_ + " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
+    if (cp_.rule == selection_rule::process) {
+        // The phase sequences split the inputs by comparisons of closed forms: where two hold
+        // (on a phase boundary within rounding) they give the same impact, the first is taken;
+        // none holding is a contact that wedges (no_solution) or a value that is not finite.
+        h_ << ind << "if (" << count_name_ << " == 0) {\n";
+        h_ << i2 << finite << i2 << "    return fail(friction_status::overflow);\n";
+        h_ << i2 << "return fail(friction_status::no_solution);\n" << ind << "}\n";
+        return;
+    }
     h_ << ind << "if (" << count_name_ << " != 1) {\n";
     if (!stick) {
         h_ << i2 << finite << i2 << "    return fail(friction_status::overflow);\n" << i2 << verdict;

@@ -42,9 +42,10 @@ void writer::preamble()
 
 void writer::candidates_banner()
 {
-    const char *kind = angle_ >= 0         ? "3-D, sliding direction found at run time"
-                       : q_.dimension == 2 ? "planar"
-                                           : "3-D, the contact response isotropic: sliding along u_t";
+    const char *kind = cp_.rule == selection_rule::process ? "planar, restitution followed through the impact"
+                       : angle_ >= 0                       ? "3-D, sliding direction found at run time"
+                       : q_.dimension == 2                 ? "planar"
+                                                           : "3-D, the contact response isotropic: sliding along u_t";
     h_ << "// Closed forms of the impact with Coulomb friction (" << kind << "), specialised;\n";
     h_ << "// the regime selected by the derived inequalities. Plain C++17, no dependency, no allocation.\n";
     h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula)
@@ -118,9 +119,34 @@ void writer::result_struct()
     h_ << "};\n\n";
 }
 
+// Routh's process (symbolic/routh.hpp): what the phase sequences are.
+void writer::process_intro()
+{
+    h_ << "// Routh's process (impactgen's symbolic/routh.hpp): P = P_n n + P_t e_t the impulse on body 2\n";
+    h_ << "// (-P on body 1), u the relative velocity v_B - v_A of the contact points, e_t = (" << frame_text(d_.t_dir)
+       << "),\n";
+    h_ << "// K_tt, K_tn, K_nn the contact response K = K_1 + K_2 in (e_t, n), u_t = u.e_t, u_n = u.n < 0.\n";
+    h_ << "// As P_n grows, u is linear in it within a phase: slide along the slip s (dP_t = -s mu dP_n),\n";
+    h_ << "// stick (u_t = 0, dP_t = -K_tn / K_tt dP_n) or reverse; compression ends at u_n = 0 (P_c, work\n";
+    h_ << "// W_c), restitution at "
+       << (std::holds_alternative<poisson_restitution>(q_.contact().law_of_restitution)
+               ? "P_n = (1 + e) P_c (Poisson)"
+               : "normal work -e^2 W_c (energetic; per phase x = 2R / (v + sqrt(v^2 + 2 b R)))")
+       << ".\n";
+    h_ << "// Each phase sequence below is a candidate in closed form with the conditions that select it;\n";
+    h_ << "// mu = 0 is the smooth impact. The first candidate whose conditions hold is the answer (two\n";
+    h_ << "// hold only on a phase boundary within rounding, where they agree); none: no_solution (the\n";
+    h_ << "// contact wedges: no finite impulse ends the compression).\n";
+}
+
 void writer::candidates_formulas()
 {
     const int dim = q_.dimension;
+    if (cp_.rule == selection_rule::process) {
+        process_intro();
+        conditions_and_steps();
+        return;
+    }
     h_ << "// The law (impactgen's symbolic/friction.hpp): P = P_n n + P_t the impulse on body 2 (-P on\n";
     h_ << "// body 1), u the relative velocity v_B - v_A of the contact points, u_n = u.n < 0, and\n";
     h_ << "// u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law\n";
@@ -154,6 +180,12 @@ void writer::candidates_formulas()
     } else {
         h_ << "// several: ambiguous.\n";
     }
+    conditions_and_steps();
+}
+
+// The conditions of each candidate, and the problem step by step.
+void writer::conditions_and_steps()
+{
     h_ << "// The conditions of each candidate:\n";
     for (std::size_t i = 0; i < f_.cases.size(); ++i) {
         const regime_case &c = f_.cases[i];

@@ -1,0 +1,101 @@
+// The candidates of Routh's process for the code plan (selection rule `process`): the phase
+// sequences of symbolic/routh.hpp with the process's inputs written in the shared steps of
+// the friction solution (K = K_1 + K_2 and u in world axes), so that the one writer emits
+// them as it does the Newton candidates: every sequence's closed form and conditions in one
+// straight-line program, the first whose conditions hold selected without a branch.
+#include "code_plan.hpp"
+
+#include "names/escape.hpp"
+#include "symbolic/decide.hpp"
+#include "symbolic/routh.hpp"
+
+#include <array>
+
+namespace impactgen::codegen
+{
+using namespace GiNaC;
+
+impact_solution process_candidates(const derivation &d)
+{
+    const problem &p = d.prob;
+    impact_solution f = solve_friction(d); // its shared steps: K and u in world axes
+    f.cases.clear();
+    f.no_stick.clear();
+    f.law = p.contact().law_of_restitution;
+    mat3 K = zero_mat();
+    vec3 u = zero_vec();
+    ex un;
+    for (const step &st : f.shared.steps) {
+        if (st.role == step_role::contact_response && st.row >= 0 && st.column >= 0)
+            K[static_cast<std::size_t>(st.row)][static_cast<std::size_t>(st.column)] =
+                K[static_cast<std::size_t>(st.column)][static_cast<std::size_t>(st.row)] = st.sym;
+        if (st.role == step_role::relative_velocity && st.row >= 0 && st.column < 0)
+            u[static_cast<std::size_t>(st.row)] = st.sym;
+        if (st.role == step_role::approach_velocity)
+            un = st.sym;
+    }
+    // u's components as solve_friction has them: a step, or (atomic) the value itself; the
+    // normal axis's is the approach velocity's step.
+    std::array<bool, 3> found{false, false, false};
+    for (const step &st : f.shared.steps)
+        if (st.role == step_role::relative_velocity && st.row >= 0 && st.column < 0)
+            found[static_cast<std::size_t>(st.row)] = true;
+    for (std::size_t a = 0; a < static_cast<std::size_t>(p.dimension); ++a)
+        if (!found[a])
+            u[a] = d.n_hat[a].is_equal(1) && !un.is_zero() ? un : tidy(d.vB[a] - d.vA[a]);
+    const vec3 &n = d.n_hat, &t = d.t_dir;
+    process_inputs in;
+    in.Ktt = dot(t, mul(K, t));
+    in.Ktn = dot(t, mul(K, n));
+    in.Knn = dot(n, mul(K, n));
+    in.ut = dot(u, t);
+    in.un = un.is_zero() ? dot(u, n) : un;
+    in.mu = p.contact().friction();
+    in.e = p.restitution;
+    in.law = p.contact().law_of_restitution;
+    const std::string where =
+        (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") + ".friction";
+    std::vector<process_sequence> sequences = routh_process(in, where);
+    if (!in.ut.is_zero() && !is_constant(in.ut)) {
+        // The walk takes a u_t in symbols to slip (u_t > 0 or < 0); a contact that does not slip
+        // before impact (u_t = 0 at run time: u_t >= 0 and -u_t >= 0) starts as the walk without
+        // slip says.
+        process_inputs still = in;
+        still.ut = 0;
+        for (process_sequence q : routh_process(still, where)) {
+            q.conditions.insert(q.conditions.begin(),
+                                {{in.ut, false, process_test::initial_slip, "no initial slip: u_t >= 0"},
+                                 {-in.ut, false, process_test::initial_slip, "no initial slip: -u_t >= 0"}});
+            sequences.push_back(q);
+        }
+    }
+    for (const process_sequence &q : sequences) {
+        if (q.wedges)
+            continue;
+        regime_case c;
+        c.kind = regime::slide; // the writer's stick candidate is Newton's; the regime is the last phase
+        c.sign = 0;
+        c.process = q.phases;
+        c.process_conditions = q.conditions;
+        c.name = "process:";
+        for (const process_phase &ph : q.phases)
+            c.name += std::string(c.name.size() > 8 ? ", " : " ") + phase_name(ph.kind);
+        c.sol.steps = f.shared.steps;
+        c.sol.normal_impulse = q.normal_impulse;
+        c.tangential_scalar = q.tangential_impulse;
+        for (std::size_t a = 0; a < 3; ++a) {
+            c.impulse[a] = q.normal_impulse * n[a] + q.tangential_impulse * t[a];
+            c.tangential_impulse[a] = q.tangential_impulse * t[a];
+            c.direction[a] = 0;
+        }
+        c.sliding_speed = q.tangential_velocity;
+        for (const process_condition &pc : q.conditions)
+            c.conditions.push_back({pc.value, pc.strict, pc.meaning, condition_kind::pushes});
+        f.cases.push_back(c);
+    }
+    if (f.cases.empty())
+        throw input_error(where + ": the contact wedges for every value (no finite impulse ends the compression)");
+    return f;
+}
+
+} // namespace impactgen::codegen
