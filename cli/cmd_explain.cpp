@@ -30,12 +30,13 @@ void register_explain(CLI::App &app, std::function<int()> &action)
     cmd->callback([opt, &action] {
         action = [opt] {
             problem p = load(opt->what);
-            refuse_system_for(p, "explain");
             require_newton_for_output(p, "explain");
             derivation d = derive(p);
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
-            const print::document doc = print::explain(d, solve_impact(d), has_example ? &example : nullptr);
+            const print::document doc = p.is_system()
+                                            ? print::explain_system(d)
+                                            : print::explain(d, solve_impact(d), has_example ? &example : nullptr);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

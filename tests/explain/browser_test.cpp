@@ -156,7 +156,8 @@ struct page {
     std::string what; ///< the argument of `impactgen explain`, relative to the source tree
 };
 
-// The named classes (smooth and with friction), examples/problems/*.json and examples/friction/*.json;
+// The named classes (smooth and with friction), examples/problems/*.json, examples/friction/*.json and
+// examples/systems/*.json;
 // names only: the documents are built in the test that needs one.
 std::vector<page> pages()
 {
@@ -164,7 +165,7 @@ std::vector<page> pages()
     for (const auto* list : {&named_classes(), &friction_classes()})
         for (const named_class& c : *list)
             out.push_back({c.name, c.name});
-    for (const char* dir : {"examples/problems", "examples/friction"}) {
+    for (const char* dir : {"examples/problems", "examples/friction", "examples/systems"}) {
         std::vector<fs::path> files;
         for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
             if (entry.path().extension() == ".json")
