@@ -68,12 +68,14 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
 {
     std::vector<paragraph> items;
     const system_candidate *first = nullptr;
+    std::size_t holding = 0;
     for (const system_candidate &c : cs) {
         const long f = system_candidate_failure(c);
         paragraph q;
         q.w(c.name() + ": ");
         if (f < 0) {
             q.w("holds: every condition is satisfied");
+            ++holding;
             if (!first)
                 first = &c;
         } else if (static_cast<std::size_t>(f) == c.conditions.size()) {
@@ -88,7 +90,11 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
     s.list(items);
     if (!first)
         return;
-    s.para(paragraph().w("The law holds for " + first->name() + ". Its solution and conditions:"));
+    std::string why = "The law holds for " + first->name() + ".";
+    if (holding > 1)
+        why += " " + idx(holding) + " candidates hold, all with the same velocities after impact (the solver checks "
+               "that, and refuses otherwise): the first is taken, and the impulses are not unique.";
+    s.para(paragraph().w(why + " Its solution and conditions:"));
     system_candidate_values(s, d, *first);
     if (!first->conditions.empty())
         s.rows(condition_rows(*first));
