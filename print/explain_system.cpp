@@ -264,8 +264,11 @@ section delassus_section(const problem &p, const system_delassus &D)
     for (std::size_t i = 0; i < D.u.size(); ++i)
         rows.push_back(note_row("u[" + D.rows[i] + "]", "u_{" + D.rows[i] + "}", D.u[i],
                                 "the row's velocity before impact"));
-    s.para(paragraph().w("Rows: n_i along contact i's normal as given, t_i (and b_i) along its tangents" +
-                         std::string(p.dimension == 2 ? " (t = (-n_y, n_x))" : "") + ". Entries (symmetric):"));
+    paragraph rows_note;
+    rows_note.t("Rows: $n_i$ along contact $i$'s normal as given, $t_i$ (and $b_i$) along its tangents");
+    if (p.dimension == 2)
+        rows_note.t(" ($t = (-n_y, n_x)$)");
+    s.para(rows_note.t(". Entries (symmetric):"));
     s.rows(rows);
     return s;
 }

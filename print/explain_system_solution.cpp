@@ -26,7 +26,7 @@ std::vector<math_row> condition_rows(const system_candidate &c)
     for (const system_condition &k : c.conditions) {
         const bool fits = printable(k.value);
         math_row r = row(fits ? k.value : ex(0), 0, "", k.meaning + (k.strict ? ", strictly (> 0)" : ""));
-        r.rel = ">=";
+        r.rel = "≥";
         if (!fits)
             r.note.w("; too long to print, 'impactgen formulas' gives it");
         rows.push_back(r);
@@ -37,14 +37,14 @@ std::vector<math_row> condition_rows(const system_candidate &c)
 section candidates_intro(const derivation &d, std::size_t n)
 {
     section s{"The candidate sets", {}};
-    s.para(paragraph().w(
-        "Each contact is open (no impulse: P_i = 0) or acts (smooth; with friction sticking or sliding one way "
-        "or the other; perfectly rough: sticking). One choice per contact is a candidate set: its acting "
-        "contacts' laws make a square linear system in their impulses, W restricted to them, solved exactly. "
-        "A candidate is the answer when its conditions hold: every acting contact pushes (and stays inside "
-        "its friction cone, or slides the way it pushes against), and every open contact leaves no slower "
-        "than e_i times its approach. " +
-        idx(n) + " candidate(s) for " + idx(d.prob.contacts.size()) + " contact(s):"));
+    s.para(paragraph()
+               .t("Each contact is open (no impulse: $P_i = 0$) or acts (smooth; with friction sticking or sliding "
+                  "one way or the other; perfectly rough: sticking). One choice per contact is a candidate set: "
+                  "its acting contacts' laws make a square linear system in their impulses, $W$ restricted to "
+                  "them, solved exactly. A candidate is the answer when its conditions hold: every acting contact "
+                  "pushes (and stays inside its friction cone, or slides the way it pushes against), and every "
+                  "open contact leaves no slower than $e_i$ times its approach.")
+               .w(" " + idx(n) + " candidate(s) for " + idx(d.prob.contacts.size()) + " contact(s):"));
     return s;
 }
 

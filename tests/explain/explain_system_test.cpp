@@ -248,7 +248,7 @@ TEST(SystemExplain, SymbolicDoublePendulumCandidatesWithConditions)
         for (const system_condition& k : c.conditions) {
             bool found = false;
             for (const math_row& r : rows)
-                found = found || (r.rel == ">=" && equal(r.lhs, k.value));
+                found = found || (r.rel == "≥" && equal(r.lhs, k.value));
             EXPECT_TRUE(found) << k.meaning;
             EXPECT_NE(text.find(k.meaning), std::string::npos);
         }
