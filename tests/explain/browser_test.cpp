@@ -185,13 +185,15 @@ std::vector<std::string> page_names()
     return names;
 }
 
-// The document the command line prints for that page (smooth, or with friction).
+// The document the command line prints for that page (smooth, with friction, or a system).
 document document_of(const page& pg)
 {
     const bool named = find_named_class(pg.what) != nullptr;
     problem p = named ? find_named_class(pg.what)->build()
                       : read_problem(read_file(fs::path(IMPACTGEN_SOURCE_DIR) / pg.what), pg.what);
     derivation d = derive(p);
+    if (p.is_system())
+        return explain_system(d);
     worked_example ex;
     bool has = named && notes_example(pg.what, ex);
     return explain(d, solve_impact(d), has ? &ex : nullptr);
