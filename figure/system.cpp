@@ -73,8 +73,8 @@ void add_item(drawing &g, item::kind_t k, role what, int b, const std::string &k
     g.items.push_back(it);
 }
 
-void add_math_label(drawing &g, point at, place side, role what, int b, const std::string &key,
-                    const std::string &text, const std::string &sub)
+void add_math_label(drawing &g, point at, place side, role what, int b, const std::string &key, const std::string &text,
+                    const std::string &sub)
 {
     label l;
     l.at = at;
@@ -197,8 +197,7 @@ void draw_links(drawing &g, const problem &p, const frame &f, const std::vector<
         point d{1, 0};
         if (joint_impulses && j < joint_impulses->size())
             d = dir((*joint_impulses)[j]);
-        add_item(g, item::arrow, role::pivot_impulse, static_cast<int>(p.joints[j].body2), "J" + k,
-                 {J, J + 0.22 * d});
+        add_item(g, item::arrow, role::pivot_impulse, static_cast<int>(p.joints[j].body2), "J" + k, {J, J + 0.22 * d});
         add_item(g, item::arrow, role::pivot_impulse, static_cast<int>(p.joints[j].body1), "J" + k,
                  {J, J + (-0.22) * d});
         add_item(g, item::circle, role::pivot, -1, "J" + k, {J}, false, false, false, 0.02);
@@ -207,8 +206,8 @@ void draw_links(drawing &g, const problem &p, const frame &f, const std::vector<
     for (std::size_t k = 0; k < p.pivots.size(); ++k) {
         const point E = f.at(p, p.pivots[k].point);
         add_item(g, item::circle, role::pivot, -1, "E" + std::to_string(k), {E}, false, false, false, 0.02);
-        add_item(g, item::path, role::pivot, -1, "support",
-                 {E, E + point{-0.06, 0.1}, E + point{0.06, 0.1}}, true, false);
+        add_item(g, item::path, role::pivot, -1, "support", {E, E + point{-0.06, 0.1}, E + point{0.06, 0.1}}, true,
+                 false);
         add_math_label(g, E, place::west, role::pivot, -1, "E" + std::to_string(k), "E", std::to_string(k));
     }
     for (std::size_t i = 0; i < p.contacts.size(); ++i) {

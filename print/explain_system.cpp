@@ -7,9 +7,9 @@
 // Delassus matrix, the candidates with their conditions, which one holds -- decided by the
 // solver's own exact test, system_candidate_failure -- and the answer, or the chain of
 // single-contact impacts). Nothing here solves or decides anything itself.
+#include "explain_system.hpp"
 #include "explain.hpp"
 #include "explain_detail.hpp"
-#include "explain_system.hpp"
 #include "title.hpp"
 
 #include "figure/system.hpp"
@@ -220,20 +220,21 @@ section law_section(const derivation &d)
                          "interpenetrate, and it pushes only when it leaves at exactly $e_i$ times its approach:"));
     for (std::size_t i = 0; i < p.contacts.size(); ++i) {
         const std::string n = idx(i);
-        std::vector<math_row> rows{formula_row(
-            "0 ≤ P_" + n + ",  u′_" + n + " + e_" + n + " u_" + n + " ≥ 0,  P_" + n + " (u′_" + n + " + e_" + n +
-                " u_" + n + ") = 0",
-            "0 \\le P_" + n + ",\\quad u'_" + n + " + e_" + n + " u_" + n + " \\ge 0,\\quad P_" + n + "\\,(u'_" + n +
-                " + e_" + n + " u_" + n + ") = 0",
-            paragraph().w("contact " + n))};
+        std::vector<math_row> rows{formula_row("0 ≤ P_" + n + ",  u′_" + n + " + e_" + n + " u_" + n + " ≥ 0,  P_" + n +
+                                                   " (u′_" + n + " + e_" + n + " u_" + n + ") = 0",
+                                               "0 \\le P_" + n + ",\\quad u'_" + n + " + e_" + n + " u_" + n +
+                                                   " \\ge 0,\\quad P_" + n + "\\,(u'_" + n + " + e_" + n + " u_" + n +
+                                                   ") = 0",
+                                               paragraph().w("contact " + n))};
         for (const equation &e : d.system_laws[i])
             rows.push_back(row(e.lhs, e.rhs, "", e.reason));
-        s.para(paragraph().w("Contact " + n + (p.contacts[i].rough ? " (perfectly rough: while it pushes it sticks)"
-                                               : p.contacts[i].friction().is_zero()
-                                                   ? " (smooth: no tangential impulse)"
-                                                   : " (Coulomb: sticks inside the cone |F| ≤ μP, else slides "
-                                                     "with F = μP against the slip)") +
-                                   ":"));
+        s.para(paragraph().w("Contact " + n +
+                             (p.contacts[i].rough ? " (perfectly rough: while it pushes it sticks)"
+                              : p.contacts[i].friction().is_zero()
+                                  ? " (smooth: no tangential impulse)"
+                                  : " (Coulomb: sticks inside the cone |F| ≤ μP, else slides "
+                                    "with F = μP against the slip)") +
+                             ":"));
         s.rows(rows);
     }
     return s;
@@ -262,8 +263,8 @@ section delassus_section(const problem &p, const system_delassus &D)
             rows.push_back(note_row("W[" + D.rows[i] + "," + D.rows[j] + "]",
                                     "W_{" + D.rows[i] + "\\," + D.rows[j] + "}", D.W[i][j]));
     for (std::size_t i = 0; i < D.u.size(); ++i)
-        rows.push_back(note_row("u[" + D.rows[i] + "]", "u_{" + D.rows[i] + "}", D.u[i],
-                                "the row's velocity before impact"));
+        rows.push_back(
+            note_row("u[" + D.rows[i] + "]", "u_{" + D.rows[i] + "}", D.u[i], "the row's velocity before impact"));
     paragraph rows_note;
     rows_note.t("Rows: $n_i$ along contact $i$'s normal as given, $t_i$ (and $b_i$) along its tangents");
     if (p.dimension == 2)

@@ -92,7 +92,8 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
         return;
     std::string why = "The law holds for " + first->name() + ".";
     if (holding > 1)
-        why += " " + idx(holding) + " candidates hold, all with the same velocities after impact (the solver checks "
+        why += " " + idx(holding) +
+               " candidates hold, all with the same velocities after impact (the solver checks "
                "that, and refuses otherwise): the first is taken, and the impulses are not unique.";
     s.para(paragraph().w(why + " Its solution and conditions:"));
     system_candidate_values(s, d, *first);
