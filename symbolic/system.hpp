@@ -66,11 +66,13 @@ struct system_candidate {
 
 /// The answer of a system for a numeric problem.
 struct system_answer {
-    system_candidate result;             ///< regimes, impulses (summed over steps when sequential), velocities
-    bool impulses_unique = true;         ///< false: the velocities are unique, the impulses one valid choice
-    bool sequential = false;             ///< "impacts": "sequential"
-    std::vector<std::size_t> sequence;   ///< the contacts in the order they acted (sequential)
-    std::vector<system_candidate> steps; ///< sequential: per step, its impulses and the velocities after it
+    system_candidate result;           ///< regimes, impulses (summed over steps when sequential), velocities
+    bool impulses_unique = true;       ///< false: the velocities are unique, the impulses one valid choice
+    bool sequential = false;           ///< "impacts": "sequential"
+    std::vector<std::size_t> sequence; ///< the contacts in the order they acted (sequential)
+
+    /// Sequential: per step, its impulses and the velocities after it (explain shows the chain).
+    std::vector<system_candidate> steps;
     ex energy_before, energy_after;
     bool energy_gain = false; ///< kinetic energy gained with no moving body of infinite mass doing work
 };
