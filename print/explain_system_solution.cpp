@@ -5,6 +5,8 @@
 #include "explain_detail.hpp"
 #include "explain_system.hpp"
 
+#include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -127,6 +129,50 @@ section chain_section(const derivation &d, const system_answer &a)
     return s;
 }
 
+// A numeric problem with several contacts: the other model of impacts (sequential against
+// simultaneous), solved by solve_system, and whether it ends elsewhere; nothing when it is refused.
+std::optional<section> other_model_section(const derivation &d, const system_answer &a)
+{
+    problem other = d.prob;
+    if (other.contacts.size() < 2)
+        return std::nullopt;
+    other.sequential = !a.sequential;
+    system_answer b;
+    try {
+        b = solve_system(other);
+    } catch (const std::exception &) {
+        return std::nullopt;
+    }
+    bool differ = false;
+    for (std::size_t k = 0; k < a.result.velocity.size(); ++k)
+        for (int i = 0; i < 3; ++i)
+            differ = differ || !normal(a.result.velocity[k][i] - b.result.velocity[k][i]).is_zero() ||
+                     !normal(a.result.angular_velocity[k][i] - b.result.angular_velocity[k][i]).is_zero();
+    section s{"The other model of impacts", {}};
+    const std::string mine = a.sequential ? "in sequence" : "at the same time";
+    const std::string theirs = a.sequential ? "at the same time (\"impacts\": \"simultaneous\")"
+                                            : "one at a time (\"impacts\": \"sequential\")";
+    s.para(paragraph().w("The problem lets its contacts act " + mine + ". Had they acted " + theirs +
+                         ", the velocities after impact would be:"));
+    std::vector<math_row> rows;
+    for (std::size_t k = 0; k < d.prob.bodies.size(); ++k)
+        for (int i = 0; i < 3; ++i) {
+            if (is_a<symbol>(d.velocity_after[k][i]))
+                rows.push_back(system_value_row(d.velocity_after[k][i], b.result.velocity[k][i], ""));
+            if (is_a<symbol>(d.angular_velocity_after[k][i]))
+                rows.push_back(system_value_row(d.angular_velocity_after[k][i], b.result.angular_velocity[k][i], ""));
+        }
+    s.rows(rows);
+    s.para(paragraph().w(
+        differ ? "They differ. At the same time, the contacts share the impulse through the off-diagonal entries "
+                 "of W: each contact's impulse changes the others' velocities in the same instant. In sequence, "
+                 "each contact acts alone on the velocities the step before it left. Both are physics (a rack "
+                 "whose balls touch, against one whose contacts are a hair apart): the problem's \"impacts\" "
+                 "says which it means."
+               : "They are the same here: the order in which the contacts act does not change the outcome."));
+    return s;
+}
+
 std::string meaning_of(const derivation &d, const ex &sym)
 {
     for (const auto &u : d.system_unknowns)
@@ -188,6 +234,8 @@ std::vector<section> system_solution_sections(const derivation &d)
         numeric_candidates(out.back(), d, cs);
     }
     out.push_back(results_section(d, a));
+    if (std::optional<section> s = other_model_section(d, a))
+        out.push_back(*s);
     return out;
 }
 

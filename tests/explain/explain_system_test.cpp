@@ -1,6 +1,6 @@
 // impactgen explain of a system (format version 3): the numbers of the document are
 // solve_system's answer, the equations it shows hold at that answer, the candidate the
-// document says holds is the solver's, the sequential chain step by step, a symbolic
+// document says holds is the solver's, the sequential chain step by step and the other model, a symbolic
 // double pendulum's candidates with their conditions, golden files in every format.
 #include "print/explain.hpp"
 #include "symbolic/derivation.hpp"
@@ -214,6 +214,19 @@ TEST(SystemExplain, SequentialChainStepByStep)
     const math_row* vc = row_for(rows_of(*section_titled(doc, "Results")), d.velocity_after[2][0]);
     ASSERT_NE(vc, nullptr);
     EXPECT_TRUE(equal(vc->rhs, 1));
+    // the other model (simultaneous), as solve_system gives it: ((1 - 2e)/3, (1 + e)/3, (1 + e)/3) v at e = 1
+    problem at_once = p;
+    at_once.sequential = false;
+    const system_answer s = solve_system(at_once);
+    const section* other = section_titled(doc, "other model");
+    ASSERT_NE(other, nullptr);
+    for (std::size_t b = 0; b < 3; ++b) {
+        const math_row* r = row_for(rows_of(*other), d.velocity_after[b][0]);
+        ASSERT_NE(r, nullptr);
+        EXPECT_TRUE(equal(r->rhs, s.result.velocity[b][0]));
+        EXPECT_TRUE(equal(r->rhs, b == 0 ? ex(-1) / 3 : ex(2) / 3));
+    }
+    EXPECT_NE(text.find("They differ."), std::string::npos);
 }
 
 // A symbolic double pendulum struck by a ball: every candidate of system_candidates with its
