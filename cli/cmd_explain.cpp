@@ -35,13 +35,16 @@ void register_explain(CLI::App &app, std::function<int()> &action)
     cmd->callback([opt, &action] {
         action = [opt] {
             problem p = load(opt->what);
-            refuse_system_for(p, "explain");
             derivation d = derive(p);
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
-            const print::document doc =
-                print::explain(d, solve_impact(d), has_example ? &example : nullptr,
-                               opt->level == "summary" ? print::level::summary : print::level::full);
+            const print::level depth = opt->level == "summary" ? print::level::summary : print::level::full;
+            if (p.is_system() && depth == print::level::summary)
+                throw input_error("--level: a system (joints or several contacts) is explained in full only; "
+                                  "omit --level summary");
+            const print::document doc = p.is_system() ? print::explain_system(d)
+                                                      : print::explain(d, solve_impact(d),
+                                                                       has_example ? &example : nullptr, depth);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

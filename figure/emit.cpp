@@ -471,6 +471,8 @@ std::string to_svg(const drawing &g)
 
 std::string describe(const drawing &g)
 {
+    if (!g.alt.empty())
+        return g.alt;
     auto who = [&](std::size_t i) {
         if (i >= g.bodies.size())
             return std::string("a body");

@@ -121,6 +121,7 @@ struct drawing {
     /// answer); otherwise in the senses in which they count positive, listed in `positive`.
     bool impulses_from_answer = false;
     std::vector<std::string> positive; ///< in words: "the pivot impulse towards +x", "each spin counter-clockwise"
+    std::string alt;                   ///< when set, describe() returns it (a system's figure: figure/system.hpp)
 };
 
 /// The impact drawn from its derivation (problem + contact frame d.n_hat,

@@ -168,6 +168,11 @@ bool notes_example(const std::string &class_name, worked_example &out);
 document explain(const derivation &d, const impact_solution &s, const worked_example *example = nullptr,
                  level depth = level::full);
 
+/// The explanation of a system (format version 3: joints, several contacts, sequential impacts;
+/// explain_system.cpp): the notes' constrained-collision method, the Delassus matrix, the
+/// candidate sets (for a numeric problem, which holds and why the others fail), the results.
+document explain_system(const derivation &d);
+
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)
 std::string explain_latex(const document &doc);    ///< a complete amsmath document for pdflatex

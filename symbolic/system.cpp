@@ -786,6 +786,7 @@ system_answer sequential_answer(const model &m)
         gv = h.gv;
         last[k] = h.c.choice[k];
         a.sequence.push_back(k);
+        a.steps.push_back(finish(m, h.c.choice, h.all, h.gv, h.c.w));
     }
     a.result = finish(m, last, sum, gv, {});
     const std::vector<ex> w = contact_velocities(m, gv);
@@ -861,6 +862,35 @@ system_answer solve_system(const problem &p)
     }
     set_energy(p, a);
     return a;
+}
+
+long system_candidate_failure(const system_candidate &c)
+{
+    for (std::size_t k = 0; k < c.conditions.size(); ++k)
+        if (!condition_holds(c.conditions[k]))
+            return static_cast<long>(k);
+    for (std::size_t i = 0; i < c.regimes.size(); ++i)
+        if (c.regimes[i] == contact_regime::stick && !nonzero(c.normal_impulse[i]))
+            for (const ex &t : c.tangential_impulse[i])
+                if (nonzero(t))
+                    return static_cast<long>(c.conditions.size());
+    return -1;
+}
+
+system_delassus system_delassus_of(const problem &p)
+{
+    const model m = build_model(p);
+    system_delassus out;
+    out.W = m.W;
+    out.u = contact_velocities(m, m.gv0);
+    out.rows.resize(out.u.size());
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        out.rows[m.nrow[i]] = "n" + std::to_string(i);
+        for (std::size_t k = 0; k < m.trows[i].size(); ++k)
+            out.rows[m.trows[i][k]] = (k ? "b" : "t") + std::to_string(i);
+    }
+    out.redundant_joints = m.redundant;
+    return out;
 }
 
 ex system_kinetic_energy(const problem &p, const std::vector<vec3> &v, const std::vector<vec3> &w)

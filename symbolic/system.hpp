@@ -70,6 +70,9 @@ struct system_answer {
     bool impulses_unique = true;       ///< false: the velocities are unique, the impulses one valid choice
     bool sequential = false;           ///< "impacts": "sequential"
     std::vector<std::size_t> sequence; ///< the contacts in the order they acted (sequential)
+
+    /// Sequential: per step, its impulses and the velocities after it (explain shows the chain).
+    std::vector<system_candidate> steps;
     ex energy_before, energy_after;
     bool energy_gain = false; ///< kinetic energy gained with no moving body of infinite mass doing work
 };
@@ -85,6 +88,22 @@ std::vector<system_candidate> system_candidates(const problem &p);
 /// key, when no candidate holds, when two hold with different velocities (naming the sets),
 /// or when the problem has symbols.
 system_answer solve_system(const problem &p);
+
+/// For a candidate of a numeric problem: decided exactly as solve_system decides, the index of
+/// its first condition that fails, conditions.size() when a sticking contact with no normal
+/// impulse would carry a tangential one, or -1 when the law holds for it.
+long system_candidate_failure(const system_candidate &c);
+
+/// The Delassus matrix of a system's contact rows (the joints and pivots eliminated) and the
+/// rows' velocities before impact: u' = u + W lambda. Rows per contact: its normal (along n_i
+/// as given), then its tangents; `rows` names them "n0", "t0", "b0".
+struct system_delassus {
+    std::vector<std::vector<ex>> W;
+    std::vector<ex> u;
+    std::vector<std::string> rows;
+    bool redundant_joints = false; ///< dependent joint rows left out (the impulses are not unique)
+};
+system_delassus system_delassus_of(const problem &p);
 
 /// The kinetic energy of the bodies of finite mass, for velocities per body.
 ex system_kinetic_energy(const problem &p, const std::vector<vec3> &v, const std::vector<vec3> &w);

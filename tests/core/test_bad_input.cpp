@@ -1190,7 +1190,7 @@ TEST(Cli, CancellingRootsGiveRightDecimals)
 
 // A system (format version 3) is answered by solve (the answer's keys of the format) and
 // refused, with one line, by explain, codegen and formulas --jacobian for now.
-TEST(Cli, SystemsAnsweredBySolveRefusedByExplainAndCodegen)
+TEST(Cli, SystemsAnsweredBySolveAndExplainRefusedByCodegen)
 {
     const std::string file = std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json";
     run_result r = run_cli("solve --json " + file);
@@ -1200,7 +1200,10 @@ TEST(Cli, SystemsAnsweredBySolveRefusedByExplainAndCodegen)
         EXPECT_TRUE(a.contains(key)) << key;
     EXPECT_EQ(a["contacts"][1]["regime"], "open");
     EXPECT_FALSE(a.contains("sequence"));
-    for (const char* cmd : {"explain ", "codegen ", "formulas --jacobian "}) {
+    r = run_cli("explain " + file);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("The law holds for {0 stick, 1 open}."), std::string::npos);
+    for (const char* cmd : {"codegen ", "formulas --jacobian "}) {
         r = run_cli(std::string(cmd) + file);
         EXPECT_EQ(r.code, 1) << cmd;
         EXPECT_TRUE(r.out.empty()) << cmd;

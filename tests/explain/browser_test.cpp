@@ -156,7 +156,8 @@ struct page {
     std::string what; ///< the argument of `impactgen explain`, relative to the source tree
 };
 
-// The named classes (smooth and with friction), examples/problems/*.json and examples/friction/*.json;
+// The named classes (smooth and with friction), examples/problems/*.json, examples/friction/*.json and
+// examples/systems/*.json;
 // names only: the documents are built in the test that needs one.
 std::vector<page> pages()
 {
@@ -164,7 +165,7 @@ std::vector<page> pages()
     for (const auto* list : {&named_classes(), &friction_classes()})
         for (const named_class& c : *list)
             out.push_back({c.name, c.name});
-    for (const char* dir : {"examples/problems", "examples/friction", "examples/laws"}) {
+    for (const char* dir : {"examples/problems", "examples/friction", "examples/laws", "examples/systems"}) {
         std::vector<fs::path> files;
         for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
             if (entry.path().extension() == ".json")
@@ -184,13 +185,15 @@ std::vector<std::string> page_names()
     return names;
 }
 
-// The document the command line prints for that page (smooth, or with friction).
+// The document the command line prints for that page (smooth, with friction, or a system).
 document document_of(const page& pg)
 {
     const bool named = find_named_class(pg.what) != nullptr;
     problem p = named ? find_named_class(pg.what)->build()
                       : read_problem(read_file(fs::path(IMPACTGEN_SOURCE_DIR) / pg.what), pg.what);
     derivation d = derive(p);
+    if (p.is_system())
+        return explain_system(d);
     worked_example ex;
     bool has = named && notes_example(pg.what, ex);
     return explain(d, solve_impact(d), has ? &ex : nullptr);

@@ -26,6 +26,8 @@ namespace {
 document explain_any(const problem& p, const std::string& class_name)
 {
     derivation d = derive(p);
+    if (p.is_system())
+        return explain_system(d);
     worked_example ex;
     bool has = !class_name.empty() && notes_example(class_name, ex);
     return explain(d, solve_impact(d), has ? &ex : nullptr);
@@ -33,11 +35,12 @@ document explain_any(const problem& p, const std::string& class_name)
 
 const std::string source_dir = IMPACTGEN_SOURCE_DIR;
 
-// The problem files, sorted: examples/problems/*.json, examples/friction/*.json, examples/laws/*.json, tests/explain/*.json.
+// The problem files, sorted: examples/problems/*.json, examples/friction/*.json, examples/laws/*.json,
+// examples/systems/*.json, tests/explain/*.json.
 std::vector<fs::path> problem_files()
 {
     std::vector<fs::path> out;
-    for (const char* dir : {"/examples/problems", "/examples/friction", "/examples/laws", "/tests/explain"}) {
+    for (const char* dir : {"/examples/problems", "/examples/friction", "/examples/laws", "/examples/systems", "/tests/explain"}) {
         std::vector<fs::path> here;
         for (const auto& entry : fs::directory_iterator(source_dir + dir))
             if (entry.path().extension() == ".json")

@@ -1,0 +1,329 @@
+// explain_system(): the explanation of a system (problem format version 3: joints, several
+// contacts, "friction": "inf", sequential impacts) the way the notes treat constrained
+// collisions -- every body separately, every impulse an unknown.
+//
+// Everything shown comes from the derivation (symbolic/system_derivation.cpp: the equations,
+// the unknowns, each contact's acting law) and from the solver (symbolic/system.hpp: the
+// Delassus matrix, the candidates with their conditions, which one holds -- decided by the
+// solver's own exact test, system_candidate_failure -- and the answer, or the chain of
+// single-contact impacts). Nothing here solves or decides anything itself.
+#include "explain_system.hpp"
+#include "explain.hpp"
+#include "explain_detail.hpp"
+#include "title.hpp"
+
+#include "figure/system.hpp"
+
+#include <exception>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace impactgen::print
+{
+using namespace GiNaC;
+
+namespace
+{
+using namespace detail;
+
+std::string idx(std::size_t i)
+{
+    return std::to_string(i);
+}
+
+// A value as math, with its decimal digits when it is a number that is not a short decimal.
+paragraph &value(paragraph &q, const ex &v)
+{
+    if (!printable(v))
+        return q.w("(an expression too long to print; 'impactgen formulas' gives it)");
+    q.m(v);
+    const std::string dec = decimal_digits(v);
+    if (!dec.empty())
+        q.w(" ").n("≈ " + dec, "\\approx " + dec);
+    return q;
+}
+
+math_row value_row(const ex &lhs, const ex &rhs, const std::string &note)
+{
+    math_row r = row(lhs, printable(rhs) ? rhs : ex(0), "", note);
+    if (!printable(rhs))
+        r.note = paragraph().w("too long to print; 'impactgen formulas' gives it");
+    else if (!decimal_digits(rhs).empty())
+        r.note = decimal_note(rhs).w(note.empty() ? "" : ": " + note);
+    return r;
+}
+
+std::vector<paragraph> body_items(const problem &p)
+{
+    std::vector<paragraph> items;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        const body &B = p.bodies[b];
+        paragraph q;
+        q.w(display_name(B) + ": ");
+        if (B.infinite_mass) {
+            q.w("infinite mass (it keeps its motion), velocity ");
+            vector_span(q, B.velocity, p.dimension);
+            items.push_back(q);
+            continue;
+        }
+        q.w("mass ").m(B.mass);
+        if (!B.particle) {
+            q.w(", moment of inertia about its centre ");
+            if (p.dimension == 2)
+                q.m(B.inertia[2][2]);
+            else
+                q.w("(a matrix)");
+        }
+        vector_span(q.w(", centre at "), B.position, p.dimension);
+        vector_span(q.w(", velocity before "), B.velocity, p.dimension);
+        if (!B.particle && p.dimension == 2)
+            q.w(", angular velocity before ").m(B.angular_velocity[2]);
+        else if (!B.particle)
+            vector_span(q.w(", angular velocity before "), B.angular_velocity, 3);
+        items.push_back(q.w(B.particle ? " (a particle)" : ""));
+    }
+    return items;
+}
+
+std::vector<paragraph> link_items(const problem &p)
+{
+    std::vector<paragraph> items;
+    for (std::size_t j = 0; j < p.joints.size(); ++j) {
+        const joint &J = p.joints[j];
+        paragraph q;
+        q.w("Joint " + idx(j) + " (" + (p.dimension == 2 ? "a pin" : "a ball joint") + ") joins " +
+            display_name(p.bodies[J.body1]) + " and " + display_name(p.bodies[J.body2]) + " at ");
+        items.push_back(vector_span(q, J.point, p.dimension));
+    }
+    for (std::size_t k = 0; k < p.pivots.size(); ++k) {
+        paragraph q;
+        q.w("Pivot " + idx(k) + " holds " + display_name(p.bodies[p.pivots[k].body]) + " at the fixed point ");
+        items.push_back(vector_span(q, p.pivots[k].point, p.dimension));
+    }
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        const contact_spec &c = p.contacts[i];
+        paragraph q;
+        q.w("Contact " + idx(i) + ": " + display_name(p.bodies[c.body2]) + " strikes " +
+            display_name(p.bodies[c.body1]) + " at ");
+        vector_span(q, c.point, p.dimension);
+        vector_span(q.w(", normal "), c.normal, p.dimension).w(" (from the first body into the second), e = ");
+        q.m(p.restitution_of(i));
+        if (c.rough)
+            q.w(", perfectly rough (\"friction\": \"inf\": no slip while it pushes)");
+        else if (!c.friction().is_zero())
+            q.w(", Coulomb friction μ = ").m(c.friction());
+        else
+            q.w(", smooth");
+        items.push_back(q);
+    }
+    return items;
+}
+
+// The figure of a numeric planar system, joint impulses drawn along the answer; or nothing.
+std::optional<figure_art> system_figure(const problem &p)
+{
+    std::optional<system_answer> a;
+    try {
+        a = solve_system(p);
+    } catch (const std::exception &) {
+        a.reset();
+    }
+    const std::optional<figure::drawing> g = figure::draw_system(p, a ? &a->result.joint_impulses : nullptr);
+    if (!g)
+        return std::nullopt;
+    figure_art art;
+    art.tikz = figure::to_tikz(*g);
+    art.svg = figure::to_svg(*g);
+    art.alt = figure::describe(*g);
+    art.caption = "The system as the problem gives it: every body through its joints, pivots and contact points, "
+                  "the joints J with their impulse on the second body and the reaction on the first" +
+                  std::string(a ? " (along the answer)" : "") +
+                  ", the contact points O with the normal impulses P, and the velocities before impact." +
+                  figure::directions_note(*g);
+    return art;
+}
+
+section setup(const derivation &d)
+{
+    const problem &p = d.prob;
+    section s{"The system", {}};
+    s.para(paragraph().w("A " + std::string(p.dimension == 2 ? "planar (2-D)" : "spatial (3-D)") + " system of " +
+                         idx(p.bodies.size()) + " bodies, " + idx(p.joints.size()) + " joint(s), " +
+                         idx(p.pivots.size()) + " pivot(s) and " + idx(p.contacts.size()) + " contact(s); " +
+                         (p.sequential ? "the contacts act one at a time, in sequence (\"impacts\": \"sequential\")."
+                                       : "the contacts act at the same time (simultaneous impacts).")));
+    s.list(body_items(p));
+    s.list(link_items(p));
+    if (const std::optional<figure_art> art = system_figure(p))
+        s.picture(*art);
+    s.para(paragraph().t("The notes' method for constrained collisions: write the impulse-momentum of each body "
+                         "separately, with every impulse that acts on it -- at each joint, pivot and contact -- "
+                         "as an unknown. A joint's impulse acts on its second body and its opposite on the first "
+                         "(action and reaction). Finite forces (gravity) give no impulse."));
+    return s;
+}
+
+section unknowns(const derivation &d)
+{
+    section s{"The unknowns", {}};
+    std::vector<paragraph> items;
+    for (const auto &u : d.system_unknowns)
+        items.push_back(paragraph().m(u.first).w(": " + u.second));
+    std::size_t law_rows = 0;
+    for (const auto &l : d.system_laws)
+        law_rows += l.size();
+    s.para(paragraph().w(idx(d.system_unknowns.size()) + " unknowns, body by body and then every impulse:"));
+    s.list(items);
+    s.para(paragraph().w("The bodies and joints give " + idx(d.equations.size()) +
+                         " equations below; each contact adds, while it acts, its law (" + idx(law_rows) +
+                         " equations in all), or else carries no impulse. Which contacts act is what the law "
+                         "decides."));
+    return s;
+}
+
+std::vector<section> equation_sections(const derivation &d)
+{
+    section bodies{"Impulse and momentum of each body", {}}, links{"The joints' and pivots' conditions", {}};
+    const problem &p = d.prob;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        std::vector<math_row> rows;
+        for (const equation &e : d.equations)
+            if (e.why != principle::pivot_fixed && e.bodies.size() == 1 && e.bodies[0] == b)
+                rows.push_back(row(e.lhs, e.rhs, e.label, e.reason));
+        if (rows.empty())
+            continue;
+        bodies.para(paragraph().w(display_name(p.bodies[b]) + ":"));
+        bodies.rows(rows);
+    }
+    std::vector<math_row> rows;
+    for (const equation &e : d.equations)
+        if (e.why == principle::pivot_fixed)
+            rows.push_back(row(e.lhs, e.rhs, e.label, e.reason));
+    std::vector<section> out{bodies};
+    if (!rows.empty()) {
+        links.para(paragraph().t("A joint has no restitution: the two bodies' material points at the joint move "
+                                 "together after impact (they did before), and a pivot point stays at rest."));
+        links.rows(rows);
+        out.push_back(links);
+    }
+    return out;
+}
+
+section law_section(const derivation &d)
+{
+    const problem &p = d.prob;
+    section s{"The contact law", {}};
+    s.para(paragraph().t("With $u_i$ the normal velocity of approach of contact $i$ before impact (along its "
+                         "normal, from the first body into the second) and $u'_i$ after, every contact obeys at "
+                         "the same time the generalized Newton law: its impulse pushes, the contact does not "
+                         "interpenetrate, and it pushes only when it leaves at exactly $e_i$ times its approach:"));
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        const std::string n = idx(i);
+        std::vector<math_row> rows{formula_row("0 ≤ P_" + n + ",  u′_" + n + " + e_" + n + " u_" + n + " ≥ 0,  P_" + n +
+                                                   " (u′_" + n + " + e_" + n + " u_" + n + ") = 0",
+                                               "0 \\le P_" + n + ",\\quad u'_" + n + " + e_" + n + " u_" + n +
+                                                   " \\ge 0,\\quad P_" + n + "\\,(u'_" + n + " + e_" + n + " u_" + n +
+                                                   ") = 0",
+                                               paragraph().w("contact " + n))};
+        for (const equation &e : d.system_laws[i])
+            rows.push_back(row(e.lhs, e.rhs, "", e.reason));
+        s.para(paragraph().w("Contact " + n +
+                             (p.contacts[i].rough ? " (perfectly rough: while it pushes it sticks)"
+                              : p.contacts[i].friction().is_zero()
+                                  ? " (smooth: no tangential impulse)"
+                                  : " (Coulomb: sticks inside the cone |F| ≤ μP, else slides "
+                                    "with F = μP against the slip)") +
+                             ":"));
+        s.rows(rows);
+    }
+    return s;
+}
+
+section delassus_section(const problem &p, const system_delassus &D)
+{
+    section s{"The Delassus matrix", {}};
+    s.para(paragraph().t(
+        "Collect the generalized velocities $v$ (per body: its centre's velocity, then its angular velocity) "
+        "and write every joint, pivot and contact direction as a row $a_r$ of the relative velocity it "
+        "constrains. Then $M (v' - v) = A^T λ$ and the rows' velocities change by $H λ$ with $H = A M⁻¹ A^T$."));
+    s.para(paragraph().t(
+        "The joints and pivots are kept as rows whose velocity after impact is zero and whose impulse is free, "
+        "and are eliminated once: $λ_J = -H_JJ⁻¹ H_JC λ_C$. What is left is the Delassus matrix of the "
+        "contacts, $W = H_CC - H_CJ H_JJ⁻¹ H_JC$, with $u' = u + W λ_C$. Kept as rows rather than replaced by "
+        "generalized coordinates, the joints' impulses come out in world components (the answer's joint and "
+        "pivot impulses) and no basis of the joints' free motions is needed; since the joints' velocities "
+        "before impact are zero, the elimination leaves the contacts' velocities before impact as they are."));
+    if (D.redundant_joints)
+        s.para(paragraph().w("The joints' rows are dependent: the rows implied by the others are left out "
+                             "(with no impulse), so the impulses are one valid choice, not unique."));
+    std::vector<math_row> rows;
+    for (std::size_t i = 0; i < D.W.size(); ++i)
+        for (std::size_t j = i; j < D.W.size(); ++j)
+            rows.push_back(note_row("W[" + D.rows[i] + "," + D.rows[j] + "]",
+                                    "W_{" + D.rows[i] + "\\," + D.rows[j] + "}", D.W[i][j]));
+    for (std::size_t i = 0; i < D.u.size(); ++i)
+        rows.push_back(
+            note_row("u[" + D.rows[i] + "]", "u_{" + D.rows[i] + "}", D.u[i], "the row's velocity before impact"));
+    paragraph rows_note;
+    rows_note.t("Rows: $n_i$ along contact $i$'s normal as given, $t_i$ (and $b_i$) along its tangents");
+    if (p.dimension == 2)
+        rows_note.t(" ($t = (-n_y, n_x)$)");
+    s.para(rows_note.t(". Entries (symmetric):"));
+    s.rows(rows);
+    return s;
+}
+
+void candidate_values(section &s, const derivation &d, const system_candidate &c)
+{
+    std::vector<math_row> rows;
+    for (std::size_t i = 0; i < c.regimes.size(); ++i)
+        rows.push_back(value_row(d.system_normal_impulse[i], c.normal_impulse[i], "normal impulse"));
+    for (std::size_t b = 0; b < d.prob.bodies.size(); ++b)
+        for (int k = 0; k < 3; ++k) {
+            if (is_a<symbol>(d.velocity_after[b][k]))
+                rows.push_back(value_row(d.velocity_after[b][k], c.velocity[b][k], ""));
+            if (is_a<symbol>(d.angular_velocity_after[b][k]))
+                rows.push_back(value_row(d.angular_velocity_after[b][k], c.angular_velocity[b][k], ""));
+        }
+    s.rows(rows);
+}
+
+} // namespace
+
+document explain_system(const derivation &d)
+{
+    const problem &p = d.prob;
+    document doc;
+    doc.title = document_title(p, "System impact");
+    doc.description = p.description;
+    doc.sections.push_back(setup(d));
+    doc.sections.push_back(unknowns(d));
+    for (section &s : equation_sections(d))
+        doc.sections.push_back(s);
+    doc.sections.push_back(law_section(d));
+    doc.sections.push_back(delassus_section(p, system_delassus_of(p)));
+    for (section &s : detail::system_solution_sections(d))
+        doc.sections.push_back(s);
+    for (std::size_t k = 0; k < doc.sections.size(); ++k)
+        doc.sections[k].title = std::to_string(k + 1) + ". " + doc.sections[k].title;
+    return doc;
+}
+
+namespace detail
+{
+void system_candidate_values(section &s, const derivation &d, const system_candidate &c)
+{
+    candidate_values(s, d, c);
+}
+paragraph &system_value(paragraph &q, const ex &v)
+{
+    return value(q, v);
+}
+math_row system_value_row(const ex &lhs, const ex &rhs, const std::string &note)
+{
+    return value_row(lhs, rhs, note);
+}
+} // namespace detail
+
+} // namespace impactgen::print

@@ -1,0 +1,22 @@
+// The explanation of a system (explain_system.cpp, explain_system_solution.cpp): the parts
+// the two files share. Private to the print library.
+#pragma once
+
+#include "explain.hpp"
+
+#include <string>
+#include <vector>
+
+namespace impactgen::print::detail
+{
+
+/// The candidates (simultaneous impacts) or the chain (sequential), then the results.
+std::vector<section> system_solution_sections(const derivation &d);
+/// Rows of a candidate's normal impulses and velocities after impact.
+void system_candidate_values(section &s, const derivation &d, const system_candidate &c);
+/// A value in running text (with its decimal digits where they help).
+paragraph &system_value(paragraph &q, const GiNaC::ex &v);
+/// symbol = value, with the value's decimal digits and a note.
+math_row system_value_row(const GiNaC::ex &lhs, const GiNaC::ex &rhs, const std::string &note);
+
+} // namespace impactgen::print::detail
