@@ -257,7 +257,10 @@ void writer::unchanged_function(const emitted &code)
 void writer::fail_lambda(const std::string &why_type, const std::string &status_of, bool inputs_checked)
 {
     const std::string why = status_of.empty() ? std::string("why") : status_of + "(why)";
-    h_ << "    auto fail = [&](" << why_type << " why) noexcept {\n";
+    // Without the checks (NAME_unchecked) the inputs are captured by value: captured by
+    // reference, g++ 12 keeps every input in memory (their addresses are taken) on the hot
+    // path, 1.1-1.4x slower per call; by value it keeps them in registers.
+    h_ << "    auto fail = [" << (inputs_checked ? "&" : "=, &out") << "](" << why_type << " why) noexcept {\n";
     h_ << "        detail::" << unchanged() << "(" << args() << "out);\n";
     if (input_names_.empty() || !inputs_checked)
         h_ << "        return " << why << ";\n";

@@ -1166,7 +1166,7 @@ template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, T mu, T R, T m, T v_t, T v_n, T w, ball_floor_friction_result<T>& out) noexcept
 {
     using std::sqrt;
-    auto fail = [&](auto why) noexcept {
+    auto fail = [=, &out](auto why) noexcept {
         detail::ball_floor_friction_unchanged(e, mu, R, m, v_t, v_n, w, out);
         return detail::friction_status_of(why);
     };

@@ -361,7 +361,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_direct(T e, T m1, T R1, T v_n
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_direct_unchecked(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2, central_direct_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::central_direct_unchanged(e, m1, R1, v_n1, m2, R2, v_n2, out);
         return why;
     };

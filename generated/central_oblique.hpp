@@ -381,7 +381,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique_unchecked(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::central_oblique_unchanged(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
         return why;
     };

@@ -457,7 +457,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(T e, T m1, T I1_tt, T I1_t
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d_unchecked(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::massive_3d_unchanged(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
         return why;
     };

@@ -556,7 +556,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(T e, T inv_m1, T
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine_unchecked(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::noncentral_3d_engine_unchanged(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
         return why;
     };

@@ -1650,7 +1650,7 @@ template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T e, T mu, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_friction_result<T>& out) noexcept
 {
     using std::sqrt;
-    auto fail = [&](auto why) noexcept {
+    auto fail = [=, &out](auto why) noexcept {
         detail::noncentral_3d_friction_unchanged(e, mu, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
         return detail::friction_status_of(why);
     };

@@ -391,7 +391,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar_unchecked(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::pinned_planar_unchanged(e, m1, l, v1, m2, out);
         return why;
     };

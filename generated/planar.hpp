@@ -408,7 +408,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_unchecked(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::planar_unchanged(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
         return why;
     };

@@ -398,7 +398,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine_unchecked(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
-    auto fail = [&](impact_status why) noexcept {
+    auto fail = [=, &out](impact_status why) noexcept {
         detail::planar_engine_unchanged(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
         return why;
     };

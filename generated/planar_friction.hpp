@@ -1249,7 +1249,7 @@ template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_friction_result<T>& out) noexcept
 {
     using std::sqrt;
-    auto fail = [&](auto why) noexcept {
+    auto fail = [=, &out](auto why) noexcept {
         detail::planar_friction_unchanged(e, mu, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
         return detail::friction_status_of(why);
     };
