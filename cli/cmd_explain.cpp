@@ -42,9 +42,9 @@ void register_explain(CLI::App &app, std::function<int()> &action)
             if (p.is_system() && depth == print::level::summary)
                 throw input_error("--level: a system (joints or several contacts) is explained in full only; "
                                   "omit --level summary");
-            const print::document doc = p.is_system() ? print::explain_system(d)
-                                                      : print::explain(d, solve_impact(d),
-                                                                       has_example ? &example : nullptr, depth);
+            const print::document doc =
+                p.is_system() ? print::explain_system(d)
+                              : print::explain(d, solve_impact(d), has_example ? &example : nullptr, depth);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);
             else if (opt->format == "latex")

@@ -145,7 +145,7 @@ struct document {
     std::string title;
     std::vector<section> sections;
     std::string description = ""; ///< shown under the title (the problem's "description"), or ""
-    level depth = level::full; ///< a summary is set more tightly (LaTeX), to keep it to one page
+    level depth = level::full;    ///< a summary is set more tightly (LaTeX), to keep it to one page
 };
 
 /// Values for a worked example in the symbols of a problem (symbol == value).
