@@ -60,7 +60,7 @@ void system_unknowns(derivation &d, std::vector<impulse_at> &impulses)
         if (B.particle)
             continue;
         for (int k = dim == 2 ? 2 : 0; k < 3; ++k) {
-            symbol s(quantity_name("w", dim == 2 ? "" : axis_name[k], B.label, true));
+            symbol s(quantity_name("w", axis_name[k], B.label, true)); // planar: the z axis, as one contact names it
             d.angular_velocity_after[b][k] = s;
             d.system_unknowns.push_back({s, "angular velocity of " + display_name(B) + " after impact"});
         }

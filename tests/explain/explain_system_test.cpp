@@ -308,3 +308,18 @@ TEST(Cli, SystemExplains)
     EXPECT_NE(out.find("Delassus"), std::string::npos);
     EXPECT_NE(out.find("\\documentclass"), std::string::npos);
 }
+
+// A body's spin after impact is named as one contact names it, with its axis (ω′_z,stance in
+// the plane), never with an empty axis (the stray "ω′_,stance" of a first version).
+TEST(SystemExplain, SpinNamesCarryTheirAxis)
+{
+    for (const std::string& stem : example_stems()) {
+        SCOPED_TRACE(stem);
+        const document doc = explain_system(derive(load_example(stem)));
+        for (const char* format : {"text", "latex"}) {
+            const std::string out = print_as(doc, format);
+            EXPECT_EQ(out.find("_,"), std::string::npos) << format;
+            EXPECT_EQ(out.find("_{,"), std::string::npos) << format;
+        }
+    }
+}
