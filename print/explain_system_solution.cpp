@@ -27,10 +27,10 @@ std::vector<math_row> condition_rows(const system_candidate &c)
     std::vector<math_row> rows;
     for (const system_condition &k : c.conditions) {
         const bool fits = printable(k.value);
-        math_row r = row(fits ? k.value : ex(0), 0, "", k.meaning + (k.strict ? ", strictly (> 0)" : ""));
+        math_row r = row(fits ? k.value : ex(0), 0, "", k.words + (k.strict ? ", strictly (> 0)" : ""));
         r.rel = "≥";
         if (!fits)
-            r.note.w("; too long to print, 'impactgen formulas' gives it");
+            r.note.w("; too long to print here");
         rows.push_back(r);
     }
     return rows;
@@ -84,7 +84,7 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
             q.w("fails: a perfectly rough contact with no normal impulse would need a tangential one");
         } else {
             const system_condition &k = c.conditions[static_cast<std::size_t>(f)];
-            q.w("fails: " + k.meaning + " does not hold, the value is ");
+            q.w("fails: " + k.words + " does not hold, the value is ");
             system_value(q, k.value);
         }
         items.push_back(q);

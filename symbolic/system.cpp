@@ -441,30 +441,40 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
         const std::size_t n = m.nrow[i];
         const ex e = m.p.restitution_of(i), mu = m.p.contacts[i].friction();
         const std::string who = pname(i);
+        const std::string name = "contact " + std::to_string(i);
+        const std::string pushes = name + " pushes (its normal impulse is not negative)";
         switch (c.choice[i].regime) {
         case contact_regime::open:
             c.conditions.push_back({simp(c.w[n] + e * q[n]), false,
                                     "u'_" + std::to_string(i) + " + e u_" + std::to_string(i) + " >= 0 (" + who +
-                                        " leaves no slower than e times its approach)"});
+                                        " leaves no slower than e times its approach)",
+                                    name + " leaves no slower than e times its approach speed"});
             break;
         case contact_regime::smooth:
-            c.conditions.push_back({c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)"});
+            c.conditions.push_back(
+                {c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)", pushes});
             break;
         case contact_regime::stick:
-            c.conditions.push_back({c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)"});
+            c.conditions.push_back(
+                {c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)", pushes});
             if (!m.p.contacts[i].rough) {
                 const ex t = c.lambda[m.trows[i][0]];
+                const std::string cone = "the impulse of " + name + " lies inside its friction cone";
                 c.conditions.push_back(
-                    {simp(mu * c.lambda[n] - t), false, "mu P_n - P_t >= 0 (" + who + " inside the cone)"});
+                    {simp(mu * c.lambda[n] - t), false, "mu P_n - P_t >= 0 (" + who + " inside the cone)", cone});
                 c.conditions.push_back(
-                    {simp(mu * c.lambda[n] + t), false, "mu P_n + P_t >= 0 (" + who + " inside the cone)"});
+                    {simp(mu * c.lambda[n] + t), false, "mu P_n + P_t >= 0 (" + who + " inside the cone)", cone});
             }
             break;
         case contact_regime::slide:
-            c.conditions.push_back({c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)"});
+            c.conditions.push_back(
+                {c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)", pushes});
             c.conditions.push_back({simp(c.choice[i].sign * c.w[m.trows[i][0]]), true,
                                     std::string("u'_t ") + (c.choice[i].sign > 0 ? "> 0" : "< 0") + " (" + who +
-                                        " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + ")"});
+                                        " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + ")",
+                                    name + " slides " +
+                                        (c.choice[i].sign > 0 ? "along its tangent" : "against its tangent") +
+                                        " after impact"});
             break;
         }
     }

@@ -262,8 +262,8 @@ TEST(SystemExplain, SymbolicDoublePendulumCandidatesWithConditions)
             bool found = false;
             for (const math_row& r : rows)
                 found = found || (r.rel == "≥" && equal(r.lhs, k.value));
-            EXPECT_TRUE(found) << k.meaning;
-            EXPECT_NE(text.find(k.meaning), std::string::npos);
+            EXPECT_TRUE(found) << k.words;
+            EXPECT_NE(text.find(k.words), std::string::npos);
         }
         bool impulse = false;
         for (const math_row& r : rows)
@@ -321,5 +321,18 @@ TEST(SystemExplain, SpinNamesCarryTheirAxis)
             EXPECT_EQ(out.find("_,"), std::string::npos) << format;
             EXPECT_EQ(out.find("_{,"), std::string::npos) << format;
         }
+    }
+}
+
+// A system's document is a hand-out: its conditions are in words, with no key of the problem
+// file (contacts[0]) and no word about the software (the solver's formulas text had both).
+TEST(SystemExplain, ConditionsInWordsWithoutFileKeys)
+{
+    for (const std::string& stem : example_stems()) {
+        SCOPED_TRACE(stem);
+        const std::string out = print_as(explain_system(derive(load_example(stem))), "text");
+        EXPECT_EQ(out.find("contacts["), std::string::npos);
+        EXPECT_EQ(out.find("impactgen"), std::string::npos);
+        EXPECT_EQ(out.find(">= 0 ("), std::string::npos);
     }
 }
