@@ -185,8 +185,8 @@ int main(int argc, char **argv)
 
     double time_limit = 10;
     app.add_option("--time-limit", time_limit,
-                   "seconds a command may run before it stops with an error (default 10; 0: no limit; bench: no "
-                   "limit unless given)")
+                   "seconds a command may run before it stops with an error (default 10, exercises 10 + 2 per "
+                   "exercise; 0: no limit; bench: no limit unless given)")
         ->check(CLI::Range(0.0, 86400.0));
 
     std::function<int()> extra_action;
@@ -226,6 +226,9 @@ int main(int argc, char **argv)
     // The time budget: every input the reader accepts is done in well under a
     // second; a run past the budget is stopped with a message, never left to hang.
     const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
+    // A sheet explains every exercise: its default budget grows with --count (2 s each).
+    if (CLI::App *sheet = app.get_subcommand("exercises"); *sheet && app.get_option("--time-limit")->count() == 0)
+        time_limit += 2 * sheet->get_option("--count")->as<double>();
     if (limited)
         std::thread([time_limit] {
             std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));

@@ -36,6 +36,8 @@ private:
 std::vector<std::string> statement(const problem &p, format f, bool units);
 /// What is asked, as one sentence.
 std::string find_sentence(const problem &p, format f);
+/// A value a person would not write exactly: a root, or a fraction of many digits.
+bool long_number(const GiNaC::ex &value);
 /// The short answers of an exercise, one item each ("quantity = value unit").
 std::vector<std::string> short_answers(const exercise &e, format f);
 /// The decimal of an exact value, 4 significant digits ("-0.1429").

@@ -248,14 +248,28 @@ std::string find_sentence(const problem &p, format f)
     return text(f).w(s).str();
 }
 
+bool long_number(const ex &value)
+{
+    if (!is_a<numeric>(value) || !ex_to<numeric>(value).is_rational())
+        return true;
+    const numeric &q = ex_to<numeric>(value);
+    return abs(q.numer()) > numeric(999999) || q.denom() > numeric(9999);
+}
+
 std::vector<std::string> short_answers(const exercise &e, format f)
 {
     std::vector<std::string> out;
     if (e.prob.has_friction())
         out.push_back(text(f).w("the contact " + std::string(e.regime == "stick" ? "sticks" : "slides")).str());
-    for (const quantity &q : e.asked)
-        out.push_back(
-            text(f).w(q.words + " ").raw(f == format::tex ? "$=$ " : "= ").approx(q.exact).unit(q.unit).str());
+    for (const quantity &q : e.asked) {
+        text t(f);
+        t.w(q.words + " ");
+        if (long_number(q.exact)) // a long fraction or a root: its decimal is the answer a person writes
+            t.raw(f == format::tex ? "$\\approx " + decimal4(q.exact) + "$" : "\u2248 " + decimal4(q.exact));
+        else
+            t.raw(f == format::tex ? "$=$ " : "= ").approx(q.exact);
+        out.push_back(t.unit(q.unit).str());
+    }
     return out;
 }
 

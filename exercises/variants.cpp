@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <sstream>
 
 namespace impactgen::exercises
 {
@@ -270,16 +271,12 @@ void back_generate(problem &q, generator &g)
     q.bodies[i].velocity[k] = x;
 }
 
-/// Kept when the answers are short, the regime is the one asked for, and it stays the same
-/// with mu a third larger or smaller (far from a regime boundary).
-bool acceptable(const problem &q, const solved &s, const std::string &regime)
+/// The regime is the one asked for, and it stays the same with mu a third larger or smaller
+/// (far from a regime boundary).
+bool regime_kept(const problem &q, const solved &s, const std::string &regime)
 {
     if (!regime.empty() && regime != regime_name(s.c.kind))
         return false;
-    const std::vector<quantity> asked = asked_quantities(s.d, s.c);
-    for (const quantity &a : asked)
-        if (!short_fraction(a.exact, a.pointer == "/kinetic_energy/lost" ? 2000 : 200))
-            return false;
     if (!q.has_friction())
         return true;
     for (const numeric &f : {numeric(3, 4), numeric(4, 3)}) {
@@ -290,6 +287,30 @@ bool acceptable(const problem &q, const solved &s, const std::string &regime)
             return false;
     }
     return true;
+}
+
+std::size_t digits(const numeric &n)
+{
+    std::ostringstream os;
+    os << abs(n);
+    return os.str().size();
+}
+
+/// How long the asked answers are to write: 0 when every one is a short fraction, else the
+/// digits of their numerators and denominators (an irrational answer counts as 40 digits).
+std::size_t answer_length(const solved &s)
+{
+    std::size_t len = 0;
+    bool all_short = true;
+    for (const quantity &a : asked_quantities(s.d, s.c)) {
+        all_short = all_short && short_fraction(a.exact, a.pointer == "/kinetic_energy/lost" ? 2000 : 200);
+        if (is_a<numeric>(a.exact) && ex_to<numeric>(a.exact).is_rational()) {
+            const numeric &q = ex_to<numeric>(a.exact);
+            len += digits(q.numer()) + digits(q.denom());
+        } else
+            len += 40;
+    }
+    return all_short ? 0 : len + 1;
 }
 
 /// The regimes the problem can have: smooth without friction, else its candidates' kinds.
@@ -309,6 +330,84 @@ std::string two_digits(std::size_t k)
     return (k < 10 ? "0" : "") + std::to_string(k);
 }
 
+/// The search for the variants of one sheet: draws until one has short answers, the regime
+/// asked for, and is new on the sheet. When the attempts or the time run out first, the variant
+/// with the shortest answers among those drawn serves (its answers are then given as decimals);
+/// only when no draw kept the regime is the sheet refused.
+struct variant_search {
+    const problem &base;
+    const problem &p0;
+    const options &opt;
+    generator &g;
+    std::set<std::string> seen;
+    std::chrono::steady_clock::time_point start;
+
+    bool out_of_time() const
+    {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.seconds;
+    }
+
+    /// The exercise of a kept problem: the problem file read back is the exercise, so what a
+    /// student is given is what is solved.
+    std::optional<exercise> make(const problem &q, int k) const
+    {
+        exercise ex;
+        ex.prob =
+            read_problem(problem_json(q).dump(2), "problems/" + two_digits(static_cast<std::size_t>(k)) + ".json");
+        const std::optional<solved> r = solve_numeric(ex.prob);
+        if (!r)
+            return std::nullopt;
+        ex.regime = regime_name(r->c.kind);
+        ex.asked = asked_quantities(r->d, r->c);
+        ex.answer = print::answer_json(r->d, r->c, false);
+        return ex;
+    }
+
+    exercise next(int k, const std::string &title)
+    {
+        std::optional<problem> fallback;
+        std::string fallback_key;
+        std::size_t fallback_length = 0;
+        int attempt = 0;
+        for (; attempt < opt.attempts && (attempt < 8 || !out_of_time()); ++attempt) { // 8 draws at least
+            problem q = draw_values(base, p0, opt.regime, g);
+            q.units = base.units.empty() ? "SI" : base.units;
+            back_generate(q, g);
+            q.title = "Exercise " + std::to_string(k) + ": " + title;
+            q.description.clear();
+            const std::optional<solved> s = solve_numeric(q);
+            if (!s || !regime_kept(q, *s, opt.regime))
+                continue;
+            problem untitled = q;
+            untitled.title.clear();
+            const std::string key = problem_json(untitled).dump();
+            if (seen.count(key))
+                continue;
+            const std::size_t length = answer_length(*s);
+            if (length == 0) {
+                if (std::optional<exercise> ex = make(q, k)) {
+                    seen.insert(key);
+                    return std::move(*ex);
+                }
+            } else if (!fallback || length < fallback_length) {
+                fallback = q;
+                fallback_key = key;
+                fallback_length = length;
+            }
+        }
+        if (fallback)
+            if (std::optional<exercise> ex = make(*fallback, k)) {
+                seen.insert(fallback_key);
+                return std::move(*ex);
+            }
+        throw input_error("exercises: no variant " +
+                          std::string(opt.regime.empty() ? "" : "with regime " + opt.regime + " ") + "found in " +
+                          std::to_string(attempt) + " draws for exercise " + std::to_string(k) +
+                          (out_of_time() ? " within " + std::to_string(opt.seconds) + " s" : "") +
+                          " (every draw left the regime or was not an impact; try another --seed)");
+    }
+};
+
 } // namespace
 
 sheet make_sheet(const problem &base, const options &opt)
@@ -317,8 +416,9 @@ sheet make_sheet(const problem &base, const options &opt)
         throw input_error("--count: " + std::to_string(opt.count) + " exercises asked; a sheet has 1 to 99");
     if (!opt.regime.empty() && opt.regime != "smooth" && opt.regime != "stick" && opt.regime != "slide")
         throw input_error("--regime: \"" + opt.regime + "\" is not a regime (smooth, stick or slide)");
-    if (base.contacts.size() != 1)
-        throw input_error("exercises: a problem with one contact is needed");
+    if (base.is_system())
+        throw input_error("exercises: a system (joints, several contacts or sequential impacts) is not made into a "
+                          "sheet; a problem with one contact between two bodies is (pivots allowed)");
     const problem p0 = numeric_base(base);
     if (!opt.regime.empty()) {
         const std::set<std::string> can = possible_regimes(p0);
@@ -338,46 +438,9 @@ sheet make_sheet(const problem &base, const options &opt)
         out.title = print::source_stem(base.source);
     out.units = true;
     generator g(opt.seed);
-    std::set<std::string> seen;
-    const auto start = std::chrono::steady_clock::now();
-    auto out_of_time = [&] {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > opt.seconds;
-    };
-    for (int k = 1; k <= opt.count; ++k) {
-        bool found = false;
-        int attempt = 0;
-        for (; attempt < opt.attempts && !found && !out_of_time(); ++attempt) {
-            problem q = draw_values(base, p0, opt.regime, g);
-            q.units = base.units.empty() ? "SI" : base.units;
-            back_generate(q, g);
-            q.title = "Exercise " + std::to_string(k) + ": " + out.title;
-            q.description.clear();
-            const std::optional<solved> s = solve_numeric(q);
-            if (!s || !acceptable(q, *s, opt.regime))
-                continue;
-            // The problem file read back is the exercise: what a student is given is what is solved.
-            const std::string file = problem_json(q).dump(2);
-            q.title.clear();
-            if (!seen.insert(problem_json(q).dump()).second)
-                continue;
-            exercise ex;
-            ex.prob = read_problem(file, "problems/" + two_digits(static_cast<std::size_t>(k)) + ".json");
-            const std::optional<solved> r = solve_numeric(ex.prob);
-            if (!r)
-                continue;
-            ex.regime = regime_name(r->c.kind);
-            ex.asked = asked_quantities(r->d, r->c);
-            ex.answer = print::answer_json(r->d, r->c, false);
-            out.exercises.push_back(std::move(ex));
-            found = true;
-        }
-        if (!found)
-            throw input_error(
-                "exercises: no variant " + std::string(opt.regime.empty() ? "" : "with regime " + opt.regime + " ") +
-                "with short answers found in " + std::to_string(attempt) + " draws for exercise " + std::to_string(k) +
-                (out_of_time() ? " within " + std::to_string(opt.seconds) + " s" : "") +
-                " (this problem's answers are seldom short fractions; try another --seed)");
-    }
+    variant_search search{base, p0, opt, g, {}, std::chrono::steady_clock::now()};
+    for (int k = 1; k <= opt.count; ++k)
+        out.exercises.push_back(search.next(k, out.title));
     out.units = out.exercises.front().prob.units == "SI";
     return out;
 }

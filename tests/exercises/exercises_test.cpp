@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -27,9 +28,11 @@ problem hinged_rod()
     return load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
 }
 
-exercises::sheet sheet_of(const problem &p, int count, std::uint64_t seed, const std::string &regime = "")
+exercises::sheet sheet_of(const problem &p, int count, std::uint64_t seed, const std::string &regime = "",
+                          int seconds = 5)
 {
     exercises::options o;
+    o.seconds = seconds;
     o.count = count;
     o.seed = seed;
     o.regime = regime;
@@ -63,7 +66,8 @@ TEST(ExerciseSheet, GoldenSheetOfTheHingedRod)
             std::ofstream(golden, std::ios::binary) << files.at(name);
         }
         ASSERT_TRUE(fs::exists(golden)) << golden << " is missing: make regenerate-golden-exercises";
-        EXPECT_EQ(read_text(golden), files.at(name)) << golden << ": review the change, then make regenerate-golden-exercises";
+        EXPECT_EQ(read_text(golden), files.at(name))
+            << golden << ": review the change, then make regenerate-golden-exercises";
     }
 }
 
@@ -191,5 +195,49 @@ TEST(ExerciseSheet, ProblemJsonReadsBackToTheSameProblem)
         EXPECT_EQ(back.contact().friction(), e.prob.contact().friction());
         EXPECT_EQ(back.bodies[1].angular_velocity[2], e.prob.bodies[1].angular_velocity[2]);
         EXPECT_FALSE(back.bodies[1].angular_velocity[2].is_zero()); // the spin is the point of this problem
+    }
+}
+
+TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
+{
+    // A 3-D contact with friction and a plate struck obliquely seldom give short fractions: the
+    // variant with the shortest answers serves, its answers written as decimals, and it is still
+    // exactly the answer of its own problem file.
+    for (const std::string what : {"noncentral-3d-friction", "plate-struck-obliquely"}) {
+        SCOPED_TRACE(what);
+        const problem base = what == "plate-struck-obliquely"
+                                 ? load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) +
+                                                     "/examples/problems/plate-struck-obliquely.json")
+                                 : find_named_class(what)->build();
+        const exercises::sheet s = sheet_of(base, 2, 1, "", 1); // a second's search, then the shortest
+        ASSERT_EQ(s.exercises.size(), 2u);
+        const auto files = exercises::sheet_files(s);
+        bool some_long = false;
+        for (const exercises::exercise &e : s.exercises) {
+            derivation d;
+            const regime_case c = answer_of(e.prob, d);
+            EXPECT_EQ(print::answer_json(d, c, false), e.answer);
+            for (const exercises::quantity &q : e.asked)
+                some_long = some_long || !GiNaC::is_a<GiNaC::numeric>(q.exact) ||
+                            GiNaC::ex_to<GiNaC::numeric>(q.exact).denom() > 9999;
+        }
+        if (some_long) { // a long answer is given by its decimal, never as a fraction of many digits
+            EXPECT_NE(files.at("sheet.tex").find("\\approx"), std::string::npos);
+        }
+        EXPECT_FALSE(std::regex_search(files.at("sheet.tex"),
+                                       std::regex(R"(\\tfrac\{[0-9]{7,}\}|\\tfrac\{[0-9]+\}\{[0-9]{5,}\})")))
+            << "a long fraction on the sheet";
+    }
+}
+
+TEST(ExerciseSheet, SystemIsRefusedInOneLineNamingIt)
+{
+    try {
+        sheet_of(load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json"), 2, 1);
+        ADD_FAILURE() << "a system was made into a sheet";
+    } catch (const input_error &e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("system"), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
 }
