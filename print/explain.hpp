@@ -97,6 +97,7 @@ struct block {
     figure_art art;               ///< figure
     bool boxed = false;           ///< rows: the results, set in a frame (a box in every format)
     bool packed = false;          ///< rows: definitions, as many a line as fit (LaTeX), notes beside
+    std::size_t beside = 0;       ///< figure: set to the right of the next `beside` text and list blocks (LaTeX)
 };
 
 struct section {

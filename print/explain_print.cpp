@@ -662,6 +662,88 @@ std::string explain_markdown(const document &doc)
     return os.str();
 }
 
+namespace
+{
+
+// One block of a LaTeX document.
+void latex_block(std::ostream &os, const document &doc, const block &b, std::set<std::string> &labelled)
+{
+    switch (b.k) {
+    case block::text:
+        os << "\n" << tex_spans(b.para, false) << "\n";
+        break;
+    case block::list:
+        os << "\n\\begin{itemize}\n";
+        for (const paragraph &item : b.items)
+            os << "  \\item " << tex_spans(item, false) << "\n";
+        os << "\\end{itemize}\n";
+        break;
+    case block::figure:
+        // scaled down to the line when it is wider, never up
+        os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
+        // at most 4 cm high in a summary, 5 cm in a full document
+        os << (doc.depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
+                                             "{\\usebox{\\figurebox}}}\\fi\n"
+                                           : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
+                                             "{\\usebox{\\figurebox}}}\\fi\n");
+        os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
+              "\\else\\usebox{\\figurebox}\\fi\n";
+        if (!b.art.caption.empty())
+            os << "\\par{\\small " << tex_words(b.art.caption) << "}\n";
+        os << "\\end{center}\n";
+        break;
+    case block::rows: {
+        bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
+        for (const math_row &r : b.math)
+            fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
+        if ((b.boxed || b.packed) && fits) { // each row (in a \\boxed), its note beside it, several a line
+            os << latex_boxed(b.math, b.boxed);
+            break;
+        }
+        const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
+        if (bare) {
+            os << "\\begin{gather*}\n";
+            for (std::size_t k = 0; k < b.math.size(); ++k)
+                os << "  " << one_line(tex_row_parts(b.math[k])) << (k + 1 < b.math.size() ? " \\\\\n" : "\n");
+            os << "\\end{gather*}\n";
+            break;
+        }
+        if (plain) {
+            os << "\n\\begin{itemize}\n";
+            for (const math_row &r : b.math) {
+                std::string note = tex_spans(r.note, false);
+                os << "  \\item " << inline_math(one_line(tex_row_parts(r))) << (note.empty() ? "" : ": " + note)
+                   << "\n";
+            }
+            os << "\\end{itemize}\n";
+            break;
+        }
+        os << latex_rows(b.math, labelled);
+        break;
+    }
+    }
+}
+
+/// A figure set beside the blocks that follow it (a short set-up: the figure on the right, the
+/// text on the left), each in a minipage aligned at its top.
+void latex_figure_beside(std::ostream &os, const document &doc, const std::vector<block> &beside, const block &fig,
+                         std::set<std::string> &labelled)
+{
+    os << "\n\\noindent\\begin{minipage}[t]{0.6\\linewidth}\\vspace{0pt}\n";
+    for (const block &b : beside)
+        latex_block(os, doc, b, labelled);
+    os << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.37\\linewidth}\\vspace{0pt}\\centering\n";
+    os << "\\sbox{\\figurebox}{%\n" << fig.art.tikz << "%\n}%\n";
+    os << "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}{\\usebox{\\figurebox}}}\\fi\n";
+    os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
+          "\\else\\usebox{\\figurebox}\\fi\n";
+    if (!fig.art.caption.empty())
+        os << "\\par{\\small " << tex_words(fig.art.caption) << "}\n";
+    os << "\\end{minipage}\n";
+}
+
+} // namespace
+
 std::string explain_latex(const document &doc)
 {
     const bool figures = has_figures(doc);
@@ -689,7 +771,10 @@ std::string explain_latex(const document &doc)
           "\\renewcommand\\section{\\@startsection{section}{1}{0pt}{1.2ex plus .5ex}{0.6ex}{\\large\\bfseries}}"
           "\\makeatother\n"
           "\\AtBeginDocument{\\setlength{\\abovedisplayskip}{4pt}\\setlength{\\belowdisplayskip}{4pt}}\n"
-          "\\setlength{\\parskip}{0.3em}\n";
+          "\\setlength{\\parskip}{0.3em}\n"
+          // lists set tightly: a list item is a line of the hand-out, not a paragraph
+          "\\makeatletter\\def\\@listi{\\leftmargin\\leftmargini\\topsep 2pt plus 1pt\\parsep 0pt\\itemsep 1pt plus "
+          "1pt}\\let\\@listI\\@listi\\makeatother\n";
     os << "\\title{" << tex_words(doc.title)
        << "}\n\\author{}\n\\date{}\n"
           "\\begin{document}\n\\maketitle\n";
@@ -697,61 +782,16 @@ std::string explain_latex(const document &doc)
         os << "\\begin{center}\n\\itshape " << tex_words(doc.description) << "\n\\end{center}\n";
     for (const section &sec : doc.sections) {
         os << "\n\\section*{" << tex_words(sec.title) << "}\n";
-        for (const block &b : sec.blocks) {
-            switch (b.k) {
-            case block::text:
-                os << "\n" << tex_spans(b.para, false) << "\n";
-                break;
-            case block::list:
-                os << "\n\\begin{itemize}\n";
-                for (const paragraph &item : b.items)
-                    os << "  \\item " << tex_spans(item, false) << "\n";
-                os << "\\end{itemize}\n";
-                break;
-            case block::figure:
-                // scaled down to the line when it is wider, never up
-                os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
-                // at most 4 cm high in a summary, 5 cm in a full document
-                os << (doc.depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
-                                                     "{\\usebox{\\figurebox}}}\\fi\n"
-                                                   : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
-                                                     "{\\usebox{\\figurebox}}}\\fi\n");
-                os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
-                      "\\else\\usebox{\\figurebox}\\fi\n";
-                if (!b.art.caption.empty())
-                    os << "\\par{\\small " << tex_words(b.art.caption) << "}\n";
-                os << "\\end{center}\n";
-                break;
-            case block::rows: {
-                bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
-                for (const math_row &r : b.math)
-                    fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
-                if ((b.boxed || b.packed) && fits) { // each row (in a \\boxed), its note beside it, several a line
-                    os << latex_boxed(b.math, b.boxed);
-                    break;
-                }
-                const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
-                if (bare) {
-                    os << "\\begin{gather*}\n";
-                    for (std::size_t k = 0; k < b.math.size(); ++k)
-                        os << "  " << one_line(tex_row_parts(b.math[k])) << (k + 1 < b.math.size() ? " \\\\\n" : "\n");
-                    os << "\\end{gather*}\n";
-                    break;
-                }
-                if (plain) {
-                    os << "\n\\begin{itemize}\n";
-                    for (const math_row &r : b.math) {
-                        std::string note = tex_spans(r.note, false);
-                        os << "  \\item " << inline_math(one_line(tex_row_parts(r)))
-                           << (note.empty() ? "" : ": " + note) << "\n";
-                    }
-                    os << "\\end{itemize}\n";
-                    break;
-                }
-                os << latex_rows(b.math, labelled);
-                break;
+        for (std::size_t k = 0; k < sec.blocks.size(); ++k) {
+            const block &b = sec.blocks[k];
+            if (b.k == block::figure && b.beside > 0 && k + b.beside < sec.blocks.size()) {
+                const std::vector<block> next(sec.blocks.begin() + static_cast<std::ptrdiff_t>(k) + 1,
+                                              sec.blocks.begin() + static_cast<std::ptrdiff_t>(k + 1 + b.beside));
+                latex_figure_beside(os, doc, next, b, labelled);
+                k += b.beside;
+                continue;
             }
-            }
+            latex_block(os, doc, b, labelled);
         }
     }
     os << "\n\\end{document}\n";

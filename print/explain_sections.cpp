@@ -177,6 +177,24 @@ void group_formulas(section &sec, const derivation &d, const contact_frame_view 
         sec.rows({formula_row("v′_E = v′_C + ω′ × r_CE = 0",
                               "\\underline{v}'_E = \\underline{v}'_C + \\underline{\\omega}' \\times "
                               "\\underline{r}_{CE} = \\underline{0}")});
+    } else if (first.why == principle::restitution && p.bodies[p.contact().body1].particle &&
+               p.bodies[p.contact().body2].particle) {
+        // particles: every point moves with the centre of mass, said once
+        sec.para(paragraph().t("$e = -(v′_Bn - v′_An)/(v_Bn - v_An)$, with the normal velocities of the contact "
+                               "points $A$ and $B$; every point of a particle moves with its centre of mass:"));
+        const vec3 &n = d.n_hat;
+        std::vector<math_row> pv_rows;
+        const std::pair<const char *, const char *> names[4] = {
+            {"v_An", "v_{An}"}, {"v′_An", "v'_{An}"}, {"v_Bn", "v_{Bn}"}, {"v′_Bn", "v'_{Bn}"}};
+        const GiNaC::ex values[4] = {dot(d.vA, n), dot(d.vA_after, n), dot(d.vB, n), dot(d.vB_after, n)};
+        for (int k = 0; k < 4; ++k) {
+            math_row r;
+            r.lhs_note = {names[k].first, names[k].second};
+            r.rhs = view.apply(tidy_expand(values[k]));
+            pv_rows.push_back(r);
+        }
+        sec.packed_rows(pv_rows);
+        sec.para(paragraph().t("and $v′_Bn - v′_An = -e (v_Bn - v_An)$ reads:"));
     } else if (first.why == principle::restitution) {
         const std::size_t i2 = p.contact().body2;
         sec.para(paragraph().t(
@@ -213,7 +231,6 @@ void group_formulas(section &sec, const derivation &d, const contact_frame_view 
 void remark_list(section &sec, const derivation &d)
 {
     const problem &p = d.prob;
-    sec.para(paragraph().w("Where a principle gives no usable equation:"));
     std::vector<paragraph> items;
     for (const remark &r : d.remarks) {
         paragraph q;
@@ -261,6 +278,13 @@ void remark_list(section &sec, const derivation &d)
         }
         items.push_back(q);
     }
+    if (items.size() == 1) { // one remark: a sentence, not a list
+        paragraph one = paragraph().w("Where a principle gives no usable equation: ");
+        one.spans.insert(one.spans.end(), items[0].spans.begin(), items[0].spans.end());
+        sec.para(one);
+        return;
+    }
+    sec.para(paragraph().w("Where a principle gives no usable equation:"));
     sec.list(items);
 }
 
@@ -326,13 +350,22 @@ section detail::solution_section(const derivation &d, const solution &s)
         " unknowns: " + (ok ? "the count matches, the system can be solved." : "THE COUNT DOES NOT MATCH.")));
     // the general closed form said once, in words and symbols (issue 25, defect 9: no rows that the
     // steps below repeat)
-    sec.para(paragraph().t(
-        "Every unknown changes linearly with the normal impulse $N$ (= $∫N dt$ along $e_n$): a free body gets "
-        "$~v′_C = ~v_C ± N e_n/m$ and $~ω′ = ~ω ± N ~~I⁻¹(~r × e_n)$, a pinned body turns about $E$. Restitution "
-        "then fixes $N = -(1 + e) u/(w_1 + w_2)$, with $u = (~v_B - ~v_A)·e_n$ the normal velocity of approach "
-        "and $w_i = 1/m_i + (~r_i × e_n)·~~I_i⁻¹(~r_i × e_n)$ the effective inverse mass of body $i$ at the "
-        "contact point along $e_n$, $~r_i = O - C_i$ (about the pivot $E$ for a pinned body, without $1/m_i$; 0 "
-        "for a body the impulse cannot move)."));
+    const bool particles =
+        d.prob.bodies[d.prob.contact().body1].particle && d.prob.bodies[d.prob.contact().body2].particle;
+    if (particles)
+        sec.para(paragraph().t(
+            "Every unknown changes linearly with the normal impulse $N$ (= $∫N dt$ along $e_n$): "
+            "$~v′_C = ~v_C ± N e_n/m$. Restitution then fixes $N = -(1 + e) u/(w_1 + w_2)$, with "
+            "$u = (~v_B - ~v_A)·e_n$ the normal velocity of approach and $w_i = 1/m_i$ the inverse mass of body $i$ "
+            "(0 for a body the impulse cannot move)."));
+    else
+        sec.para(paragraph().t(
+            "Every unknown changes linearly with the normal impulse $N$ (= $∫N dt$ along $e_n$): a free body gets "
+            "$~v′_C = ~v_C ± N e_n/m$ and $~ω′ = ~ω ± N ~~I⁻¹(~r × e_n)$, a pinned body turns about $E$. Restitution "
+            "then fixes $N = -(1 + e) u/(w_1 + w_2)$, with $u = (~v_B - ~v_A)·e_n$ the normal velocity of approach "
+            "and $w_i = 1/m_i + (~r_i × e_n)·~~I_i⁻¹(~r_i × e_n)$ the effective inverse mass of body $i$ at the "
+            "contact point along $e_n$, $~r_i = O - C_i$ (about the pivot $E$ for a pinned body, without $1/m_i$; 0 "
+            "for a body the impulse cannot move)."));
 
     std::vector<math_row> steps;
     const contact_frame_view view = contact_frame_view_of(d);
@@ -342,7 +375,10 @@ section detail::solution_section(const derivation &d, const solution &s)
         steps.push_back(r);
     }
     sec.para(paragraph().w("The steps, in order:"));
-    sec.rows(steps);
+    if (particles) // short steps: each with its note beside it
+        sec.packed_rows(steps);
+    else
+        sec.rows(steps);
     std::vector<math_row> unknowns;
     for (const frame_component &u : view.unknowns) // their meanings: the set-up's list
         unknowns.push_back(row(u.sym, view.apply(u.world.subs(s.unknown_values))));
@@ -544,6 +580,12 @@ void percussion(section &sec, const derivation &d, const solution &s)
 namespace
 {
 
+// Two particles: no rotational inertia to speak of.
+bool particles(const problem &p)
+{
+    return p.bodies[p.contact().body1].particle && p.bodies[p.contact().body2].particle;
+}
+
 // The limits of e: the plastic and the elastic impulse.
 void limits_of_e(section &sec, const derivation &de, const ex &N, const ex &N_val, const symbol &e_sym, const ex &u)
 {
@@ -593,9 +635,15 @@ void heavy_body_limit(section &sec, const problem &p, const solution &se, const 
         const ex w1_value =
             w1 ? ex(w1->sym) : (p.immovable(p.contact().body1) ? ex(0) : 1 / p.bodies[p.contact().body1].mass);
         paragraph q;
-        q.t("$m2 → ∞$: let body 2 grow heavy with its shape kept, $m2 → m2/ε$ and its inertia $~~I → ~~I/ε$, and take "
-            "$ε → 0$. "
-            "Both $1/m2$ and $~~I⁻¹$ scale with $ε$, so $w_2 → ε w_2$ exactly and $k → w_1 + ε w_2$:");
+        if (particles(p) && !w1_value.is_zero()) { // two particles: the limit in one sentence
+            q.t("$m2 → ∞$: $w_2 = 1/m2 → 0$, so $N → -(1 + e) u/w_1$, the notes' massive case, and the change "
+                "of body 2's velocity, $N/m2$, tends to 0: body 2 is unaffected.");
+            sec.para(q);
+            return;
+        }
+        q.t("$m2 → ∞$: let body 2 grow heavy with its shape kept, $m2 → m2/ε$ and its inertia $~~I → ~~I/ε$, and "
+            "take $ε → 0$. Both $1/m2$ and $~~I⁻¹$ scale with $ε$, so $w_2 → ε w_2$ exactly and "
+            "$k → w_1 + ε w_2$:");
         sec.para(q);
         std::vector<math_row> rows;
         math_row rw = row(show("w_2", "w_2"), 0, "", "body 2 no longer yields at B");
@@ -698,9 +746,10 @@ void energy_checks(section &sec, const problem &p, const derivation &de, const s
         energy.push_back(r);
     }
     sec.rows(energy);
-    sec.para(paragraph().t(
-        "The energy before impact is $T = Σ (1/2 m |~v_C|² + 1/2 ~ω·~~I_C ~ω)$ over the bodies of finite mass, "
-        "and after it $T′ = T - T_lost$."));
+    sec.para(paragraph().t(particles(p) ? "The energy before impact is $T = Σ 1/2 m |~v_C|²$ over the bodies of "
+                                          "finite mass, and after it $T′ = T - T_lost$."
+                                        : "The energy before impact is $T = Σ (1/2 m |~v_C|² + 1/2 ~ω·~~I_C ~ω)$ "
+                                          "over the bodies of finite mass, and after it $T′ = T - T_lost$."));
     if (!at_one.is_zero())
         sec.para(paragraph().t(
             "At $e = 1$ the loss is not zero: a moving body of infinite mass does work on the other body, and "

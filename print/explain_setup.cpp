@@ -191,30 +191,45 @@ void frame_paragraphs(section &sec, const derivation &d, const contact_frame_vie
     }
 }
 
-void unknown_rows_of(section &sec, const contact_frame_view &view, const setup_parts &law)
+void unknown_rows_of(section &sec, const problem &p, const contact_frame_view &view, const setup_parts &law)
 {
     // Known and unknown.
     paragraph known;
-    known.t("Known before impact: the velocities $~v_C$ and angular velocities $ω$ of both bodies (above). "
-            "To be found after impact:");
+    bool spins = false; // a body with rotational inertia: it has an angular velocity
+    for (const body &b : p.bodies)
+        spins = spins || !b.particle;
+    known.t(spins ? "Known before impact: the velocities $~v_C$ and angular velocities $ω$ of both bodies (above). "
+                    "To be found after impact:"
+                  : "Known before impact: the velocities $~v_C$ of both bodies (above). To be found after impact:");
     sec.para(known);
-    std::vector<math_row> unknown_rows;
-    for (const frame_component &u : view.unknowns) {
-        math_row r;
-        r.lhs_note = {"", ""};
-        r.lhs = u.sym;
-        r.rel = "";
-        r.note = component_note(u);
-        unknown_rows.push_back(r);
+    // the components of one vector said once: "v′_t1, v′_n1: velocity of ..., components along e_t, e_n"
+    std::vector<paragraph> items;
+    for (std::size_t k = 0; k < view.unknowns.size();) {
+        std::size_t end = k + 1;
+        while (end < view.unknowns.size() && view.unknowns[end].meaning == view.unknowns[k].meaning &&
+               !view.unknowns[k].axis.empty() && !view.unknowns[end].axis.empty())
+            ++end;
+        paragraph q;
+        for (std::size_t j = k; j < end; ++j)
+            q.m(view.unknowns[j].sym).w(j + 1 < end ? ", " : ": ");
+        q.w(view.unknowns[k].meaning);
+        if (end - k == 1 && !view.unknowns[k].axis.empty())
+            along(q.w(", component along "), view.unknowns[k].axis);
+        else if (end - k > 1) {
+            q.w(", components along ");
+            for (std::size_t j = k; j < end; ++j)
+                along(j > k ? q.w(", ") : q, view.unknowns[j].axis);
+        }
+        items.push_back(q);
+        k = end;
     }
     for (const auto &[sym, meaning] : law.impulses) {
-        math_row r;
-        r.lhs = sym;
-        r.rel = "";
-        r.note = meaning;
-        unknown_rows.push_back(r);
+        paragraph q;
+        q.m(sym).w(": ");
+        q.spans.insert(q.spans.end(), meaning.spans.begin(), meaning.spans.end());
+        items.push_back(q);
     }
-    sec.rows(unknown_rows);
+    sec.list(items);
 }
 
 void why_count(section &sec, const derivation &d, const setup_parts &law)
@@ -276,6 +291,13 @@ void why_count(section &sec, const derivation &d, const setup_parts &law)
             why[k] = named;
         }
     }
+    const bool particles = p.bodies[i1].particle && p.bodies[i2].particle && !p.bodies[i1].infinite_mass &&
+                           !p.bodies[i2].infinite_mass && !p.immovable(i1) && !p.immovable(i2);
+    if (particles && !law.count_item) { // two free particles: one sentence, no rigid bodies to compare with
+        sec.para(paragraph().w("Number of unknowns: " + sum + " = " + std::to_string(d.count_unknowns()) + " (" +
+                               std::to_string(dim) + " velocity components for each particle)."));
+        return;
+    }
     if (law.count_item) {
         why.push_back(*law.count_item);
         sum += law.count_terms;
@@ -301,10 +323,21 @@ section detail::setup_section(const derivation &d, const setup_parts &law)
     setup_intro(sec, d, law);
     sec.list(body_list(d.prob));
     frame_paragraphs(sec, d, view);
-    unknown_rows_of(sec, view, law);
+    unknown_rows_of(sec, d.prob, view, law);
     why_count(sec, d, law);
     for (const paragraph &q : law.closing)
         sec.para(q);
+    // Two particles: a short set-up, the figure beside the text that follows it.
+    const problem &p = d.prob;
+    if (p.bodies[p.contact().body1].particle && p.bodies[p.contact().body2].particle)
+        for (std::size_t k = 0; k < sec.blocks.size(); ++k)
+            if (sec.blocks[k].k == block::figure) {
+                std::size_t n = 0;
+                while (k + 1 + n < sec.blocks.size() &&
+                       (sec.blocks[k + 1 + n].k == block::text || sec.blocks[k + 1 + n].k == block::list))
+                    ++n;
+                sec.blocks[k].beside = n;
+            }
     return sec;
 }
 

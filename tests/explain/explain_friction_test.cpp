@@ -62,6 +62,24 @@ std::vector<math_row> rows_of(const document& doc, const std::string& prefix)
     return out;
 }
 
+// The symbols a list item of a section whose title starts with `prefix` opens with (the
+// set-up's unknowns: "v'_t1, v'_n1: velocity of ...").
+std::vector<ex> listed_symbols(const document& doc, const std::string& prefix)
+{
+    std::vector<ex> out;
+    for (const section& sec : doc.sections)
+        if (sec.title.compare(0, prefix.size(), prefix) == 0)
+            for (const block& b : sec.blocks)
+                for (const paragraph& item : b.items)
+                    for (const span& s : item.spans) {
+                        if (s.k == span::math && is_a<symbol>(s.expr))
+                            out.push_back(s.expr);
+                        else if (s.k == span::words && s.text.find(':') != std::string::npos)
+                            break; // the meaning begins
+                    }
+    return out;
+}
+
 // The text with its line breaks and indentation as single spaces: phrases wrap anywhere.
 std::string flat(const std::string& text)
 {
@@ -106,15 +124,12 @@ ex undisplay(const ex& e, const ex& mu)
 std::vector<ex> impulse_symbols(const explained& e)
 {
     std::vector<ex> out;
-    std::vector<math_row> setup = rows_of(e.doc, "1.");
-    for (const math_row& r : setup) {
-        if (!r.rel.empty() || !r.lhs_note.text.empty() || !is_a<symbol>(r.lhs))
-            continue;
+    for (const ex& s : listed_symbols(e.doc, "1.")) {
         bool known = false;
         for (const unknown& u : e.d.unknowns)
-            known = known || r.lhs.is_equal(u.sym);
+            known = known || s.is_equal(u.sym);
         if (!known)
-            out.push_back(r.lhs);
+            out.push_back(s);
     }
     return out;
 }
