@@ -595,8 +595,9 @@ void builder::lever_arms(std::size_t nb, point o, point t2)
         point across = unit2(perp(c), {1, 0});
         if (across.x * t2.x + across.y * t2.y < 0)
             across = -1.0 * across;
-        add_math(role::lever_arm, bi, "r" + index_[i], (2.0 / 3.0) * c, across, "\\underline{r}_{" + index_[i] + "}",
-                 "r", index_[i]);
+        // r_C1O = O - C1: from the centre of mass to the contact point, as the text defines r_PQ = Q - P
+        add_math(role::lever_arm, bi, "r" + index_[i], (2.0 / 3.0) * c, across,
+                 "\\underline{r}_{C_{" + index_[i] + "}O}", "r", "C" + index_[i] + "O");
     }
 }
 
@@ -662,8 +663,8 @@ void builder::velocity_arrows(std::size_t nb, point o, point t2)
                 point side = da > db ? side_a : -1.0 * side_a;
                 if (std::abs(da - db) < 1e-6) // a radial arrow: the +e_t side, clear of the impulses
                     side = side_a.x * t2.x + side_a.y * t2.y >= 0 ? side_a : -1.0 * side_a;
-                add_math(role::velocity, bi, "v" + index_[i], mid, side, "\\underline{v}_{" + index_[i] + "}", "v",
-                         index_[i]);
+                add_math(role::velocity, bi, "v" + index_[i], mid, side, "\\underline{v}_{C_{" + index_[i] + "}}", "v",
+                         "C" + index_[i]); // the velocity of the centre of mass, v_C1 as the text names it
             }
         }
     }

@@ -708,3 +708,35 @@ TEST(FigureSafety, NumbersIgnoreTheLocale)
     std::setlocale(LC_NUMERIC, saved.c_str());
     EXPECT_EQ(before, after) << (switched ? "" : "(no other locale installed)");
 }
+
+// One convention for position vectors in the text and the figure (issue 25, defect 5): the
+// lever arm drawn from C_i to O is labelled r_{C_i O} (= O - C_i, as the set-up defines
+// r_PQ = Q - P), and a centre's velocity v_{C_i}, as the text names them.
+TEST(FigureGeometry, LeverArmsAndVelocitiesAreNamedAsTheTextNamesThem)
+{
+    std::size_t arms = 0;
+    for (const case_t& c : cases()) {
+        SCOPED_TRACE(c.name);
+        const drawing g = draw(derive_case(c));
+        for (const label& l : g.labels) {
+            if (l.what == role::lever_arm) {
+                ++arms;
+                const item* path = nullptr;
+                for (const item& it : g.items)
+                    if (it.what == role::lever_arm && it.key == l.key)
+                        path = &it;
+                ASSERT_NE(path, nullptr);
+                const std::string i = l.key.substr(1); // "r1" -> "1"
+                EXPECT_EQ(l.tex, "\\underline{r}_{C_{" + i + "}O}");
+                EXPECT_EQ(l.sub, "C" + i + "O");
+                // drawn from the centre of mass to the contact point O = (0, 0)
+                EXPECT_NEAR(path->points.back().x, 0.0, 1e-12);
+                EXPECT_NEAR(path->points.back().y, 0.0, 1e-12);
+            }
+            if (l.what == role::velocity && !l.is_name) {
+                EXPECT_EQ(l.tex.rfind("\\underline{v}_{C_{", 0), 0u) << l.tex;
+            }
+        }
+    }
+    EXPECT_GE(arms, 4u);
+}
