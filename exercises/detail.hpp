@@ -3,6 +3,9 @@
 #pragma once
 
 #include "exercises/exercises.hpp"
+#include "print/explain.hpp"
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -47,6 +50,26 @@ std::string decimal4(const GiNaC::ex &value);
 int decimal_places(const GiNaC::numeric &q);
 /// The figure of an exercise: TikZ or SVG.
 std::string figure_of(const problem &p, format f);
+
+/// A variant solved: `key` names its regime or set of regimes exactly (a slide with its sense),
+/// `regime` says it for the sheet ("stick"; a system: its set, "{0 stick, 1 open}"), what is
+/// asked, and the answer object as `solve --json` writes it.
+struct outcome {
+    std::string key, regime;
+    std::vector<quantity> asked;
+    nlohmann::ordered_json answer;
+};
+
+/// A system (exercises/systems.cpp): solved by its law, refused draws giving nothing.
+std::optional<outcome> system_outcome(const problem &q);
+/// The items of a system's statement after its bodies: each joint, each contact, the model of impacts.
+std::vector<std::string> system_statement_items(const problem &p, format f, bool si);
+/// What a system's exercise asks, as one sentence.
+std::string system_find_sentence(const problem &p, format f);
+/// Which contacts act in a system's answer, in words (the first short answer).
+std::string system_regimes_in_words(const exercise &e, format f);
+/// The worked solution of an exercise: the explain document of its numbers, system or not.
+print::document worked_solution(const problem &p);
 
 std::string sheet_latex(const sheet &s);
 std::string sheet_html(const sheet &s);

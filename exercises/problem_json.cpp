@@ -70,6 +70,26 @@ nlohmann::ordered_json body_json(const body &b, int dim)
     return out;
 }
 
+/// One contact: its bodies, point and normal, friction ("inf" for a perfectly rough one), its own
+/// restitution (in a list of contacts) and its restitution law when it is not Newton's.
+nlohmann::ordered_json contact_json(const problem &p, const contact_spec &c, bool in_list)
+{
+    const int dim = p.dimension == 2 ? 2 : 3;
+    nlohmann::ordered_json contact;
+    contact["bodies"] = {p.bodies[c.body1].name, p.bodies[c.body2].name};
+    contact["point"] = vector_json(c.point, dim);
+    contact["normal"] = vector_json(c.normal, dim);
+    if (c.rough)
+        contact["friction"] = "inf";
+    else if (!c.friction().is_zero())
+        contact["friction"] = value_json(c.friction());
+    if (in_list && c.own_restitution)
+        contact["restitution"] = value_json(c.restitution);
+    if (follows_process(c.law_of_restitution))
+        contact["law"] = law_name(c.law_of_restitution);
+    return contact;
+}
+
 } // namespace
 
 nlohmann::ordered_json problem_json(const problem &p)
@@ -88,14 +108,23 @@ nlohmann::ordered_json problem_json(const problem &p)
     for (const body &b : p.bodies)
         bodies.push_back(body_json(b, dim));
     out["bodies"] = bodies;
-    const contact_spec &c = p.contact();
-    nlohmann::ordered_json contact;
-    contact["bodies"] = {p.bodies[c.body1].name, p.bodies[c.body2].name};
-    contact["point"] = vector_json(c.point, dim);
-    contact["normal"] = vector_json(c.normal, dim);
-    if (p.has_friction())
-        contact["friction"] = value_json(c.friction());
-    out["contact"] = contact;
+    if (p.is_system()) {
+        nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+        for (const contact_spec &c : p.contacts)
+            contacts.push_back(contact_json(p, c, true));
+        out["contacts"] = contacts;
+        if (!p.joints.empty()) {
+            nlohmann::ordered_json joints = nlohmann::ordered_json::array();
+            for (const joint &j : p.joints)
+                joints.push_back({{"bodies", {p.bodies[j.body1].name, p.bodies[j.body2].name}},
+                                  {"point", vector_json(j.point, dim)}});
+            out["joints"] = joints;
+        }
+        if (p.sequential)
+            out["impacts"] = "sequential";
+    } else {
+        out["contact"] = contact_json(p, p.contact(), false);
+    }
     if (!p.pivots.empty()) {
         nlohmann::ordered_json pivots = nlohmann::ordered_json::array();
         for (const pivot &pv : p.pivots)

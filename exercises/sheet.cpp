@@ -122,8 +122,7 @@ std::map<std::string, std::string> sheet_files(const sheet &s)
         out["problems/" + nn + ".json"] = problem_json(e.prob).dump(2) + "\n";
         out["answers/" + nn + ".json"] = e.answer.dump(2) + "\n";
         // The full worked solution: the explain document of the exercise's own numbers.
-        const derivation d = derive(e.prob);
-        const print::document doc = print::explain(d, solve_impact(d));
+        const print::document doc = detail::worked_solution(e.prob);
         out["solutions/" + nn + ".tex"] = print::explain_latex(doc);
         out["solutions/" + nn + ".html"] = print::explain_html(doc);
     }

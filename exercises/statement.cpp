@@ -2,6 +2,7 @@
 #include "exercises/detail.hpp"
 
 #include "figure/figure.hpp"
+#include "figure/system.hpp"
 #include "names/escape.hpp"
 
 #include <cstdio>
@@ -208,6 +209,11 @@ std::vector<std::string> statement(const problem &p, format f, bool si)
     std::vector<std::string> out;
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         out.push_back(body_item(p, i, f, si));
+    if (p.is_system()) {
+        for (std::string &item : system_statement_items(p, f, si))
+            out.push_back(std::move(item));
+        return out;
+    }
     const contact_spec &c = p.contact();
     const int dim = p.dimension == 2 ? 2 : 3;
     text contact(f);
@@ -235,6 +241,8 @@ std::vector<std::string> statement(const problem &p, format f, bool si)
 
 std::string find_sentence(const problem &p, format f)
 {
+    if (p.is_system())
+        return system_find_sentence(p, f);
     bool spins = false;
     for (std::size_t i = 0; i < p.bodies.size(); ++i)
         spins = spins || (!p.immovable(i) && !p.bodies[i].particle);
@@ -259,7 +267,9 @@ bool long_number(const ex &value)
 std::vector<std::string> short_answers(const exercise &e, format f)
 {
     std::vector<std::string> out;
-    if (e.prob.has_friction())
+    if (e.prob.is_system())
+        out.push_back(system_regimes_in_words(e, f));
+    else if (e.prob.has_friction())
         out.push_back(text(f).w("the contact " + std::string(e.regime == "stick" ? "sticks" : "slides")).str());
     for (const quantity &q : e.asked) {
         text t(f);
@@ -275,6 +285,10 @@ std::vector<std::string> short_answers(const exercise &e, format f)
 
 std::string figure_of(const problem &p, format f)
 {
+    if (p.is_system()) {
+        const std::optional<figure::drawing> g = figure::draw_system(p);
+        return !g ? "" : f == format::tex ? figure::to_tikz(*g) : figure::to_svg(*g);
+    }
     const figure::drawing g = figure::draw(derive(p));
     return f == format::tex ? figure::to_tikz(g) : figure::to_svg(g);
 }

@@ -1,5 +1,5 @@
 // make_sheet(): the variants of a problem (see exercises.hpp for the rules).
-#include "exercises/exercises.hpp"
+#include "exercises/detail.hpp"
 
 #include "figure/figure.hpp"
 #include "print/answer.hpp"
@@ -165,13 +165,49 @@ problem numeric_base(const problem &base)
     for (pivot &pv : p.pivots)
         for (int r = 0; r < 3; ++r)
             put(pv.point[r]);
+    for (joint &j : p.joints)
+        for (int r = 0; r < 3; ++r)
+            put(j.point[r]);
+    for (contact_spec &c : p.contacts)
+        put(c.restitution);
     put(p.restitution);
     return p;
+}
+
+/// A system's variant: new masses (inertias scaled with them), e and mu per contact, and every
+/// velocity and spin scaled by one factor, which keeps the joints together before impact.
+problem draw_system_values(const problem &p0, generator &g)
+{
+    problem q = p0;
+    const numeric f = g.pick({numeric(1, 2), 1, 2});
+    for (body &b : q.bodies) {
+        if (!b.infinite_mass) {
+            const numeric m0 = ex_to<numeric>(b.mass), m = one_digit(m0 * g.pick(factors()));
+            b.mass = m;
+            for (auto &row : b.inertia)
+                for (ex &x : row)
+                    x = ex_to<numeric>(x) * m / m0;
+        }
+        for (int k = 0; k < 3; ++k) {
+            b.velocity[k] = ex_to<numeric>(b.velocity[k]) * f;
+            b.angular_velocity[k] = ex_to<numeric>(b.angular_velocity[k]) * f;
+        }
+    }
+    q.restitution = g.pick(restitutions());
+    for (contact_spec &c : q.contacts) {
+        if (c.own_restitution)
+            c.restitution = g.pick(restitutions());
+        if (!c.friction().is_zero())
+            c.set_friction(g.pick(frictions()));
+    }
+    return q;
 }
 
 /// New masses, speeds, spins, e and mu for one variant (geometry kept).
 problem draw_values(const problem &orig, const problem &p0, const std::string &regime, generator &g)
 {
+    if (p0.is_system())
+        return draw_system_values(p0, g);
     problem q = p0;
     for (std::size_t i = 0; i < q.bodies.size(); ++i) {
         body &b = q.bodies[i];
@@ -271,19 +307,42 @@ void back_generate(problem &q, generator &g)
     q.bodies[i].velocity[k] = x;
 }
 
-/// The regime is the one asked for, and it stays the same with mu a third larger or smaller
-/// (far from a regime boundary).
-bool regime_kept(const problem &q, const solved &s, const std::string &regime)
+/// A variant solved: one contact through the candidate that holds, a system through its law.
+std::optional<detail::outcome> outcome_of(const problem &q)
 {
-    if (!regime.empty() && regime != regime_name(s.c.kind))
+    if (q.is_system())
+        return detail::system_outcome(q);
+    const std::optional<solved> s = solve_numeric(q);
+    if (!s)
+        return std::nullopt;
+    detail::outcome o;
+    o.regime = regime_name(s->c.kind);
+    o.key = o.regime + std::to_string(s->c.sign);
+    o.asked = asked_quantities(s->d, s->c);
+    o.answer = print::answer_json(s->d, s->c, false);
+    return o;
+}
+
+/// The regime is the one asked for (a system: the set of regimes of the problem as given, when it
+/// has one), and it stays the same with every mu a third larger or smaller (far from a boundary).
+bool regime_kept(const problem &q, const detail::outcome &o, const std::string &regime, const std::string &key)
+{
+    if (!regime.empty() && regime != o.regime)
         return false;
-    if (!q.has_friction())
+    if (!key.empty() && key != o.key)
+        return false;
+    bool friction = false;
+    for (const contact_spec &c : q.contacts)
+        friction = friction || !c.friction().is_zero();
+    if (!friction)
         return true;
     for (const numeric &f : {numeric(3, 4), numeric(4, 3)}) {
         problem near = q;
-        near.contact().set_friction(ex_to<numeric>(q.contact().friction()) * f);
-        const std::optional<solved> t = solve_numeric(near);
-        if (!t || t->c.kind != s.c.kind || t->c.sign != s.c.sign)
+        for (contact_spec &c : near.contacts)
+            if (!c.friction().is_zero())
+                c.set_friction(ex_to<numeric>(c.friction()) * f);
+        const std::optional<detail::outcome> t = outcome_of(near);
+        if (!t || t->key != o.key)
             return false;
     }
     return true;
@@ -298,11 +357,11 @@ std::size_t digits(const numeric &n)
 
 /// How long the asked answers are to write: 0 when every one is a short fraction, else the
 /// digits of their numerators and denominators (an irrational answer counts as 40 digits).
-std::size_t answer_length(const solved &s)
+std::size_t answer_length(const detail::outcome &o)
 {
     std::size_t len = 0;
     bool all_short = true;
-    for (const quantity &a : asked_quantities(s.d, s.c)) {
+    for (const quantity &a : o.asked) {
         all_short = all_short && short_fraction(a.exact, a.pointer == "/kinetic_energy/lost" ? 2000 : 200);
         if (is_a<numeric>(a.exact) && ex_to<numeric>(a.exact).is_rational()) {
             const numeric &q = ex_to<numeric>(a.exact);
@@ -341,6 +400,7 @@ struct variant_search {
     generator &g;
     std::set<std::string> seen;
     std::chrono::steady_clock::time_point start;
+    std::string set_key; ///< a system: the key of the problem's own set of regimes, kept by every variant
 
     bool out_of_time() const
     {
@@ -354,12 +414,12 @@ struct variant_search {
         exercise ex;
         ex.prob =
             read_problem(problem_json(q).dump(2), "problems/" + two_digits(static_cast<std::size_t>(k)) + ".json");
-        const std::optional<solved> r = solve_numeric(ex.prob);
+        const std::optional<detail::outcome> r = outcome_of(ex.prob);
         if (!r)
             return std::nullopt;
-        ex.regime = regime_name(r->c.kind);
-        ex.asked = asked_quantities(r->d, r->c);
-        ex.answer = print::answer_json(r->d, r->c, false);
+        ex.regime = r->regime;
+        ex.asked = r->asked;
+        ex.answer = r->answer;
         return ex;
     }
 
@@ -372,11 +432,12 @@ struct variant_search {
         for (; attempt < opt.attempts && (attempt < 8 || !out_of_time()); ++attempt) { // 8 draws at least
             problem q = draw_values(base, p0, opt.regime, g);
             q.units = base.units.empty() ? "SI" : base.units;
-            back_generate(q, g);
+            if (!q.is_system())
+                back_generate(q, g);
             q.title = "Exercise " + std::to_string(k) + ": " + title;
             q.description.clear();
-            const std::optional<solved> s = solve_numeric(q);
-            if (!s || !regime_kept(q, *s, opt.regime))
+            const std::optional<detail::outcome> s = outcome_of(q);
+            if (!s || !regime_kept(q, *s, opt.regime, set_key))
                 continue;
             problem untitled = q;
             untitled.title.clear();
@@ -416,9 +477,10 @@ sheet make_sheet(const problem &base, const options &opt)
         throw input_error("--count: " + std::to_string(opt.count) + " exercises asked; a sheet has 1 to 99");
     if (!opt.regime.empty() && opt.regime != "smooth" && opt.regime != "stick" && opt.regime != "slide")
         throw input_error("--regime: \"" + opt.regime + "\" is not a regime (smooth, stick or slide)");
-    if (base.is_system())
-        throw input_error("exercises: a system (joints, several contacts or sequential impacts) is not made into a "
-                          "sheet; a problem with one contact between two bodies is (pivots allowed)");
+    if (base.is_system() && !opt.regime.empty())
+        throw input_error("--regime " + opt.regime +
+                          ": a system's variants keep the set of regimes of the problem as "
+                          "given (each contact's own); --regime is for one contact");
     const problem p0 = numeric_base(base);
     if (!opt.regime.empty()) {
         const std::set<std::string> can = possible_regimes(p0);
@@ -438,7 +500,10 @@ sheet make_sheet(const problem &base, const options &opt)
         out.title = print::source_stem(base.source);
     out.units = true;
     generator g(opt.seed);
-    variant_search search{base, p0, opt, g, {}, std::chrono::steady_clock::now()};
+    variant_search search{base, p0, opt, g, {}, std::chrono::steady_clock::now(), {}};
+    if (base.is_system())
+        if (const std::optional<detail::outcome> own = outcome_of(p0))
+            search.set_key = own->key;
     for (int k = 1; k <= opt.count; ++k)
         out.exercises.push_back(search.next(k, out.title));
     out.units = out.exercises.front().prob.units == "SI";

@@ -18,6 +18,7 @@ std::string class_name_in_words(const std::string &name)
         {"planar-friction", "Impact of two rigid bodies in the plane with Coulomb friction"},
         {"ball-floor-friction", "A spinning ball bounces on a rough floor"},
         {"noncentral-3d-friction", "Impact of two rigid bodies in space with Coulomb friction"},
+        {"rod-rough-floor", "A slender rod falls on a rough floor"},
     };
     for (const auto &[key, text] : words)
         if (name == key)

@@ -88,7 +88,9 @@ TEST(ExercisesCli, AnswersAreSolveOfTheProblemFiles)
 {
     for (const auto &[what, options] : {std::pair<std::string, std::string>{hinged_rod(), "--count 4 --seed 2"},
                                         {"ball-floor-friction", "--count 3 --seed 5 --regime stick"},
-                                        {"planar", "--count 3 --seed 8"}}) {
+                                        {"planar", "--count 3 --seed 8"},
+                                        {std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json",
+                                         "--count 3 --seed 3"}}) {
         SCOPED_TRACE(what);
         const fs::path dir = sheet(what, options);
         std::size_t n = 0;
@@ -118,15 +120,21 @@ TEST(ExercisesCli, MoodleQuizParsesAndEveryAnswerIsTheAnswerFiles)
 {
     if (!have("python3"))
         GTEST_SKIP() << "\n*** python3 NOT FOUND: the Moodle XML of exercises is NOT CHECKED ***\n";
-    const fs::path dir = sheet("planar-friction", "--count 3 --seed 4");
-    int status = 0;
-    const std::string out = run("python3 " + shell_quoted(std::string(IMPACTGEN_SOURCE_DIR) + "/tests/exercises/check_quiz.py") +
-                                    " " + shell_quoted(dir.string()) + " 2>&1",
-                                status);
-    EXPECT_EQ(status, 0) << out;
-    ASSERT_EQ(out.rfind("ok ", 0), 0u) << out;
-    EXPECT_GE(std::stoi(out.substr(3)), 3 * 5); // velocities, spins, impulses, energy of each
-    fs::remove_all(dir);
+    // a system too: contacts, a joint and their impulses in the answer file (compass gait)
+    for (const std::string &what :
+         {std::string("planar-friction"), std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json"}) {
+        SCOPED_TRACE(what);
+        const fs::path dir = sheet(what, "--count 3 --seed 4");
+        int status = 0;
+        const std::string out =
+            run("python3 " + shell_quoted(std::string(IMPACTGEN_SOURCE_DIR) + "/tests/exercises/check_quiz.py") + " " +
+                    shell_quoted(dir.string()) + " 2>&1",
+                status);
+        EXPECT_EQ(status, 0) << out;
+        ASSERT_EQ(out.rfind("ok ", 0), 0u) << out;
+        EXPECT_GE(std::stoi(out.substr(3)), 3 * 5); // velocities, spins, impulses, energy of each
+        fs::remove_all(dir);
+    }
 }
 
 TEST(ExercisesCli, LatexSheetCompilesWithoutOverfullBoxes)
@@ -135,7 +143,8 @@ TEST(ExercisesCli, LatexSheetCompilesWithoutOverfullBoxes)
         GTEST_SKIP() << "\n*** pdflatex NOT FOUND: the LaTeX sheet of exercises is NOT COMPILED ***\n";
     // hostile-names.json: body names with LaTeX's special characters ("50% a_b#{x}", "~^\\end{document}")
     for (const std::string &what : {hinged_rod(), std::string("ball-floor-friction"), std::string("noncentral-3d"),
-                                    std::string(IMPACTGEN_SOURCE_DIR) + "/tests/explain/hostile-names.json"}) {
+                                    std::string(IMPACTGEN_SOURCE_DIR) + "/tests/explain/hostile-names.json",
+                                    std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/three-balls-sequential.json"}) {
         SCOPED_TRACE(what);
         const fs::path dir = sheet(what, "--count 10 --seed 1");
         int status = 0;

@@ -6,6 +6,7 @@
 // IMPACTGEN_REGENERATE_GOLDEN=1 (or make regenerate-golden-exercises) rewrites the golden files.
 #include "exercises/exercises.hpp"
 #include "print/answer.hpp"
+#include "symbolic/system.hpp"
 #include "symbolic/named_classes.hpp"
 
 #include <gtest/gtest.h>
@@ -230,14 +231,63 @@ TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
     }
 }
 
-TEST(ExerciseSheet, SystemIsRefusedInOneLineNamingIt)
+// A system's sheet (issue 25: "keep the regime or active set"): every variant keeps the set of
+// regimes of the problem as given, its answer file is solve_system of its own problem file read
+// back, and every asked value is where the answer file holds it. --regime is refused for a system.
+TEST(ExerciseSheet, SystemSheetKeepsTheSetOfRegimesAndAnswersAreItsFilesSolved)
 {
+    for (const char *file : {"compass-gait", "three-balls-sequential", "double-pendulum-struck", "box-four-corners"}) {
+        SCOPED_TRACE(file);
+        const problem base =
+            load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/" + file + ".json");
+        const system_answer own = solve_system(base);
+        const exercises::sheet s = sheet_of(base, 3, 7, "", 2);
+        ASSERT_EQ(s.exercises.size(), 3u);
+        const auto files = exercises::sheet_files(s);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const exercises::exercise &e = s.exercises[k];
+            const std::string nn = "0" + std::to_string(k + 1);
+            const problem back = read_problem(files.at("problems/" + nn + ".json"), nn);
+            ASSERT_TRUE(back.is_system());
+            ASSERT_EQ(back.contacts.size(), base.contacts.size());
+            ASSERT_EQ(back.joints.size(), base.joints.size());
+            EXPECT_EQ(back.sequential, base.sequential);
+            const system_answer a = solve_system(back);
+            EXPECT_EQ(a.result.name(), own.result.name()) << "the set of regimes is kept";
+            EXPECT_EQ(print::system_answer_json(back, a).dump(2) + "\n", files.at("answers/" + nn + ".json"));
+            const nlohmann::json answer = nlohmann::json::parse(files.at("answers/" + nn + ".json"));
+            for (const exercises::quantity &q : e.asked) {
+                const double v = GiNaC::ex_to<GiNaC::numeric>(q.exact.evalf()).to_double();
+                EXPECT_NEAR(answer.at(nlohmann::json::json_pointer(q.pointer)).get<double>(), v,
+                            1e-12 * std::max(1.0, std::abs(v)))
+                    << q.pointer;
+            }
+            if (!a.impulses_unique) { // redundant contacts: only what is determined is asked
+                for (const exercises::quantity &q : e.asked)
+                    EXPECT_EQ(q.pointer.find("impulse"), std::string::npos) << q.pointer;
+            }
+            EXPECT_NE(files.at("solutions/" + nn + ".tex").find("\\title{Exercise " + std::to_string(k + 1) + ": "),
+                      std::string::npos);
+        }
+    }
     try {
-        sheet_of(load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json"), 2, 1);
-        ADD_FAILURE() << "a system was made into a sheet";
+        sheet_of(load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json"), 2, 1,
+                 "stick");
+        ADD_FAILURE() << "--regime was taken for a system";
     } catch (const input_error &e) {
         const std::string m = e.what();
-        EXPECT_NE(m.find("system"), std::string::npos) << m;
+        EXPECT_NE(m.find("--regime"), std::string::npos) << m;
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+}
+
+// The law of restitution travels with the exercise: an energetic-law class gives energetic-law
+// problem files, answered under that law.
+TEST(ExerciseSheet, RestitutionLawIsKeptInTheProblemFiles)
+{
+    const exercises::sheet s = sheet_of(find_named_class("rod-rough-floor")->build(), 2, 1, "", 2);
+    for (const exercises::exercise &e : s.exercises) {
+        EXPECT_TRUE(std::holds_alternative<energetic_restitution>(e.prob.contact().law_of_restitution));
+        EXPECT_EQ(exercises::problem_json(e.prob).at("contact").at("law"), "energetic");
     }
 }
