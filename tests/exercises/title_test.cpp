@@ -54,6 +54,8 @@ TEST(DocumentTitle, NamedClassIsNamedInWords)
         EXPECT_FALSE(print::class_name_in_words(c.name).empty()) << c.name;
     for (const named_class &c : friction_classes())
         EXPECT_FALSE(print::class_name_in_words(c.name).empty()) << c.name;
+    for (const named_class &c : law_classes())
+        EXPECT_FALSE(print::class_name_in_words(c.name).empty()) << c.name;
 }
 
 TEST(DocumentTitle, TitleAndDescriptionOfTheFileStandAtTheTop)
