@@ -22,6 +22,13 @@ std::string idx(std::size_t i)
     return std::to_string(i);
 }
 
+std::string cap(std::string s)
+{
+    if (!s.empty() && s[0] >= 'a' && s[0] <= 'z')
+        s[0] = static_cast<char>(s[0] - 'a' + 'A');
+    return s;
+}
+
 std::vector<math_row> condition_rows(const system_candidate &c)
 {
     std::vector<math_row> rows;
@@ -46,7 +53,8 @@ section candidates_intro(const derivation &d, std::size_t n)
                   "them, solved exactly. A candidate is the answer when its conditions hold: every acting contact "
                   "pushes (and stays inside its friction cone, or slides the way it pushes against), and every "
                   "open contact leaves no slower than $e_i$ times its approach.")
-               .w(" " + idx(n) + " candidate(s) for " + idx(d.prob.contacts.size()) + " contact(s):"));
+               .w(" " + cap(count_of(n, "candidate", "candidates")) + " for " +
+                  count_of(d.prob.contacts.size(), "contact", "contacts") + ":"));
     return s;
 }
 
@@ -94,16 +102,16 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
         return;
     std::string why = "The law holds for " + first->name() + ".";
     if (holding > 1)
-        why += " " + idx(holding) +
-               " candidates hold, all with the same velocities after impact (the solver checks "
-               "that, and refuses otherwise): the first is taken, and the impulses are not unique.";
+        why += " " + cap(count_of(holding, "candidate holds", "candidates hold")) +
+               ", all with the same velocities after impact (had they differed, the law would not decide the "
+               "outcome): the first is taken, and the impulses are not unique.";
     s.para(paragraph().w(why + " Its solution and conditions:"));
     system_candidate_values(s, d, *first);
     if (!first->conditions.empty())
         s.rows(condition_rows(*first));
 }
 
-section chain_section(const derivation &d, const system_answer &a)
+section chain_section(const derivation &d, const system_answer &a, bool summed_below = true)
 {
     section s{"The chain of single-contact impacts", {}};
     s.para(paragraph().w("Sequential impacts: the contacts act one at a time. At each step the first contact in "
@@ -125,7 +133,7 @@ section chain_section(const derivation &d, const system_answer &a)
                                  o += (k ? ", " : "") + idx(a.sequence[k]);
                              return o;
                          }() +
-                         "; each contact's impulse below is summed over its steps."));
+                         (summed_below ? "; each contact's impulse below is summed over its steps." : ".")));
     return s;
 }
 
@@ -150,8 +158,7 @@ std::optional<section> other_model_section(const derivation &d, const system_ans
                      !normal(a.result.angular_velocity[k][i] - b.result.angular_velocity[k][i]).is_zero();
     section s{"The other model of impacts", {}};
     const std::string mine = a.sequential ? "in sequence" : "at the same time";
-    const std::string theirs = a.sequential ? "at the same time (\"impacts\": \"simultaneous\")"
-                                            : "one at a time (\"impacts\": \"sequential\")";
+    const std::string theirs = a.sequential ? "at the same time" : "one at a time, in sequence";
     s.para(paragraph().w("The problem lets its contacts act " + mine + ". Had they acted " + theirs +
                          ", the velocities after impact would be:"));
     std::vector<math_row> rows;
@@ -163,13 +170,25 @@ std::optional<section> other_model_section(const derivation &d, const system_ans
                 rows.push_back(system_value_row(d.angular_velocity_after[k][i], b.result.angular_velocity[k][i], ""));
         }
     s.rows(rows);
+    if (!differ) {
+        s.para(
+            paragraph().w("They are the same here: the order in which the contacts act does not change the outcome."));
+        return s;
+    }
     s.para(paragraph().w(
-        differ ? "They differ. At the same time, the contacts share the impulse through the off-diagonal entries "
-                 "of W: each contact's impulse changes the others' velocities in the same instant. In sequence, "
-                 "each contact acts alone on the velocities the step before it left. Both are physics (a rack "
-                 "whose balls touch, against one whose contacts are a hair apart): the problem's \"impacts\" "
-                 "says which it means."
-               : "They are the same here: the order in which the contacts act does not change the outcome."));
+        "They differ. At the same time, the contacts share the impulse through the off-diagonal entries of W: "
+        "each contact's impulse changes the others' velocities in the same instant, so a body pressed from two "
+        "sides passes on only part of what it receives. In sequence, each contact acts alone on the velocities "
+        "the step before it left. Momentum holds in both, and so does energy where every e is 1; but with more "
+        "velocities unknown than these balances, they do not fix the outcome: the law of the contacts does. "
+        "Both are physics (a row of balls that touch, against one whose contacts are a hair apart); the problem "
+        "has to say which it means."));
+    if (b.sequential && b.steps.size() > 1) {
+        section chain = chain_section(d, b, false);
+        s.para(paragraph().w("The chain of the other model, step by step:"));
+        for (std::size_t k = 1; k < chain.blocks.size(); ++k)
+            s.blocks.push_back(chain.blocks[k]);
+    }
     return s;
 }
 
@@ -209,13 +228,35 @@ section results_section(const derivation &d, const system_answer &a)
     if (a.energy_gain)
         s.para(paragraph().w("Kinetic energy is gained although no moving body of infinite mass does work: the "
                              "contacts' different restitution coefficients or their friction allow it under "
-                             "Newton's law (\"energy_gain\": true)."));
+                             "Newton's law."));
     return s;
+}
+
+// A symbolic system's worked example: its numbers, the verdict on every candidate, the results
+// and the other model of impacts, each from the numeric problem the numbers make.
+std::vector<section> example_sections(const derivation &d, const worked_example &example)
+{
+    const problem q = substitute(d.prob, example.values);
+    const derivation dq = derive(q);
+    section s{"Worked example", {}};
+    std::vector<math_row> given;
+    for (const ex &v : example.values)
+        given.push_back(row(v.lhs(), v.rhs()));
+    s.para(paragraph().w("With the numbers"));
+    s.rows(given);
+    s.para(paragraph().w("each candidate above becomes a number, and its conditions are decided exactly:"));
+    numeric_candidates(s, dq, system_candidates(q));
+    const system_answer a = solve_system(q);
+    std::vector<section> out{s, results_section(dq, a)};
+    out.back().title = "Results of the worked example";
+    if (std::optional<section> other = other_model_section(dq, a))
+        out.push_back(*other);
+    return out;
 }
 
 } // namespace
 
-std::vector<section> system_solution_sections(const derivation &d)
+std::vector<section> system_solution_sections(const derivation &d, const worked_example *example)
 {
     const problem &p = d.prob;
     std::vector<section> out;
@@ -223,6 +264,9 @@ std::vector<section> system_solution_sections(const derivation &d)
         const std::vector<system_candidate> cs = system_candidates(p);
         out.push_back(candidates_intro(d, cs.size()));
         symbolic_candidates(out.back(), d, cs);
+        if (example)
+            for (section &s : example_sections(d, *example))
+                out.push_back(s);
         return out;
     }
     const system_answer a = solve_system(p);

@@ -175,7 +175,7 @@ void constraint_equations(derivation &d)
         d.system_laws.emplace_back();
         add(d, dot(u2, c.normal) * inv, -p.restitution_of(i) * dot(u, c.normal) * inv, principle::restitution,
             "Contact " + std::to_string(i) +
-                " while it acts (P_i > 0): the normal velocity of separation is e_i times that of approach",
+                " while it pushes: it leaves at e times the normal speed at which it approached",
             {c.body1, c.body2}, -1, &d.system_laws[i]);
         for (const vec3 &t : d.system_tangents[i])
             add(d, dot(u2, t), 0, principle::stick, "Contact " + std::to_string(i) + " sticking: no slip after impact",
