@@ -7,16 +7,21 @@
 // the independent Eigen reference (numeric/system_reference.hpp, every active set of the whole
 // constrained system) on the same instance.
 //
-// Bounds: every value is a rational function of the inputs of degree <= 4 in each, evaluated
-// in a few dozen operations, so its rounding error is a few hundred ulps of the sizes of its
-// terms; with mass ratios up to 1e4 squared in the Delassus entries the condition number of
-// the candidates' systems stays below ~1e9, so both sides agree to ~1e-7 relative to the
-// velocity scale (the largest speed of a point before impact); we require 1e-6. The floating
-// point choice accepts a condition that is >= -1e-9 times the sum of the magnitudes of its
-// terms (its rounding bound with room); near a boundary two candidates may both pass and
-// their velocities then agree to the same bound (the law's answer is continuous there).
+// Bounds: every value is a rational function of the inputs of low degree, evaluated in a few
+// dozen operations, so its rounding error is a few hundred ulps of the sizes of its terms; with
+// mass ratios up to 1e4 (squared in the Delassus entries) the candidates' systems keep a
+// condition number below ~1e9, so both sides agree to ~1e-7 of the speed scale (the largest
+// speed of a centre, or spin times the longest length, before impact); we require 1e-6 for
+// velocities and 1e-5 for spins (a speed over the shortest length, 0.1). The floating-point
+// choice accepts a condition >= -1e-12 times the sum of the magnitudes of its terms (its
+// rounding bound with room), the reference a condition >= -1e-10 of the speed scale times the
+// smallest mass (its one tolerance serves impulses too). Where no candidate passes in floating
+// point the exact decision chooses; where the exact decision refuses (no set, or two with
+// different velocities) the reference must not find exactly one set. One instance in five is
+// moved to within 1e-6 of the zero of one candidate's condition.
 #include "numeric/system_reference.hpp"
 #include "print/expression.hpp"
+#include "symbolic/decide.hpp"
 #include "sampling.hpp"
 #include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
@@ -192,7 +197,7 @@ GiNaC::lst exact_values(const std::vector<GiNaC::symbol>& syms, const std::vecto
 }
 
 struct tally {
-    int compared = 0, exact = 0, near_boundary = 0, skipped = 0, boundary_made = 0;
+    int compared = 0, exact = 0, near_boundary = 0, skipped = 0, boundary_made = 0, refused = 0, ambiguous = 0, exact_none = 0;
 };
 
 } // namespace
@@ -256,68 +261,143 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
             for (const char* l : {"a", "h", "l", "R", "b"})
                 if (syms[j].get_name() == l)
                     lmax = std::max(lmax, x[j]);
-        const ref::sys_problem r = reference_at(p, syms, x);
-        // the approach: some contact's normal velocity before impact must be negative
-        double scale = 0, approach = 0;
+        // The approach: some contact's normal velocity before impact must be negative. The
+        // velocities are linear in the speed symbols, so where none approaches (and one
+        // separates) the speeds reversed make an impact.
+        auto approach_of = [](const ref::sys_problem& q) {
+            double a = 0;
+            for (const ref::sys_contact& c : q.contacts) {
+                const ref::sys_body &A = q.bodies[c.body1], &B = q.bodies[c.body2];
+                auto pv = [&](const ref::sys_body& X) {
+                    return X.particle ? X.velocity : ref::vec3(X.velocity + X.angular_velocity.cross(c.point - X.position));
+                };
+                a = std::min(a, (pv(B) - pv(A)).dot(c.normal.normalized()));
+            }
+            return a;
+        };
+        ref::sys_problem r = reference_at(p, syms, x);
+        double scale = 0;
         for (const ref::sys_body& b : r.bodies)
             scale = std::max({scale, b.velocity.norm(), b.angular_velocity.norm() * lmax});
-        for (const ref::sys_contact& c : r.contacts) {
-            const ref::sys_body &A = r.bodies[c.body1], &B = r.bodies[c.body2];
-            auto pv = [&](const ref::sys_body& X) {
-                return X.particle ? X.velocity : ref::vec3(X.velocity + X.angular_velocity.cross(c.point - X.position));
-            };
-            approach = std::min(approach, (pv(B) - pv(A)).dot(c.normal.normalized()));
+        if (approach_of(r) > -1e-6 * scale) {
+            for (std::size_t j = 0; j < syms.size(); ++j)
+                for (const char* v : {"w1", "w2", "w", "v", "v_x"})
+                    if (syms[j].get_name() == v)
+                        x[j] = -x[j];
+            r = reference_at(p, syms, x);
         }
-        if (approach > -1e-6 * scale) {
-            ++t.skipped; // not an impact (the class's sign convention is the other way round)
+        if (approach_of(r) > -1e-6 * scale) {
+            ++t.skipped; // not an impact either way
             continue;
         }
+        // The closed form's velocities after impact (per body v_x, v_y, w_z), from the candidate the
+        // conditions choose in floating point, or from the exact decision.
+        std::vector<double> got;
         std::size_t chosen = cc.size();
-        if (s % 100 == 0) { // the exact decision
-            system_answer a;
-            try {
-                a = solve_system(substitute(p, exact_values(syms, x)));
-            } catch (const input_error&) { // refused exactly (no set, or two with different velocities)
-                ++t.near_boundary;
-                continue;
-            }
-            for (std::size_t k = 0; k < cs.size() && chosen == cc.size(); ++k)
-                if (cs[k].regimes == a.result.regimes && cs[k].slide_sign == a.result.slide_sign)
-                    chosen = k;
-            ++t.exact;
-        } else {
+        if (s % 100 != 0)
             for (std::size_t k = 0; k < cc.size() && chosen == cc.size(); ++k) {
                 bool ok = true;
                 for (const program& q : cc[k].conditions)
-                    ok = ok && q.run(x) >= -1e-9 * q.run(x, true);
+                    ok = ok && q.run(x) >= -1e-12 * q.run(x, true);
                 if (ok)
                     chosen = k;
             }
+        // The reference's one absolute tolerance serves its impulses and its velocities: an
+        // impulse is a mass times a speed, so with masses down to 1e-4 the tolerance is taken
+        // relative to the smallest mass times the speed scale (else a set that fails by 1e-6 of
+        // a light body's impulse would pass).
+        double mmin = 1;
+        for (const ref::sys_body& b : r.bodies)
+            if (!b.infinite_mass)
+                mmin = std::min(mmin, b.mass);
+        const ref::sys_answer ra = ref::solve_reference(r, 1e-10 * scale * mmin);
+        if (chosen < cc.size()) {
+            for (const program& v : cc[chosen].velocity)
+                got.push_back(v.run(x));
+        } else { // the exact decision: every 100th instance, and any the floating point leaves open
+            system_answer a;
+            try {
+                a = solve_system(substitute(p, exact_values(syms, x)));
+            } catch (const input_error& e) {
+                // Refused exactly: no set satisfies the law (a foot that would have to pull to
+                // stick), or two sets with different velocities; the reference finds no single set.
+                EXPECT_TRUE(ra.holding != 1) << name << " sample " << s << ": " << e.what();
+                ++t.refused;
+                continue;
+            }
+            for (std::size_t b = 0; b < p.bodies.size(); ++b)
+                for (const ex& v : {a.result.velocity[b][0], a.result.velocity[b][1], a.result.angular_velocity[b][2]})
+                    got.push_back(print::to_double(v));
+            ++t.exact;
         }
-        ASSERT_LT(chosen, cc.size()) << name << " sample " << s;
-        const ref::sys_answer ra = ref::solve_reference(r, 1e-9 * scale);
         if (ra.holding == 0) { // within the reference's tolerance no set holds: a boundary case
             ++t.near_boundary;
             continue;
         }
+        if (chosen < cc.size() && ra.holding > 1) {
+            // Several sets hold in the reference: the exact decision says whether they agree.
+            try {
+                solve_system(substitute(p, exact_values(syms, x)));
+            } catch (const input_error& e) {
+                // Two sets with different velocities (the law does not decide), or none found
+                // exactly where the floating point and the reference accept a set.
+                if (std::string(e.what()).find("more than one") != std::string::npos)
+                    ++t.ambiguous;
+                else {
+                    // Known limitation of the exact decision (symbolic/system.cpp), reported: a
+                    // sliding contact must slip strictly after impact (u'_t < 0), and a singular set
+                    // of sticking contacts is tried only at its basic solutions. When one corner
+                    // sticks, the other's slip after impact is exactly 0 (both corners of the box
+                    // slip alike), so "slide" fails by its strict inequality at exactly 0 while the
+                    // law holds (Coulomb allows |F| = mu P without slip), and the stick split that
+                    // fits both cones is not a basic solution. Every such case must be exactly that.
+                    ++t.exact_none;
+                    bool explained = false;
+                    for (const system_candidate& c : system_candidates(substitute(p, exact_values(syms, x))))
+                        if (c.name() == cs[chosen].name()) {
+                            const long f = system_candidate_failure(c);
+                            explained = f >= 0 && static_cast<std::size_t>(f) < c.conditions.size() &&
+                                        c.conditions[static_cast<std::size_t>(f)].strict &&
+                                        c.conditions[static_cast<std::size_t>(f)].value.is_zero();
+                        }
+                    EXPECT_TRUE(explained) << name << " sample " << s << ": " << e.what();
+                }
+                continue;
+            }
+        }
         for (std::size_t b = 0; b < p.bodies.size(); ++b) {
             if (p.bodies[b].infinite_mass)
                 continue;
-            const double got[3] = {cc[chosen].velocity[3 * b].run(x), cc[chosen].velocity[3 * b + 1].run(x),
-                                   cc[chosen].velocity[3 * b + 2].run(x)};
             const double want[3] = {ra.velocity[b](0), ra.velocity[b](1), ra.angular_velocity[b](2)};
             // a spin is a speed over a lever arm: its scale is the speed scale over the shortest length
             for (int k = 0; k < 3; ++k)
-                ASSERT_NEAR(got[k], want[k], 1e-6 * scale * (k == 2 ? 10 : 1)) << name << " sample " << s << " body " << b;
+                if (std::abs(got[3 * b + static_cast<std::size_t>(k)] - want[k]) > 1e-6 * scale * (k == 2 ? 10 : 1)) {
+                    std::string exact = "exact: ";
+                    try {
+                        exact += solve_system(substitute(p, exact_values(syms, x))).result.name();
+                    } catch (const input_error& e) {
+                        exact += e.what();
+                    }
+                    ADD_FAILURE() << "chosen " << (chosen < cs.size() ? cs[chosen].name() : "exactly") << ", reference sets "
+                                  << ra.holding << "; " << exact;
+                }
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(got[3 * b + static_cast<std::size_t>(k)], want[k], 1e-6 * scale * (k == 2 ? 10 : 1))
+                    << name << " sample " << s << " body " << b;
         }
         ++t.compared;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "  " << name << ": " << t.compared << " compared (" << t.exact << " decided exactly), "
               << t.skipped << " not impacts, " << t.boundary_made << " made near a boundary, " << t.near_boundary
-              << " where the reference finds no set within its tolerance, " << seconds << " s\n";
+              << " where the reference finds no set within its tolerance, " << t.refused
+              << " refused exactly (no set holds), " << t.ambiguous
+              << " where two sets hold with different velocities (refused exactly), " << t.exact_none
+              << " where the exact decision finds no set but a candidate holds in floating point, " << seconds << " s\n";
     EXPECT_GE(t.compared, n / 4);
+    EXPECT_LT(t.skipped, n / 10);
     EXPECT_LT(t.near_boundary, n / 100 + 1);
+    EXPECT_LT(t.exact_none, n / 20 + 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(Classes, NamedSystemsRandom,
