@@ -2,6 +2,7 @@
 // the law with their conditions -- for a numeric problem, which one holds and the first
 // condition each other one fails, as the solver decides it (system_candidate_failure) -- or
 // the chain of single-contact impacts (sequential), then the results of solve_system.
+#include "canonical.hpp"
 #include "explain_detail.hpp"
 #include "explain_system.hpp"
 
@@ -59,17 +60,77 @@ section candidates_intro(const derivation &d, std::size_t n)
 }
 
 // A symbolic problem: every candidate with its closed form and its conditions.
+// A symbolic candidate's values over one long common denominator, written through a symbol D
+// defined once (so that no row carries the long sum twice): the candidate rewritten, and D's
+// value, or the candidate as it is and 0 when no denominator is long and shared.
+std::pair<system_candidate, ex> over_common_denominator(const problem &p, const system_candidate &c)
+{
+    for (const symbol &s : p.parameters())
+        if (s.get_name() == "D")
+            return {c, 0};
+    std::vector<ex *> values;
+    system_candidate out = c;
+    for (ex &v : out.normal_impulse)
+        values.push_back(&v);
+    for (std::vector<vec3> *vs : {&out.velocity, &out.angular_velocity})
+        for (vec3 &v : *vs)
+            for (ex &x : v)
+                values.push_back(&x);
+    for (system_condition &k : out.conditions)
+        values.push_back(&k.value);
+    ex D = 0;
+    std::size_t longest = 40; // characters of the printed denominator worth a name
+    for (ex *v : values) {
+        const ex den = denom(normal(*v));
+        const std::size_t n = canonical_text(den).size();
+        if (n > longest)
+            longest = n, D = den;
+    }
+    if (D.is_zero())
+        return {c, 0};
+    D = normal(D / D.integer_content());
+    static const symbol Dsym("D");
+    std::size_t shared = 0;
+    for (ex *v : values) {
+        const ex q = normal(*v), ratio = normal(denom(q) / D);
+        if (!is_a<numeric>(ratio))
+            continue;
+        *v = numer(q) / (ratio * Dsym);
+        ++shared;
+    }
+    return shared >= 2 ? std::pair<system_candidate, ex>{out, D} : std::pair<system_candidate, ex>{c, 0};
+}
+
 void symbolic_candidates(section &s, const derivation &d, const std::vector<system_candidate> &cs)
 {
-    for (const system_candidate &c : cs) {
-        s.para(paragraph().w("Candidate " + c.name() + ":"));
+    for (const system_candidate &given : cs) {
+        s.para(paragraph().w("Candidate " + given.name() + ":"));
+        const auto [c, D] = over_common_denominator(d.prob, given);
+        if (!D.is_zero())
+            s.rows({note_row("D", "D", D, "the candidate's common denominator")});
         system_candidate_values(s, d, c);
         if (c.conditions.empty()) {
             s.para(paragraph().w("It needs no condition."));
             continue;
         }
         s.para(paragraph().w("It holds when:"));
-        s.rows(condition_rows(c));
+        // a long condition gets its words first, as a line of their own, and its row no note
+        // (a note beside a row broken over several lines would widen every line of it)
+        std::vector<math_row> rows = condition_rows(c);
+        std::vector<math_row> pending;
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+            if (canonical_text(c.conditions[k].value).size() <= 80) {
+                pending.push_back(rows[k]);
+                continue;
+            }
+            if (!pending.empty())
+                s.rows(pending), pending.clear();
+            s.para(paragraph().w(c.conditions[k].words + (c.conditions[k].strict ? ", strictly:" : ":")));
+            rows[k].note = paragraph();
+            s.rows({rows[k]});
+        }
+        if (!pending.empty())
+            s.rows(pending);
     }
 }
 

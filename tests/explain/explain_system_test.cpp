@@ -512,3 +512,16 @@ TEST(SystemSummary, BoxesTheAnswer)
         EXPECT_NE(text.find("Which contacts act:"), std::string::npos);
     }
 }
+
+// The full document of every named system class compiles with pdflatex, with no overfull box.
+TEST(SystemExplain, NamedClassesLatexCompiles)
+{
+    if (!latex_tools::have_pdflatex())
+        GTEST_SKIP() << latex_tools::no_pdflatex_message();
+    for (const named_class& c : system_classes()) {
+        const latex_tools::compiled out = latex_tools::compile(explain_latex(class_document(c.name)), "system-" + c.name);
+        ASSERT_EQ(out.status, 0) << c.name;
+        EXPECT_EQ(out.overfull_hbox, 0) << c.name << latex_tools::around(out.log, "Overfull \\hbox");
+        EXPECT_EQ(out.undefined_refs, 0) << c.name;
+    }
+}
