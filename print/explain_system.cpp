@@ -105,10 +105,11 @@ std::vector<paragraph> link_items(const problem &p)
     for (std::size_t i = 0; i < p.contacts.size(); ++i) {
         const contact_spec &c = p.contacts[i];
         paragraph q;
-        q.w("Contact " + idx(i) + ": " + display_name(p.bodies[c.body2]) + " strikes " +
-            display_name(p.bodies[c.body1]) + " at ");
+        q.w("Contact " + idx(i) + ": between " + display_name(p.bodies[c.body1]) + " and " +
+            display_name(p.bodies[c.body2]) + " at ");
         vector_span(q, c.point, p.dimension);
-        vector_span(q.w(", normal "), c.normal, p.dimension).w(" (from the first body into the second), ");
+        vector_span(q.w(", normal "), c.normal, p.dimension)
+            .w(" (from " + display_name(p.bodies[c.body1]) + " into " + display_name(p.bodies[c.body2]) + "), ");
         q.n("e_" + idx(i), "e_{" + idx(i) + "}").w(" = ").m(p.restitution_of(i));
         if (c.rough)
             q.w(", perfectly rough (no slip while it pushes)");
