@@ -1,5 +1,5 @@
 // Property test of the named system classes: for each class, 20,000 seeded random numeric
-// instances (IMPACTGEN_SAMPLES overrides the count). The class's closed-form candidates
+// instances (2,000 in the sanitizer pass; IMPACTGEN_SAMPLES overrides the count). The class's closed-form candidates
 // (system_candidates of the symbolic problem, computed once) are compiled to a small program
 // of + - * / and powers and evaluated in double; the candidate that holds is chosen exactly
 // (solve_system on the rational instance) for every 100th instance and by the candidates'
@@ -226,7 +226,7 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
         cc.push_back(k);
     }
     instance_maker make{std::mt19937(impactgen::testing::seed_from_env() + static_cast<unsigned>(name.size()))};
-    const int n = impactgen::testing::samples_from_env(20000);
+    const int n = impactgen::testing::samples_from_env(IMPACTGEN_CORE_SANITIZED ? 2000 : 20000);
     tally t;
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < n; ++s) {
@@ -397,7 +397,7 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
     EXPECT_GE(t.compared, n / 4);
     EXPECT_LT(t.skipped, n / 10);
     EXPECT_LT(t.near_boundary, n / 100 + 1);
-    EXPECT_LT(t.exact_none, n / 20 + 1);
+    EXPECT_LT(t.exact_none, n / 10 + 1); // about 4 % of two-corner-landing, each asserted above
 }
 
 INSTANTIATE_TEST_SUITE_P(Classes, NamedSystemsRandom,
