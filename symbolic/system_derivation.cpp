@@ -60,7 +60,9 @@ void system_unknowns(derivation &d, std::vector<impulse_at> &impulses)
         if (B.particle)
             continue;
         for (int k = dim == 2 ? 2 : 0; k < 3; ++k) {
-            symbol s(quantity_name("w", axis_name[k], B.label, true)); // planar: the z axis, as one contact names it
+            // planar: the z axis, as one contact names it; omega in LaTeX as in the one-contact documents
+            symbol s(quantity_name("w", axis_name[k], B.label, true),
+                     quantity_tex("\\omega", axis_name[k], B.label, true));
             d.angular_velocity_after[b][k] = s;
             d.system_unknowns.push_back({s, "angular velocity of " + display_name(B) + " after impact"});
         }
