@@ -39,11 +39,11 @@ void register_explain(CLI::App &app, std::function<int()> &action)
             print::worked_example example;
             const bool has_example = find_named_class(opt->what) && print::notes_example(opt->what, example);
             const print::level depth = opt->level == "summary" ? print::level::summary : print::level::full;
-            if (p.is_system() && depth == print::level::summary)
-                throw input_error("--level: a system (joints or several contacts) is explained in full only; "
-                                  "omit --level summary");
+            print::worked_example system_example;
+            const bool has_system_example =
+                p.is_system() && find_named_class(opt->what) && print::system_example(opt->what, system_example);
             const print::document doc =
-                p.is_system() ? print::explain_system(d)
+                p.is_system() ? print::explain_system(d, has_system_example ? &system_example : nullptr, depth)
                               : print::explain(d, solve_impact(d), has_example ? &example : nullptr, depth);
             if (opt->format == "markdown")
                 std::cout << print::explain_markdown(doc);

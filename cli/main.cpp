@@ -6,6 +6,7 @@
 #include "print/expression.hpp"
 #include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
 
 #include <CLI/CLI.hpp>
@@ -31,6 +32,8 @@ problem impactgen::cli::load(const std::string &what)
             names += (names.empty() ? "" : ", ") + c.name;
         for (const named_class &c : friction_classes())
             names += ", " + c.name;
+        for (const named_class &c : system_classes())
+            names += ", " + c.name;
         throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
     }
     problem p = load_problem_file(what);
@@ -52,12 +55,51 @@ int cmd_list()
     std::printf("\nwith Coulomb friction (past the notes; regimes stick and slide):\n");
     for (const named_class &c : friction_classes())
         std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
+    std::printf("\nsystems (past the notes; joints, several contacts, the contacts that act decided exactly):\n");
+    for (const named_class &c : system_classes())
+        std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
     return 0;
 }
 
-int cmd_solve(const std::string &what, bool json)
+// solve --set a=1,b=2: every symbol given an exact value; a name the problem does not have,
+// or a value that is not exact, is refused naming --set.
+problem with_values(const problem &p, const std::string &set)
 {
-    problem p = load(what);
+    if (set.empty())
+        return p;
+    GiNaC::lst values;
+    const std::vector<GiNaC::symbol> params = p.parameters();
+    std::size_t start = 0;
+    while (start <= set.size()) {
+        std::size_t comma = set.find(',', start);
+        if (comma == std::string::npos)
+            comma = set.size();
+        const std::string kv = set.substr(start, comma - start);
+        start = comma + 1;
+        const std::size_t eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+            throw input_error("--set " + impactgen::names::display_text(kv, 80) + ": expected SYMBOL=VALUE");
+        const std::string name = kv.substr(0, eq);
+        const GiNaC::symbol *sym = nullptr;
+        for (const GiNaC::symbol &s : params)
+            if (s.get_name() == name)
+                sym = &s;
+        if (!sym)
+            throw input_error("--set " + impactgen::names::display_text(name, 80) + ": the problem has no such symbol");
+        const GiNaC::ex v = parse_value(kv.substr(eq + 1), true, "--set " + name);
+        for (auto i = v.preorder_begin(); i != v.preorder_end(); ++i)
+            if (GiNaC::is_a<GiNaC::symbol>(*i))
+                throw input_error("--set " + name + ": expected a value without symbols");
+        values.append(*sym == v);
+    }
+    problem q = substitute(p, values);
+    validate(q);
+    return q;
+}
+
+int cmd_solve(const std::string &what, bool json, const std::string &set)
+{
+    problem p = with_values(load(what), set);
     auto params = p.parameters();
     if (!params.empty()) {
         std::string names;
@@ -134,6 +176,25 @@ int cmd_bench(int repeats)
         std::printf("%-16s %12.3f %12zu\n", c.name.c_str(), best, steps);
     }
     std::printf("%-16s %12.3f   (target: < 250 ms for all six)\n", "all classes", total);
+    // The systems: derivation + every closed-form candidate of the law (system_candidates).
+    std::printf("\n%-22s %12s %12s   (best of %d, derivation + closed-form candidates)\n", "system class", "ms",
+                "candidates", repeats);
+    double slowest = 0;
+    for (const named_class &c : system_classes()) {
+        double best = 1e300;
+        std::size_t candidates = 0;
+        for (int r = 0; r < repeats; ++r) {
+            auto t0 = clock::now();
+            const problem p = c.build();
+            derivation d = derive(p);
+            candidates = system_candidates(p).size();
+            auto t1 = clock::now();
+            best = std::min(best, std::chrono::duration<double, std::milli>(t1 - t0).count());
+        }
+        slowest = std::max(slowest, best);
+        std::printf("%-22s %12.3f %12zu\n", c.name.c_str(), best, candidates);
+    }
+    std::printf("%-22s %12.3f   (target: <= 500 ms each)\n", "slowest system class", slowest);
     return 0;
 }
 
@@ -147,7 +208,7 @@ struct formulas_args {
 };
 int dispatch(const std::function<int()> &extra_action, CLI::App *list, CLI::App *solve_cmd, CLI::App *formulas,
              CLI::App *bench, const std::string &what, bool json, const std::string &format, int repeats,
-             const formulas_args &fa);
+             const formulas_args &fa, const std::string &set);
 } // namespace
 
 int main(int argc, char **argv)
@@ -164,8 +225,12 @@ int main(int argc, char **argv)
     std::string what;
     bool json = false;
     auto *solve_cmd = app.add_subcommand("solve", "Solve a numeric problem file exactly (rational arithmetic)");
-    solve_cmd->add_option("problem", what, "PROBLEM.json in the impact problem format")->required();
+    solve_cmd->add_option("problem", what, "PROBLEM.json in the impact problem format, or CLASS with --set")
+        ->required();
     solve_cmd->add_flag("--json", json, "print the answer object of the problem format (decimals)");
+    std::string set;
+    solve_cmd->add_option("--set", set,
+                          "values of the symbols of a named class or a problem file, e.g. m=2,l=1/2 (exact)");
 
     std::string format = "text";
     auto *formulas = app.add_subcommand("formulas", "Closed-form formulas for a named class or a problem file");
@@ -221,7 +286,7 @@ int main(int argc, char **argv)
         if (wrt_given && wrt.empty())
             throw input_error("--wrt: no input named (expected input names separated by commas)");
         return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats,
-                        {jacobian || wrt_given, wrt});
+                        {jacobian || wrt_given, wrt}, set);
     };
     // The time budget: every input the reader accepts is done in well under a
     // second; a run past the budget is stopped with a message, never left to hang.
@@ -256,13 +321,13 @@ namespace
 {
 int dispatch(const std::function<int()> &extra_action, CLI::App *list, CLI::App *solve_cmd, CLI::App *formulas,
              CLI::App *bench, const std::string &what, bool json, const std::string &format, int repeats,
-             const formulas_args &fa)
+             const formulas_args &fa, const std::string &set)
 {
     {
         if (*list)
             return cmd_list();
         if (*solve_cmd)
-            return cmd_solve(what, json);
+            return cmd_solve(what, json, set);
         if (*formulas)
             return cmd_formulas(what, format, fa.jacobian, fa.wrt);
         if (*bench)

@@ -280,8 +280,16 @@ std::string describe_system(const problem &p, const drawing &g)
     std::string s;
     for (const body_summary &b : g.bodies)
         s += (s.empty() ? "" : ", ") + names::display_text(b.name, 64) + " (" + shape_name(b.form) + ")";
-    return s + "; " + std::to_string(p.joints.size()) + " joint(s), " + std::to_string(p.pivots.size()) +
-           " pivot(s), " + std::to_string(p.contacts.size()) + " contact(s) with their normal impulses";
+    auto count = [](std::size_t n, const char *one, const char *many) {
+        return std::to_string(n) + " " + (n == 1 ? one : many);
+    };
+    s += ";";
+    if (!p.joints.empty())
+        s += " " + count(p.joints.size(), "joint", "joints") + ",";
+    if (!p.pivots.empty())
+        s += " " + count(p.pivots.size(), "pivot", "pivots") + ",";
+    return s + " " + count(p.contacts.size(), "contact", "contacts") + " with " +
+           (p.contacts.size() == 1 ? "its normal impulse" : "their normal impulses");
 }
 
 } // namespace impactgen::figure

@@ -3,7 +3,8 @@
 // block of a particle is left out by a zero inverse inertia), and for each active set of the
 // contacts the whole constrained impulse-momentum system -- joints, pivots and the acting
 // contacts' rows together -- solved by a full-pivot LU, the law's inequalities checked to a
-// tolerance. Smooth and perfectly rough contacts (no finite Coulomb friction).
+// tolerance. Smooth and perfectly rough contacts, and in 2-D Coulomb friction mu per contact
+// (regimes open, stick inside the cone, slide either way with F = -s mu P t and the slip along s t).
 #pragma once
 
 #include <Eigen/Dense>
@@ -36,6 +37,7 @@ struct sys_contact {
     vec3 point = vec3::Zero(), normal = vec3::UnitY();
     double restitution = 0;
     bool rough = false;
+    double mu = 0; ///< Coulomb's coefficient (2-D only; 0: smooth unless rough)
 };
 struct sys_problem {
     int dimension = 2;
@@ -69,6 +71,105 @@ inline void add_point(const sys_problem &p, Eigen::RowVectorXd &row, double &con
         row.segment<3>(6 * static_cast<Eigen::Index>(b) + 3) += s * r.cross(a).transpose();
 }
 } // namespace detail
+
+namespace sys_answer_detail
+{
+// One set of regimes: the acting rows' velocity conditions (links always; a contact's normal row
+// while it acts, its tangent rows while it sticks), the impulse directions (a sliding contact's
+// normal impulse carries -s mu along t), solved, then the law's inequalities checked to `tol`.
+inline void try_set(const sys_problem &p, const std::vector<Eigen::RowVectorXd> &rows,
+                    const std::vector<double> &constants, const std::vector<int> &owner,
+                    const std::vector<bool> &normal, const std::vector<double> &w0, const Eigen::VectorXd &v,
+                    const Eigen::MatrixXd &Minv, const std::vector<int> &regime, double tol, sys_answer &best)
+{
+    const std::size_t R = rows.size(), nc = p.contacts.size();
+    const Eigen::Index n = v.size();
+    auto tangent_of = [&](std::size_t i) { // the first tangent row of contact i
+        for (std::size_t r = 0; r < R; ++r)
+            if (owner[r] == static_cast<int>(i) && !normal[r])
+                return r;
+        return R;
+    };
+    std::vector<std::size_t> act;
+    for (std::size_t r = 0; r < R; ++r) {
+        if (owner[r] < 0) {
+            act.push_back(r);
+            continue;
+        }
+        const int g = regime[static_cast<std::size_t>(owner[r])];
+        if (g != 0 && (normal[r] || g == 1))
+            act.push_back(r);
+    }
+    const Eigen::Index m = static_cast<Eigen::Index>(act.size());
+    Eigen::MatrixXd A(m, n), B(m, n);
+    Eigen::VectorXd rhs(m);
+    for (Eigen::Index k = 0; k < m; ++k) {
+        const std::size_t r = act[static_cast<std::size_t>(k)];
+        A.row(k) = rows[r];
+        B.row(k) = rows[r];
+        const double e = owner[r] >= 0 ? p.contacts[static_cast<std::size_t>(owner[r])].restitution : 0;
+        rhs(k) = (normal[r] ? -e * w0[r] : 0) - w0[r];
+        if (owner[r] >= 0 && normal[r]) {
+            const std::size_t i = static_cast<std::size_t>(owner[r]);
+            const int g = regime[i];
+            if (g >= 2)
+                B.row(k) -= (g == 2 ? 1.0 : -1.0) * p.contacts[i].mu * rows[tangent_of(i)];
+        }
+    }
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
+    if (m > 0) {
+        const Eigen::MatrixXd H = A * Minv * B.transpose();
+        Eigen::FullPivLU<Eigen::MatrixXd> lu(H);
+        lu.setThreshold(1e-12);
+        if (lu.isInvertible()) {
+            lambda = lu.solve(rhs);
+        } else { // redundant rows: the least-norm impulses, if the velocities can be met at all
+            ++best.singular;
+            lambda = H.completeOrthogonalDecomposition().solve(rhs);
+            if ((H * lambda - rhs).norm() > 1e-9 * (1 + rhs.norm()))
+                return;
+        }
+    }
+    const Eigen::VectorXd v2 = v + Minv * B.transpose() * lambda;
+    bool ok = true;
+    std::vector<double> P(nc, 0.0), F(nc, 0.0);
+    for (Eigen::Index k = 0; k < m; ++k) {
+        const std::size_t r = act[static_cast<std::size_t>(k)];
+        if (owner[r] < 0)
+            continue;
+        const std::size_t i = static_cast<std::size_t>(owner[r]);
+        if (normal[r]) {
+            P[i] = lambda(k);
+            ok = ok && lambda(k) >= -tol;
+        } else if (F[i] == 0.0) {
+            F[i] = lambda(k);
+        }
+    }
+    for (std::size_t i = 0; i < nc && ok; ++i) {
+        const sys_contact &c = p.contacts[i];
+        const int g = regime[i];
+        if (g == 1 && !c.rough && c.mu > 0 && p.dimension == 2)
+            ok = c.mu * P[i] - std::abs(F[i]) >= -tol; // inside the cone
+        if (g >= 2) {
+            const std::size_t t = tangent_of(i);
+            const double slip = rows[t].dot(v2) + constants[t];
+            ok = (g == 2 ? slip : -slip) >= -tol; // slides the way its friction opposes
+        }
+    }
+    for (std::size_t r = 0; r < R && ok; ++r)
+        if (normal[r] && regime[static_cast<std::size_t>(owner[r])] == 0) {
+            const double e = p.contacts[static_cast<std::size_t>(owner[r])].restitution;
+            ok = rows[r].dot(v2) + constants[r] + e * w0[r] >= -tol;
+        }
+    if (!ok || ++best.holding > 1)
+        return;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        best.velocity.push_back(v2.segment<3>(6 * static_cast<Eigen::Index>(b)));
+        best.angular_velocity.push_back(v2.segment<3>(6 * static_cast<Eigen::Index>(b) + 3));
+    }
+    best.normal_impulse = P;
+}
+} // namespace sys_answer_detail
 
 inline sys_answer solve_reference(const sys_problem &p, double tol = 1e-9)
 {
@@ -109,7 +210,7 @@ inline sys_answer solve_reference(const sys_problem &p, double tol = 1e-9)
         const sys_contact &c = p.contacts[i];
         const vec3 nh = c.normal.normalized();
         add_row(c.body1, c.body2, c.point, nh, static_cast<int>(i), true);
-        if (!c.rough)
+        if (!c.rough && !(p.dimension == 2 && c.mu > 0))
             continue;
         if (p.dimension == 2) {
             add_row(c.body1, c.body2, c.point, vec3(-nh.y(), nh.x(), 0), static_cast<int>(i), false);
@@ -124,58 +225,21 @@ inline sys_answer solve_reference(const sys_problem &p, double tol = 1e-9)
     for (std::size_t r = 0; r < R; ++r)
         w0[r] = rows[r].dot(v) + constants[r];
     sys_answer best;
-    for (std::size_t set = 0; set < (std::size_t{1} << nc); ++set) {
-        std::vector<std::size_t> act;
-        for (std::size_t r = 0; r < R; ++r)
-            if (owner[r] < 0 || (set >> owner[r]) & 1u)
-                act.push_back(r);
-        const Eigen::Index m = static_cast<Eigen::Index>(act.size());
-        Eigen::MatrixXd A(m, n);
-        Eigen::VectorXd rhs(m);
-        for (Eigen::Index k = 0; k < m; ++k) {
-            const std::size_t r = act[static_cast<std::size_t>(k)];
-            A.row(k) = rows[r];
-            const double e = owner[r] >= 0 ? p.contacts[static_cast<std::size_t>(owner[r])].restitution : 0;
-            rhs(k) = (normal[r] ? -e * w0[r] : 0) - w0[r];
+    // Regimes per contact: 0 open, 1 acts (smooth; rough or Coulomb: sticks), 2 / 3 slides along +t / -t.
+    std::vector<int> regimes_of(nc, 2);
+    for (std::size_t i = 0; i < nc; ++i)
+        if (p.dimension == 2 && !p.contacts[i].rough && p.contacts[i].mu > 0)
+            regimes_of[i] = 4;
+    std::vector<int> regime(nc, 0);
+    for (bool more = true; more;) {
+        sys_answer_detail::try_set(p, rows, constants, owner, normal, w0, v, Minv, regime, tol, best);
+        more = false;
+        for (std::size_t i = 0; i < nc && !more; ++i) {
+            if (++regime[i] < regimes_of[i])
+                more = true;
+            else
+                regime[i] = 0;
         }
-        Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
-        if (m > 0) {
-            const Eigen::MatrixXd H = A * Minv * A.transpose();
-            Eigen::FullPivLU<Eigen::MatrixXd> lu(H);
-            lu.setThreshold(1e-12);
-            if (lu.isInvertible()) {
-                lambda = lu.solve(rhs);
-            } else { // redundant rows: the least-norm impulses, if the velocities can be met at all
-                ++best.singular;
-                lambda = H.completeOrthogonalDecomposition().solve(rhs);
-                if ((H * lambda - rhs).norm() > 1e-9 * (1 + rhs.norm()))
-                    continue;
-            }
-        }
-        const Eigen::VectorXd v2 = v + Minv * A.transpose() * lambda;
-        bool ok = true;
-        std::vector<double> P(nc, 0.0);
-        for (Eigen::Index k = 0; k < m; ++k) {
-            const std::size_t r = act[static_cast<std::size_t>(k)];
-            if (normal[r]) {
-                P[static_cast<std::size_t>(owner[r])] = lambda(k);
-                ok = ok && lambda(k) >= -tol;
-            }
-        }
-        for (std::size_t r = 0; r < R && ok; ++r)
-            if (normal[r] && !((set >> owner[r]) & 1u)) {
-                const double e = p.contacts[static_cast<std::size_t>(owner[r])].restitution;
-                ok = rows[r].dot(v2) + constants[r] + e * w0[r] >= -tol;
-            }
-        if (!ok)
-            continue;
-        if (++best.holding > 1)
-            continue;
-        for (std::size_t b = 0; b < p.bodies.size(); ++b) {
-            best.velocity.push_back(v2.segment<3>(6 * static_cast<Eigen::Index>(b)));
-            best.angular_velocity.push_back(v2.segment<3>(6 * static_cast<Eigen::Index>(b) + 3));
-        }
-        best.normal_impulse = P;
     }
     return best;
 }

@@ -172,7 +172,13 @@ document explain(const derivation &d, const impact_solution &s, const worked_exa
 /// The explanation of a system (format version 3: joints, several contacts, sequential impacts;
 /// explain_system.cpp): the notes' constrained-collision method, the Delassus matrix, the
 /// candidate sets (for a numeric problem, which holds and why the others fail), the results.
-document explain_system(const derivation &d);
+/// `example` (optional): numbers for a symbolic system's symbols, for its figure and for a
+/// worked example after the candidates. `depth` summary: one page, the set-up, the figure and
+/// the results in a box.
+document explain_system(const derivation &d, const worked_example *example = nullptr, level depth = level::full);
+
+/// The worked example of a named system class (symbolic/named_systems.hpp), if it is one.
+bool system_example(const std::string &class_name, worked_example &out);
 
 std::string explain_text(const document &doc);     ///< Unicode, wrapped at 100 columns
 std::string explain_markdown(const document &doc); ///< $...$ math (GiNaC-compatible LaTeX)

@@ -13,6 +13,7 @@
 #include "title.hpp"
 
 #include "figure/system.hpp"
+#include "symbolic/named_systems.hpp"
 
 #include <exception>
 #include <optional>
@@ -104,15 +105,16 @@ std::vector<paragraph> link_items(const problem &p)
     for (std::size_t i = 0; i < p.contacts.size(); ++i) {
         const contact_spec &c = p.contacts[i];
         paragraph q;
-        q.w("Contact " + idx(i) + ": " + display_name(p.bodies[c.body2]) + " strikes " +
-            display_name(p.bodies[c.body1]) + " at ");
+        q.w("Contact " + idx(i) + ": between " + display_name(p.bodies[c.body1]) + " and " +
+            display_name(p.bodies[c.body2]) + " at ");
         vector_span(q, c.point, p.dimension);
-        vector_span(q.w(", normal "), c.normal, p.dimension).w(" (from the first body into the second), e = ");
-        q.m(p.restitution_of(i));
+        vector_span(q.w(", normal "), c.normal, p.dimension)
+            .w(" (from " + display_name(p.bodies[c.body1]) + " into " + display_name(p.bodies[c.body2]) + "), ");
+        q.n("e_" + idx(i), "e_{" + idx(i) + "}").w(" = ").m(p.restitution_of(i));
         if (c.rough)
-            q.w(", perfectly rough (\"friction\": \"inf\": no slip while it pushes)");
+            q.w(", perfectly rough (no slip while it pushes)");
         else if (!c.friction().is_zero())
-            q.w(", Coulomb friction μ = ").m(c.friction());
+            q.w(", Coulomb friction with the coefficient ").m(c.friction());
         else
             q.w(", smooth");
         items.push_back(q);
@@ -121,8 +123,11 @@ std::vector<paragraph> link_items(const problem &p)
 }
 
 // The figure of a numeric planar system, joint impulses drawn along the answer; or nothing.
-std::optional<figure_art> system_figure(const problem &p)
+// A symbolic system is drawn with its worked example's numbers, when it has one.
+std::optional<figure_art> system_figure(const problem &symbolic, const worked_example *example)
 {
+    const bool illustrated = !symbolic.is_numeric() && example;
+    const problem p = illustrated ? substitute(symbolic, example->values) : symbolic;
     std::optional<system_answer> a;
     try {
         a = solve_system(p);
@@ -140,23 +145,40 @@ std::optional<figure_art> system_figure(const problem &p)
                   "the joints J with their impulse on the second body and the reaction on the first" +
                   std::string(a ? " (along the answer)" : "") +
                   ", the contact points O with the normal impulses P, and the velocities before impact." +
+                  (illustrated ? std::string(" Drawn with the worked example's numbers.") : std::string()) +
                   figure::directions_note(*g);
     return art;
 }
 
-section setup(const derivation &d)
+// "A planar (2-D) system of 3 bodies, 1 joint, no pivot and 2 contacts; ..."
+std::string system_sentence(const problem &p)
+{
+    std::vector<std::string> parts{count_of(p.bodies.size(), "body", "bodies")};
+    if (!p.joints.empty())
+        parts.push_back(count_of(p.joints.size(), "joint", "joints"));
+    if (!p.pivots.empty())
+        parts.push_back(count_of(p.pivots.size(), "pivot", "pivots"));
+    parts.push_back(count_of(p.contacts.size(), "contact", "contacts"));
+    std::string out = "A " + std::string(p.dimension == 2 ? "planar (2-D)" : "spatial (3-D)") + " system of ";
+    for (std::size_t k = 0; k < parts.size(); ++k)
+        out += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+    if (p.contacts.size() < 2)
+        return out + ".";
+    return out + (p.sequential ? "; the contacts act one at a time, in sequence."
+                               : "; the contacts act at the same time (simultaneous impacts).");
+}
+
+section setup(const derivation &d, const worked_example *example, bool summary = false)
 {
     const problem &p = d.prob;
     section s{"The system", {}};
-    s.para(paragraph().w("A " + std::string(p.dimension == 2 ? "planar (2-D)" : "spatial (3-D)") + " system of " +
-                         idx(p.bodies.size()) + " bodies, " + idx(p.joints.size()) + " joint(s), " +
-                         idx(p.pivots.size()) + " pivot(s) and " + idx(p.contacts.size()) + " contact(s); " +
-                         (p.sequential ? "the contacts act one at a time, in sequence (\"impacts\": \"sequential\")."
-                                       : "the contacts act at the same time (simultaneous impacts).")));
+    s.para(paragraph().w(system_sentence(p)));
     s.list(body_items(p));
     s.list(link_items(p));
-    if (const std::optional<figure_art> art = system_figure(p))
+    if (const std::optional<figure_art> art = system_figure(p, example))
         s.picture(*art);
+    if (summary)
+        return s;
     s.para(paragraph().t("The notes' method for constrained collisions: write the impulse-momentum of each body "
                          "separately, with every impulse that acts on it -- at each joint, pivot and contact -- "
                          "as an unknown. A joint's impulse acts on its second body and its opposite on the first "
@@ -228,13 +250,15 @@ section law_section(const derivation &d)
                                                paragraph().w("contact " + n))};
         for (const equation &e : d.system_laws[i])
             rows.push_back(row(e.lhs, e.rhs, "", e.reason));
-        s.para(paragraph().w("Contact " + n +
-                             (p.contacts[i].rough ? " (perfectly rough: while it pushes it sticks)"
-                              : p.contacts[i].friction().is_zero()
-                                  ? " (smooth: no tangential impulse)"
-                                  : " (Coulomb: sticks inside the cone |F| ≤ μP, else slides "
-                                    "with F = μP against the slip)") +
-                             ":"));
+        paragraph head;
+        head.w("Contact " + n + " ");
+        if (p.contacts[i].rough)
+            head.w("(perfectly rough: while it pushes it sticks)");
+        else if (p.contacts[i].friction().is_zero())
+            head.w("(smooth: no tangential impulse)");
+        else
+            head.t("(Coulomb: it sticks inside the cone $|F| ≤ μ P$, else slides with $|F| = μ P$ against the slip)");
+        s.para(head.w(":"));
         s.rows(rows);
     }
     return s;
@@ -251,8 +275,8 @@ section delassus_section(const problem &p, const system_delassus &D)
         "The joints and pivots are kept as rows whose velocity after impact is zero and whose impulse is free, "
         "and are eliminated once: $λ_J = -H_JJ⁻¹ H_JC λ_C$. What is left is the Delassus matrix of the "
         "contacts, $W = H_CC - H_CJ H_JJ⁻¹ H_JC$, with $u' = u + W λ_C$. Kept as rows rather than replaced by "
-        "generalized coordinates, the joints' impulses come out in world components (the answer's joint and "
-        "pivot impulses) and no basis of the joints' free motions is needed; since the joints' velocities "
+        "generalized coordinates, the joints' impulses come out in world components (the joint and pivot "
+        "impulses of the results) and no basis of the joints' free motions is needed; since the joints' velocities "
         "before impact are zero, the elimination leaves the contacts' velocities before impact as they are."));
     if (D.redundant_joints)
         s.para(paragraph().w("The joints' rows are dependent: the rows implied by the others are left out "
@@ -291,27 +315,48 @@ void candidate_values(section &s, const derivation &d, const system_candidate &c
 
 } // namespace
 
-document explain_system(const derivation &d)
+document explain_system(const derivation &d, const worked_example *example, level depth)
 {
     const problem &p = d.prob;
+    if (p.is_numeric() || (example && example->values.nops() == 0))
+        example = nullptr;
+    if (depth == level::summary)
+        return detail::system_summary(d, setup(d, example, true), example);
     document doc;
     doc.title = document_title(p, "System impact");
     doc.description = p.description;
-    doc.sections.push_back(setup(d));
+    doc.sections.push_back(setup(d, example));
     doc.sections.push_back(unknowns(d));
     for (section &s : equation_sections(d))
         doc.sections.push_back(s);
     doc.sections.push_back(law_section(d));
     doc.sections.push_back(delassus_section(p, system_delassus_of(p)));
-    for (section &s : detail::system_solution_sections(d))
+    for (section &s : detail::system_solution_sections(d, example))
         doc.sections.push_back(s);
     for (std::size_t k = 0; k < doc.sections.size(); ++k)
         doc.sections[k].title = std::to_string(k + 1) + ". " + doc.sections[k].title;
     return doc;
 }
 
+bool system_example(const std::string &class_name, worked_example &out)
+{
+    const GiNaC::lst values = system_class_example_values(class_name);
+    if (values.nops() == 0)
+        return false;
+    out = worked_example{};
+    out.values = values;
+    out.caption = "Worked example";
+    return true;
+}
+
 namespace detail
 {
+std::string count_of(std::size_t n, const std::string &one, const std::string &many)
+{
+    static const char *const small[] = {"no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine"};
+    const std::string number = n < 10 ? small[n] : std::to_string(n);
+    return number + " " + (n == 1 ? one : many);
+}
 void system_candidate_values(section &s, const derivation &d, const system_candidate &c)
 {
     candidate_values(s, d, c);

@@ -2,6 +2,7 @@
 // the law with their conditions -- for a numeric problem, which one holds and the first
 // condition each other one fails, as the solver decides it (system_candidate_failure) -- or
 // the chain of single-contact impacts (sequential), then the results of solve_system.
+#include "canonical.hpp"
 #include "explain_detail.hpp"
 #include "explain_system.hpp"
 
@@ -20,6 +21,13 @@ namespace
 std::string idx(std::size_t i)
 {
     return std::to_string(i);
+}
+
+std::string cap(std::string s)
+{
+    if (!s.empty() && s[0] >= 'a' && s[0] <= 'z')
+        s[0] = static_cast<char>(s[0] - 'a' + 'A');
+    return s;
 }
 
 std::vector<math_row> condition_rows(const system_candidate &c)
@@ -46,22 +54,83 @@ section candidates_intro(const derivation &d, std::size_t n)
                   "them, solved exactly. A candidate is the answer when its conditions hold: every acting contact "
                   "pushes (and stays inside its friction cone, or slides the way it pushes against), and every "
                   "open contact leaves no slower than $e_i$ times its approach.")
-               .w(" " + idx(n) + " candidate(s) for " + idx(d.prob.contacts.size()) + " contact(s):"));
+               .w(" " + cap(count_of(n, "candidate", "candidates")) + " for " +
+                  count_of(d.prob.contacts.size(), "contact", "contacts") + ":"));
     return s;
 }
 
 // A symbolic problem: every candidate with its closed form and its conditions.
+// A symbolic candidate's values over one long common denominator, written through a symbol D
+// defined once (so that no row carries the long sum twice): the candidate rewritten, and D's
+// value, or the candidate as it is and 0 when no denominator is long and shared.
+std::pair<system_candidate, ex> over_common_denominator(const problem &p, const system_candidate &c)
+{
+    for (const symbol &s : p.parameters())
+        if (s.get_name() == "D")
+            return {c, 0};
+    std::vector<ex *> values;
+    system_candidate out = c;
+    for (ex &v : out.normal_impulse)
+        values.push_back(&v);
+    for (std::vector<vec3> *vs : {&out.velocity, &out.angular_velocity})
+        for (vec3 &v : *vs)
+            for (ex &x : v)
+                values.push_back(&x);
+    for (system_condition &k : out.conditions)
+        values.push_back(&k.value);
+    ex D = 0;
+    std::size_t longest = 40; // characters of the printed denominator worth a name
+    for (ex *v : values) {
+        const ex den = denom(normal(*v));
+        const std::size_t n = canonical_text(den).size();
+        if (n > longest)
+            longest = n, D = den;
+    }
+    if (D.is_zero())
+        return {c, 0};
+    D = normal(D / D.integer_content());
+    static const symbol Dsym("D");
+    std::size_t shared = 0;
+    for (ex *v : values) {
+        const ex q = normal(*v), ratio = normal(denom(q) / D);
+        if (!is_a<numeric>(ratio))
+            continue;
+        *v = numer(q) / (ratio * Dsym);
+        ++shared;
+    }
+    return shared >= 2 ? std::pair<system_candidate, ex>{out, D} : std::pair<system_candidate, ex>{c, 0};
+}
+
 void symbolic_candidates(section &s, const derivation &d, const std::vector<system_candidate> &cs)
 {
-    for (const system_candidate &c : cs) {
-        s.para(paragraph().w("Candidate " + c.name() + ":"));
+    for (const system_candidate &given : cs) {
+        s.para(paragraph().w("Candidate " + given.name() + ":"));
+        const auto [c, D] = over_common_denominator(d.prob, given);
+        if (!D.is_zero())
+            s.rows({note_row("D", "D", D, "the candidate's common denominator")});
         system_candidate_values(s, d, c);
         if (c.conditions.empty()) {
             s.para(paragraph().w("It needs no condition."));
             continue;
         }
         s.para(paragraph().w("It holds when:"));
-        s.rows(condition_rows(c));
+        // a long condition gets its words first, as a line of their own, and its row no note
+        // (a note beside a row broken over several lines would widen every line of it)
+        std::vector<math_row> rows = condition_rows(c);
+        std::vector<math_row> pending;
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+            if (canonical_text(c.conditions[k].value).size() <= 80) {
+                pending.push_back(rows[k]);
+                continue;
+            }
+            if (!pending.empty())
+                s.rows(pending), pending.clear();
+            s.para(paragraph().w(c.conditions[k].words + (c.conditions[k].strict ? ", strictly:" : ":")));
+            rows[k].note = paragraph();
+            s.rows({rows[k]});
+        }
+        if (!pending.empty())
+            s.rows(pending);
     }
 }
 
@@ -94,16 +163,16 @@ void numeric_candidates(section &s, const derivation &d, const std::vector<syste
         return;
     std::string why = "The law holds for " + first->name() + ".";
     if (holding > 1)
-        why += " " + idx(holding) +
-               " candidates hold, all with the same velocities after impact (the solver checks "
-               "that, and refuses otherwise): the first is taken, and the impulses are not unique.";
+        why += " " + cap(count_of(holding, "candidate holds", "candidates hold")) +
+               ", all with the same velocities after impact (had they differed, the law would not decide the "
+               "outcome): the first is taken, and the impulses are not unique.";
     s.para(paragraph().w(why + " Its solution and conditions:"));
     system_candidate_values(s, d, *first);
     if (!first->conditions.empty())
         s.rows(condition_rows(*first));
 }
 
-section chain_section(const derivation &d, const system_answer &a)
+section chain_section(const derivation &d, const system_answer &a, bool summed_below = true)
 {
     section s{"The chain of single-contact impacts", {}};
     s.para(paragraph().w("Sequential impacts: the contacts act one at a time. At each step the first contact in "
@@ -125,7 +194,7 @@ section chain_section(const derivation &d, const system_answer &a)
                                  o += (k ? ", " : "") + idx(a.sequence[k]);
                              return o;
                          }() +
-                         "; each contact's impulse below is summed over its steps."));
+                         (summed_below ? "; each contact's impulse below is summed over its steps." : ".")));
     return s;
 }
 
@@ -150,8 +219,7 @@ std::optional<section> other_model_section(const derivation &d, const system_ans
                      !normal(a.result.angular_velocity[k][i] - b.result.angular_velocity[k][i]).is_zero();
     section s{"The other model of impacts", {}};
     const std::string mine = a.sequential ? "in sequence" : "at the same time";
-    const std::string theirs = a.sequential ? "at the same time (\"impacts\": \"simultaneous\")"
-                                            : "one at a time (\"impacts\": \"sequential\")";
+    const std::string theirs = a.sequential ? "at the same time" : "one at a time, in sequence";
     s.para(paragraph().w("The problem lets its contacts act " + mine + ". Had they acted " + theirs +
                          ", the velocities after impact would be:"));
     std::vector<math_row> rows;
@@ -163,13 +231,25 @@ std::optional<section> other_model_section(const derivation &d, const system_ans
                 rows.push_back(system_value_row(d.angular_velocity_after[k][i], b.result.angular_velocity[k][i], ""));
         }
     s.rows(rows);
+    if (!differ) {
+        s.para(
+            paragraph().w("They are the same here: the order in which the contacts act does not change the outcome."));
+        return s;
+    }
     s.para(paragraph().w(
-        differ ? "They differ. At the same time, the contacts share the impulse through the off-diagonal entries "
-                 "of W: each contact's impulse changes the others' velocities in the same instant. In sequence, "
-                 "each contact acts alone on the velocities the step before it left. Both are physics (a rack "
-                 "whose balls touch, against one whose contacts are a hair apart): the problem's \"impacts\" "
-                 "says which it means."
-               : "They are the same here: the order in which the contacts act does not change the outcome."));
+        "They differ. At the same time, the contacts share the impulse through the off-diagonal entries of W: "
+        "each contact's impulse changes the others' velocities in the same instant, so a body pressed from two "
+        "sides passes on only part of what it receives. In sequence, each contact acts alone on the velocities "
+        "the step before it left. Momentum holds in both, and so does energy where every e is 1; but with more "
+        "velocities unknown than these balances, they do not fix the outcome: the law of the contacts does. "
+        "Both are physics (a row of balls that touch, against one whose contacts are a hair apart); the problem "
+        "has to say which it means."));
+    if (b.sequential && b.steps.size() > 1) {
+        section chain = chain_section(d, b, false);
+        s.para(paragraph().w("The chain of the other model, step by step:"));
+        for (std::size_t k = 1; k < chain.blocks.size(); ++k)
+            s.blocks.push_back(chain.blocks[k]);
+    }
     return s;
 }
 
@@ -209,13 +289,35 @@ section results_section(const derivation &d, const system_answer &a)
     if (a.energy_gain)
         s.para(paragraph().w("Kinetic energy is gained although no moving body of infinite mass does work: the "
                              "contacts' different restitution coefficients or their friction allow it under "
-                             "Newton's law (\"energy_gain\": true)."));
+                             "Newton's law."));
     return s;
+}
+
+// A symbolic system's worked example: its numbers, the verdict on every candidate, the results
+// and the other model of impacts, each from the numeric problem the numbers make.
+std::vector<section> example_sections(const derivation &d, const worked_example &example)
+{
+    const problem q = substitute(d.prob, example.values);
+    const derivation dq = derive(q);
+    section s{"Worked example", {}};
+    std::vector<math_row> given;
+    for (const ex &v : example.values)
+        given.push_back(row(v.lhs(), v.rhs()));
+    s.para(paragraph().w("With the numbers"));
+    s.rows(given);
+    s.para(paragraph().w("each candidate above becomes a number, and its conditions are decided exactly:"));
+    numeric_candidates(s, dq, system_candidates(q));
+    const system_answer a = solve_system(q);
+    std::vector<section> out{s, results_section(dq, a)};
+    out.back().title = "Results of the worked example";
+    if (std::optional<section> other = other_model_section(dq, a))
+        out.push_back(*other);
+    return out;
 }
 
 } // namespace
 
-std::vector<section> system_solution_sections(const derivation &d)
+std::vector<section> system_solution_sections(const derivation &d, const worked_example *example)
 {
     const problem &p = d.prob;
     std::vector<section> out;
@@ -223,6 +325,9 @@ std::vector<section> system_solution_sections(const derivation &d)
         const std::vector<system_candidate> cs = system_candidates(p);
         out.push_back(candidates_intro(d, cs.size()));
         symbolic_candidates(out.back(), d, cs);
+        if (example)
+            for (section &s : example_sections(d, *example))
+                out.push_back(s);
         return out;
     }
     const system_answer a = solve_system(p);

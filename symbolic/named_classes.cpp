@@ -1,4 +1,5 @@
 #include "named_classes.hpp"
+#include "named_systems.hpp"
 
 namespace impactgen
 {
@@ -257,6 +258,9 @@ const named_class *find_named_class(const std::string &name)
         if (c.name == name)
             return &c;
     for (const named_class &c : law_classes())
+        if (c.name == name)
+            return &c;
+    for (const named_class &c : system_classes())
         if (c.name == name)
             return &c;
     return nullptr;

@@ -60,7 +60,9 @@ void system_unknowns(derivation &d, std::vector<impulse_at> &impulses)
         if (B.particle)
             continue;
         for (int k = dim == 2 ? 2 : 0; k < 3; ++k) {
-            symbol s(quantity_name("w", axis_name[k], B.label, true)); // planar: the z axis, as one contact names it
+            // planar: the z axis, as one contact names it; omega in LaTeX as in the one-contact documents
+            symbol s(quantity_name("w", axis_name[k], B.label, true),
+                     quantity_tex("\\omega", axis_name[k], B.label, true));
             d.angular_velocity_after[b][k] = s;
             d.system_unknowns.push_back({s, "angular velocity of " + display_name(B) + " after impact"});
         }
@@ -175,7 +177,7 @@ void constraint_equations(derivation &d)
         d.system_laws.emplace_back();
         add(d, dot(u2, c.normal) * inv, -p.restitution_of(i) * dot(u, c.normal) * inv, principle::restitution,
             "Contact " + std::to_string(i) +
-                " while it acts (P_i > 0): the normal velocity of separation is e_i times that of approach",
+                " while it pushes: it leaves at e times the normal speed at which it approached",
             {c.body1, c.body2}, -1, &d.system_laws[i]);
         for (const vec3 &t : d.system_tangents[i])
             add(d, dot(u2, t), 0, principle::stick, "Contact " + std::to_string(i) + " sticking: no slip after impact",

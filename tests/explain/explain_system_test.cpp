@@ -4,6 +4,7 @@
 // double pendulum's candidates with their conditions, golden files in every format.
 #include "print/explain.hpp"
 #include "symbolic/derivation.hpp"
+#include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
 
 #include "latex_tools.hpp"
@@ -81,6 +82,16 @@ const math_row* row_for(const std::vector<math_row>& rows, const ex& sym)
 {
     for (const math_row& r : rows)
         if (r.lhs_note.text.empty() && r.lhs.is_equal(sym))
+            return &r;
+    return nullptr;
+}
+
+// The row whose left side is a symbol named as `sym` (each derivation makes its own symbols).
+const math_row* row_named(const std::vector<math_row>& rows, const ex& sym)
+{
+    for (const math_row& r : rows)
+        if (r.lhs_note.text.empty() && is_a<symbol>(r.lhs) &&
+            ex_to<symbol>(r.lhs).get_name() == ex_to<symbol>(sym).get_name())
             return &r;
     return nullptr;
 }
@@ -334,5 +345,183 @@ TEST(SystemExplain, ConditionsInWordsWithoutFileKeys)
         EXPECT_EQ(out.find("contacts["), std::string::npos);
         EXPECT_EQ(out.find("impactgen"), std::string::npos);
         EXPECT_EQ(out.find(">= 0 ("), std::string::npos);
+    }
+}
+
+namespace {
+
+// The document `impactgen explain CLASS [--level summary]` prints for a named system class.
+document class_document(const std::string& name, level depth = level::full)
+{
+    worked_example ex;
+    EXPECT_TRUE(system_example(name, ex)) << name;
+    return explain_system(derive(find_named_class(name)->build()), &ex, depth);
+}
+
+} // namespace
+
+// Golden files of every named system class, the full document and the summary, in every format.
+TEST(SystemGolden, NamedClassesEveryFormat)
+{
+    const bool regenerate = std::getenv("IMPACTGEN_REGENERATE_GOLDEN") != nullptr;
+    const fs::path dir = IMPACTGEN_GOLDEN_DIR;
+    for (const named_class& c : system_classes())
+        for (const level depth : {level::full, level::summary}) {
+            const document doc = class_document(c.name, depth);
+            for (const std::string format : {"text", "markdown", "latex", "html"}) {
+                const fs::path file = dir / ((depth == level::summary ? "summary/system-" : "system-class-") + c.name +
+                                             "." + extension(format));
+                const std::string out = print_as(doc, format);
+                if (regenerate) {
+                    if (!fs::exists(file) || read_file(file) != out)
+                        std::ofstream(file, std::ios::binary) << out;
+                    continue;
+                }
+                ASSERT_TRUE(fs::exists(file)) << file << " is missing: run make regenerate-golden-explain";
+                EXPECT_EQ(read_file(file), out) << file << " differs from the output: regenerate and review the diff";
+                if (read_file(file) != out)
+                    std::ofstream(fs::temp_directory_path() / file.filename(), std::ios::binary) << out;
+            }
+        }
+}
+
+// A named system class is taught in symbols (every candidate with its conditions), then with
+// its worked example's numbers: the candidate the document says holds is solve_system's for
+// those numbers, and the results are its answer.
+TEST(SystemExplain, NamedClassesTeachTheirWorkedExample)
+{
+    for (const named_class& c : system_classes()) {
+        SCOPED_TRACE(c.name);
+        const problem p = c.build();
+        worked_example ex;
+        ASSERT_TRUE(system_example(c.name, ex));
+        const problem q = substitute(p, ex.values);
+        const system_answer a = solve_system(q);
+        const document doc = class_document(c.name);
+        const std::string text = flat(explain_text(doc));
+        EXPECT_NE(text.find("The law holds for " + a.result.name() + "."), std::string::npos);
+        for (const system_candidate& k : system_candidates(p))
+            EXPECT_NE(text.find("Candidate " + k.name() + ":"), std::string::npos) << k.name();
+        const section* res = section_titled(doc, "Results of the worked example");
+        ASSERT_NE(res, nullptr);
+        const derivation dq = derive(q);
+        for (std::size_t b = 0; b < q.bodies.size(); ++b)
+            for (int k = 0; k < 3; ++k)
+                if (is_a<symbol>(dq.velocity_after[b][k])) {
+                    const math_row* r = row_named(rows_of(*res), dq.velocity_after[b][k]);
+                    ASSERT_NE(r, nullptr);
+                    EXPECT_TRUE(equal(r->rhs, a.result.velocity[b][k]));
+                }
+        // a figure, drawn with the example's numbers
+        bool figure = false;
+        for (const block& b : doc.sections.front().blocks)
+            figure = figure || b.k == block::figure;
+        EXPECT_TRUE(figure);
+    }
+}
+
+// three-balls: the document teaches both models -- the simultaneous closed form in symbols,
+// the worked example (e = 1) at the same time, and the chain of the sequential model step by
+// step, ending with (0, 0, v) -- and why they differ.
+TEST(SystemExplain, ThreeBallsTeachesBothModelsAndWhyTheyDiffer)
+{
+    const document doc = class_document("three-balls");
+    const std::string text = flat(explain_text(doc));
+    const section* other = section_titled(doc, "other model");
+    ASSERT_NE(other, nullptr);
+    const std::string other_text = flat(explain_text(document{"", {*other}}));
+    EXPECT_NE(other_text.find("one at a time, in sequence"), std::string::npos);
+    EXPECT_NE(other_text.find("Step 1: contact 0 approaches and acts"), std::string::npos) << other_text;
+    EXPECT_NE(other_text.find("Step 2: contact 1 approaches and acts"), std::string::npos);
+    EXPECT_NE(other_text.find("They differ."), std::string::npos);
+    EXPECT_NE(other_text.find("do not fix the outcome"), std::string::npos);
+    const derivation d = derive(find_named_class("three-balls")->build());
+    const std::vector<math_row> rows = rows_of(*other);
+    // the first rows are the sequential velocities: 0, 0, 1 (v = 1)
+    const math_row* v3 = row_named(rows, d.velocity_after[2][0]);
+    ASSERT_NE(v3, nullptr);
+    EXPECT_TRUE(equal(v3->rhs, 1));
+    const math_row* v1 = row_named(rows, d.velocity_after[0][0]);
+    ASSERT_NE(v1, nullptr);
+    EXPECT_TRUE(equal(v1->rhs, 0));
+}
+
+// A system's document never quotes a key of the problem file or writes "(s)" for a count.
+TEST(SystemExplain, HandOutWordsNoFileKeysNoPluralsInParentheses)
+{
+    std::vector<document> docs;
+    for (const std::string& stem : example_stems())
+        docs.push_back(explain_system(derive(load_example(stem))));
+    for (const named_class& c : system_classes()) {
+        docs.push_back(class_document(c.name));
+        docs.push_back(class_document(c.name, level::summary));
+    }
+    for (const document& doc : docs) {
+        SCOPED_TRACE(doc.title);
+        const std::string out = explain_text(doc);
+        for (const char* word : {"(s)", "\"friction\"", "\"inf\"", "\"impacts\"", "energy_gain", "\"sequential\"",
+                                 "\"simultaneous\"", "the answer's", "solver", "impactgen", "contacts["})
+            EXPECT_EQ(out.find(word), std::string::npos) << word;
+    }
+}
+
+// The summary of a system: one page of LaTeX for every named system class and example file.
+TEST(SystemSummary, LatexCompilesToOnePage)
+{
+    if (!latex_tools::have_pdflatex())
+        GTEST_SKIP() << latex_tools::no_pdflatex_message();
+    for (const named_class& c : system_classes()) {
+        const latex_tools::compiled out =
+            latex_tools::compile(explain_latex(class_document(c.name, level::summary)), "system-summary-" + c.name);
+        ASSERT_EQ(out.status, 0) << c.name;
+        EXPECT_EQ(out.pages, 1) << c.name;
+        EXPECT_EQ(out.overfull_hbox, 0) << c.name << latex_tools::around(out.log, "Overfull \\hbox");
+    }
+}
+
+// The summary boxes the answer: every velocity after impact of a numeric system, its impulses,
+// and which contacts act.
+TEST(SystemSummary, BoxesTheAnswer)
+{
+    for (const std::string& stem : example_stems()) {
+        SCOPED_TRACE(stem);
+        const problem p = load_example(stem);
+        const derivation d = derive(p);
+        const document doc = explain_system(d, nullptr, level::summary);
+        const system_answer a = solve_system(p);
+        std::vector<math_row> boxed;
+        for (const section& s : doc.sections)
+            for (const block& b : s.blocks)
+                if (b.boxed)
+                    boxed.insert(boxed.end(), b.math.begin(), b.math.end());
+        const lst values = system_unknown_values(d, a.result);
+        std::size_t nonzero = 0;
+        const std::string text = flat(explain_text(doc));
+        for (const ex& v : values) {
+            const math_row* r = row_for(boxed, v.lhs());
+            if (v.rhs().is_zero()) { // not boxed: named in the line of zeros
+                EXPECT_EQ(r, nullptr) << v.lhs();
+                continue;
+            }
+            ++nonzero;
+            ASSERT_NE(r, nullptr) << v.lhs();
+            EXPECT_TRUE(equal(r->rhs, v.rhs()));
+        }
+        EXPECT_EQ(boxed.size(), nonzero);
+        EXPECT_EQ(text.find("Zero: ") != std::string::npos, nonzero < values.nops());
+        EXPECT_NE(text.find("Which contacts act:"), std::string::npos);
+    }
+}
+
+// The full document of every named system class compiles with pdflatex, with no overfull box.
+TEST(SystemExplain, NamedClassesLatexCompiles)
+{
+    if (!latex_tools::have_pdflatex())
+        GTEST_SKIP() << latex_tools::no_pdflatex_message();
+    for (const named_class& c : system_classes()) {
+        const latex_tools::compiled out = latex_tools::compile(explain_latex(class_document(c.name)), "system-" + c.name);
+        ASSERT_EQ(out.status, 0) << c.name;
+        EXPECT_EQ(out.overfull_hbox, 0) << c.name << latex_tools::around(out.log, "Overfull \\hbox");
+        EXPECT_EQ(out.undefined_refs, 0) << c.name;
     }
 }

@@ -6,6 +6,7 @@
 #include "latex_tools.hpp"
 #include "print/explain.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/named_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -68,7 +69,12 @@ std::vector<std::string> document_names()
 
 document build(const std::string& name)
 {
-    if (const named_class* c = find_named_class(name))
+    // The smooth and friction classes by name; a named system class shares its name with the
+    // example file of the same system (examples/systems), which is the document meant here.
+    const named_class* c = find_named_class(name);
+    for (const named_class& s : system_classes())
+        c = s.name == name ? nullptr : c;
+    if (c)
         return explain_any(c->build(), name);
     if (name == "hostile-names-friction") {
         std::string hostile = latex_tools::read_file(source_dir + "/tests/explain/hostile-names.json");

@@ -1,0 +1,238 @@
+// The named system classes (symbolic/named_systems.hpp): each is found by name, is a symbolic
+// system whose worked example is the example file's problem, and carries the published
+// results in its closed form -- the compass gait's two conserved angular momenta, the three
+// balls' simultaneous and sequential answers, the double pendulum's impulse as derived by hand.
+#include "symbolic/decide.hpp"
+#include "symbolic/derivation.hpp"
+#include "symbolic/named_systems.hpp"
+#include "symbolic/system.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <chrono>
+#include <cstdio>
+#include <sys/wait.h>
+
+using namespace impactgen;
+using GiNaC::ex;
+
+namespace {
+
+problem from_file(const std::string& name)
+{
+    return load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/" + name);
+}
+
+bool same(const ex& a, const ex& b) { return GiNaC::normal(GiNaC::expand(a - b)).is_zero(); }
+
+const system_candidate& candidate(const std::vector<system_candidate>& cs, const std::string& name)
+{
+    for (const system_candidate& c : cs)
+        if (c.name() == name)
+            return c;
+    throw std::runtime_error("no candidate " + name);
+}
+
+ex S(const std::string& name) { return symbol_named(name); }
+
+// Angular momentum about O (z component) of body b of p with velocity v and spin w.
+ex H(const problem& p, std::size_t b, const vec3& O, const vec3& v, const vec3& w)
+{
+    const body& B = p.bodies[b];
+    return B.inertia[2][2] * w[2] + cross(B.position - O, B.mass * v)[2];
+}
+
+} // namespace
+
+// Every class is found by name, is a symbolic system, and its worked example gives every
+// symbol a number.
+TEST(NamedSystems, FoundByNameSymbolicWithAWorkedExample)
+{
+    ASSERT_EQ(system_classes().size(), 4u);
+    for (const named_class& c : system_classes()) {
+        SCOPED_TRACE(c.name);
+        ASSERT_EQ(find_named_class(c.name), &c);
+        const problem p = c.build();
+        EXPECT_TRUE(p.is_system());
+        EXPECT_FALSE(p.is_numeric());
+        validate(p);
+        const problem q = substitute(p, system_class_example_values(c.name));
+        EXPECT_TRUE(q.is_numeric()) << "the example leaves symbols";
+        validate(q);
+        EXPECT_NO_THROW(solve_system(q));
+    }
+    EXPECT_TRUE(system_class_example("central-direct").empty());
+}
+
+// The worked example of each class is the example file of the same system: the same answer,
+// exactly (the file was written independently, with its own numbers).
+TEST(NamedSystems, WorkedExampleIsTheExampleFile)
+{
+    const std::pair<const char*, const char*> pairs[] = {{"compass-gait", "compass-gait.json"},
+                                                         {"three-balls", "three-balls-simultaneous.json"},
+                                                         {"double-pendulum-struck", "double-pendulum-struck.json"},
+                                                         {"two-corner-landing", "two-corner-landing.json"}};
+    for (const auto& [name, file] : pairs) {
+        SCOPED_TRACE(name);
+        const problem q = substitute(find_named_class(name)->build(), system_class_example_values(name));
+        const problem f = from_file(file);
+        const system_answer a = solve_system(q), b = solve_system(f);
+        ASSERT_EQ(a.result.velocity.size(), b.result.velocity.size());
+        for (std::size_t k = 0; k < a.result.velocity.size(); ++k)
+            for (int i = 0; i < 3; ++i) {
+                EXPECT_TRUE(same(a.result.velocity[k][i], b.result.velocity[k][i]));
+                EXPECT_TRUE(same(a.result.angular_velocity[k][i], b.result.angular_velocity[k][i]));
+            }
+        for (std::size_t i = 0; i < a.result.normal_impulse.size(); ++i)
+            EXPECT_TRUE(same(a.result.normal_impulse[i], b.result.normal_impulse[i]));
+        EXPECT_EQ(a.result.regimes, b.result.regimes);
+    }
+}
+
+// Heel strike, in symbols (m, I_C, a, h, w1, w2): in the candidate where the swing foot S sticks
+// and the stance foot lifts off, only S's impulse acts on the walker, so its angular momentum
+// about S is conserved, and only the hip's impulse acts on the trailing (stance) leg, so its
+// angular momentum about the hip is conserved -- the two balances of the walking literature
+// (Goswami, Thuilot and Espiau 1998, for point masses; here with the legs' inertia). Both are
+// substituted and simplified to zero; S is at rest after impact (plastic, no slip).
+TEST(NamedSystems, CompassGaitConservesTheTwoAngularMomenta)
+{
+    const problem p = find_named_class("compass-gait")->build();
+    const std::vector<system_candidate> cs = system_candidates(p);
+    const system_candidate& c = candidate(cs, "{0 stick, 1 open}");
+    const vec3 S = p.contacts[0].point, hip = p.joints[0].point;
+    const ex before = H(p, 1, S, p.bodies[1].velocity, p.bodies[1].angular_velocity) +
+                      H(p, 2, S, p.bodies[2].velocity, p.bodies[2].angular_velocity);
+    const ex after = H(p, 1, S, c.velocity[1], c.angular_velocity[1]) + H(p, 2, S, c.velocity[2], c.angular_velocity[2]);
+    EXPECT_TRUE(same(before, after)) << before << " vs " << after;
+    EXPECT_TRUE(same(H(p, 1, hip, p.bodies[1].velocity, p.bodies[1].angular_velocity),
+                     H(p, 1, hip, c.velocity[1], c.angular_velocity[1])));
+    const vec3 foot = point_velocity(p.bodies[2], c.velocity[2], c.angular_velocity[2], S);
+    EXPECT_TRUE(same(foot[0], 0) && same(foot[1], 0));
+    // The balances do not hold for a wrong answer: the velocities before impact.
+    EXPECT_FALSE(same(H(p, 2, S, p.bodies[2].velocity, p.bodies[2].angular_velocity),
+                      H(p, 2, S, c.velocity[2], c.angular_velocity[2])));
+}
+
+// Three equal balls, the first at v: simultaneous, both contacts act and the closed form is
+// ((1 - 2e)/3, (1 + e)/3, (1 + e)/3) v (momentum, and u' = e u at both contacts with u_1 = 0);
+// sequential at e = 1 (each collision of equal balls exchanges their velocities) (0, 0, v),
+// for any m and v > 0.
+TEST(NamedSystems, ThreeBallsPublishedResults)
+{
+    const problem p = find_named_class("three-balls")->build();
+    const ex e = S("e"), v = S("v");
+    const std::vector<system_candidate> cs = system_candidates(p);
+    const system_candidate& c = candidate(cs, "{0 smooth, 1 smooth}");
+    EXPECT_TRUE(same(c.velocity[0][0], (1 - 2 * e) * v / 3)) << c.velocity[0][0];
+    EXPECT_TRUE(same(c.velocity[1][0], (1 + e) * v / 3)) << c.velocity[1][0];
+    EXPECT_TRUE(same(c.velocity[2][0], (1 + e) * v / 3)) << c.velocity[2][0];
+    for (const char* m : {"1", "7/3", "1/1000"})
+        for (const char* speed : {"1", "5/2"}) {
+            problem q = substitute(p, GiNaC::lst{S("m") == parse_value(m, true, "m"), S("R") == 1,
+                                                 v == parse_value(speed, true, "v"), e == 1});
+            q.sequential = true;
+            const system_answer a = solve_system(q);
+            const ex V = parse_value(speed, true, "v");
+            EXPECT_EQ(a.result.velocity[0][0], 0);
+            EXPECT_EQ(a.result.velocity[1][0], 0);
+            EXPECT_EQ(a.result.velocity[2][0], V);
+            EXPECT_EQ(a.sequence, (std::vector<std::size_t>{0, 1}));
+        }
+}
+
+// Double pendulum (rods m, l; ball M at v; e), derived by hand with the rods' angular
+// velocities w1 (upper), w2 (lower): a point at depth s on a hanging rod moves at s w along x,
+// so the tip moves at l (w1 + w2) and the lower centre at l (w1 + w2/2). The kinetic energy
+//   T = 1/2 [ (m l^2/3) w1^2 + m l^2 (w1 + w2/2)^2 + (m l^2/12) w2^2 ]
+// gives the mass matrix m l^2 [[4/3, 1/2], [1/2, 1/3]] (det 7/36), inverse
+// [[12/7, -18/7], [-18/7, 48/7]]/(m l^2). The impulse P at the tip along x is the generalized
+// impulse (l P, l P): dw = P/(m l) (-6/7, 30/7), the tip gains 24 P/(7 m), the ball loses P/M.
+// Restitution (the tip at rest, the ball at v: u' = e v): 24 P/(7 m) + P/M = (1 + e) v, so
+//   P = 7 m M (1 + e) v / (24 M + 7 m),  w1' = -6 P/(7 m l),  w2' = 30 P/(7 m l),  V' = v - P/M.
+TEST(NamedSystems, DoublePendulumAgreesWithTheHandDerivation)
+{
+    const problem p = find_named_class("double-pendulum-struck")->build();
+    const ex m = S("m"), l = S("l"), M = S("M"), v = S("v"), e = S("e");
+    const std::vector<system_candidate> cs = system_candidates(p);
+    const system_candidate& c = candidate(cs, "{0 smooth}");
+    const ex P = 7 * m * M * (1 + e) * v / (24 * M + 7 * m);
+    EXPECT_TRUE(same(c.normal_impulse[0], P)) << c.normal_impulse[0];
+    EXPECT_TRUE(same(c.angular_velocity[0][2], -6 * P / (7 * m * l)));
+    EXPECT_TRUE(same(c.angular_velocity[1][2], 30 * P / (7 * m * l)));
+    EXPECT_TRUE(same(c.velocity[2][0], v - P / M));
+    EXPECT_FALSE(same(c.velocity[2][0], v));
+}
+
+// The box landing on two corners: the class's corners rest and strike as its description says
+// (the right corner's normal velocity is 0, the left's -2 a w), for the symbols.
+TEST(NamedSystems, TwoCornerLandingOneCornerStrikesTheOtherRests)
+{
+    const problem p = find_named_class("two-corner-landing")->build();
+    const body& box = p.bodies[1];
+    const vec3 left = point_velocity(box, p.contacts[0].point), right = point_velocity(box, p.contacts[1].point);
+    EXPECT_TRUE(same(right[1], 0));
+    EXPECT_TRUE(same(left[1], -2 * S("a") * S("w")));
+    const std::vector<system_candidate> cs = system_candidates(p);
+    // open, stick, slide + and - at each corner (16 sets), the set where both stick giving more
+    // than one basic solution (its impulses are not unique: the box has three degrees of freedom)
+    std::set<std::string> names;
+    for (const system_candidate& c : cs)
+        names.insert(c.name());
+    EXPECT_EQ(names.size(), 16u);
+}
+
+namespace {
+// Runs the command line; its exit status and the wall time in seconds.
+int run_timed(const std::string& args, double& seconds, std::string& out)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    FILE* f = popen((std::string(IMPACTGEN_CLI) + " " + args + " 2>&1").c_str(), "r");
+    out.clear();
+    char buf[4096];
+    for (std::size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;)
+        out.append(buf, n);
+    const int status = pclose(f);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return WEXITSTATUS(status);
+}
+} // namespace
+
+// A 4-body, 3-contact problem file with every mass a symbol: formulas and explain (every
+// format) finish within the default time budget (10 s: the watchdog would stop them with exit 1).
+TEST(Cli, FourBodiesThreeContactsWithinTheTimeBudget)
+{
+    const std::string file = std::string(IMPACTGEN_SOURCE_DIR) + "/tests/core/systems/four-bodies-three-contacts.json";
+    for (const char* cmd : {"formulas", "formulas --format json", "explain", "explain --format latex",
+                            "explain --format html", "explain --level summary --format latex"}) {
+        double seconds = 0;
+        std::string out;
+        EXPECT_EQ(run_timed(std::string(cmd) + " '" + file + "'", seconds, out), 0) << cmd << ": " << out;
+        EXPECT_LT(seconds, 10.0) << cmd;
+        std::cout << "  " << cmd << ": " << seconds << " s\n";
+    }
+}
+
+// solve CLASS --set: the worked example's numbers give the example file's answer; a name the
+// class does not have, or a value with a symbol, is refused in one line naming --set.
+TEST(Cli, SolveNamedSystemClassWithSet)
+{
+    double seconds = 0;
+    std::string a, b;
+    ASSERT_EQ(run_timed("solve compass-gait --json --set m=5,I_C=97/240,a=2/5,h=9/10,w1=-6/5,w2=2/5", seconds, a), 0) << a;
+    ASSERT_EQ(run_timed("solve --json '" + std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json'",
+                        seconds, b),
+              0);
+    EXPECT_EQ(a, b);
+    for (const char* bad : {"solve compass-gait --set q=1", "solve compass-gait --set m=x", "solve compass-gait --set m"}) {
+        std::string out;
+        EXPECT_EQ(run_timed(bad, seconds, out), 1) << bad;
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+        EXPECT_NE(out.find("--set"), std::string::npos) << out;
+    }
+    std::string out;
+    EXPECT_EQ(run_timed("solve three-balls --set m=1,R=1,e=1", seconds, out), 1) << "v is missing";
+    EXPECT_NE(out.find("v"), std::string::npos);
+}
