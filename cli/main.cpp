@@ -31,6 +31,8 @@ problem impactgen::cli::load(const std::string &what)
             names += (names.empty() ? "" : ", ") + c.name;
         for (const named_class &c : friction_classes())
             names += ", " + c.name;
+        for (const named_class &c : law_classes())
+            names += ", " + c.name;
         throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
     }
     problem p = load_problem_file(what);
@@ -51,6 +53,9 @@ int cmd_list()
     }
     std::printf("\nwith Coulomb friction (past the notes; regimes stick and slide):\n");
     for (const named_class &c : friction_classes())
+        std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
+    std::printf("\nwith friction, restitution followed through the impact (Routh's process; law in the class):\n");
+    for (const named_class &c : law_classes())
         std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
     return 0;
 }

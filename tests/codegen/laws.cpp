@@ -12,6 +12,7 @@
 #include "symbolic/problem.hpp"
 #include "symbolic/routh.hpp"
 
+#include "rod_rough_floor.hpp" // generated/: the named class
 #include "rod_rough_floor_energetic.hpp"
 #include "rod_rough_floor_poisson.hpp"
 #include "rod_slip_reverses_energetic.hpp"
@@ -350,6 +351,62 @@ TEST(codegen_laws, autodiff_derivatives)
     EXPECT_GT(compared, 2000);
     EXPECT_LT(differ, compared / 100) << differ << " of " << compared;
     std::printf("[ autodiff ] %d derivatives compared, %d across a phase boundary\n", compared, differ);
+}
+
+// The checked-in header of the named class (generated/rod_rough_floor.hpp: the energetic law, the
+// rod's length l and angle theta as inputs, cos theta and sin theta evaluated in the header by
+// std::cos and std::sin) against the header whose inputs are the centre and the inertia, at
+// x = l cos theta / 2, y = l sin theta / 2, J = m l^2 / 12: the same closed form with the same
+// phase sequence, rounded in another order. Both are within a few ulps of the exact value times
+// the condition of the formulas (measured: 3e-15 relative at worst on these seeds); 1e-9 leaves
+// room, and a wrong sequence is off by O(mu). AutoDiffScalar through cos and sin: d/dtheta
+// against central differences of the double function.
+TEST(codegen_laws, named_class_header_takes_the_angle)
+{
+    using ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 1, 1>>;
+    std::mt19937_64 g(31);
+    std::uniform_real_distribution<double> U(0, 1);
+    int compared = 0, derivatives = 0;
+    double worst = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const double e = U(g), mu = 2 * U(g), m = std::pow(10.0, -4 + 8 * U(g)), l = std::pow(10.0, -1 + 2 * U(g));
+        const double th = 0.05 + 3.04 * U(g), w = (2 * U(g) - 1) * 3 / l, vt = 2 * U(g) - 1;
+        const double vn = -U(g) - 0.05 + w * l * std::cos(th) / 2; // u_n < 0
+        gen::rod_rough_floor_result<double> a{};
+        const friction_status st = gen::rod_rough_floor<double>(e, mu, l, m, th, vt, vn, w, a);
+        const rod r{e, mu, m, m * l * l / 12, l * std::cos(th) / 2, l * std::sin(th) / 2, vt, vn, w};
+        const outcome<double> o = run<double>(law::energetic, r);
+        ASSERT_EQ(st, o.status) << i;
+        if (st != friction_status::ok)
+            continue;
+        const double size = std::abs(o.N) + std::abs(o.Ft);
+        EXPECT_LE(std::abs(a.normal_impulse - o.N), 1e-9 * size) << i;
+        EXPECT_LE(std::abs(a.tangential_impulse_t - o.Ft), 1e-9 * size) << i;
+        worst = std::max(worst, std::max(std::abs(a.normal_impulse - o.N), std::abs(a.tangential_impulse_t - o.Ft)) / size);
+        EXPECT_EQ(a.regime, o.regime) << i;
+        EXPECT_GE(a.energy_lost, -1e-9 * m * (vt * vt + vn * vn + l * l * w * w)) << i;
+        ++compared;
+        if (i % 10)
+            continue;
+        gen::rod_rough_floor_result<ad> d{};
+        ASSERT_EQ((gen::rod_rough_floor<ad>(ad(e), ad(mu), ad(l), ad(m), ad(th, 1, 0), ad(vt), ad(vn), ad(w), d)),
+                  friction_status::ok);
+        const double h = 1e-6;
+        gen::rod_rough_floor_result<double> p{}, q{};
+        if (gen::rod_rough_floor<double>(e, mu, l, m, th + h, vt, vn, w, p) != friction_status::ok ||
+            gen::rod_rough_floor<double>(e, mu, l, m, th - h, vt, vn, w, q) != friction_status::ok ||
+            p.regime != a.regime || q.regime != a.regime)
+            continue;
+        const double fd = (p.normal_impulse - q.normal_impulse) / (2 * h);
+        // central difference: error h^2 |N'''| / 6 plus rounding 1e-16 |N| / h (about 1e-10 |N|)
+        EXPECT_NEAR(d.normal_impulse.derivatives()[0], fd, 1e-5 * (1 + std::abs(fd)) * (1 + std::abs(a.normal_impulse)))
+            << i;
+        ++derivatives;
+    }
+    EXPECT_GT(compared, 2500);
+    EXPECT_GT(derivatives, 200);
+    std::printf("[ rod-rough-floor ] %d problems, worst relative difference %.3g; %d d/dtheta\n", compared, worst,
+                derivatives);
 }
 
 // The same example as a numeric problem (no inputs): the sequence decided exactly at generation.
