@@ -13,6 +13,7 @@
 #include "title.hpp"
 
 #include "figure/system.hpp"
+#include "symbolic/system_process.hpp"
 
 #include <exception>
 #include <optional>
@@ -294,6 +295,11 @@ void candidate_values(section &s, const derivation &d, const system_candidate &c
 document explain_system(const derivation &d)
 {
     const problem &p = d.prob;
+    if (system_follows_process(p))
+        throw input_error(std::string("contacts[0].law: \"") + law_name(p.contacts[0].law_of_restitution) +
+                          "\" with friction in a system (joints, pivots) is answered by 'impactgen solve' and "
+                          "'impactgen formulas' but not explained yet (explain teaches Routh's process for a "
+                          "\"contact\" file); use \"newton\" to explain the system");
     document doc;
     doc.title = document_title(p, "System impact");
     doc.description = p.description;
