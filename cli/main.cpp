@@ -95,6 +95,8 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
                                        : print::system_formulas_text(p, format == "latex"));
         return 0;
     }
+    if (jacobian && p.dimension == 2 && p.has_friction() && follows_process(p.contact().law_of_restitution))
+        return cli::process_jacobian_formulas(p, format, wrt); // per phase sequence
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {

@@ -16,7 +16,7 @@ namespace impactgen::numeric::systems
 {
 
 struct sys_process_answer {
-    process_result<double> process;     ///< impulses along the unit n and t
+    process_result<double> process; ///< impulses along the unit n and t
     std::vector<vec3> velocity, angular_velocity;
     double energy_before = 0, energy_after = 0;
 };
@@ -97,8 +97,7 @@ inline double kinetic(const sys_problem &p, const Eigen::VectorXd &v)
 
 /// The process at p's one contact (contacts[0]) with friction mu under `law`, its restitution
 /// the contact's: process.ok false when the contact does not approach or wedges.
-inline sys_process_answer integrate_system_process(const sys_problem &p, double mu, process_law law,
-                                                   int steps = 4000)
+inline sys_process_answer integrate_system_process(const sys_problem &p, double mu, process_law law, int steps = 4000)
 {
     sys_process_answer a;
     const detail::sys_rows s = detail::rows_of(p);

@@ -16,7 +16,8 @@ std::string words_of(const process_condition &c)
     const bool no = c.meaning.rfind("not: ", 0) == 0;
     switch (c.kind) {
     case process_test::initial_slip:
-        return no ? "contact 0 slips against its tangent before impact" : "contact 0 slips along its tangent before impact";
+        return no ? "contact 0 slips against its tangent before impact"
+                  : "contact 0 slips along its tangent before impact";
     case process_test::sticks_at_start:
         return no ? "starting without slip, contact 0 cannot stick" : "starting without slip, contact 0 sticks";
     case process_test::slip_direction:
@@ -95,8 +96,9 @@ std::vector<system_candidate> system_process_candidates(const problem &p)
         lambda[n] = q.normal_impulse;
         lambda[t] = q.tangential_impulse;
         const bool sticks = q.phases.back().kind == phase_kind::stick;
-        system_candidate s = system_candidate_of_impulses(p, lambda, sticks ? contact_regime::stick : contact_regime::slide,
-                                                          sticks ? 0 : sign_of(q.tangential_velocity));
+        system_candidate s =
+            system_candidate_of_impulses(p, lambda, sticks ? contact_regime::stick : contact_regime::slide,
+                                         sticks ? 0 : sign_of(q.tangential_velocity));
         for (process_phase ph : q.phases) {
             ph.normal_impulse_end = tidy(ph.normal_impulse_end * L);
             s.process.push_back(ph);
