@@ -182,7 +182,8 @@ int main(int argc, char **argv)
     std::string wrt;
     formulas->add_flag("--jacobian", jacobian,
                        "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen "
-                       "--jacobian computes them");
+                       "--jacobian computes them; with friction under \"poisson\" or \"energetic\", per phase "
+                       "sequence of Routh's process");
     formulas->add_option("--wrt", wrt,
                          "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 

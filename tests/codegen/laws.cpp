@@ -3,8 +3,8 @@
 //   - the closed form of symbolic/routh.hpp, exact at rational points (GiNaC numbers, the one
 //     phase sequence decided exactly), to a few ulps of double;
 //   - the numeric reference numeric/process_integrator.hpp (small normal-impulse steps, Eigen,
-//     independent of the closed form) on 20,000 seeded random problems per law, a third of them
-//     near a phase boundary;
+//     independent of the closed form) and the exact closed form (the doubles taken as rationals)
+//     on the same 20,000 seeded random problems per law, a third of them near a phase boundary;
 // the status values on bad inputs, float / long double / the unchecked variant, and the header
 // the same byte for byte when generated again in this process.
 #include "codegen/codegen.hpp"
@@ -111,10 +111,46 @@ rod random_rod(std::mt19937_64 &g, int kind)
     }
 }
 
+// A double as the exact rational it is (m 2^k).
+GiNaC::numeric exact(double d)
+{
+    int k = 0;
+    const double m = std::frexp(d, &k);
+    return GiNaC::numeric(static_cast<long>(std::ldexp(m, 53))) * GiNaC::numeric(2).power(k - 53);
+}
+
+// The closed form of symbolic/routh.hpp at the rod's doubles taken as exact rationals (every
+// decision exact): its N and P_t rounded to double, or false when it wedges.
+bool closed_form(law l, const rod &r, double &N, double &Pt)
+{
+    using GiNaC::numeric;
+    const numeric m = exact(r.m), J = exact(r.J), x = exact(r.x), y = exact(r.y), w = exact(r.w);
+    impactgen::process_inputs in;
+    in.Ktt = 1 / m + y * y / J;
+    in.Ktn = -x * y / J;
+    in.Knn = 1 / m + x * x / J;
+    in.ut = exact(r.vt) + w * y;
+    in.un = exact(r.vn) - w * x;
+    in.mu = exact(r.mu);
+    in.e = exact(r.e);
+    in.law = l == law::poisson ? impactgen::restitution_law{impactgen::poisson_restitution{}}
+                               : impactgen::restitution_law{impactgen::energetic_restitution{}};
+    std::vector<impactgen::process_sequence> seq;
+    try {
+        seq = impactgen::routh_process(in, "test");
+    } catch (const std::exception &) {
+        return false; // wedges
+    }
+    N = GiNaC::ex_to<numeric>(GiNaC::evalf(seq.at(0).normal_impulse)).to_double();
+    Pt = GiNaC::ex_to<numeric>(GiNaC::evalf(seq.at(0).tangential_impulse)).to_double();
+    return true;
+}
+
+// Closed form (exact), numeric integration and generated code on the same 20,000 problems.
 void agree_with_reference(law l)
 {
     std::mt19937_64 g(l == law::poisson ? 2323 : 2324);
-    double worst = 0;
+    double worst = 0, worst_exact = 0;
     int compared = 0;
     for (int i = 0; i < 20000; ++i) {
         const rod r = random_rod(g, i % 3);
@@ -135,6 +171,15 @@ void agree_with_reference(law l)
         const double size = std::abs(ref.normal_impulse) + std::abs(ref.tangential);
         const double err = std::max(std::abs(o.N - ref.normal_impulse), std::abs(o.Ft - ref.tangential)) / size;
         worst = std::max(worst, err);
+        // The exact closed form at the same numbers: the header differs by its rounding (a few ulps
+        // times the formulas' condition), and within 1e-9 of a boundary (kinds 1, 2) its rounded
+        // decision may take the neighbouring sequence, whose value differs there by about 1e-9
+        // relative (the map is continuous): 1e-8 bounds both.
+        double cN = 0, cPt = 0;
+        ASSERT_TRUE(closed_form(l, r, cN, cPt)) << i;
+        const double err_exact = std::max(std::abs(o.N - cN), std::abs(o.Ft - cPt)) / size;
+        worst_exact = std::max(worst_exact, err_exact);
+        EXPECT_LE(err_exact, 1e-8) << i << " N " << o.N << " vs exact " << cN;
         EXPECT_LE(err, 1e-6) << i << " mu " << r.mu << " e " << r.e << " N " << o.N << " vs " << ref.normal_impulse
                              << " Pt " << o.Ft << " vs " << ref.tangential;
         const bool sticks = ref.phases.back() == impactgen::numeric::process_phase_kind::stick;
@@ -147,8 +192,8 @@ void agree_with_reference(law l)
         ++compared;
     }
     EXPECT_GT(compared, 19000);
-    std::printf("[ %s ] %d problems, worst relative difference to the integrator %.3g\n",
-                l == law::poisson ? "poisson" : "energetic", compared, worst);
+    std::printf("[ %s ] %d problems, worst relative difference to the integrator %.3g, to the exact closed form %.3g\n",
+                l == law::poisson ? "poisson" : "energetic", compared, worst, worst_exact);
 }
 
 TEST(codegen_laws, poisson_agrees_with_the_integrator)
