@@ -4,11 +4,15 @@
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
 #include "names/escape.hpp"
+#include "print/answer.hpp"
 #include "print/canonical.hpp"
+#include "print/formulas.hpp"
+#include "symbolic/process_jacobian.hpp"
 #include "symbolic/routh.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <iostream>
 #include <sstream>
 
 namespace impactgen::cli
@@ -163,6 +167,96 @@ nlohmann::ordered_json jacobian_json(const codegen::plan &pl)
         r["entries"].push_back(row);
     }
     return r;
+}
+
+namespace
+{
+std::string expr(const ex &e, bool latex)
+{
+    return latex ? print::canonical_latex(e) : print::canonical_text(e);
+}
+
+std::string process_jacobian_text(const process_jacobian &j, bool latex)
+{
+    std::ostringstream os;
+    const std::string c = latex ? "% " : "";
+    os << "\n"
+       << c << "Jacobian of the impact map per phase sequence of Routh's process, d(output)/d(input) by the chain\n"
+       << c << "rule through the contact's steps (inputs:";
+    for (const symbol &x : j.wrt)
+        os << " " << print::symbol_text(x.get_name());
+    os << "). Inside a sequence (every condition strict) the map is smooth; on a boundary between two\n"
+       << c << "sequences (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n\n";
+    for (const step &st : j.derivative_steps)
+        os << c << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+    for (const sequence_jacobian &q : j.sequences) {
+        os << "\n" << c << "Sequence " << q.sequence << (q.conditions.empty() ? " (the one that holds)" : "") << ":\n";
+        for (const process_condition &k : q.conditions)
+            os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning
+               << ")\n";
+        std::size_t zeros = 0;
+        for (std::size_t o = 0; o < j.outputs.size(); ++o)
+            for (std::size_t w = 0; w < j.wrt.size(); ++w) {
+                if (q.entries[o][w].is_zero()) {
+                    ++zeros;
+                    continue;
+                }
+                os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w].get_name()) << " = "
+                   << expr(q.entries[o][w], latex) << "\n";
+            }
+        os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size()
+           << " entries are 0 and not listed)\n";
+    }
+    return os.str();
+}
+
+nlohmann::ordered_json process_jacobian_json(const process_jacobian &j)
+{
+    nlohmann::ordered_json out, wrt = nlohmann::ordered_json::array(), steps = nlohmann::ordered_json::object(),
+                                seqs = nlohmann::ordered_json::array();
+    for (const symbol &x : j.wrt)
+        wrt.push_back(x.get_name());
+    for (const step &st : j.derivative_steps)
+        steps[st.sym.get_name()] = print::canonical_text(st.value);
+    for (const sequence_jacobian &q : j.sequences) {
+        nlohmann::ordered_json s, conds = nlohmann::ordered_json::array(), m = nlohmann::ordered_json::object();
+        s["sequence"] = q.sequence;
+        for (const process_condition &k : q.conditions)
+            conds.push_back({{"value", print::canonical_text(k.value)}, {"strict", k.strict}, {"meaning", k.meaning}});
+        s["conditions"] = conds;
+        for (std::size_t o = 0; o < j.outputs.size(); ++o) {
+            nlohmann::ordered_json row = nlohmann::ordered_json::object();
+            for (std::size_t w = 0; w < j.wrt.size(); ++w)
+                row[j.wrt[w].get_name()] = print::canonical_text(q.entries[o][w]);
+            m[j.outputs[o]] = row;
+        }
+        s["matrix"] = m;
+        seqs.push_back(s);
+    }
+    out["wrt"] = wrt;
+    out["steps"] = steps;
+    out["sequences"] = seqs;
+    out["boundary"] = "on a boundary between sequences (a condition = 0) the derivative is one-sided";
+    return out;
+}
+} // namespace
+
+int process_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt)
+{
+    std::vector<std::string> names;
+    split_wrt(wrt, names);
+    const derivation d = derive(p);
+    const impact_solution s = solve_impact(d);
+    const process_jacobian j = process_jacobian_of(d, s, names);
+    if (format == "json") {
+        nlohmann::ordered_json a = print::formulas_json(d, s);
+        a["jacobian"] = process_jacobian_json(j);
+        std::cout << a.dump(2) << "\n";
+    } else {
+        std::cout << (format == "latex" ? print::formulas_latex(d, s) : print::formulas_text(d, s))
+                  << process_jacobian_text(j, format == "latex");
+    }
+    return 0;
 }
 
 } // namespace impactgen::cli

@@ -35,6 +35,9 @@ void split_wrt(const std::string &s, std::vector<std::string> &out);
 std::string jacobian_text(const codegen::plan &pl);
 std::string jacobian_latex(const codegen::plan &pl);
 nlohmann::ordered_json jacobian_json(const codegen::plan &pl);
+/// formulas --jacobian of a problem under Routh's process (poisson, energetic with friction): the
+/// closed form, then the Jacobian of each phase sequence (symbolic/process_jacobian.hpp).
+int process_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt);
 
 void register_codegen(CLI::App &app, std::function<int()> &action);
 

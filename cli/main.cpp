@@ -34,6 +34,8 @@ problem impactgen::cli::load(const std::string &what)
             names += ", " + c.name;
         for (const named_class &c : system_classes())
             names += ", " + c.name;
+        for (const named_class &c : law_classes())
+            names += ", " + c.name;
         throw input_error(what + ": neither a named class (" + names + ") nor an existing problem file");
     }
     problem p = load_problem_file(what);
@@ -54,6 +56,9 @@ int cmd_list()
     }
     std::printf("\nwith Coulomb friction (past the notes; regimes stick and slide):\n");
     for (const named_class &c : friction_classes())
+        std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
+    std::printf("\nwith friction, restitution followed through the impact (Routh's process; law in the class):\n");
+    for (const named_class &c : law_classes())
         std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
     std::printf("\nsystems (past the notes; joints, several contacts, the contacts that act decided exactly):\n");
     for (const named_class &c : system_classes())
@@ -132,6 +137,8 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
                                        : print::system_formulas_text(p, format == "latex"));
         return 0;
     }
+    if (jacobian && p.dimension == 2 && p.has_friction() && follows_process(p.contact().law_of_restitution))
+        return cli::process_jacobian_formulas(p, format, wrt); // per phase sequence
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {
@@ -240,7 +247,8 @@ int main(int argc, char **argv)
     std::string wrt;
     formulas->add_flag("--jacobian", jacobian,
                        "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen "
-                       "--jacobian computes them");
+                       "--jacobian computes them; with friction under \"poisson\" or \"energetic\", per phase "
+                       "sequence of Routh's process");
     formulas->add_option("--wrt", wrt,
                          "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 

@@ -99,7 +99,7 @@ ex value_to_40_digits(const ex &e)
         list += (list.empty() ? "" : ", ") + f;
     throw std::runtime_error("code generation: cannot express " +
                              (list.empty() ? std::string("this expression") : list) +
-                             " of symbols in C++ arithmetic (only +, -, *, /, integer powers and sqrt)");
+                             " of symbols in C++ arithmetic (only +, -, *, /, integer powers, sqrt, cos and sin)");
 }
 
 } // namespace
@@ -232,6 +232,18 @@ scaled canonical_pool::convert_product(const ex &e)
     return {coeff, intern(std::move(n))};
 }
 
+scaled canonical_pool::convert_trig(const ex &e)
+{
+    const std::string f = ex_to<function>(e).get_name();
+    if ((f != "cos" && f != "sin") || e.nops() != 1)
+        cannot_express(e);
+    cnode n;
+    n.kind = f == "cos" ? cnode::cos_ : cnode::sin_;
+    n.arg = node_of(convert(e.op(0)));
+    n.key = f + "(" + at(n.arg).key + ")";
+    return {1, intern(std::move(n))};
+}
+
 scaled canonical_pool::convert(const ex &e)
 {
     // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
@@ -253,6 +265,8 @@ scaled canonical_pool::convert(const ex &e)
         return convert_sum(e);
     if (is_a<mul>(e) || is_a<power>(e))
         return convert_product(e);
+    if (is_a<function>(e))
+        return convert_trig(e);
     cannot_express(e);
 }
 

@@ -21,13 +21,13 @@ namespace impactgen::codegen
 {
 
 struct cnode {
-    enum kind_t { constant, input, step, add, mul, sqrt_ } kind = constant;
+    enum kind_t { constant, input, step, add, mul, sqrt_, cos_, sin_ } kind = constant;
     GiNaC::numeric value;                              ///< constant; add: constant term; mul: coefficient
     std::string name;                                  ///< input or step
     int step_index = -1;                               ///< step
     std::vector<std::pair<GiNaC::numeric, int>> terms; ///< add: coefficient * node
     std::vector<std::pair<int, int>> factors;          ///< mul: node ^ integer exponent
-    int arg = -1;                                      ///< sqrt
+    int arg = -1;                                      ///< sqrt, cos, sin
     std::string key;                                   ///< canonical text, the sort and hash-consing key
 };
 
@@ -44,7 +44,8 @@ public:
     void set_input_names(std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> names) { input_names_ = std::move(names); }
     /// Occurrences of `sym` in later expressions refer to step `index`.
     void bind_step(const GiNaC::symbol &sym, int index, const std::string &name);
-    /// Throws std::runtime_error for what C++ cannot express (functions, complex numbers, odd powers).
+    /// Throws std::runtime_error for what C++ cannot express (functions other than cos and sin,
+    /// complex numbers, powers other than integer and half-integer).
     scaled convert(const GiNaC::ex &e);
     /// scale * node as one node.
     int node_of(const scaled &s);
@@ -59,6 +60,8 @@ private:
     scaled convert_sum(const GiNaC::ex &e);
     /// A product or power: its factors' nodes with integer exponents.
     scaled convert_product(const GiNaC::ex &e);
+    /// cos or sin of an expression (a rod's angle): one node, evaluated by std::cos / std::sin.
+    scaled convert_trig(const GiNaC::ex &e);
     int intern(cnode n);
     std::vector<cnode> nodes_;
     std::map<std::string, int> by_key_;

@@ -16,7 +16,7 @@ namespace impactgen::codegen::form_text
 std::string counts_text(const op_counts &c)
 {
     return std::to_string(c.add) + " add/sub, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
-           std::to_string(c.sqrt) + " sqrt";
+           std::to_string(c.sqrt) + " sqrt" + (c.trig ? ", " + std::to_string(c.trig) + " cos/sin" : std::string());
 }
 
 std::string wrap_comment(const std::string &lhs, const std::string &rhs)

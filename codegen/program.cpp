@@ -80,6 +80,20 @@ int program::square_root(int a)
     return id;
 }
 
+int program::trig(op::kind_t k, int a)
+{
+    auto key = std::make_tuple(int(k), a, -1);
+    auto it = memo_.find(key);
+    if (it != memo_.end())
+        return it->second;
+    op o;
+    o.kind = k;
+    o.a = a;
+    int id = make(o);
+    memo_[key] = id;
+    return id;
+}
+
 int program::binary(op::kind_t k, int a, int b)
 {
     const op &x = at(a);
@@ -207,6 +221,10 @@ int program::lower(const canonical_pool &pool, int cid)
     }
     case cnode::sqrt_:
         r = square_root(lower(pool, n.arg));
+        break;
+    case cnode::cos_:
+    case cnode::sin_:
+        r = trig(n.kind == cnode::cos_ ? op::cos_ : op::sin_, lower(pool, n.arg));
         break;
     case cnode::add:
         r = lower_add(pool, cid, false);

@@ -18,7 +18,7 @@ namespace impactgen::codegen
 {
 
 struct op {
-    enum kind_t { input, constant, add, sub, mul, div, neg, sqrt_ } kind = constant;
+    enum kind_t { input, constant, add, sub, mul, div, neg, sqrt_, cos_, sin_ } kind = constant;
     int a = -1, b = -1;
     GiNaC::numeric value; ///< constant
     std::string name;     ///< input
@@ -30,6 +30,7 @@ std::string decimal_literal(const GiNaC::numeric &x);
 
 struct op_counts {
     int add = 0, mul = 0, div = 0, sqrt = 0;
+    int trig = 0; ///< cos and sin (not in the header's op_count, whose four fields stay)
 };
 
 class program
@@ -46,6 +47,8 @@ public:
     int binary(op::kind_t k, int a, int b);
     int negate(int a);
     int square_root(int a);
+    /// cos or sin (kind op::cos_ or op::sin_) of a.
+    int trig(op::kind_t k, int a);
     int reciprocal(int a) { return binary(op::div, constant(1), a); }
 
     const op &at(int id) const { return ops_[static_cast<std::size_t>(id)]; }
@@ -101,6 +104,7 @@ struct emitted {
     op_counts formula; ///< arithmetic of the closed form
     op_counts checks;  ///< arithmetic spent on validity checks
     bool uses_sqrt = false;
+    bool uses_trig = false; ///< cos or sin: the function needs `using std::cos; using std::sin;`
     // Branchless: the checks, for the caller to fold into one flag.
     std::vector<std::string> finite_terms;   ///< values that must be finite (tested in one sum)
     std::vector<std::string> positive_terms; ///< values that must be > 0 (their min)

@@ -62,6 +62,14 @@ struct printer {
             prec = 4;
             return "sqrt(" + s + ")";
         }
+        case op::cos_:
+        case op::sin_: {
+            int p;
+            std::string s = text(o.a, p);
+            ++counts->trig;
+            prec = 4;
+            return (o.kind == op::cos_ ? "cos(" : "sin(") + s + ")";
+        }
         case op::add:
         case op::sub: {
             int pa, pb;
@@ -302,7 +310,7 @@ private:
     }
 
     // Values whose finiteness follows from the finiteness of the outputs: an operand of
-    // +, -, *, negation, sqrt, or the numerator of /, is finite when the result is
+    // +, -, *, negation, sqrt, cos, sin, or the numerator of /, is finite when the result is
     // (inf and NaN propagate); a denominator is not (1/inf = 0). An optional output (left 0
     // when not requested) covers nothing.
     void mark_covered()
@@ -693,6 +701,8 @@ private:
             const int id = static_cast<int>(i);
             if (reach_[i] && prog_.at(id).kind == op::sqrt_)
                 out_.uses_sqrt = true;
+            if (reach_[i] && (prog_.at(id).kind == op::cos_ || prog_.at(id).kind == op::sin_))
+                out_.uses_trig = true;
             if (!materialised_[i] || grouped_.count(id) || check_only(id)) {
                 if (group_at_.count(id)) {
                     emit_group(group_at_[id]);

@@ -12,6 +12,13 @@ void add_counts(op_counts &a, const op_counts &b)
     a.mul += b.mul;
     a.div += b.div;
     a.sqrt += b.sqrt;
+    a.trig += b.trig;
+}
+
+std::string math_usings(const emitted &e)
+{
+    return std::string(e.uses_sqrt ? "    using std::sqrt;\n" : "") +
+           (e.uses_trig ? "    using std::cos;\n    using std::sin;\n" : "");
 }
 
 std::string indent(const std::string &code, const std::string &by)

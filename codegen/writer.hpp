@@ -34,6 +34,8 @@ using namespace form_text;
 std::string indent(const std::string &code, const std::string &by);
 bool depends_on(const ex &e, const exset &syms);
 std::vector<check> state_checks(const std::vector<check> &checks);
+/// The `using std::sqrt;` (and std::cos, std::sin) lines a function body needs for the code of `e`.
+std::string math_usings(const emitted &e);
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'
 // values, its outputs and checks, and the code emitted for them.

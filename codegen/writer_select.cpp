@@ -312,6 +312,11 @@ void writer::main_function(bool unchecked)
            << params() << result() << "<T>& out) noexcept\n{\n";
     }
     h_ << "    using std::sqrt;\n";
+    for (const stage *st : {&nb_, &a_, &b_, &s_, &c_, &u_})
+        if (st->em.uses_trig) { // an angle among the inputs (a rod's): cos and sin of it
+            h_ << "    using std::cos;\n    using std::sin;\n";
+            break;
+        }
     fail_lambda("auto", "detail::friction_status_of", !unchecked);
     const ex &mu = q_.contact().friction();
     const bool mu_input = is_a<symbol>(mu) && input_ident_.count(mu);

@@ -20,6 +20,8 @@ int latency(op::kind_t k)
         return 4;
     if (k == op::div)
         return 14;
+    if (k == op::cos_ || k == op::sin_)
+        return 40;                  // a library call
     return k == op::sqrt_ ? 20 : 0; // inputs and constants are ready at once
 }
 } // namespace
@@ -186,7 +188,7 @@ void writer::straight_banner()
        << (batch_terms_.empty() ? 0 : batch_terms_.size() - 1) << " add, " << flag_counts(batch_, batch_terms_).first
        << " fma, " << mins(batch_) << " min (checks) per impact, no branch.\n";
     h_ << "#pragma once\n\n";
-    if (em_.uses_sqrt)
+    if (em_.uses_sqrt || em_.uses_trig)
         h_ << "#include <cmath>\n";
     h_ << "#include <limits>\n\n"; // the runtime's smallest_normal and machine_epsilon
 }
@@ -223,8 +225,7 @@ void writer::checked_function()
     h_ << "/// inputs that fail the fast path of " << o_.name << " (out then holds the state unchanged).\n";
     h_ << tparams << "IMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked() << "(" << params() << result()
        << "<T>& out) noexcept\n{\n";
-    if (em_.uses_sqrt)
-        h_ << "    using std::sqrt;\n";
+    h_ << math_usings(em_);
     fail_lambda("impact_status", "", true);
     h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
     h_ << energy_optional(em_.code, "    out.energy_lost = ");
@@ -251,8 +252,7 @@ void writer::fast_function()
         h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
     h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result()
        << "<T>& out) noexcept\n{\n";
-    if (em_.uses_sqrt)
-        h_ << "    using std::sqrt;\n";
+    h_ << math_usings(em_);
     h_ << energy_optional(fast_.code, "    const T " + local_of_.at("energy_lost") + " = ");
     h_ << ok_flag("    ", fast_, fast_terms_, true);
     h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
@@ -277,8 +277,7 @@ void writer::unchecked_function()
     h_ << "/// (they depend on the state), but no finiteness check guards the result (no overflow).\n";
     h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "_unchecked(" << params() << result()
        << "<T>& out) noexcept\n{\n";
-    if (unchecked_.uses_sqrt)
-        h_ << "    using std::sqrt;\n";
+    h_ << math_usings(unchecked_);
     fail_lambda("impact_status", "", false);
     h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
     h_ << energy_optional(unchecked_.code, "    out.energy_lost = ");
@@ -313,8 +312,7 @@ void writer::jacobian_function()
     h_ << "/// are finite and a derivative is not.\n";
     h_ << "template <typename T>\nIMPACTGEN_FUNC impact_status " << o_.name << "_jacobian(" << params() << jr
        << "<T>& out) noexcept\n{\n";
-    if (jac_.uses_sqrt)
-        h_ << "    using std::sqrt;\n";
+    h_ << math_usings(jac_);
     h_ << jac_.code;
     h_ << ok_flag("    ", jac_, jac_terms_, true);
     h_ << "    if (!ok) {\n";
@@ -379,8 +377,8 @@ void writer::straight_batch()
     h_ << "/// impact failed a check, else 0.\n";
     h_ << "template <typename T, bool with_energy_lost>\nIMPACTGEN_FUNC unsigned " << o_.name << "_batch_pass(long n, "
        << join(pass_params, ", ") << ") noexcept\n{\n";
-    if (batch_.uses_sqrt) // (else a symbolic normal's sqrt is ::sqrt(double), for float and long double too)
-        h_ << "    using std::sqrt;\n";
+    // (without it a symbolic normal's sqrt is ::sqrt(double), for float and long double too)
+    h_ << math_usings(batch_);
     h_ << "    unsigned failed = 0;\n";
     h_ << "#if defined(__GNUC__) && !defined(__clang__)\n#pragma GCC ivdep\n#endif\n";
     h_ << "    for (long i = 0; i < n; ++i) {\n";

@@ -240,8 +240,7 @@ void writer::unchanged_function(const emitted &code)
     for (const std::string &nm : input_names_)
         h_ << "T " << (uses(code.code, nm) ? nm : "/*" + nm + "*/") << ", ";
     h_ << result() << "<T>& out) noexcept\n{\n";
-    if (code.uses_sqrt)
-        h_ << "    using std::sqrt;\n";
+    h_ << math_usings(code);
     h_ << code.code;
     if (straight()) {
         h_ << "}\n\n";

@@ -252,6 +252,14 @@ nlohmann::ordered_json system_answer_json(const problem &p, const system_answer 
             {{"normal_impulse", val(r.normal_impulse[i], key + ".normal_impulse")},
              {"tangential_impulse", vector_json(val, r.tangential_impulse[i], n, key + ".tangential_impulse")},
              {"regime", contact_regime_name(r.regimes[i])}});
+        if (i == 0 && !r.process.empty()) { // Routh's process: its phases, the regime the last one
+            nlohmann::ordered_json phases = nlohmann::ordered_json::array();
+            for (const process_phase &ph : r.process)
+                phases.push_back({{"phase", phase_name(ph.kind)},
+                                  {"normal_impulse_end", val(ph.normal_impulse_end, key + ".process")}});
+            contacts.back()["process"] = phases;
+            contacts.back()["regime"] = phase_name(r.process.back().kind);
+        }
     }
     out["contacts"] = contacts;
     nlohmann::ordered_json joints = nlohmann::ordered_json::array(), pivots = nlohmann::ordered_json::array();
@@ -309,9 +317,18 @@ std::string system_answer_text(const problem &p, const system_answer &a)
         os << "    angular velocity  " << (n == 2 ? show(r.angular_velocity[i][2]) : show_vec(r.angular_velocity[i], 3))
            << "\n";
     }
-    for (std::size_t i = 0; i < p.contacts.size(); ++i)
-        os << "  contacts[" << i << "]  " << contact_regime_name(r.regimes[i]) << ", normal impulse "
-           << show(r.normal_impulse[i]) << ", tangential impulse " << show_vec(r.tangential_impulse[i], n) << "\n";
+    for (std::size_t i = 0; i < p.contacts.size(); ++i) {
+        os << "  contacts[" << i << "]  "
+           << (i == 0 && !r.process.empty() ? phase_name(r.process.back().kind) : contact_regime_name(r.regimes[i]))
+           << ", normal impulse " << show(r.normal_impulse[i]) << ", tangential impulse "
+           << show_vec(r.tangential_impulse[i], n) << "\n";
+        if (i == 0 && !r.process.empty()) {
+            os << "    process:";
+            for (const process_phase &ph : r.process)
+                os << " " << phase_name(ph.kind) << " until N = " << show(ph.normal_impulse_end) << ";";
+            os << "\n";
+        }
+    }
     for (std::size_t j = 0; j < r.joint_impulses.size(); ++j)
         os << "  joint impulse " << j << " on " << p.bodies[p.joints[j].body2].name << "  "
            << show_vec(r.joint_impulses[j], n) << "\n";

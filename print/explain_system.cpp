@@ -14,6 +14,7 @@
 
 #include "figure/system.hpp"
 #include "symbolic/named_systems.hpp"
+#include "symbolic/system_process.hpp"
 
 #include <exception>
 #include <optional>
@@ -318,6 +319,11 @@ void candidate_values(section &s, const derivation &d, const system_candidate &c
 document explain_system(const derivation &d, const worked_example *example, level depth)
 {
     const problem &p = d.prob;
+    if (system_follows_process(p))
+        throw input_error(std::string("contacts[0].law: \"") + law_name(p.contacts[0].law_of_restitution) +
+                          "\" with friction in a system (joints, pivots) is answered by 'impactgen solve' and "
+                          "'impactgen formulas' but not explained yet (explain teaches Routh's process for a "
+                          "\"contact\" file); use \"newton\" to explain the system");
     if (p.is_numeric() || (example && example->values.nops() == 0))
         example = nullptr;
     if (depth == level::summary)

@@ -4,6 +4,7 @@
 #include "canonical.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
+#include "symbolic/system_process.hpp"
 
 #include <sstream>
 
@@ -453,9 +454,14 @@ std::string system_formulas_text(const problem &p, bool latex)
     const std::vector<system_candidate> cs = system_candidates(p);
     std::ostringstream os;
     os << (latex ? "% " : "") << "System: " << p.contacts.size() << " contact(s), " << p.joints.size() << " joint(s), "
-       << p.pivots.size() << " pivot(s). Candidates of the law 0 <= P_i _|_ u'_i + e_i u_i >= 0, "
-       << "one per set of regimes (open, smooth, stick, slide); a candidate is the answer where its conditions "
-          "hold.\n";
+       << p.pivots.size() << " pivot(s). "
+       << (system_follows_process(p)
+               ? "Candidates of Routh's process at contact 0 (restitution by the " +
+                     std::string(law_name(p.contacts[0].law_of_restitution)) +
+                     " law, the joints eliminated): open, and one per phase sequence"
+               : std::string("Candidates of the law 0 <= P_i _|_ u'_i + e_i u_i >= 0, one per set of regimes "
+                             "(open, smooth, stick, slide)"))
+       << "; a candidate is the answer where its conditions hold.\n";
     for (const system_candidate &c : cs) {
         os << "\n" << (latex ? "% " : "") << "Candidate " << c.name() << ":\n";
         for (const auto &v : system_values(p, c))

@@ -3,6 +3,7 @@
 #include "decide.hpp"
 #include "names/escape.hpp"
 #include "restitution_law.hpp"
+#include "system_process.hpp"
 
 #include <sstream>
 
@@ -365,16 +366,19 @@ void setup_delassus(model &m)
         }
 }
 
-// Poisson's and the energetic law follow one frictional contact through the impact; a
-// system (joints, several contacts, sequential impacts, "inf") with such a contact is refused.
+// Poisson's and the energetic law follow one frictional contact through the impact, with any
+// joints and pivots (system_process.hpp); several such contacts, 3-D or "inf" are refused.
 void refuse_process_laws(const problem &p)
 {
     for (std::size_t k = 0; k < p.contacts.size(); ++k) {
         const contact_spec &c = p.contacts[k];
-        if (follows_process(c.law_of_restitution) && (c.rough || !c.friction().is_zero()))
-            throw input_error("contacts[" + std::to_string(k) + "].law: \"" + law_name(c.law_of_restitution) +
-                              "\" with friction is solved for one contact without joints; in a system only "
-                              "\"newton\" (or a smooth contact) is solved");
+        if (!follows_process(c.law_of_restitution) || (!c.rough && c.friction().is_zero()))
+            continue;
+        if (p.contacts.size() == 1 && p.dimension == 2 && !c.rough)
+            continue;
+        throw input_error("contacts[" + std::to_string(k) + "].law: \"" + law_name(c.law_of_restitution) +
+                          "\" with friction is solved for one contact in 2-D (with any joints and pivots), "
+                          "without \"friction\": \"inf\"; here only \"newton\" (or a smooth contact) is solved");
     }
 }
 
@@ -824,10 +828,34 @@ const char *contact_regime_name(contact_regime r)
 
 std::string system_candidate::name() const
 {
+    if (!process.empty()) { // Routh's process at contact 0: its phases
+        std::string s = "{0";
+        for (std::size_t k = 0; k < process.size(); ++k)
+            s += std::string(k ? " then " : " ") + phase_name(process[k].kind);
+        return s + "}";
+    }
     std::vector<option> choice;
     for (std::size_t i = 0; i < regimes.size(); ++i)
         choice.push_back({regimes[i], slide_sign[i]});
     return set_name(choice);
+}
+
+system_candidate system_candidate_of_impulses(const problem &p, const std::vector<ex> &lambda, contact_regime regime,
+                                              int slide_sign)
+{
+    const model m = build_model(p);
+    std::vector<ex> all;
+    std::vector<std::vector<ex>> gv = m.gv0;
+    apply_impulses(m, lambda, all, gv);
+    std::vector<ex> w = contact_velocities(m, m.gv0);
+    for (std::size_t r = 0; r < w.size(); ++r) {
+        for (std::size_t j = 0; j < w.size(); ++j)
+            w[r] += m.W[r][j] * lambda[j];
+        w[r] = simp(w[r]);
+    }
+    std::vector<option> choice(p.contacts.size(), option{contact_regime::open, 0});
+    choice[0] = {regime, slide_sign};
+    return finish(m, choice, all, gv, w);
 }
 
 std::vector<system_candidate> system_candidates(const problem &p)
@@ -835,6 +863,8 @@ std::vector<system_candidate> system_candidates(const problem &p)
     if (p.sequential)
         throw input_error("impacts: sequential impacts have no closed-form candidates (which contact acts next "
                           "depends on the numbers); 'impactgen solve' follows the chain of a numeric problem");
+    if (system_follows_process(p))
+        return system_process_candidates(p);
     const model m = build_model(p);
     const std::vector<ex> q = contact_velocities(m, m.gv0);
     const std::vector<bool> considered(p.contacts.size(), true);
@@ -859,7 +889,15 @@ system_answer solve_system(const problem &p)
     require_numeric(p);
     const model m = build_model(p);
     system_answer a;
-    if (p.sequential) {
+    if (system_follows_process(p)) { // one contact: sequential or simultaneous alike
+        a.result = system_process_candidates(p).at(0);
+        a.impulses_unique = !m.redundant;
+        a.sequential = p.sequential;
+        if (p.sequential && a.result.regimes[0] != contact_regime::open) {
+            a.sequence = {0};
+            a.steps = {a.result};
+        }
+    } else if (p.sequential) {
         a = sequential_answer(m);
         a.impulses_unique = a.impulses_unique && !m.redundant;
     } else {

@@ -61,6 +61,9 @@ struct system_candidate {
     std::vector<vec3> velocity, angular_velocity; ///< per body, after impact
     std::vector<system_condition> conditions;
     std::vector<ex> impulses; ///< every row impulse (joints, pivots, contacts): uniqueness checks
+    /// Contact 0's phases when it follows Routh's process (poisson, energetic with friction;
+    /// system_process.hpp), P_n along the unit normal at each phase's end; else empty.
+    std::vector<process_phase> process;
     /// "{0 stick, 1 open}": the set, for messages and formulas.
     std::string name() const;
 };

@@ -2,9 +2,9 @@ cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 # Regenerates every checked-in header into WORK and compares bytes.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-# (the classes with friction too: one writer, codegen/writer.hpp)
+# (the classes with friction and the law class too: one writer, codegen/writer.hpp)
 set(classes central-direct central-oblique noncentral-3d massive-3d planar pinned-planar
-            planar-friction ball-floor-friction noncentral-3d-friction)
+            planar-friction ball-floor-friction noncentral-3d-friction rod-rough-floor)
 set(stale)
 foreach(cls IN LISTS classes)
   string(REPLACE "-" "_" fn "${cls}")

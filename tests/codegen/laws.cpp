@@ -3,8 +3,8 @@
 //   - the closed form of symbolic/routh.hpp, exact at rational points (GiNaC numbers, the one
 //     phase sequence decided exactly), to a few ulps of double;
 //   - the numeric reference numeric/process_integrator.hpp (small normal-impulse steps, Eigen,
-//     independent of the closed form) on 20,000 seeded random problems per law, a third of them
-//     near a phase boundary;
+//     independent of the closed form) and the exact closed form (the doubles taken as rationals)
+//     on the same 20,000 seeded random problems per law, a third of them near a phase boundary;
 // the status values on bad inputs, float / long double / the unchecked variant, and the header
 // the same byte for byte when generated again in this process.
 #include "codegen/codegen.hpp"
@@ -12,6 +12,7 @@
 #include "symbolic/problem.hpp"
 #include "symbolic/routh.hpp"
 
+#include "rod_rough_floor.hpp" // generated/: the named class
 #include "rod_rough_floor_energetic.hpp"
 #include "rod_rough_floor_poisson.hpp"
 #include "rod_slip_reverses_energetic.hpp"
@@ -110,10 +111,46 @@ rod random_rod(std::mt19937_64 &g, int kind)
     }
 }
 
+// A double as the exact rational it is (m 2^k).
+GiNaC::numeric exact(double d)
+{
+    int k = 0;
+    const double m = std::frexp(d, &k);
+    return GiNaC::numeric(static_cast<long>(std::ldexp(m, 53))) * GiNaC::numeric(2).power(k - 53);
+}
+
+// The closed form of symbolic/routh.hpp at the rod's doubles taken as exact rationals (every
+// decision exact): its N and P_t rounded to double, or false when it wedges.
+bool closed_form(law l, const rod &r, double &N, double &Pt)
+{
+    using GiNaC::numeric;
+    const numeric m = exact(r.m), J = exact(r.J), x = exact(r.x), y = exact(r.y), w = exact(r.w);
+    impactgen::process_inputs in;
+    in.Ktt = 1 / m + y * y / J;
+    in.Ktn = -x * y / J;
+    in.Knn = 1 / m + x * x / J;
+    in.ut = exact(r.vt) + w * y;
+    in.un = exact(r.vn) - w * x;
+    in.mu = exact(r.mu);
+    in.e = exact(r.e);
+    in.law = l == law::poisson ? impactgen::restitution_law{impactgen::poisson_restitution{}}
+                               : impactgen::restitution_law{impactgen::energetic_restitution{}};
+    std::vector<impactgen::process_sequence> seq;
+    try {
+        seq = impactgen::routh_process(in, "test");
+    } catch (const std::exception &) {
+        return false; // wedges
+    }
+    N = GiNaC::ex_to<numeric>(GiNaC::evalf(seq.at(0).normal_impulse)).to_double();
+    Pt = GiNaC::ex_to<numeric>(GiNaC::evalf(seq.at(0).tangential_impulse)).to_double();
+    return true;
+}
+
+// Closed form (exact), numeric integration and generated code on the same 20,000 problems.
 void agree_with_reference(law l)
 {
     std::mt19937_64 g(l == law::poisson ? 2323 : 2324);
-    double worst = 0;
+    double worst = 0, worst_exact = 0;
     int compared = 0;
     for (int i = 0; i < 20000; ++i) {
         const rod r = random_rod(g, i % 3);
@@ -134,6 +171,15 @@ void agree_with_reference(law l)
         const double size = std::abs(ref.normal_impulse) + std::abs(ref.tangential);
         const double err = std::max(std::abs(o.N - ref.normal_impulse), std::abs(o.Ft - ref.tangential)) / size;
         worst = std::max(worst, err);
+        // The exact closed form at the same numbers: the header differs by its rounding (a few ulps
+        // times the formulas' condition), and within 1e-9 of a boundary (kinds 1, 2) its rounded
+        // decision may take the neighbouring sequence, whose value differs there by about 1e-9
+        // relative (the map is continuous): 1e-8 bounds both.
+        double cN = 0, cPt = 0;
+        ASSERT_TRUE(closed_form(l, r, cN, cPt)) << i;
+        const double err_exact = std::max(std::abs(o.N - cN), std::abs(o.Ft - cPt)) / size;
+        worst_exact = std::max(worst_exact, err_exact);
+        EXPECT_LE(err_exact, 1e-8) << i << " N " << o.N << " vs exact " << cN;
         EXPECT_LE(err, 1e-6) << i << " mu " << r.mu << " e " << r.e << " N " << o.N << " vs " << ref.normal_impulse
                              << " Pt " << o.Ft << " vs " << ref.tangential;
         const bool sticks = ref.phases.back() == impactgen::numeric::process_phase_kind::stick;
@@ -146,8 +192,8 @@ void agree_with_reference(law l)
         ++compared;
     }
     EXPECT_GT(compared, 19000);
-    std::printf("[ %s ] %d problems, worst relative difference to the integrator %.3g\n",
-                l == law::poisson ? "poisson" : "energetic", compared, worst);
+    std::printf("[ %s ] %d problems, worst relative difference to the integrator %.3g, to the exact closed form %.3g\n",
+                l == law::poisson ? "poisson" : "energetic", compared, worst, worst_exact);
 }
 
 TEST(codegen_laws, poisson_agrees_with_the_integrator)
@@ -350,6 +396,62 @@ TEST(codegen_laws, autodiff_derivatives)
     EXPECT_GT(compared, 2000);
     EXPECT_LT(differ, compared / 100) << differ << " of " << compared;
     std::printf("[ autodiff ] %d derivatives compared, %d across a phase boundary\n", compared, differ);
+}
+
+// The checked-in header of the named class (generated/rod_rough_floor.hpp: the energetic law, the
+// rod's length l and angle theta as inputs, cos theta and sin theta evaluated in the header by
+// std::cos and std::sin) against the header whose inputs are the centre and the inertia, at
+// x = l cos theta / 2, y = l sin theta / 2, J = m l^2 / 12: the same closed form with the same
+// phase sequence, rounded in another order. Both are within a few ulps of the exact value times
+// the condition of the formulas (measured: 3e-15 relative at worst on these seeds); 1e-9 leaves
+// room, and a wrong sequence is off by O(mu). AutoDiffScalar through cos and sin: d/dtheta
+// against central differences of the double function.
+TEST(codegen_laws, named_class_header_takes_the_angle)
+{
+    using ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 1, 1>>;
+    std::mt19937_64 g(31);
+    std::uniform_real_distribution<double> U(0, 1);
+    int compared = 0, derivatives = 0;
+    double worst = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const double e = U(g), mu = 2 * U(g), m = std::pow(10.0, -4 + 8 * U(g)), l = std::pow(10.0, -1 + 2 * U(g));
+        const double th = 0.05 + 3.04 * U(g), w = (2 * U(g) - 1) * 3 / l, vt = 2 * U(g) - 1;
+        const double vn = -U(g) - 0.05 + w * l * std::cos(th) / 2; // u_n < 0
+        gen::rod_rough_floor_result<double> a{};
+        const friction_status st = gen::rod_rough_floor<double>(e, mu, l, m, th, vt, vn, w, a);
+        const rod r{e, mu, m, m * l * l / 12, l * std::cos(th) / 2, l * std::sin(th) / 2, vt, vn, w};
+        const outcome<double> o = run<double>(law::energetic, r);
+        ASSERT_EQ(st, o.status) << i;
+        if (st != friction_status::ok)
+            continue;
+        const double size = std::abs(o.N) + std::abs(o.Ft);
+        EXPECT_LE(std::abs(a.normal_impulse - o.N), 1e-9 * size) << i;
+        EXPECT_LE(std::abs(a.tangential_impulse_t - o.Ft), 1e-9 * size) << i;
+        worst = std::max(worst, std::max(std::abs(a.normal_impulse - o.N), std::abs(a.tangential_impulse_t - o.Ft)) / size);
+        EXPECT_EQ(a.regime, o.regime) << i;
+        EXPECT_GE(a.energy_lost, -1e-9 * m * (vt * vt + vn * vn + l * l * w * w)) << i;
+        ++compared;
+        if (i % 10)
+            continue;
+        gen::rod_rough_floor_result<ad> d{};
+        ASSERT_EQ((gen::rod_rough_floor<ad>(ad(e), ad(mu), ad(l), ad(m), ad(th, 1, 0), ad(vt), ad(vn), ad(w), d)),
+                  friction_status::ok);
+        const double h = 1e-6;
+        gen::rod_rough_floor_result<double> p{}, q{};
+        if (gen::rod_rough_floor<double>(e, mu, l, m, th + h, vt, vn, w, p) != friction_status::ok ||
+            gen::rod_rough_floor<double>(e, mu, l, m, th - h, vt, vn, w, q) != friction_status::ok ||
+            p.regime != a.regime || q.regime != a.regime)
+            continue;
+        const double fd = (p.normal_impulse - q.normal_impulse) / (2 * h);
+        // central difference: error h^2 |N'''| / 6 plus rounding 1e-16 |N| / h (about 1e-10 |N|)
+        EXPECT_NEAR(d.normal_impulse.derivatives()[0], fd, 1e-5 * (1 + std::abs(fd)) * (1 + std::abs(a.normal_impulse)))
+            << i;
+        ++derivatives;
+    }
+    EXPECT_GT(compared, 2500);
+    EXPECT_GT(derivatives, 200);
+    std::printf("[ rod-rough-floor ] %d problems, worst relative difference %.3g; %d d/dtheta\n", compared, worst,
+                derivatives);
 }
 
 // The same example as a numeric problem (no inputs): the sequence decided exactly at generation.

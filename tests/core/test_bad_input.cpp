@@ -1,5 +1,6 @@
 // Every category of bad input in shared/problem-format.md is refused with a
 // message that names the problem and the key; the CLI exits 1 with one line.
+#include "symbolic/named_classes.hpp"
 #include "symbolic/solution.hpp"
 #include "symbolic/system.hpp"
 
@@ -184,7 +185,8 @@ std::vector<bad_case> cases()
         {"file_too_large", [] { return with(valid(), [](json& j) { j["description"] = std::string(70000, 'x'); }); }, {"at most 65536"}},
         // Systems (format version 3)
         {"contacts_too_many", [] { return with(valid_system(), [](json& j) { j["contacts"] = many(j["contacts"][0], 65); }); }, {"contacts", "at most 64"}},
-        {"system_process_law_with_friction", [] { return with(valid_system(), [](json& j) { j["contacts"][1]["law"] = "poisson"; j["contacts"].erase(0); }); }, {"contacts[0].law", "poisson", "one contact without joints"}},
+        // (one contact with joints is answered: test_laws_systems.cpp; several are refused)
+        {"system_process_law_with_friction", [] { return with(valid_system(), [](json& j) { j["contacts"][1]["law"] = "poisson"; }); }, {"contacts[1].law", "poisson", "applies to one contact"}},
         {"system_energetic_law_rough", [] { return with(valid_system(), [](json& j) { j["contacts"][0]["law"] = "energetic"; j["contacts"][0]["friction"] = "inf"; }); }, {"law"}},
         {"joints_not_a_list", [] { return with(valid_system(), [](json& j) { j["joints"] = 3; }); }, {"joints", "expected a list"}},
         {"joints_too_many", [] { return with(valid_system(), [](json& j) { j["joints"] = many(j["joints"][0], 65); }); }, {"joints", "at most 64"}},
@@ -326,6 +328,23 @@ TEST(Cli, UsageErrorsExitTwo)
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("neither a named class"), std::string::npos) << r.err;
     EXPECT_EQ(run_cli("solve planar").code, 1); // symbols: solve refuses, formulas is the tool
+}
+
+TEST(Cli, ListPrintsEveryGroupOfNamedClasses)
+{
+    run_result r = run_cli("list");
+    ASSERT_EQ(r.code, 0) << r.err;
+    r.out = "\n" + r.out;
+    for (const auto* group : {&impactgen::named_classes(), &impactgen::friction_classes(), &impactgen::law_classes()})
+        for (const impactgen::named_class& c : *group)
+            EXPECT_NE(r.out.find("\n" + c.name + " "), std::string::npos) << c.name << " missing from:\n" << r.out;
+    // The law classes in a group of their own, after the friction classes.
+    const std::size_t group = r.out.find("restitution followed through the impact");
+    ASSERT_NE(group, std::string::npos) << r.out;
+    EXPECT_GT(r.out.find("\nrod-rough-floor "), group);
+    EXPECT_GT(group, r.out.find("\nplanar-friction "));
+    // And an unknown name lists them too.
+    EXPECT_NE(run_cli("formulas no-such-class").err.find("rod-rough-floor"), std::string::npos);
 }
 
 TEST(Cli, SolveJsonIsTheAnswerObject)

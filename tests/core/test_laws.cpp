@@ -643,7 +643,9 @@ void expect_one_line_refusal(const run_result &r, const std::string &part)
 }
 
 // explain teaches the process (tests/explain/explain_process_test.cpp) and codegen generates it
-// (tests/codegen/laws.cpp); the Jacobian refuses it.
+// (tests/codegen/laws.cpp); formulas --jacobian differentiates each phase sequence of a problem
+// with symbols (test_laws_jacobian.cpp) and refuses a numeric one (no input), codegen --jacobian
+// refuses friction.
 TEST(LawsCli, ExplainAndCodegenAnswerPoissonAndEnergeticWithFriction)
 {
     for (const char *law : {"poisson", "energetic"}) {
@@ -655,11 +657,16 @@ TEST(LawsCli, ExplainAndCodegenAnswerPoissonAndEnergeticWithFriction)
         const run_result header = run_cli("codegen " + path); // codegen follows the process (tests/codegen/laws.cpp)
         EXPECT_EQ(header.code, 0) << header.err;
         EXPECT_NE(header.out.find("Routh's process"), std::string::npos);
-        expect_one_line_refusal(run_cli("formulas --jacobian " + path), "contact.law");
+        expect_one_line_refusal(run_cli("formulas --jacobian " + path), "--jacobian: the problem has no symbol");
+        expect_one_line_refusal(run_cli("codegen --jacobian " + path), "--jacobian");
         const run_result solved = run_cli("solve --json " + path);
         EXPECT_EQ(solved.code, 0) << solved.err;
         std::remove(path.c_str());
     }
+    const run_result jac = run_cli("formulas --jacobian --wrt mu,theta rod-rough-floor");
+    EXPECT_EQ(jac.code, 0) << jac.err;
+    EXPECT_NE(jac.out.find("per phase sequence"), std::string::npos);
+    EXPECT_NE(jac.out.find("d normal_impulse / d theta"), std::string::npos);
     const run_result symbolic = run_cli("explain rod-rough-floor");
     EXPECT_EQ(symbolic.code, 0) << symbolic.err;
     EXPECT_NE(symbolic.out.find("Phase sequence 16"), std::string::npos);

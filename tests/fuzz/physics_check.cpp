@@ -162,7 +162,8 @@ real kinetic_energy(const rbody& b, const rvec& v, const rvec& w)
 // A system (format version 3): each body's impulse-momentum with every impulse of the answer
 // (contacts, joints, pivots), the joints together and the pivots at rest after impact, and
 // per contact the law: N_i >= 0, "open" exactly when N_i = 0, u'_i + e_i u_i >= 0 with equality
-// where N_i > 0 (simultaneous), no contact approaching at the end (sequential).
+// where N_i > 0 (simultaneous), no contact approaching at the end (sequential, or a contact whose
+// answer carries Routh's process: poisson, energetic).
 void check_system(checker& ck, const problem& p, const json& a, const std::vector<rbody>& bodies)
 {
     const int dim = p.dimension;
@@ -242,9 +243,9 @@ void check_system(checker& ck, const problem& p, const json& a, const std::vecto
         const real e = ck.value(p.restitution_of(i), "restitution");
         const real sc = speed(c.body1, q) + speed(c.body2, q);
         const std::string w = "contacts[" + std::to_string(i) + "]";
-        if (p.sequential) {
+        if (p.sequential || cs[i].contains("process")) { // (Routh's process: separating at its end)
             if (u1 < -tolerance * sc)
-                ck.fail(w + ": still approaching after the sequence");
+                ck.fail(w + ": still approaching after the impact");
         } else if (u1 + e * u < -tolerance * sc) {
             ck.fail(w + ": u' + e u < 0 (the contact passes through)");
         } else if (N[i] > 0) {
