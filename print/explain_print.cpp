@@ -42,61 +42,15 @@ std::string harden(std::string s)
     return s;
 }
 
-// |x| for GiNaC's abs(x): the canonical printer prints a function by name,
-// abs(x) and \operatorname{abs}\left(x\right); the notes write |x|.
-std::string bars_text(std::string s)
-{
-    for (std::size_t at = s.find("abs("); at != std::string::npos; at = s.find("abs(", at)) {
-        if (at > 0 && (std::isalnum(static_cast<unsigned char>(s[at - 1])) || s[at - 1] == '_')) {
-            at += 4;
-            continue;
-        }
-        std::size_t k = at + 4;
-        for (int depth = 1; k < s.size(); ++k) {
-            if (s[k] == '(')
-                ++depth;
-            else if (s[k] == ')' && --depth == 0)
-                break;
-        }
-        if (k >= s.size())
-            break;
-        s = s.substr(0, at) + "|" + s.substr(at + 4, k - at - 4) + "|" + s.substr(k + 1);
-        ++at;
-    }
-    return s;
-}
-
-std::string bars_latex(std::string s)
-{
-    const std::string open = "\\operatorname{abs}\\left(";
-    for (std::size_t at = s.find(open); at != std::string::npos; at = s.find(open, at)) {
-        std::size_t k = at + open.size();
-        int depth = 1;
-        for (; k < s.size(); ++k) {
-            if (s.compare(k, 5, "\\left") == 0)
-                ++depth;
-            else if (s.compare(k, 6, "\\right") == 0 && --depth == 0)
-                break;
-        }
-        if (k >= s.size())
-            break;
-        // \right) -> \right|
-        s = s.substr(0, at) + "\\left|" + s.substr(at + open.size(), k - at - open.size()) + "\\right|" +
-            s.substr(k + 7);
-        ++at;
-    }
-    return s;
-}
-
 std::string math_text(const ex &e)
 {
-    return bars_text(canonical_text(e));
+    return canonical(e, syntax::text, true); // abs(x) as |x|
 }
 } // namespace
 
 std::string tex_layout::math_latex(const ex &e)
 {
-    return bars_latex(canonical_latex(e));
+    return canonical(e, syntax::latex, true); // abs(x) as \left|x\right|
 }
 
 namespace
