@@ -229,8 +229,8 @@ scaled canonical_pool::convert_product(expr::tree &t, int id)
 
 scaled canonical_pool::convert(const ex &e)
 {
-    expr::trim_shared_tree();
-    expr::tree &t = expr::shared_tree();
+    const expr::shared_tree shared;
+    expr::tree &t = shared.get();
     return convert(t, t.of(e));
 }
 

@@ -351,6 +351,8 @@ std::vector<std::pair<bool, std::string>> writer::terms(int id)
     std::vector<std::pair<bool, std::string>> out;
     const std::vector<term> &ts = t_.at(id).terms;
     for (const term &tm : ts) {
+        if (!tm.coefficient.is_real()) // |coefficient| would print a + i as a + 1
+            throw std::invalid_argument("canonical printer: complex number " + number_text(tm.coefficient));
         bool neg = tm.coefficient.is_negative();
         printed p = product(tm.body);
         if (p.negative && starts_with_minus(p.s)) {

@@ -199,16 +199,30 @@ std::string tree::factor_key(const factor &f)
     }
 }
 
-tree &shared_tree()
+namespace
+{
+tree &the_shared_tree()
 {
     static tree t;
     return t;
 }
+int shared_scopes = 0;
+} // namespace
 
-void trim_shared_tree()
+shared_tree::shared_tree()
 {
-    if (shared_tree().size() > 100000)
-        shared_tree() = tree{};
+    if (shared_scopes++ == 0 && the_shared_tree().size() > 100000)
+        the_shared_tree() = tree{};
+}
+
+shared_tree::~shared_tree()
+{
+    --shared_scopes;
+}
+
+tree &shared_tree::get() const
+{
+    return the_shared_tree();
 }
 
 } // namespace impactgen::expr

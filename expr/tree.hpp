@@ -100,11 +100,19 @@ private:
     std::map<GiNaC::ex, int, GiNaC::ex_is_less> by_value_;
 };
 
-/// The tree every printer and code generation share in this process; forgets its
-/// nodes when it grows past a bound (call between expressions, never while one
-/// caller holds node ids).
-tree &shared_tree();
-void trim_shared_tree();
+/// The tree every printer and code generation share in this process, held for the length of a
+/// scope: node ids stay valid while any scope holds it (scopes nest: a conversion may print or
+/// convert again), and it forgets its nodes when it has grown past a bound and the first scope
+/// opens.
+class shared_tree
+{
+public:
+    shared_tree();
+    ~shared_tree();
+    shared_tree(const shared_tree &) = delete;
+    shared_tree &operator=(const shared_tree &) = delete;
+    tree &get() const;
+};
 
 /// Text of an exact number, e.g. "4/5", "-3".
 std::string number_text(const GiNaC::numeric &x);

@@ -37,15 +37,15 @@ std::vector<std::pair<bool, std::string>> canonical_terms(const ex &e, syntax s)
 {
     if (!is_a<add>(e))
         return {{false, canonical(e, s)}};
-    expr::trim_shared_tree();
-    expr::tree &t = expr::shared_tree();
+    const expr::shared_tree shared;
+    expr::tree &t = shared.get();
     return expr::print_terms(t, t.of(e), s, mathml_of_tex);
 }
 
 std::string canonical(const ex &e, syntax s, bool abs_as_bars)
 {
-    expr::trim_shared_tree();
-    expr::tree &t = expr::shared_tree();
+    const expr::shared_tree shared;
+    expr::tree &t = shared.get();
     std::string out = expr::print(t, t.of(e), s, mathml_of_tex, abs_as_bars).s;
     if (s == syntax::mathml) // one element: a leading minus is first in its row, a prefix sign
         out = expr::mathml_one(out);
