@@ -11,13 +11,6 @@ namespace impactgen::codegen
 {
 using namespace GiNaC;
 
-std::string number_text(const numeric &x)
-{
-    std::ostringstream os;
-    os << x;
-    return os.str();
-}
-
 void canonical_pool::bind_step(const symbol &sym, int index, const std::string &name)
 {
     cnode n;
@@ -121,29 +114,37 @@ scaled canonical_pool::convert_symbol(const ex &e)
 }
 
 // A sum: its terms' nodes with exact coefficients, signed so the first coefficient is positive.
-scaled canonical_pool::convert_sum(const ex &e)
+scaled canonical_pool::convert_sum(expr::tree &t, int id)
 {
     std::map<int, numeric> coeff;
     numeric constant = 0;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-        scaled t = convert(e.op(i));
-        if (t.node < 0) {
-            constant += t.scale;
+    for (const expr::term &tm : t.at(id).terms) {
+        // A term with a constant that is not a number is valued whole (2*Pi, not 2 times Pi's value).
+        const ex &rest = t.at(tm.rest).value;
+        scaled s;
+        if (!is_a<numeric>(rest) && is_constant(rest)) {
+            s = convert(t, t.of(tm.coefficient * rest));
+        } else {
+            s = convert(t, tm.rest);
+            s.scale *= tm.coefficient;
+        }
+        if (s.node < 0) {
+            constant += s.scale;
             continue;
         }
-        const cnode &tn = at(t.node);
+        const cnode &tn = at(s.node);
         if (tn.kind == cnode::add) {
-            for (auto &[c, id] : tn.terms)
-                coeff[id] += t.scale * c;
-            constant += t.scale * tn.value;
+            for (auto &[c, term_id] : tn.terms)
+                coeff[term_id] += s.scale * c;
+            constant += s.scale * tn.value;
         } else {
-            coeff[t.node] += t.scale;
+            coeff[s.node] += s.scale;
         }
     }
     std::vector<std::pair<numeric, int>> terms;
-    for (auto &[id, c] : coeff)
+    for (auto &[node_id, c] : coeff)
         if (!c.is_zero())
-            terms.push_back({c, id});
+            terms.push_back({c, node_id});
     if (terms.empty())
         return {constant, -1};
     if (terms.size() == 1 && constant.is_zero())
@@ -154,19 +155,20 @@ scaled canonical_pool::convert_sum(const ex &e)
     cnode n;
     n.kind = cnode::add;
     n.value = sign * constant;
-    for (auto &t : terms)
-        n.terms.push_back({sign * t.first, t.second});
+    for (auto &term : terms)
+        n.terms.push_back({sign * term.first, term.second});
     n.key = "(";
-    for (auto &[c, id] : n.terms)
-        n.key += number_text(c) + "*" + at(id).key + ";";
+    for (auto &[c, node_id] : n.terms)
+        n.key += number_text(c) + "*" + at(node_id).key + ";";
     n.key += "|" + number_text(n.value) + ")";
     return {sign, intern(std::move(n))};
 }
 
-// A product or power: its factors' nodes with integer exponents (half-integer ones through sqrt).
-scaled canonical_pool::convert_product(const ex &e)
+// A product: its factors' nodes with integer exponents (half-integer ones through sqrt).
+scaled canonical_pool::convert_product(expr::tree &t, int id)
 {
-    numeric coeff = 1;
+    const expr::product_form &pf = t.product(id);
+    numeric coeff = pf.coefficient;
     std::map<int, int> expo;
     auto take = [&](const scaled &f, int k) {
         if (f.scale.is_zero() && k < 0)
@@ -177,44 +179,37 @@ scaled canonical_pool::convert_product(const ex &e)
         const cnode &fn = at(f.node);
         if (fn.kind == cnode::mul) {
             coeff *= pow(fn.value, numeric(k));
-            for (auto &[id, x] : fn.factors)
-                expo[id] += x * k;
+            for (auto &[node_id, x] : fn.factors)
+                expo[node_id] += x * k;
         } else {
             expo[f.node] += k;
         }
     };
-    auto factor = [&](const ex &f) {
-        if (is_a<power>(f)) {
-            const ex &b = f.op(0);
-            const ex &x = f.op(1);
-            if (!is_a<numeric>(x) || !ex_to<numeric>(x).is_rational())
-                throw std::runtime_error("code generation: power with a non-rational exponent");
-            numeric q = ex_to<numeric>(x);
-            if (q.is_integer()) {
-                take(convert(b), q.to_int());
-                return;
-            }
-            if (q.denom() != 2)
-                throw std::runtime_error("code generation: only integer and half-integer powers are supported");
-            // b^(p/2) = sqrt(b)^p
-            cnode s;
-            s.kind = cnode::sqrt_;
-            s.arg = node_of(convert(b));
-            s.key = "sqrt(" + at(s.arg).key + ")";
-            take({1, intern(std::move(s))}, q.numer().to_int());
+    auto factor = [&](const expr::factor &f, int sign) {
+        if (!is_a<numeric>(f.exponent) || !ex_to<numeric>(f.exponent).is_rational())
+            throw std::runtime_error("code generation: power with a non-rational exponent");
+        const numeric q = ex_to<numeric>(f.exponent);
+        if (q.is_integer()) {
+            take(convert(t, f.base), sign * q.to_int());
             return;
         }
-        take(convert(f), 1);
+        if (q.denom() != 2)
+            throw std::runtime_error("code generation: only integer and half-integer powers are supported");
+        // b^(p/2) = sqrt(b)^p
+        cnode s;
+        s.kind = cnode::sqrt_;
+        s.arg = node_of(convert(t, f.base));
+        s.key = "sqrt(" + at(s.arg).key + ")";
+        take({1, intern(std::move(s))}, sign * q.numer().to_int());
     };
-    if (is_a<power>(e))
-        factor(e);
-    else
-        for (std::size_t i = 0; i < e.nops(); ++i)
-            factor(e.op(i));
+    for (const expr::factor &f : pf.numerator)
+        factor(f, 1);
+    for (const expr::factor &f : pf.denominator)
+        factor(f, -1);
     std::vector<std::pair<int, int>> factors;
-    for (auto &[id, x] : expo)
+    for (auto &[node_id, x] : expo)
         if (x != 0)
-            factors.push_back({id, x});
+            factors.push_back({node_id, x});
     if (factors.empty() || coeff.is_zero())
         return {coeff, -1};
     if (factors.size() == 1 && factors[0].second == 1)
@@ -246,28 +241,39 @@ scaled canonical_pool::convert_trig(const ex &e)
 
 scaled canonical_pool::convert(const ex &e)
 {
+    const expr::shared_tree shared;
+    expr::tree &t = shared.get();
+    return convert(t, t.of(e));
+}
+
+scaled canonical_pool::convert(expr::tree &t, int id)
+{
+    const expr::node &n = t.at(id);
     // A constant that is not a rational (Pi, sqrt(2)/2 + 1, cos(1)) becomes its value
     // to 40 digits: a literal good for long double, exact to every digit of double.
-    if (!is_a<numeric>(e) && is_constant(e)) {
-        ex v = value_to_40_digits(e);
+    if (n.k != expr::kind::number && is_constant(n.value)) {
+        ex v = value_to_40_digits(n.value);
         if (is_a<numeric>(v) && ex_to<numeric>(v).is_real())
             return {ex_to<numeric>(v), -1};
     }
-    if (is_a<numeric>(e)) {
-        const numeric &x = ex_to<numeric>(e);
+    switch (n.k) {
+    case expr::kind::number: {
+        const numeric &x = ex_to<numeric>(n.value);
         if (!x.is_real())
             throw std::runtime_error("code generation: complex number " + number_text(x));
         return {x, -1};
     }
-    if (is_a<symbol>(e))
-        return convert_symbol(e);
-    if (is_a<add>(e))
-        return convert_sum(e);
-    if (is_a<mul>(e) || is_a<power>(e))
-        return convert_product(e);
-    if (is_a<function>(e))
-        return convert_trig(e);
-    cannot_express(e);
+    case expr::kind::symbol:
+        return convert_symbol(n.value);
+    case expr::kind::sum:
+        return convert_sum(t, id);
+    case expr::kind::product:
+        return convert_product(t, id);
+    case expr::kind::function:
+        return convert_trig(n.value);
+    default:
+        cannot_express(n.value);
+    }
 }
 
 } // namespace impactgen::codegen

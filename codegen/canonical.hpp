@@ -1,14 +1,17 @@
-// Canonical n-ary expression trees built from GiNaC expressions, independent
-// of GiNaC's term order (which moves from run to run with address-space
-// randomisation, see shared/measured-facts.md).
+// The canonical tree of expr/ (expr/tree.hpp, the one every printer reads) lowered
+// to what C++ code needs: symbols become the C++ names of the inputs or the steps
+// already computed, constants that are not rational (Pi, sqrt(2)/2 + 1) their
+// values to 40 digits, half-integer powers square roots; what C++ arithmetic cannot
+// express (a function of symbols, a complex number) is refused here.
 //
-// Every node is hash-consed under a key computed from its children's keys;
-// the operands of + and * are sorted by that key and a sum is normalised so
-// that its first term has a positive coefficient (x - y and y - x share one
-// node). Equal subexpressions therefore become one node whatever order GiNaC
-// happened to print them in, and everything downstream (the straight-line
-// program, the printed formulas) is byte-for-byte reproducible.
+// The lowered nodes are value-numbered under a key made of the C++ names (two
+// symbols the printers write alike are two inputs here), and the operands of + and
+// * are ordered by that key, a sum signed so that its first coefficient is
+// positive (x - y and y - x share one node): the straight-line program and the
+// emitted code depend on the C++ names, not on how a symbol prints.
 #pragma once
+
+#include "expr/tree.hpp"
 
 #include <ginac/ginac.h>
 
@@ -54,12 +57,14 @@ public:
     std::size_t size() const { return nodes_.size(); }
 
 private:
+    /// A node of the canonical tree.
+    scaled convert(expr::tree &t, int id);
     /// A symbol: a bound step or a named input.
     scaled convert_symbol(const GiNaC::ex &e);
     /// A sum: its terms' nodes with exact coefficients.
-    scaled convert_sum(const GiNaC::ex &e);
-    /// A product or power: its factors' nodes with integer exponents.
-    scaled convert_product(const GiNaC::ex &e);
+    scaled convert_sum(expr::tree &t, int id);
+    /// A product: its factors' nodes with integer exponents.
+    scaled convert_product(expr::tree &t, int id);
     /// cos or sin of an expression (a rod's angle): one node, evaluated by std::cos / std::sin.
     scaled convert_trig(const GiNaC::ex &e);
     int intern(cnode n);
@@ -71,6 +76,9 @@ private:
 };
 
 /// Text of an exact number, e.g. "4/5", "-3".
-std::string number_text(const GiNaC::numeric &x);
+inline std::string number_text(const GiNaC::numeric &x)
+{
+    return expr::number_text(x);
+}
 
 } // namespace impactgen::codegen

@@ -42,16 +42,6 @@ std::string wrap_comment(const std::string &lhs, const std::string &rhs)
     return out + "\n";
 }
 
-// True when the code names the identifier (not as part of a longer one).
-bool uses(const std::string &code, const std::string &name)
-{
-    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
-        if ((at == 0 || !ident(code[at - 1])) && (at + name.size() == code.size() || !ident(code[at + name.size()])))
-            return true;
-    return false;
-}
-
 // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
 std::string balanced_sum(std::vector<std::string> level)
 {
@@ -104,23 +94,6 @@ std::string timed_sum(const std::vector<sum_term> &terms)
     if (nodes.empty())
         return "T(" + optional + ")";
     return "with_energy_lost ? T(" + wrap(nodes[0].text) + " + " + optional + ") : T(" + nodes[0].text + ")";
-}
-
-// energy_lost on request: with_energy_lost = false leaves it 0 (not computed, not checked).
-std::string energy_optional(const std::string &code, const std::string &lhs)
-{
-    std::istringstream lines(code);
-    std::string line, r;
-    while (std::getline(lines, line)) {
-        if (line.rfind(lhs, 0) == 0 && line.size() > lhs.size() && line.back() == ';') {
-            std::string rhs = line.substr(lhs.size(), line.size() - lhs.size() - 1);
-            if (rhs.find(' ') != std::string::npos)
-                rhs = "(" + rhs + ")";
-            line = lhs + "with_energy_lost ? " + rhs + " : T(0);";
-        }
-        r += line + "\n";
-    }
-    return r;
 }
 
 // Minimums the flag of a branchless form takes (one per list of more than one term).

@@ -25,7 +25,6 @@ std::string command_line(const options &o);
 /// namespace that cannot be one.
 void check_names(const options &o);
 std::string wrap_comment(const std::string &lhs, const std::string &rhs);
-bool uses(const std::string &code, const std::string &name);
 std::string balanced_sum(std::vector<std::string> level);
 /// The leading principal minors that make a symmetric tensor positive definite, block by
 /// block (with the determinant of a block of all three axes only when with_determinant).
@@ -46,7 +45,6 @@ struct sum_term {
     bool optional = false;
 };
 std::string timed_sum(const std::vector<sum_term> &terms);
-std::string energy_optional(const std::string &code, const std::string &lhs);
 std::size_t mins(const emitted &em);
 std::pair<std::vector<sum_term>, std::vector<sum_term>> split_by_time(const std::vector<sum_term> &finite_terms);
 std::pair<std::size_t, std::size_t> flag_counts(const emitted &form, const std::vector<sum_term> &finite_terms);

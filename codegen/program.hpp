@@ -10,6 +10,7 @@
 #include "canonical.hpp"
 
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -120,6 +121,8 @@ struct emitted {
     /// The names the code declares (`const T name`: values, shared reciprocals, outputs
     /// placed as locals), in the order of the code.
     std::vector<std::string> declared;
+    /// The inputs the code reads: those the outputs are computed from and those it checks.
+    std::set<std::string> inputs_read;
 };
 
 /// How emit_cpp writes an output value v of field F.

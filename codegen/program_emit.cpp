@@ -208,6 +208,9 @@ public:
                 emit_checks(c.op_id);
         emit_values();
         emit_outputs();
+        for (std::size_t i = 0; i < n_; ++i)
+            if ((needed_[i] || reach_[i]) && prog_.at(static_cast<int>(i)).kind == op::input)
+                out_.inputs_read.insert(prog_.at(static_cast<int>(i)).name);
         return out_;
     }
 

@@ -59,11 +59,16 @@ void writer::emit_forms()
     for (std::size_t k = 0; k < outs_.size(); ++k)
         if (outs_[k].kind == output_value::energy_lost)
             energy = static_cast<int>(k);
-    em_ = emit_cpp(main_.prog, main_.outs, main_.checks, main_.names, taken);
-    fast_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, branchless_form(false, energy));
-    batch_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, branchless_form(true, energy));
+    // The energy output is written `with_energy_lost ? v : T(0)` by the emitter (emit_options).
+    emit_options result;
+    result.energy_output = energy;
+    emit_options fast = branchless_form(false, energy), batch = branchless_form(true, energy);
+    fast.energy_output = batch.energy_output = energy;
+    em_ = emit_cpp(main_.prog, main_.outs, main_.checks, main_.names, taken, result);
+    fast_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, fast);
+    batch_ = emit_cpp(main_.prog, outs_local_, main_.checks, main_.names, taken, batch);
     unchanged_ = emit_cpp(main_.prog, unchanged_outs_, {}, {}, taken);
-    unchecked_ = emit_cpp(main_.prog, main_.outs, state_checks(main_.checks), main_.names, taken);
+    unchecked_ = emit_cpp(main_.prog, main_.outs, state_checks(main_.checks), main_.names, taken, result);
     // Inputs the outputs do not depend on still count for the finiteness check.
     std::set<std::string> reached;
     for (std::size_t i = 0; i < main_.prog.size(); ++i)
@@ -228,7 +233,7 @@ void writer::checked_function()
     h_ << math_usings(em_);
     fail_lambda("impact_status", "", true);
     h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
-    h_ << energy_optional(em_.code, "    out.energy_lost = ");
+    h_ << em_.code;
     if (!sum_terms_.empty()) {
         h_ << "    const T check_sum = " << balanced_sum(sum_terms_) << ";\n";
         h_ << "    if (!detail::finite(check_sum) && !detail::all_finite(" << join(sum_terms_, ", ") << "))\n";
@@ -253,7 +258,7 @@ void writer::fast_function()
     h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result()
        << "<T>& out) noexcept\n{\n";
     h_ << math_usings(em_);
-    h_ << energy_optional(fast_.code, "    const T " + local_of_.at("energy_lost") + " = ");
+    h_ << fast_.code;
     h_ << ok_flag("    ", fast_, fast_terms_, true);
     h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
     h_ << "        return detail::" << checked() << "<T, with_energy_lost>(";
@@ -280,7 +285,7 @@ void writer::unchecked_function()
     h_ << math_usings(unchecked_);
     fail_lambda("impact_status", "", false);
     h_ << "    (void)fail; // a fully numeric problem may have no check left\n";
-    h_ << energy_optional(unchecked_.code, "    out.energy_lost = ");
+    h_ << unchecked_.code;
     h_ << "    return impact_status::ok;\n}\n\n";
 }
 
@@ -384,8 +389,7 @@ void writer::straight_batch()
     h_ << "    for (long i = 0; i < n; ++i) {\n";
     for (const std::string &nm : input_names_)
         h_ << "        const T " << nm << " = " << in_ptr_.at(nm) << "[i];\n";
-    std::istringstream lines(energy_optional(batch_.code, "    const T " + local_of_.at("energy_lost") + " = ") +
-                             ok_flag("    ", batch_, batch_terms_, false));
+    std::istringstream lines(batch_.code + ok_flag("    ", batch_, batch_terms_, false));
     for (std::string line; std::getline(lines, line);)
         h_ << "    " << line << "\n";
     // Stored unconditionally: the second pass overwrites the outputs of failed impacts.

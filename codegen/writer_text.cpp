@@ -238,7 +238,7 @@ void writer::unchanged_function(const emitted &code)
                       : "/// before; impulses, approach velocity and energy lost zero; regime smooth).\n");
     h_ << "template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void " << unchanged() << "(";
     for (const std::string &nm : input_names_)
-        h_ << "T " << (uses(code.code, nm) ? nm : "/*" + nm + "*/") << ", ";
+        h_ << "T " << (code.inputs_read.count(nm) ? nm : "/*" + nm + "*/") << ", ";
     h_ << result() << "<T>& out) noexcept\n{\n";
     h_ << math_usings(code);
     h_ << code.code;

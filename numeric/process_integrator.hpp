@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactgen::numeric
@@ -41,6 +42,174 @@ template <typename T> struct process_result {
     std::vector<T> phase_ends; ///< P_n at each phase's end
 };
 
+namespace detail
+{
+
+/// The fraction f in (0, 1] of a step at its first event, by bisection on a predicate that is
+/// false at 0 and (when the event is in the step) true at 1; 2 when the step has none.
+template <typename T, typename Happened> T first_event(Happened &&happened)
+{
+    if (!happened(T(1)))
+        return T(2);
+    T lo = 0, hi = 1;
+    for (int i = 0; i < 80; ++i) {
+        const T mid = (lo + hi) / 2;
+        (happened(mid) ? hi : lo) = mid;
+    }
+    return hi;
+}
+
+/// The march of process_integrator.hpp: its state, a step's mode and its first event.
+template <typename T> class process_march
+{
+    using V2 = Eigen::Matrix<T, 2, 1>;
+
+public:
+    process_march(const Eigen::Matrix<T, 2, 2> &W, const V2 &c, T mu, T e, process_law law, int steps)
+        : W_(W), c_(c), mu_(mu), e_(e), law_(law), steps_(steps), V_(c.norm()), Wmax_(W.cwiseAbs().maxCoeff()),
+          // The step starts at h0 and grows by 1% after each step without an event (back to h0
+          // after one): within a step the motion is linear, so its size does not change the
+          // accuracy, and a nearly wedging contact (u_n growing at 1e-6 of the usual rate)
+          // still ends its compression in a few thousand steps.
+          h0_(-c[0] / W(0, 0) / T(steps)), h_(h0_)
+    {
+    }
+
+    process_result<T> run()
+    {
+        for (long k = 0; k < 20L * steps_; ++k) {
+            const V2 u = u_at(P_);
+            // A slip below the rounding of u = c + W P (with a margin) is no slip.
+            const T vtol = T(1e-11) * (V_ + Wmax_ * P_.cwiseAbs().sum());
+            if (!compressed_ && k > 0 && u[0] >= -vtol) { // u_n is 0 within rounding (a slip stopped there)
+                end_compression();
+                if (e_ == 0 || (law_ == process_law::poisson && P_[0] >= (1 + e_) * r_.compression_impulse)) {
+                    finish(u);
+                    if (r_.phases.empty())
+                        r_.phases.push_back(process_phase_kind::slide);
+                    return r_;
+                }
+            }
+            // The mode for this step: dP = (1, rate) per unit of P_n.
+            int s = 0;
+            const V2 dP(T(1), rate(u, vtol, s));
+            const auto [f, event] = step_event(u, dP, s, vtol);
+            work_ += work_to(u, dP, f);
+            P_ += f * h_ * dP;
+            h_ = event == 0 ? h_ * T(1.01) : h0_;
+            if (s == 0) // stick: P_t that holds u_t at 0 exactly, so that rounding does not accumulate
+                P_[1] = -(c_[1] + W_(1, 0) * P_[0]) / W_(1, 1);
+            // event 1 (the slip stopped): the bisection leaves |u_t| below 2^-80 of the step's
+            // change; the next step decides stick or reverse.
+            bool restored = event == 3;
+            if (event == 2) {
+                end_compression();
+                restored = e_ == 0; // nothing to restore
+            }
+            if (restored || (compressed_ && law_ == process_law::energetic && target_ <= 0)) {
+                r_.restitution_work = work_;
+                finish(u_at(P_));
+                return r_;
+            }
+        }
+        return r_; // the compression or the restitution never ended
+    }
+
+private:
+    V2 u_at(const V2 &x) const { return c_ + W_ * x; }
+
+    void record(process_phase_kind k)
+    {
+        if (r_.phases.empty() || r_.phases.back() != k) {
+            if (!r_.phases.empty())
+                r_.phase_ends.push_back(P_[0]);
+            r_.phases.push_back(k);
+        }
+    }
+
+    void end_compression()
+    {
+        compressed_ = true;
+        r_.compression_impulse = P_[0];
+        r_.compression_work = work_;
+        target_ = -e_ * e_ * work_;
+        work_ = 0;
+    }
+
+    void finish(const V2 &u_after)
+    {
+        r_.ok = true;
+        r_.normal_impulse = P_[0];
+        r_.tangential = P_[1];
+        r_.velocity_after = u_after;
+        r_.phase_ends.push_back(P_[0]);
+    }
+
+    // dP_t per unit of P_n in the mode Coulomb's law asks for at u (recorded as a phase); s the
+    // slip's sign, 0 for stick.
+    T rate(const V2 &u, T vtol, int &s)
+    {
+        T r = 0;
+        process_phase_kind kind = process_phase_kind::stick;
+        if (std::abs(u[1]) > vtol) {
+            s = u[1] > 0 ? 1 : -1;
+        } else if (std::abs(W_(1, 0)) <= mu_ * W_(1, 1)) {
+            r = -W_(1, 0) / W_(1, 1);
+        } else {
+            s = W_(1, 0) > 0 ? 1 : -1; // the slip grows along sign(W_tn)
+        }
+        if (s != 0) {
+            r = -T(s) * mu_;
+            if (first_sign_ == 0)
+                first_sign_ = s;
+            kind = s == first_sign_ ? process_phase_kind::slide : process_phase_kind::reverse;
+        }
+        record(kind);
+        return r;
+    }
+
+    // int u_n dP_n over the fraction f of the step (u_n linear: trapezoid).
+    T work_to(const V2 &u, const V2 &dP, T f) const { return (u[0] + u_at(P_ + f * h_ * dP)[0]) / 2 * f * h_; }
+
+    // The fraction of the step at its first event and the event: 0 none, 1 the slip stops,
+    // 2 the compression ends, 3 the restitution ends.
+    std::pair<T, int> step_event(const V2 &u, const V2 &dP, int s, T vtol) const
+    {
+        T f = 1;
+        int event = 0;
+        auto take = [&](T g, int which) {
+            if (g <= f) {
+                f = g;
+                event = which;
+            }
+        };
+        if (s != 0 && std::abs(u[1]) > vtol)
+            take(first_event<T>([&](T x) { return T(s) * u_at(P_ + x * h_ * dP)[1] <= 0; }), 1);
+        if (!compressed_)
+            take(first_event<T>([&](T x) { return u_at(P_ + x * h_ * dP)[0] >= 0; }), 2);
+        else if (law_ == process_law::poisson)
+            take(first_event<T>([&](T x) { return P_[0] + x * h_ >= (1 + e_) * r_.compression_impulse; }), 3);
+        else
+            take(first_event<T>([&](T x) { return work_ + work_to(u, dP, x) >= target_; }), 3);
+        return {f, event};
+    }
+
+    const Eigen::Matrix<T, 2, 2> W_;
+    const V2 c_;
+    const T mu_, e_;
+    const process_law law_;
+    const int steps_;
+    const T V_, Wmax_, h0_;
+    T h_;
+    V2 P_ = V2::Zero();
+    T work_ = 0, target_ = 0;
+    bool compressed_ = false;
+    int first_sign_ = 0;
+    process_result<T> r_;
+};
+
+} // namespace detail
+
 /// The process for the contact response W = [[W_nn, W_nt], [W_tn, W_tt]] and the velocity
 /// c = (u_n, u_t) before impact (u_n < 0), marching P_n in `steps` steps of the frictionless
 /// compression impulse -u_n / W_nn, growing (see below), at most 20 times that many.
@@ -48,137 +217,7 @@ template <typename T>
 process_result<T> integrate_process(const Eigen::Matrix<T, 2, 2> &W, const Eigen::Matrix<T, 2, 1> &c, T mu, T e,
                                     process_law law, int steps = 4000)
 {
-    using V2 = Eigen::Matrix<T, 2, 1>;
-    process_result<T> r;
-    const T V = c.norm(), Wmax = W.cwiseAbs().maxCoeff();
-    // The step starts at h0 and grows by 1% after each step without an event (back to h0 after
-    // one): within a step the motion is linear, so its size does not change the accuracy, and a
-    // nearly wedging contact (u_n growing at 1e-6 of the usual rate) still ends its compression
-    // in a few thousand steps.
-    const T h0 = -c[0] / W(0, 0) / T(steps);
-    T h = h0;
-    V2 P = V2::Zero();
-    T work = 0, target = 0;
-    bool compressed = false;
-    int first_sign = 0;
-    auto u_at = [&](const V2 &x) -> V2 { return c + W * x; };
-    auto record = [&](process_phase_kind k) {
-        if (r.phases.empty() || r.phases.back() != k) {
-            if (!r.phases.empty())
-                r.phase_ends.push_back(P[0]);
-            r.phases.push_back(k);
-        }
-    };
-    for (long k = 0; k < 20L * steps; ++k) {
-        const V2 u = u_at(P);
-        // A slip below the rounding of u = c + W P (with a margin) is no slip.
-        const T vtol = T(1e-11) * (V + Wmax * P.cwiseAbs().sum());
-        if (!compressed && k > 0 && u[0] >= -vtol) { // u_n is 0 within rounding (a slip stopped there)
-            compressed = true;
-            r.compression_impulse = P[0];
-            r.compression_work = work;
-            target = -e * e * work;
-            work = 0;
-            if (e == 0 || (law == process_law::poisson && P[0] >= (1 + e) * r.compression_impulse)) {
-                r.ok = true;
-                r.normal_impulse = P[0];
-                r.tangential = P[1];
-                r.velocity_after = u;
-                r.phase_ends.push_back(P[0]);
-                if (r.phases.empty())
-                    r.phases.push_back(process_phase_kind::slide);
-                return r;
-            }
-        }
-        // The mode for this step: dP = (1, rate) per unit of P_n.
-        T rate = 0;
-        process_phase_kind kind = process_phase_kind::stick;
-        int s = 0;
-        if (std::abs(u[1]) > vtol) {
-            s = u[1] > 0 ? 1 : -1;
-        } else if (std::abs(W(1, 0)) <= mu * W(1, 1)) {
-            rate = -W(1, 0) / W(1, 1);
-        } else {
-            s = W(1, 0) > 0 ? 1 : -1; // the slip grows along sign(W_tn)
-        }
-        if (s != 0) {
-            rate = -T(s) * mu;
-            if (first_sign == 0)
-                first_sign = s;
-            kind = s == first_sign ? process_phase_kind::slide : process_phase_kind::reverse;
-        }
-        record(kind);
-        const V2 dP(T(1), rate);
-        // The fraction f in (0, 1] of the step at the first event, by bisection on a predicate
-        // that is false at 0 and (when the event is in the step) true at 1.
-        auto first_event = [&](auto &&happened) {
-            if (!happened(T(1)))
-                return T(2);
-            T lo = 0, hi = 1;
-            for (int i = 0; i < 80; ++i) {
-                const T mid = (lo + hi) / 2;
-                (happened(mid) ? hi : lo) = mid;
-            }
-            return hi;
-        };
-        auto work_to = [&](T f) { // int u_n dP_n over the fraction f (u_n linear: trapezoid)
-            return (u[0] + u_at(P + f * h * dP)[0]) / 2 * f * h;
-        };
-        T f = 1;
-        int event = 0; // 1: slip stops, 2: compression ends, 3: restitution ends
-        if (s != 0 && std::abs(u[1]) > vtol) {
-            const T g = first_event([&](T x) { return T(s) * u_at(P + x * h * dP)[1] <= 0; });
-            if (g <= f) {
-                f = g;
-                event = 1;
-            }
-        }
-        if (!compressed) {
-            const T g = first_event([&](T x) { return u_at(P + x * h * dP)[0] >= 0; });
-            if (g <= f) {
-                f = g;
-                event = 2;
-            }
-        } else if (law == process_law::poisson) {
-            const T g = first_event([&](T x) { return P[0] + x * h >= (1 + e) * r.compression_impulse; });
-            if (g <= f) {
-                f = g;
-                event = 3;
-            }
-        } else {
-            const T g = first_event([&](T x) { return work + work_to(x) >= target; });
-            if (g <= f) {
-                f = g;
-                event = 3;
-            }
-        }
-        work += work_to(f);
-        P += f * h * dP;
-        h = event == 0 ? h * T(1.01) : h0;
-        if (s == 0) // stick: P_t that holds u_t at 0 exactly, so that rounding does not accumulate
-            P[1] = -(c[1] + W(1, 0) * P[0]) / W(1, 1);
-        if (event == 1) { // snap the slip to 0: the next step decides stick or reverse
-            // (the bisection leaves |u_t| below 2^-80 of the step's change)
-        } else if (event == 2) {
-            compressed = true;
-            r.compression_impulse = P[0];
-            r.compression_work = work;
-            target = -e * e * work;
-            work = 0;
-            if (e == 0) // nothing to restore
-                event = 3;
-        }
-        if (event == 3 || (compressed && law == process_law::energetic && target <= 0)) {
-            r.ok = true;
-            r.normal_impulse = P[0];
-            r.tangential = P[1];
-            r.restitution_work = work;
-            r.velocity_after = u_at(P);
-            r.phase_ends.push_back(P[0]);
-            return r;
-        }
-    }
-    return r; // the compression or the restitution never ended
+    return detail::process_march<T>(W, c, mu, e, law, steps).run();
 }
 
 /// The process for a planar problem's contact (friction_contact assembles W and c; the frame

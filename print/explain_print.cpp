@@ -42,61 +42,15 @@ std::string harden(std::string s)
     return s;
 }
 
-// |x| for GiNaC's abs(x): the canonical printer prints a function by name,
-// abs(x) and \operatorname{abs}\left(x\right); the notes write |x|.
-std::string bars_text(std::string s)
-{
-    for (std::size_t at = s.find("abs("); at != std::string::npos; at = s.find("abs(", at)) {
-        if (at > 0 && (std::isalnum(static_cast<unsigned char>(s[at - 1])) || s[at - 1] == '_')) {
-            at += 4;
-            continue;
-        }
-        std::size_t k = at + 4;
-        for (int depth = 1; k < s.size(); ++k) {
-            if (s[k] == '(')
-                ++depth;
-            else if (s[k] == ')' && --depth == 0)
-                break;
-        }
-        if (k >= s.size())
-            break;
-        s = s.substr(0, at) + "|" + s.substr(at + 4, k - at - 4) + "|" + s.substr(k + 1);
-        ++at;
-    }
-    return s;
-}
-
-std::string bars_latex(std::string s)
-{
-    const std::string open = "\\operatorname{abs}\\left(";
-    for (std::size_t at = s.find(open); at != std::string::npos; at = s.find(open, at)) {
-        std::size_t k = at + open.size();
-        int depth = 1;
-        for (; k < s.size(); ++k) {
-            if (s.compare(k, 5, "\\left") == 0)
-                ++depth;
-            else if (s.compare(k, 6, "\\right") == 0 && --depth == 0)
-                break;
-        }
-        if (k >= s.size())
-            break;
-        // \right) -> \right|
-        s = s.substr(0, at) + "\\left|" + s.substr(at + open.size(), k - at - open.size()) + "\\right|" +
-            s.substr(k + 7);
-        ++at;
-    }
-    return s;
-}
-
 std::string math_text(const ex &e)
 {
-    return bars_text(canonical_text(e));
+    return canonical(e, syntax::text, true); // abs(x) as |x|
 }
 } // namespace
 
 std::string tex_layout::math_latex(const ex &e)
 {
-    return bars_latex(canonical_latex(e));
+    return canonical(e, syntax::latex, true); // abs(x) as \left|x\right|
 }
 
 namespace
@@ -665,95 +619,14 @@ std::string explain_markdown(const document &doc)
 namespace
 {
 
-// One block of a LaTeX document.
-void latex_block(std::ostream &os, const document &doc, const block &b, std::set<std::string> &labelled)
+// The preamble of a hand-out: 10 pt on A4 with 2 cm margins (row_budget_em assumes that text
+// width), Computer Modern in its Type 1 outlines (OT1: T1 would need cm-super or lmodern, which
+// texlive-latex-base does not have, and fall back to bitmaps), emergency stretch for paragraphs
+// with long formulas in them. Every package is in texlive-latex-base, tikz (only with a figure)
+// in texlive-pictures.
+std::string latex_preamble(const document &doc, bool figures)
 {
-    switch (b.k) {
-    case block::text:
-        os << "\n" << tex_spans(b.para, false) << "\n";
-        break;
-    case block::list:
-        os << "\n\\begin{itemize}\n";
-        for (const paragraph &item : b.items)
-            os << "  \\item " << tex_spans(item, false) << "\n";
-        os << "\\end{itemize}\n";
-        break;
-    case block::figure:
-        // scaled down to the line when it is wider, never up
-        os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
-        // at most 4 cm high in a summary, 5 cm in a full document
-        os << (doc.depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
-                                             "{\\usebox{\\figurebox}}}\\fi\n"
-                                           : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
-                                             "{\\usebox{\\figurebox}}}\\fi\n");
-        os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
-              "\\else\\usebox{\\figurebox}\\fi\n";
-        if (!b.art.caption.empty())
-            os << "\\par{\\small " << tex_words(b.art.caption) << "}\n";
-        os << "\\end{center}\n";
-        break;
-    case block::rows: {
-        bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
-        for (const math_row &r : b.math)
-            fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
-        if ((b.boxed || b.packed) && fits) { // each row (in a \\boxed), its note beside it, several a line
-            os << latex_boxed(b.math, b.boxed);
-            break;
-        }
-        const bool plain = detail::rows_are_plain(b.math), bare = detail::rows_are_bare(b.math);
-        if (bare) {
-            os << "\\begin{gather*}\n";
-            for (std::size_t k = 0; k < b.math.size(); ++k)
-                os << "  " << one_line(tex_row_parts(b.math[k])) << (k + 1 < b.math.size() ? " \\\\\n" : "\n");
-            os << "\\end{gather*}\n";
-            break;
-        }
-        if (plain) {
-            os << "\n\\begin{itemize}\n";
-            for (const math_row &r : b.math) {
-                std::string note = tex_spans(r.note, false);
-                os << "  \\item " << inline_math(one_line(tex_row_parts(r))) << (note.empty() ? "" : ": " + note)
-                   << "\n";
-            }
-            os << "\\end{itemize}\n";
-            break;
-        }
-        os << latex_rows(b.math, labelled);
-        break;
-    }
-    }
-}
-
-/// A figure set beside the blocks that follow it (a short set-up: the figure on the right, the
-/// text on the left), each in a minipage aligned at its top.
-void latex_figure_beside(std::ostream &os, const document &doc, const std::vector<block> &beside, const block &fig,
-                         std::set<std::string> &labelled)
-{
-    os << "\n\\noindent\\begin{minipage}[t]{0.6\\linewidth}\\vspace{0pt}\n";
-    for (const block &b : beside)
-        latex_block(os, doc, b, labelled);
-    os << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.37\\linewidth}\\vspace{0pt}\\centering\n";
-    os << "\\sbox{\\figurebox}{%\n" << fig.art.tikz << "%\n}%\n";
-    os << "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}{\\usebox{\\figurebox}}}\\fi\n";
-    os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
-          "\\else\\usebox{\\figurebox}\\fi\n";
-    if (!fig.art.caption.empty())
-        os << "\\par{\\small " << tex_words(fig.art.caption) << "}\n";
-    os << "\\end{minipage}\n";
-}
-
-} // namespace
-
-std::string explain_latex(const document &doc)
-{
-    const bool figures = has_figures(doc);
-    std::set<std::string> labelled;
     std::ostringstream os;
-    // A hand-out: 10 pt on A4 with 2 cm margins (row_budget_em assumes that text
-    // width), Computer Modern in its Type 1 outlines (OT1: T1 would need cm-super
-    // or lmodern, which texlive-latex-base does not have, and fall back to bitmaps),
-    // emergency stretch for paragraphs with long formulas in them. Every package
-    // is in texlive-latex-base, tikz (only with a figure) in texlive-pictures.
     os << "% Written by impactgen explain. Compile with pdflatex (needs amsmath, geometry, hyperref"
        << (figures ? "; tikz for the figure" : "") << ").\n"
        << "\\documentclass[10pt,a4paper]{article}\n"
@@ -780,6 +653,123 @@ std::string explain_latex(const document &doc)
           "\\begin{document}\n\\maketitle\n";
     if (!doc.description.empty())
         os << "\\begin{center}\n\\itshape " << tex_words(doc.description) << "\n\\end{center}\n";
+    return os.str();
+}
+
+// A figure, scaled down to the line when it is wider, never up.
+std::string latex_figure(const block &b, level depth)
+{
+    std::ostringstream os;
+    os << "\n\\begin{center}\n\\sbox{\\figurebox}{%\n" << b.art.tikz << "%\n}%\n";
+    // at most 4 cm high in a summary, 5 cm in a full document
+    os << (depth == level::summary ? "\\ifdim\\ht\\figurebox>4cm\\sbox{\\figurebox}{\\resizebox{!}{4cm}"
+                                     "{\\usebox{\\figurebox}}}\\fi\n"
+                                   : "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}"
+                                     "{\\usebox{\\figurebox}}}\\fi\n");
+    os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
+          "\\else\\usebox{\\figurebox}\\fi\n";
+    if (!b.art.caption.empty())
+        os << "\\par{\\small " << tex_words(b.art.caption) << "}\n";
+    os << "\\end{center}\n";
+    return os.str();
+}
+
+// Displayed rows: boxed or packed when they fit, a gather of bare rows, a list of plain ones,
+// else numbered and broken to the line (latex_rows).
+std::string latex_math(const block &b, std::set<std::string> &labelled)
+{
+    bool fits = true; // a row wider than the line is broken by latex_rows, unboxed
+    for (const math_row &r : b.math)
+        fits = fits && tex_width(one_line(tex_row_parts(r))) <= row_budget_em;
+    if ((b.boxed || b.packed) && fits) // each row (in a \\boxed), its note beside it, several a line
+        return latex_boxed(b.math, b.boxed);
+    std::ostringstream os;
+    if (detail::rows_are_bare(b.math)) {
+        os << "\\begin{gather*}\n";
+        for (std::size_t k = 0; k < b.math.size(); ++k)
+            os << "  " << one_line(tex_row_parts(b.math[k])) << (k + 1 < b.math.size() ? " \\\\\n" : "\n");
+        os << "\\end{gather*}\n";
+        return os.str();
+    }
+    if (detail::rows_are_plain(b.math)) {
+        os << "\n\\begin{itemize}\n";
+        for (const math_row &r : b.math) {
+            std::string note = tex_spans(r.note, false);
+            os << "  \\item " << inline_math(one_line(tex_row_parts(r))) << (note.empty() ? "" : ": " + note) << "\n";
+        }
+        os << "\\end{itemize}\n";
+        return os.str();
+    }
+    return latex_rows(b.math, labelled);
+}
+
+// Every character outside ASCII has been mapped (tex_words) or escaped; one that has not (a
+// body named μ set in \\text{} or in the figure's labels) would stop pdflatex with an error:
+// refuse it here, as tex_words does, naming it.
+void require_ascii(const std::string &out)
+{
+    for (std::size_t k = 0; k < out.size(); ++k)
+        if (static_cast<unsigned char>(out[k]) >= 0x80) {
+            std::size_t n = 1;
+            while (k + n < out.size() && (static_cast<unsigned char>(out[k + n]) & 0xC0) == 0x80)
+                ++n;
+            const std::size_t from = out.rfind('\n', k), to = out.find('\n', k);
+            const std::string line =
+                out.substr(from == std::string::npos ? 0 : from + 1,
+                           (to == std::string::npos ? out.size() : to) - (from == std::string::npos ? 0 : from + 1));
+            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" +
+                                        names::display_text(out.substr(k, n)) + "\" (in \"" +
+                                        names::display_text(line, 60) + "\"); use ASCII names for --format latex");
+        }
+}
+
+// One block of a LaTeX document.
+void latex_block(std::ostream &os, const document &doc, const block &b, std::set<std::string> &labelled)
+{
+    switch (b.k) {
+    case block::text:
+        os << "\n" << tex_spans(b.para, false) << "\n";
+        break;
+    case block::list:
+        os << "\n\\begin{itemize}\n";
+        for (const paragraph &item : b.items)
+            os << "  \\item " << tex_spans(item, false) << "\n";
+        os << "\\end{itemize}\n";
+        break;
+    case block::figure:
+        os << latex_figure(b, doc.depth);
+        break;
+    case block::rows:
+        os << latex_math(b, labelled);
+        break;
+    }
+}
+
+/// A figure set beside the blocks that follow it (a short set-up: the figure on the right, the
+/// text on the left), each in a minipage aligned at its top.
+void latex_figure_beside(std::ostream &os, const document &doc, const std::vector<block> &beside, const block &fig,
+                         std::set<std::string> &labelled)
+{
+    os << "\n\\noindent\\begin{minipage}[t]{0.6\\linewidth}\\vspace{0pt}\n";
+    for (const block &b : beside)
+        latex_block(os, doc, b, labelled);
+    os << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.37\\linewidth}\\vspace{0pt}\\centering\n";
+    os << "\\sbox{\\figurebox}{%\n" << fig.art.tikz << "%\n}%\n";
+    os << "\\ifdim\\ht\\figurebox>5cm\\sbox{\\figurebox}{\\resizebox{!}{5cm}{\\usebox{\\figurebox}}}\\fi\n";
+    os << "\\ifdim\\wd\\figurebox>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\figurebox}}"
+          "\\else\\usebox{\\figurebox}\\fi\n";
+    if (!fig.art.caption.empty())
+        os << "\\par{\\small " << tex_words(fig.art.caption) << "}\n";
+    os << "\\end{minipage}\n";
+}
+
+} // namespace
+
+std::string explain_latex(const document &doc)
+{
+    std::set<std::string> labelled;
+    std::ostringstream os;
+    os << latex_preamble(doc, has_figures(doc));
     for (const section &sec : doc.sections) {
         os << "\n\\section*{" << tex_words(sec.title) << "}\n";
         for (std::size_t k = 0; k < sec.blocks.size(); ++k) {
@@ -795,23 +785,8 @@ std::string explain_latex(const document &doc)
         }
     }
     os << "\n\\end{document}\n";
-    // Every character outside ASCII has been mapped (tex_words) or escaped; one that has not
-    // (a body named μ set in \\text{} or in the figure's labels) would stop pdflatex with an
-    // error: refuse it here, as tex_words does, naming it.
     const std::string out = os.str();
-    for (std::size_t k = 0; k < out.size(); ++k)
-        if (static_cast<unsigned char>(out[k]) >= 0x80) {
-            std::size_t n = 1;
-            while (k + n < out.size() && (static_cast<unsigned char>(out[k + n]) & 0xC0) == 0x80)
-                ++n;
-            const std::size_t from = out.rfind('\n', k), to = out.find('\n', k);
-            const std::string line =
-                out.substr(from == std::string::npos ? 0 : from + 1,
-                           (to == std::string::npos ? out.size() : to) - (from == std::string::npos ? 0 : from + 1));
-            throw std::invalid_argument("the LaTeX output has no rendering for the character \"" +
-                                        names::display_text(out.substr(k, n)) + "\" (in \"" +
-                                        names::display_text(line, 60) + "\"); use ASCII names for --format latex");
-        }
+    require_ascii(out);
     return out;
 }
 

@@ -29,16 +29,17 @@ struct inputs {
 };
 
 // The library's inputs of the process (numbers, or step symbols the solution shares: the
-// solution's own symbols are found by name).
+// solver made the shared steps with process_inputs_of, the same steps in the same order, so
+// each of the scratch's steps is the shared step at its place, of the same role).
 process_inputs library_inputs(const explain_input &in)
 {
     solution scratch;
     process_inputs q = process_inputs_of(in.d, scratch);
     exmap same;
-    for (const step &st : scratch.steps)
-        for (const step &mine : in.s.shared.steps)
-            if (mine.sym.get_name() == st.sym.get_name())
-                same[st.sym] = mine.sym;
+    const std::vector<step> &shared = in.s.shared.steps;
+    for (std::size_t k = 0; k < scratch.steps.size() && k < shared.size(); ++k)
+        if (shared[k].role == scratch.steps[k].role)
+            same[scratch.steps[k].sym] = shared[k].sym;
     for (ex *x : {&q.Ktt, &q.Ktn, &q.Knn, &q.ut, &q.un})
         *x = x->subs(same);
     return q;

@@ -71,7 +71,7 @@ std::vector<math_row> candidate_rows(const derivation &d, const solution &s, std
     bool n_closed = false;
     bool n_unknown = false; // with a pivot the normal impulse is an unknown: its row comes with theirs
     for (const unknown &u : d.unknowns)
-        n_unknown = n_unknown || (n && u.sym.get_name() == n->sym.get_name());
+        n_unknown = n_unknown || (n && u.kind == unknown_kind::normal_impulse);
     if (n && !n_unknown) {
         const ex closed = s.expand_steps(n->value);
         n_closed = printable(closed, closed_form_nodes);
@@ -203,6 +203,20 @@ ex through_own_steps(const solution &s, const std::set<ex, ex_is_less> &shared, 
     return x;
 }
 
+// The step of s that stands for the same quantity as st (its role, body and component), when
+// exactly one does: candidates name their steps with symbols of their own.
+const step *counterpart(const solution &s, const step &st)
+{
+    const step *found = nullptr;
+    for (const step &x : s.steps)
+        if (x.role == st.role && x.body == st.body && x.row == st.row && x.column == st.column) {
+            if (found)
+                return nullptr;
+            found = &x;
+        }
+    return found;
+}
+
 // The shared steps that rows' values need (steps refer to earlier steps only).
 std::vector<math_row> shared_rows(const problem &p, const solution &shared, const std::vector<ex> &values)
 {
@@ -223,13 +237,12 @@ std::vector<math_row> shared_rows(const problem &p, const solution &shared, cons
 bool candidates_by_impulse(section &sec, const explain_input &in)
 {
     const solution &first = in.s.cases.front().sol;
-    // each candidate names its steps with symbols of its own: map them onto the first's by name
+    // each candidate names its steps with symbols of its own: map them onto the first's by what they are
     for (const regime_case &c : in.s.cases) {
         exmap rename;
         for (const step &st : c.sol.steps)
-            for (const step &f : first.steps)
-                if (st.sym.get_name() == f.sym.get_name())
-                    rename[st.sym] = f.sym;
+            if (const step *f = counterpart(first, st))
+                rename[st.sym] = f->sym;
         if (c.sol.unknown_values.nops() != first.unknown_values.nops())
             return false;
         for (std::size_t i = 0; i < first.unknown_values.nops(); ++i)
@@ -255,8 +268,9 @@ bool candidates_by_impulse(section &sec, const explain_input &in)
                                  : c.sign < 0            ? "slide along -e_t"
                                                          : "slide";
         for (const ex &sym : impulse)
-            for (const step &st : c.sol.steps)
-                if (st.sym.get_name() == ex_to<symbol>(sym).get_name()) {
+            for (const step &f : first.steps)
+                if (const step *mine = sym.is_equal(f.sym) ? counterpart(c.sol, f) : nullptr) {
+                    const step &st = *mine;
                     const ex v = through_own_steps(c.sol, shared, st.value);
                     math_row r = row(sym, v);
                     r.lhs_note = {canonical_text(sym) + " (" + text + ")", symbol_latex(st.sym) + "^{" + tex + "}"};

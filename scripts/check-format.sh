@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The library's C++ sources (the .cpp and .hpp files git tracks under symbolic/ codegen/
+# The library's C++ sources (the .cpp and .hpp files git tracks under symbolic/ expr/ codegen/
 # print/ figure/ exercises/ names/ numeric/ cli/ adapters/) against the committed .clang-format:
 # prints each file that clang-format would change and exits 1 if there is one. Not checked:
 # generated/ (written by impactgen codegen), tests/, bench/ and examples/.
@@ -12,7 +12,7 @@ if ! command -v "$clang_format" >/dev/null; then
   echo "check-format: $clang_format not found (scripts/install-deps.sh --tests installs it)" >&2
   exit 2
 fi
-mapfile -t files < <(git ls-files -- {symbolic,codegen,print,figure,exercises,names,numeric,cli,adapters}/'*'.{cpp,hpp})
+mapfile -t files < <(git ls-files -- {symbolic,expr,codegen,print,figure,exercises,names,numeric,cli,adapters}/'*'.{cpp,hpp})
 if [[ ${#files[@]} -eq 0 ]]; then
   echo "check-format: no sources found (not a git checkout?)" >&2
   exit 2
