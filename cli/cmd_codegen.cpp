@@ -3,7 +3,6 @@
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
 #include "names/identifier.hpp"
-#include "symbolic/system.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -32,7 +31,6 @@ int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
 {
     using namespace impactgen;
     problem p = cli::load(a.what);
-    refuse_system_for(p, "codegen");
     codegen::options o;
     o.source = a.what;
     o.version = IMPACTGEN_VERSION;

@@ -448,7 +448,7 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
             c.conditions.push_back({simp(c.w[n] + e * q[n]), false,
                                     "u'_" + std::to_string(i) + " + e u_" + std::to_string(i) + " >= 0 (" + who +
                                         " leaves no slower than e times its approach)",
-                                    name + " leaves no slower than e times its approach speed"});
+                                    name + " leaves no slower than e times its approach speed", true});
             break;
         case contact_regime::smooth:
             c.conditions.push_back(
@@ -474,7 +474,8 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
                                         " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + ")",
                                     name + " slides " +
                                         (c.choice[i].sign > 0 ? "along its tangent" : "against its tangent") +
-                                        " after impact"});
+                                        " after impact",
+                                    true});
             break;
         }
     }
