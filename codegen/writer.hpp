@@ -163,6 +163,8 @@ private:
     void system_formulas();
     void system_tolerance();
     std::string system_holds(std::size_t k) const;
+    std::string system_nearest() const;
+    void system_select();
     void system_function();
 
     // ---- the sections every header has (writer_text.cpp)

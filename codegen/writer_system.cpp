@@ -68,8 +68,8 @@ void writer::build_system()
     }
     for (std::size_t j = 0; j < outs_.size(); ++j)
         sys_sel_.push_back(scope_.claim("sel_" + outs_[j].field));
-    for (const char *nm :
-         {"tol", "speed_scale", "sets", "holds", "sel", "unique", "differ", "k", "j", "x1", "x2", "scale"})
+    for (const char *nm : {"tol", "speed_scale", "sets", "holds", "clear", "sel", "unique", "differ", "k", "j", "x1",
+                           "x2", "scale", "best", "margin", "tiny"})
         sys_local_[nm] = scope_.claim(nm);
     c_.pool.set_input_names([&] {
         std::map<ex, std::string, ex_is_less> m = input_ident_;
@@ -78,6 +78,7 @@ void writer::build_system()
         return m;
     }());
     c_.output(outs_.back().field, sc.energy_lost);
+    u_.pool.set_input_names(input_ident_);
     for (std::size_t j = 0; j < outs_.size(); ++j)
         u_.output(outs_[j].field, sc.unchanged[j]);
     emit_options locals, result;
@@ -107,12 +108,14 @@ void writer::system_formulas()
     h_ << "// contact row; the joints and pivots eliminated (Schur complement) leave the Delassus matrix W\n";
     h_ << "// of the contact rows, u' = u + W lambda_C, and per contact i: 0 <= P_i _|_ u'_i + e_i u_i >= 0\n";
     h_ << "// with its friction (Coulomb, or no slip for \"inf\"). Each candidate below is one set of contact\n";
-    h_ << "// regimes in closed form with the conditions under which it obeys the law. Every set whose\n";
-    h_ << "// conditions hold within rounding (each condition >= -tol times its scale: the largest contact\n";
-    h_ << "// speed before impact for a velocity, the set's largest contact impulse for an impulse;\n";
-    h_ << "// tol = 2^-(digits/2), about 1.5e-8 in double) is a solution: the first is the answer, another\n";
-    h_ << "// with different velocities makes the call ambiguous, different impulses make impulses_unique\n";
-    h_ << "// false; none: no_solution.\n";
+    h_ << "// regimes in closed form with the conditions under which it obeys the law. The answer is the\n";
+    h_ << "// first set (in this order, the closed form's) whose conditions hold as computed; where none\n";
+    h_ << "// does (inputs on a boundary between sets, within rounding) the set nearest to holding, if its\n";
+    h_ << "// least condition is >= -tol times its scale (the largest contact speed before impact for a\n";
+    h_ << "// velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8\n";
+    h_ << "// in double); else no_solution. Another set that holds clearly (every condition >= tol times\n";
+    h_ << "// its scale) with different velocities makes the call ambiguous, with different impulses makes\n";
+    h_ << "// impulses_unique false.\n";
     h_ << "// The candidate sets and their conditions:\n";
     for (std::size_t k = 0; k < sc.sets.size(); ++k) {
         h_ << "//   set " << k << " " << names::comment_text(sc.sets[k].name)
@@ -140,8 +143,9 @@ void writer::system_tolerance()
     h_ << "    return r;\n}\n} // namespace detail\n\n";
 }
 
-// Whether set k holds: each condition against its scale, and a rough contact that sticks with
-// no normal impulse carries no tangential one.
+// Whether set k holds as computed (h: every condition >= 0) and clearly (g: every condition >=
+// tol times its scale); a rough contact that sticks with no normal impulse carries no
+// tangential one. Its scale: the set's largest contact impulse.
 std::string writer::system_holds(std::size_t k) const
 {
     const system_code &sc = cp_.system;
@@ -151,28 +155,109 @@ std::string writer::system_holds(std::size_t k) const
     for (std::size_t j : sc.impulses)
         imp.push_back(sys_vals_[k][j]);
     const std::string is = "s" + std::to_string(k) + "_scale";
-    std::vector<std::string> terms;
-    for (std::size_t j = 0; j < s.conditions.size(); ++j)
-        terms.push_back(sys_conds_[k][j] + " >= -" + tol + " * " + (s.conditions[j].velocity ? vs : is));
+    std::vector<std::string> holds, clear;
+    for (std::size_t j = 0; j < s.conditions.size(); ++j) {
+        holds.push_back(sys_conds_[k][j] + " >= T(0)");
+        clear.push_back(sys_conds_[k][j] + " >= " + tol + " * " + (s.conditions[j].velocity ? vs : is));
+    }
     for (const auto &[n, ts] : s.rough_sticks)
-        for (std::size_t t : ts)
-            terms.push_back("(" + sys_vals_[k][n] + " > " + tol + " * " + is + " || detail::abs_of(" + sys_vals_[k][t] +
-                            ") <= " + tol + " * " + is + ")");
+        for (std::size_t t : ts) {
+            const std::string c = "(" + sys_vals_[k][n] + " > " + tol + " * " + is + " || detail::abs_of(" +
+                                  sys_vals_[k][t] + ") <= " + tol + " * " + is + ")";
+            holds.push_back(c);
+            clear.push_back(c);
+        }
+    const std::string kt = std::to_string(k);
     bool scaled = !s.rough_sticks.empty();
     for (const auto &c : s.conditions)
         scaled = scaled || !c.velocity;
     std::string r = scaled ? "    const T " + is + " = " + nested_max(imp) + ";\n" : std::string();
-    r += "    const bool h" + std::to_string(k) + " = " + (terms.empty() ? "true" : join(terms, " && ")) + ";\n";
+    r += "    const bool h" + kt + " = " + (holds.empty() ? "true" : join(holds, " && ")) + ";\n";
+    r += "    const bool g" + kt + " = " + (clear.empty() ? "true" : join(clear, " && ")) + ";\n";
     return r;
 }
 
-void writer::system_function()
+// Where no set holds as computed (inputs on a boundary between sets, within rounding): the set
+// nearest to holding -- its least condition relative to its scale the largest -- if that is
+// >= -tol, the first of equals.
+std::string writer::system_nearest() const
+{
+    const system_code &sc = cp_.system;
+    const std::string &tol = sys_local_.at("tol"), &vs = sys_local_.at("speed_scale"), &sel = sys_local_.at("sel"),
+                      &best = sys_local_.at("best"), &m = sys_local_.at("margin"), &tiny = sys_local_.at("tiny");
+    std::string r = "    if (" + sel + " < 0) {\n";
+    r += "        // No set holds as computed: the one nearest to holding, within rounding.\n";
+    r += "        const T " + tiny + " = std::numeric_limits<T>::min();\n";
+    r += "        T " + best + " = -" + tol + ";\n";
+    for (std::size_t k = 0; k < sc.sets.size(); ++k) {
+        const system_code_set &s = sc.sets[k];
+        if (s.conditions.empty())
+            continue;
+        const std::string is = "s" + std::to_string(k) + "_scale";
+        std::vector<std::string> terms;
+        for (std::size_t j = 0; j < s.conditions.size(); ++j)
+            terms.push_back(sys_conds_[k][j] + " / detail::max_of(" + (s.conditions[j].velocity ? vs : is) + ", " +
+                            tiny + ")");
+        r += "        {\n            const T " + m + " = detail::min_of(" + join(terms, ", ") + ");\n";
+        r += "            if (" + m + " > " + best + ") {\n                " + best + " = " + m +
+             ";\n                " + sel + " = " + std::to_string(k) + ";\n            }\n        }\n";
+    }
+    r += "    }\n";
+    return r;
+}
+
+// The selection: the first set that holds as computed (else the nearest, within rounding); every
+// other set that holds clearly is compared with it.
+void writer::system_select()
 {
     const system_code &sc = cp_.system;
     const std::size_t nout = outs_.size(), nsets = sc.sets.size(), nv = sc.velocities.size();
     const std::string &tol = sys_local_.at("tol"), &vs = sys_local_.at("speed_scale"), &sets = sys_local_.at("sets"),
-                      &holds = sys_local_.at("holds"), &sel = sys_local_.at("sel"), &unique = sys_local_.at("unique"),
-                      &differ = sys_local_.at("differ");
+                      &holds = sys_local_.at("holds"), &clear = sys_local_.at("clear"), &sel = sys_local_.at("sel"),
+                      &unique = sys_local_.at("unique"), &differ = sys_local_.at("differ"), &k = sys_local_.at("k"),
+                      &j = sys_local_.at("j"), &x1 = sys_local_.at("x1"), &x2 = sys_local_.at("x2"),
+                      &scale = sys_local_.at("scale");
+    h_ << "    const T " << tol << " = detail::" << o_.name << "_tolerance<T>();\n";
+    h_ << "    const T " << vs << " = " << nested_max(sys_speed_) << ";\n";
+    for (std::size_t i = 0; i < nsets; ++i)
+        h_ << system_holds(i);
+    for (const auto &[arr, flag] : {std::pair{holds, "h"}, std::pair{clear, "g"}}) {
+        h_ << "    const bool " << arr << "[" << nsets << "] = {";
+        for (std::size_t i = 0; i < nsets; ++i)
+            h_ << (i ? ", " : "") << flag << i;
+        h_ << "};\n";
+    }
+    h_ << "    const T " << sets << "[" << nsets << "][" << nout - 1 << "] = {\n";
+    for (std::size_t i = 0; i < nsets; ++i)
+        h_ << "        {" << join(sys_vals_[i], ", ") << "},\n";
+    h_ << "    };\n";
+    h_ << "    int " << sel << " = -1;\n";
+    h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << " && " << sel << " < 0; ++" << k << ")\n";
+    h_ << "        if (" << holds << "[" << k << "])\n            " << sel << " = " << k << ";\n";
+    h_ << system_nearest();
+    h_ << "    if (" << sel << " < 0)\n        return fail(friction_status::no_solution);\n";
+    h_ << "    auto " << differ << " = [&](T " << x1 << ", T " << x2 << ", T " << scale << ") noexcept {\n";
+    h_ << "        return !(detail::abs_of(" << x1 << " - " << x2 << ") <= " << tol << " * (" << scale
+       << " + detail::abs_of(" << x1 << ") + detail::abs_of(" << x2 << ")));\n    };\n";
+    h_ << "    bool " << unique << " = " << (sc.redundant_joints ? "false" : "true") << ";\n";
+    h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << "; ++" << k << ") {\n";
+    h_ << "        if (" << k << " == " << sel << " || !" << clear << "[" << k << "])\n            continue;\n";
+    const std::string at = sets + "[" + k + "][" + j + "], " + sets + "[" + sel + "][" + j + "]";
+    if (nv > 0) {
+        h_ << "        for (int " << j << " = 0; " << j << " < " << nv << "; ++" << j << ")\n";
+        h_ << "            if (" << differ << "(" << at << ", " << vs << "))\n";
+        h_ << "                return fail(friction_status::ambiguous);\n";
+    }
+    h_ << "        for (int " << j << " = " << nv << "; " << j << " < " << nout - 1 << "; ++" << j << ")\n";
+    h_ << "            if (" << differ << "(" << at << ", T(0)))\n";
+    h_ << "                " << unique << " = false;\n";
+    h_ << "    }\n";
+}
+
+void writer::system_function()
+{
+    const std::size_t nout = outs_.size();
+    const std::string &sets = sys_local_.at("sets"), &sel = sys_local_.at("sel"), &unique = sys_local_.at("unique");
     h_ << "/// Post-impact state of the system for the inputs below; returns friction_status::ok with\n";
     h_ << "/// out.set the candidate set that holds (" << o_.name << "_set_names) and out.impulses_unique, or\n";
     h_ << "/// why not (then out holds the state unchanged: velocities as before, impulses zero, set -1).\n";
@@ -188,40 +273,7 @@ void writer::system_function()
     for (const std::string &mu : sys_mu_)
         h_ << "    if (!(" << mu << " >= T(0) && detail::finite<T>(" << mu
            << "))) // mu >= 0, finite\n        return fail(friction_status::invalid_friction);\n";
-    h_ << "    const T " << tol << " = detail::" << o_.name << "_tolerance<T>();\n";
-    h_ << "    const T " << vs << " = " << nested_max(sys_speed_) << ";\n";
-    for (std::size_t k = 0; k < nsets; ++k)
-        h_ << system_holds(k);
-    h_ << "    const bool " << holds << "[" << nsets << "] = {";
-    for (std::size_t k = 0; k < nsets; ++k)
-        h_ << (k ? ", " : "") << "h" << k;
-    h_ << "};\n";
-    h_ << "    const T " << sets << "[" << nsets << "][" << nout - 1 << "] = {\n";
-    for (std::size_t k = 0; k < nsets; ++k)
-        h_ << "        {" << join(sys_vals_[k], ", ") << "},\n";
-    h_ << "    };\n";
-    const std::string &k = sys_local_.at("k"), &j = sys_local_.at("j"), &x1 = sys_local_.at("x1"),
-                      &x2 = sys_local_.at("x2"), &scale = sys_local_.at("scale");
-    h_ << "    auto " << differ << " = [&](T " << x1 << ", T " << x2 << ", T " << scale << ") noexcept {\n";
-    h_ << "        return !(detail::abs_of(" << x1 << " - " << x2 << ") <= " << tol << " * (" << scale
-       << " + detail::abs_of(" << x1 << ") + detail::abs_of(" << x2 << ")));\n    };\n";
-    h_ << "    int " << sel << " = -1;\n    bool " << unique << " = " << (sc.redundant_joints ? "false" : "true")
-       << ";\n";
-    h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << "; ++" << k << ") {\n";
-    h_ << "        if (!" << holds << "[" << k << "])\n            continue;\n";
-    h_ << "        if (" << sel << " < 0) {\n            " << sel << " = " << k
-       << ";\n            continue;\n        }\n";
-    const std::string at = sets + "[" + k + "][" + j + "], " + sets + "[" + sel + "][" + j + "]";
-    if (nv > 0) {
-        h_ << "        for (int " << j << " = 0; " << j << " < " << nv << "; ++" << j << ")\n";
-        h_ << "            if (" << differ << "(" << at << ", " << vs << "))\n";
-        h_ << "                return fail(friction_status::ambiguous);\n";
-    }
-    h_ << "        for (int " << j << " = " << nv << "; " << j << " < " << nout - 1 << "; ++" << j << ")\n";
-    h_ << "            if (" << differ << "(" << at << ", T(0)))\n";
-    h_ << "                " << unique << " = false;\n";
-    h_ << "    }\n";
-    h_ << "    if (" << sel << " < 0)\n        return fail(friction_status::no_solution);\n";
+    system_select();
     for (std::size_t j = 0; j + 1 < nout; ++j)
         h_ << "    const T " << sys_sel_[j] << " = " << sets << "[" << sel << "][" << j << "];\n";
     h_ << c_.em.code;
