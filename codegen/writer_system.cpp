@@ -51,6 +51,11 @@ void writer::build_system()
         sys_speed_.push_back(scope_.claim("u_row" + std::to_string(r)));
         a_.output(sys_speed_.back(), sc.speeds[r]);
     }
+    // The velocities before impact: the scale of a contact speed's rounding (near 0 too).
+    for (std::size_t j : sc.velocities) {
+        sys_speed_.push_back(scope_.claim("before_" + outs_[j].field));
+        a_.output(sys_speed_.back(), sc.unchanged[j]);
+    }
     for (std::size_t k = 0; k < sc.sets.size(); ++k) {
         const system_code_set &s = sc.sets[k];
         const std::string pre = "s" + std::to_string(k) + "_";
@@ -111,8 +116,8 @@ void writer::system_formulas()
     h_ << "// regimes in closed form with the conditions under which it obeys the law. The answer is the\n";
     h_ << "// first set (in this order, the closed form's) whose conditions hold as computed; where none\n";
     h_ << "// does (inputs on a boundary between sets, within rounding) the set nearest to holding, if its\n";
-    h_ << "// least condition is >= -tol times its scale (the largest contact speed before impact for a\n";
-    h_ << "// velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8\n";
+    h_ << "// least condition is >= -tol times its scale (the largest contact or body speed before impact\n";
+    h_ << "// for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8\n";
     h_ << "// in double); else no_solution. Another set that holds clearly (every condition >= tol times\n";
     h_ << "// its scale) with different velocities makes the call ambiguous, with different impulses makes\n";
     h_ << "// impulses_unique false.\n";

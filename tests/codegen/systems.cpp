@@ -299,6 +299,57 @@ std::string closed_form_verdict(const problem &p)
     }
 }
 
+// Whether the header's set, as the exact closed form has it, holds within rounding (each condition
+// >= -1e-7 times its scale: the largest speed before impact for a velocity, the set's largest
+// contact impulse for an impulse) and has the header's velocities: on a boundary where two sets
+// hold, or where the exact decision finds none by a margin below rounding, the header's answer is
+// then a solution of the law to within rounding.
+bool nearly_holds(const problem &p, int set, const std::vector<double> &mine, std::string &why)
+{
+    const std::vector<system_candidate> all = system_candidates(p);
+    if (set < 0 || static_cast<std::size_t>(set) >= all.size())
+        return why = "no set", false;
+    const system_candidate &c = all[static_cast<std::size_t>(set)];
+    double vs = 0, is = 0;
+    for (const body &b : p.bodies)
+        for (int k = 0; k < 3; ++k)
+            vs = std::max({vs, std::abs(print::to_double(b.velocity[k])),
+                           std::abs(print::to_double(b.angular_velocity[k]))});
+    for (std::size_t i = 0; i < c.normal_impulse.size(); ++i) {
+        is = std::max(is, std::abs(print::to_double(c.normal_impulse[i])));
+        for (int k = 0; k < 3; ++k)
+            is = std::max(is, std::abs(print::to_double(c.tangential_impulse[i][k])));
+    }
+    for (const system_condition &k : c.conditions)
+        if (print::to_double(k.value) < -1e-7 * (k.velocity ? vs : is))
+            return why = c.name() + ": " + k.meaning + " fails by " + std::to_string(print::to_double(k.value)), false;
+    if (mine.empty())
+        return true;
+    std::vector<ref::vec3> v, w;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        v.push_back(dv(c.velocity[b]));
+        w.push_back(dv(c.angular_velocity[b]));
+    }
+    std::vector<double> theirs;
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        if (p.bodies[b].infinite_mass)
+            continue;
+        for (int k = 0; k < p.dimension; ++k)
+            theirs.push_back(v[b][k]);
+        if (!p.bodies[b].particle)
+            for (int k = p.dimension == 2 ? 2 : 0; k < 3; ++k)
+                theirs.push_back(w[b][k]);
+    }
+    double err = 0, scale = vs;
+    for (std::size_t i = 0; i < theirs.size(); ++i) {
+        err = std::max(err, std::abs(theirs[i] - mine[i]));
+        scale = std::max(scale, std::abs(theirs[i]));
+    }
+    if (err > 1e-6 * scale)
+        return why = c.name() + ": the header's velocities differ by " + std::to_string(err), false;
+    return true;
+}
+
 // A point on the boundary between two candidate sets: the segment from a to b bisected.
 std::vector<double> boundary(const system_case &sc, std::vector<double> a, std::vector<double> b)
 {
@@ -318,7 +369,8 @@ std::vector<double> boundary(const system_case &sc, std::vector<double> a, std::
 // a factor 100. At a boundary the two sets' solutions agree (the law's solution is continuous
 // there when it is unique), so the same bound applies.
 constexpr double velocity_tolerance = 1e-6;
-constexpr int ambiguous_status = 11; // friction_status::ambiguous
+constexpr int no_solution_status = 10; // friction_status::no_solution
+constexpr int ambiguous_status = 11;   // friction_status::ambiguous
 
 class SystemHeaders : public ::testing::TestWithParam<std::size_t>
 {
@@ -333,7 +385,7 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
     const int n = env_int("IMPACTGEN_SAMPLES", 20000);
     const int n_exact = env_int("IMPACTGEN_EXACT_SAMPLES", 300);
     std::mt19937_64 rng(static_cast<unsigned long long>(env_int("IMPACTGEN_SEED", 20261127)) + GetParam());
-    int compared = 0, exact = 0, boundaries = 0, not_ok = 0, ambiguous = 0;
+    int compared = 0, exact = 0, boundaries = 0, not_ok = 0, ambiguous = 0, alternatives = 0, none = 0;
     double worst = 0, worst_exact = 0;
     for (int s = 0; s < n; ++s) {
         std::vector<double> x = sc.sample(rng);
@@ -355,11 +407,33 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
         if (!sc.coulomb()) {
             const ref::sys_answer a = ref::solve_reference(reference_of(p), 1e-9);
             if (a.holding == 0) {
+                // No set holds in the reference: the header finds none, or one that holds within rounding.
+                std::string why;
+                ASSERT_TRUE(r.status == no_solution_status || (r.status == 0 && nearly_holds(p, r.set, mine, why)))
+                    << "sample " << s << ": the reference finds no set, the header returns " << r.status << " "
+                    << why;
                 ++not_ok;
                 continue;
             }
+            if (r.status == no_solution_status) {
+                // The reference's tolerance may accept a set the exact decision rejects: then the
+                // closed form must find none either.
+                const std::string verdict = closed_form_verdict(p);
+                ASSERT_NE(verdict.find("no set"), std::string::npos) << "sample " << s << ": " << verdict;
+                ++none;
+                continue;
+            }
             if (r.status == ambiguous_status) {
-                // Two sets hold with different velocities: the closed form must say so too.
+                // Two sets hold with different velocities: the closed form must say so too, or on a
+                // boundary two sets hold within rounding.
+                int near = 0;
+                std::string why;
+                for (int k = 0; on_boundary && k < static_cast<int>(system_candidates(p).size()); ++k)
+                    near += nearly_holds(p, k, {}, why) ? 1 : 0;
+                if (near >= 2) {
+                    ++ambiguous;
+                    continue;
+                }
                 const std::string verdict = closed_form_verdict(p);
                 ASSERT_NE(verdict.find("more than one set"), std::string::npos) << "sample " << s << ": " << verdict;
                 ASSERT_GE(a.holding, 2) << "sample " << s;
@@ -370,6 +444,13 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
                                    << " sets hold), the header returns " << r.status << "; the closed form: "
                                    << closed_form_verdict(p);
             const double err = velocity_error(mine, sc.velocities(p, a.velocity, a.angular_velocity), p);
+            std::string why;
+            if (err > velocity_tolerance && on_boundary && a.holding >= 2) {
+                // Two sets hold on this boundary (with different velocities): the header's is one of them.
+                ASSERT_TRUE(nearly_holds(p, r.set, mine, why)) << "sample " << s << ": " << why;
+                ++alternatives;
+                continue;
+            }
             worst = std::max(worst, err);
             ASSERT_LE(err, velocity_tolerance) << "sample " << s << ", set " << g.set_names[r.set];
             ++compared;
@@ -380,10 +461,11 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
                 a = solve_system(p);
             } catch (const input_error &e) {
                 // On a boundary the header may see one of two sets that hold exactly as its answer.
-                const bool two = std::string(e.what()).find("more than one set") != std::string::npos;
-                ASSERT_TRUE(r.status == ambiguous_status || (two && on_boundary))
+                std::string why;
+                ASSERT_TRUE(r.status == ambiguous_status || (r.status == 0 && nearly_holds(p, r.set, mine, why)))
                     << "sample " << s << ": the closed form refuses (" << e.what() << ") and the header returns "
-                    << r.status;
+                    << r.status << " " << why;
+                ++alternatives;
                 continue;
             }
             ASSERT_EQ(r.status, 0) << "sample " << s << ": the closed form answers " << a.result.name();
@@ -401,11 +483,14 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
     }
     std::cout << g.name << ": " << compared << " compared with the reference (worst " << worst << "), " << exact
               << " with the closed form (worst " << worst_exact << "), " << boundaries << " on a boundary, "
-              << not_ok << " with no solution in the reference, " << ambiguous << " ambiguous\n";
+              << not_ok << " with no solution in the reference, " << ambiguous << " ambiguous, " << none << " with no solution, " << alternatives
+              << " where the header's set holds within rounding and the exact decision differs\n";
     EXPECT_GE(exact, std::min(n_exact, n) / 2);
-    EXPECT_EQ(not_ok, 0);
-    if (!sc.coulomb())
-        EXPECT_EQ(compared + ambiguous, n);
+    if (!sc.coulomb()) {
+        EXPECT_EQ(compared + ambiguous + alternatives + none + not_ok, n);
+        EXPECT_GE(compared, n / 2);
+    }
+    EXPECT_LE(alternatives, n / 100);
     EXPECT_GT(boundaries, 0);
 }
 
