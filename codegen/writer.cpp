@@ -142,11 +142,17 @@ void writer::name_everything()
         if (names::is_safe_identifier(r))
             scope_.reserve(r);
     // A member named view or T would hide the view type or the template parameter; regime
-    // is the result's member with candidates.
-    for (names::identifier_scope *sc : {&in_members_, &members_})
-        for (const char *own : {"view", "T", "regime", "set", "impulses_unique"})
-            if (!straight() || std::string(own) != "regime")
-                sc->reserve(own);
+    // is the result's member with candidates, set and impulses_unique a system's.
+    for (names::identifier_scope *sc : {&in_members_, &members_}) {
+        for (const char *own : {"view", "T"})
+            sc->reserve(own);
+        if (system()) {
+            sc->reserve("set");
+            sc->reserve("impulses_unique");
+        } else if (!straight()) {
+            sc->reserve("regime");
+        }
+    }
     // clang-format off
     const std::vector<const char *> straight_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_jacobian", "_jacobian_result", "_wrt_count",

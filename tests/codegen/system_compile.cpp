@@ -15,16 +15,19 @@
 using namespace impactgen::generated;
 
 #define IMPACTGEN_FAMILY_TRAITS(fn)                                                                                    \
-    template <typename... A> static void batch(A&&... a) { ::impactgen::generated::fn##_batch(std::forward<A>(a)...); }
+    template <typename... A> static void batch(A &&...a)                                                               \
+    {                                                                                                                  \
+        ::impactgen::generated::fn##_batch(std::forward<A>(a)...);                                                     \
+    }
 
-template <typename H, typename T> friction_status call(const double* x, T* o, int& set)
+template <typename H, typename T> friction_status call(const double *x, T *o, int &set)
 {
     constexpr int n_in = H::input_count;
     T in[n_in > 0 ? n_in : 1] = {};
     for (int i = 0; i < n_in; ++i)
         in[i] = static_cast<T>(x[i]);
     typename H::template result<T> r;
-    const friction_status s = H::call(static_cast<const T*>(in), r);
+    const friction_status s = H::call(static_cast<const T *>(in), r);
     H::to_array(r, o);
     set = r.set;
     return s;
@@ -72,18 +75,18 @@ template <typename H> int check()
         }
     // The batch form: two impacts, the same as the array form.
     double columns[n_in > 0 ? n_in : 1][2];
-    const double* in[n_in > 0 ? n_in : 1];
+    const double *in[n_in > 0 ? n_in : 1];
     for (int i = 0; i < n_in; ++i) {
         columns[i][0] = columns[i][1] = x[i];
         in[i] = columns[i];
     }
     double outs[n_out][2];
-    double* out[n_out];
+    double *out[n_out];
     for (int j = 0; j < n_out; ++j)
         out[j] = outs[j];
     friction_status status[2];
     int sets[2];
-    H::batch(2L, static_cast<const double* const*>(in), static_cast<double* const*>(out), status, sets);
+    H::batch(2L, static_cast<const double *const *>(in), static_cast<double *const *>(out), status, sets);
     for (int k = 0; k < 2; ++k) {
         if (status[k] != friction_status::ok || sets[k] != sd)
             return std::printf("%s: the batch form disagrees\n", H::header), 1;

@@ -47,17 +47,16 @@ struct generated {
 std::vector<generated> cases()
 {
     std::vector<generated> r;
-#define IMPACTGEN_SYSTEM_CASE(fn, source, params)                                                                    \
-    r.push_back({#fn, source, params, impactgen::generated::fn##_input_count,                                      \
-                 impactgen::generated::fn##_output_count, impactgen::generated::fn##_input_names,                  \
-                 impactgen::generated::fn##_output_names, impactgen::generated::fn##_set_names,                    \
-                 [](const double *in, double *out, int &set, bool &unique) {                                       \
-                     impactgen::generated::fn##_result<double> res{};                                              \
-                     const int s = static_cast<int>(impactgen::generated::fn<double>(in, res));                    \
-                     impactgen::generated::fn##_to_array(res, out);                                                \
-                     set = res.set;                                                                                \
-                     unique = res.impulses_unique;                                                                 \
-                     return s;                                                                                     \
+#define IMPACTGEN_SYSTEM_CASE(fn, source, params)                                                                      \
+    r.push_back({#fn, source, params, impactgen::generated::fn##_input_count, impactgen::generated::fn##_output_count, \
+                 impactgen::generated::fn##_input_names, impactgen::generated::fn##_output_names,                      \
+                 impactgen::generated::fn##_set_names, [](const double *in, double *out, int &set, bool &unique) {     \
+                     impactgen::generated::fn##_result<double> res{};                                                  \
+                     const int s = static_cast<int>(impactgen::generated::fn<double>(in, res));                        \
+                     impactgen::generated::fn##_to_array(res, out);                                                    \
+                     set = res.set;                                                                                    \
+                     unique = res.impulses_unique;                                                                     \
+                     return s;                                                                                         \
                  }});
     IMPACTGEN_SYSTEM_CASES(IMPACTGEN_SYSTEM_CASE)
 #undef IMPACTGEN_SYSTEM_CASE
@@ -274,8 +273,8 @@ double velocity_error(const std::vector<double> &a, const std::vector<double> &b
     double scale = 0, err = 0;
     for (const body &B : p.bodies)
         for (int c = 0; c < 3; ++c)
-            scale = std::max({scale, std::abs(print::to_double(B.velocity[c])),
-                              std::abs(print::to_double(B.angular_velocity[c]))});
+            scale = std::max(
+                {scale, std::abs(print::to_double(B.velocity[c])), std::abs(print::to_double(B.angular_velocity[c]))});
     for (std::size_t i = 0; i < a.size(); ++i) {
         scale = std::max({scale, std::abs(a[i]), std::abs(b[i])});
         err = std::max(err, std::abs(a[i] - b[i]));
@@ -313,8 +312,8 @@ bool nearly_holds(const problem &p, int set, const std::vector<double> &mine, st
     double vs = 0, is = 0;
     for (const body &b : p.bodies)
         for (int k = 0; k < 3; ++k)
-            vs = std::max({vs, std::abs(print::to_double(b.velocity[k])),
-                           std::abs(print::to_double(b.angular_velocity[k]))});
+            vs = std::max(
+                {vs, std::abs(print::to_double(b.velocity[k])), std::abs(print::to_double(b.angular_velocity[k]))});
     for (std::size_t i = 0; i < c.normal_impulse.size(); ++i) {
         is = std::max(is, std::abs(print::to_double(c.normal_impulse[i])));
         for (int k = 0; k < 3; ++k)
@@ -400,18 +399,17 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
         }
         const system_case::run r = sc.call(x);
         const problem p = sc.numeric(x);
-        const std::vector<double> mine(r.out.begin(), r.out.begin() + static_cast<long>(sc.velocities(
-                                                                             p, std::vector<ref::vec3>(p.bodies.size()),
-                                                                             std::vector<ref::vec3>(p.bodies.size()))
-                                                                             .size()));
+        const std::vector<double> mine(
+            r.out.begin(), r.out.begin() + static_cast<long>(sc.velocities(p, std::vector<ref::vec3>(p.bodies.size()),
+                                                                           std::vector<ref::vec3>(p.bodies.size()))
+                                                                 .size()));
         if (!sc.coulomb()) {
             const ref::sys_answer a = ref::solve_reference(reference_of(p), 1e-9);
             if (a.holding == 0) {
                 // No set holds in the reference: the header finds none, or one that holds within rounding.
                 std::string why;
                 ASSERT_TRUE(r.status == no_solution_status || (r.status == 0 && nearly_holds(p, r.set, mine, why)))
-                    << "sample " << s << ": the reference finds no set, the header returns " << r.status << " "
-                    << why;
+                    << "sample " << s << ": the reference finds no set, the header returns " << r.status << " " << why;
                 ++not_ok;
                 continue;
             }
@@ -441,8 +439,8 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
                 continue;
             }
             ASSERT_EQ(r.status, 0) << "sample " << s << ": the reference solves it (" << a.holding
-                                   << " sets hold), the header returns " << r.status << "; the closed form: "
-                                   << closed_form_verdict(p);
+                                   << " sets hold), the header returns " << r.status
+                                   << "; the closed form: " << closed_form_verdict(p);
             const double err = velocity_error(mine, sc.velocities(p, a.velocity, a.angular_velocity), p);
             std::string why;
             if (err > velocity_tolerance && on_boundary && a.holding >= 2) {
@@ -476,15 +474,15 @@ TEST_P(SystemHeaders, AgreeWithReferenceAndClosedForm)
             }
             const double err = velocity_error(mine, sc.velocities(p, v, w), p);
             worst_exact = std::max(worst_exact, err);
-            ASSERT_LE(err, velocity_tolerance) << "sample " << s << ": " << a.result.name() << " vs "
-                                               << g.set_names[r.set];
+            ASSERT_LE(err, velocity_tolerance)
+                << "sample " << s << ": " << a.result.name() << " vs " << g.set_names[r.set];
             ++exact;
         }
     }
     std::cout << g.name << ": " << compared << " compared with the reference (worst " << worst << "), " << exact
-              << " with the closed form (worst " << worst_exact << "), " << boundaries << " on a boundary, "
-              << not_ok << " with no solution in the reference, " << ambiguous << " ambiguous, " << none << " with no solution, " << alternatives
-              << " where the header's set holds within rounding and the exact decision differs\n";
+              << " with the closed form (worst " << worst_exact << "), " << boundaries << " on a boundary, " << not_ok
+              << " with no solution in the reference, " << ambiguous << " ambiguous, " << none << " with no solution, "
+              << alternatives << " where the header's set holds within rounding and the exact decision differs\n";
     EXPECT_GE(exact, std::min(n_exact, n) / 2);
     if (!sc.coulomb()) {
         EXPECT_EQ(compared + ambiguous + alternatives + none + not_ok, n);
