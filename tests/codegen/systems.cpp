@@ -496,3 +496,81 @@ INSTANTIATE_TEST_SUITE_P(Cases, SystemHeaders, ::testing::Range<std::size_t>(0, 
                          [](const ::testing::TestParamInfo<std::size_t> &info) { return cases()[info.param].name; });
 
 } // namespace
+
+namespace
+{
+using namespace impactgen;
+
+problem example(const std::string &stem)
+{
+    return load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/" + stem + ".json");
+}
+
+// Sequential impacts, the Jacobian and the engine conventions are refused in one line naming
+// the key or the option.
+TEST(SystemCodegen, RefusesWhatItDoesNotGenerate)
+{
+    codegen::options o;
+    o.name = "f";
+    try {
+        codegen::generate(example("three-balls-sequential"), o);
+        ADD_FAILURE() << "sequential impacts accepted";
+    } catch (const input_error &e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("impacts:"), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+    for (int k = 0; k < 3; ++k) {
+        codegen::options b = o;
+        (k == 0 ? b.jacobian : k == 1 ? b.inverse_mass : b.unit_normal) = true;
+        try {
+            codegen::generate(example("compass-gait"), b);
+            ADD_FAILURE() << "option " << k << " accepted";
+        } catch (const codegen::option_error &e) {
+            EXPECT_EQ(e.which, k == 0   ? codegen::option_error::jacobian
+                               : k == 1 ? codegen::option_error::inverse_mass
+                                        : codegen::option_error::unit_normal);
+        }
+    }
+}
+
+// --params and --set on a system behave as on one contact: a symbol of the file is an input or
+// given a value, a quantity named in --params becomes an input, an unknown name is refused
+// naming the quantities (the contacts' and joints' among them).
+TEST(SystemCodegen, ParamsAndSetAsForOneContact)
+{
+    const std::string text = R"({"dimension": 2, "restitution": "e",
+      "bodies": [{"name": "a", "mass": "m", "position": [0, 0], "velocity": ["v", 0]},
+                 {"name": "b", "mass": 1, "position": [2, 0], "velocity": [0, 0]},
+                 {"name": "c", "mass": 1, "position": [4, 0], "velocity": [0, 0]}],
+      "contacts": [{"bodies": ["a", "b"], "point": [1, 0], "normal": [1, 0]},
+                   {"bodies": ["b", "c"], "point": [3, 0], "normal": [1, 0]}]})";
+    const problem p = read_problem(text, "balls.json");
+    codegen::options o;
+    o.name = "balls";
+    const codegen::header all = codegen::generate(p, o);
+    EXPECT_EQ(all.inputs, (std::vector<std::string>{"e", "m", "v"}));
+    o.set = {{"e", "1"}};
+    o.params_given = true;
+    o.params = {"v", "m", "mb"};
+    const codegen::header h = codegen::generate(p, o);
+    EXPECT_EQ(h.inputs, (std::vector<std::string>{"v", "m", "mb"}));
+    EXPECT_NE(h.text.find("balls_set_names[]"), std::string::npos);
+    o.params = {"v", "m", "nope"};
+    try {
+        codegen::generate(p, o);
+        ADD_FAILURE() << "an unknown name accepted";
+    } catch (const codegen::option_error &e) {
+        EXPECT_EQ(e.which, codegen::option_error::params);
+        EXPECT_NE(std::string(e.what()).find("O_x_c1"), std::string::npos) << e.what();
+    }
+    o.params = {"v"};
+    try {
+        codegen::generate(p, o);
+        ADD_FAILURE() << "a symbol without a value accepted";
+    } catch (const codegen::option_error &e) {
+        EXPECT_EQ(e.symbol, "m");
+    }
+}
+
+} // namespace
