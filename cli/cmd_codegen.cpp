@@ -113,7 +113,7 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
                   "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
-                  "(not for systems yet)");
+                  "(of a system: d(velocities after)/d(inputs) of the set that holds)");
     auto *wrt = cmd->add_option("--wrt", args->wrt,
                                 "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
                                 "input); implies --jacobian");

@@ -48,19 +48,23 @@ struct system_code_set {
     std::vector<GiNaC::ex> values;
     struct condition {
         GiNaC::ex value;
-        bool velocity = false; ///< a velocity (scale: the contacts' speeds before), else an impulse
+        bool velocity = false;   ///< a velocity (scale: the contacts' speeds before), else an impulse
+        std::size_t contact = 0; ///< the contact it is about
         std::string meaning;
     };
     std::vector<condition> conditions;
     /// Perfectly rough contacts that stick: (normal impulse output, tangential outputs); with
     /// no normal impulse they carry no tangential one.
     std::vector<std::pair<std::size_t, std::vector<std::size_t>>> rough_sticks;
+    /// With a Jacobian: d(velocity output)/d(wrt), per velocity output (system_code::velocities).
+    std::vector<std::vector<GiNaC::ex>> jacobian;
 };
 
 /// What a system's header computes besides its outputs' fields.
 struct system_code {
     std::vector<system_code_set> sets;
     std::vector<GiNaC::ex> speeds;         ///< the contact rows' relative velocities before impact
+    std::vector<GiNaC::ex> unit_mass;      ///< per contact 1 / W_nn: speed to impulse (an impulse's rounding scale)
     std::vector<std::size_t> velocities;   ///< outputs that are velocities (compared for ambiguity)
     std::vector<std::size_t> impulses;     ///< outputs that are contact impulses (the impulse scale)
     std::vector<std::size_t> all_impulses; ///< every impulse output (impulses_unique)
@@ -70,6 +74,8 @@ struct system_code {
     GiNaC::ex energy_lost;                 ///< in inputs and the symbols sel (below)
     std::vector<GiNaC::symbol> sel;        ///< per output, the selected value
     std::vector<std::pair<GiNaC::ex, std::string>> checks; ///< value >= 0 or > 0 checks: (value, kind)
+    bool has_jacobian = false;
+    std::vector<GiNaC::symbol> wrt; ///< the inputs the Jacobian differentiates by, in order
 };
 
 struct code_plan {

@@ -7,6 +7,7 @@
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
 
+#include <algorithm>
 #include <functional>
 
 namespace impactgen::codegen
@@ -36,10 +37,6 @@ void refuse_system_options(const problem &p, const options &o)
     if (o.unit_normal)
         throw option_error(option_error::unit_normal,
                            "the unit-normal convention is not offered for systems (the normals are used as given)");
-    if (o.jacobian || !o.wrt.empty())
-        throw option_error(option_error::jacobian,
-                           "Jacobians of a system's impact map are not generated yet (the candidate selection makes "
-                           "it piecewise)");
 }
 
 struct output_source {
@@ -171,6 +168,32 @@ void system_checks(code_plan &cp)
     }
 }
 
+// The Jacobian of the velocities after impact by the inputs named (every input when none is),
+// per set: each set's closed form differentiated exactly.
+void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
+{
+    system_code &sc = cp.system;
+    sc.has_jacobian = true;
+    if (wrt.empty())
+        sc.wrt = cp.inputs;
+    for (const std::string &nm : wrt) {
+        auto it = std::find_if(cp.inputs.begin(), cp.inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
+        if (it == cp.inputs.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
+                                                                            "function (name it in --params)");
+        if (std::find(sc.wrt.begin(), sc.wrt.end(), *it) != sc.wrt.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
+        sc.wrt.push_back(*it);
+    }
+    for (system_code_set &s : sc.sets)
+        for (std::size_t j : sc.velocities) {
+            std::vector<ex> row;
+            for (const symbol &x : sc.wrt)
+                row.push_back(normal(s.values[j].diff(x)));
+            s.jacobian.push_back(row);
+        }
+}
+
 } // namespace
 
 code_plan system_code_plan(const problem &p, const options &o)
@@ -195,13 +218,18 @@ code_plan system_code_plan(const problem &p, const options &o)
     const system_delassus del = system_delassus_of(q);
     sc.speeds = del.u;
     sc.redundant_joints = del.redundant_joints;
+    for (std::size_t i = 0; i < q.contacts.size(); ++i) {
+        const auto at = std::find(del.rows.begin(), del.rows.end(), "n" + std::to_string(i)) - del.rows.begin();
+        const ex w = del.W[static_cast<std::size_t>(at)][static_cast<std::size_t>(at)];
+        sc.unit_mass.push_back(w.is_zero() ? ex(0) : normal(1 / w));
+    }
     for (const system_candidate &c : system_candidates(q)) {
         system_code_set s;
         s.name = c.name();
         for (const output_source &os : src)
             s.values.push_back(os.value ? os.value(c) : ex(0));
         for (const system_condition &k : c.conditions)
-            s.conditions.push_back({k.value, k.velocity, k.meaning});
+            s.conditions.push_back({k.value, k.velocity, k.contact, k.meaning});
         for (std::size_t i = 0; i < c.regimes.size(); ++i) {
             if (c.regimes[i] != contact_regime::stick || !q.contacts[i].rough)
                 continue;
@@ -219,6 +247,8 @@ code_plan system_code_plan(const problem &p, const options &o)
     }
     energy_lost(cp);
     system_checks(cp);
+    if (o.jacobian || !o.wrt.empty())
+        system_jacobian(cp, o.wrt);
     return cp;
 }
 

@@ -121,6 +121,7 @@ header writer::run_system()
     system_function();
     forwarding_form(false);
     forwarding_form(true);
+    system_jacobian_function();
     loop_batch();
     tables();
     header out;
@@ -149,6 +150,7 @@ void writer::name_everything()
         if (system()) {
             sc->reserve("set");
             sc->reserve("impulses_unique");
+            sc->reserve("boundary");
         } else if (!straight()) {
             sc->reserve("regime");
         }
@@ -165,7 +167,7 @@ void writer::name_everything()
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);
     if (system())
-        for (const char *suffix : {"_set_count", "_set_names", "_tolerance"})
+        for (const char *suffix : {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names"})
             scope_.reserve(o_.name + suffix);
     for (const symbol &x : cp_.inputs) {
         input_names_.push_back(scope_.claim(x.get_name()));

@@ -164,8 +164,10 @@ private:
     void system_tolerance();
     std::string system_holds(std::size_t k) const;
     std::string system_nearest() const;
+    std::string system_scale(std::size_t k, std::size_t j) const;
     void system_select();
     void system_function();
+    void system_jacobian_function();
 
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
@@ -260,6 +262,8 @@ private:
     std::vector<std::string> sys_mu_, sys_speed_, sys_sel_;
     std::vector<std::vector<std::string>> sys_vals_, sys_conds_;
     std::map<std::string, std::string> sys_local_;
+    std::vector<stage> sys_jac_;
+    std::vector<std::string> sys_jac_names_, sys_unit_mass_;
 };
 
 } // namespace writer_detail

@@ -51,6 +51,10 @@ void writer::build_system()
         sys_speed_.push_back(scope_.claim("u_row" + std::to_string(r)));
         a_.output(sys_speed_.back(), sc.speeds[r]);
     }
+    for (std::size_t i = 0; i < sc.unit_mass.size(); ++i) {
+        sys_unit_mass_.push_back(scope_.claim("unit_mass_c" + std::to_string(i)));
+        a_.output(sys_unit_mass_.back(), sc.unit_mass[i]);
+    }
     // The velocities before impact: the scale of a contact speed's rounding (near 0 too).
     for (std::size_t j : sc.velocities) {
         sys_speed_.push_back(scope_.claim("before_" + outs_[j].field));
@@ -73,8 +77,9 @@ void writer::build_system()
     }
     for (std::size_t j = 0; j < outs_.size(); ++j)
         sys_sel_.push_back(scope_.claim("sel_" + outs_[j].field));
-    for (const char *nm : {"tol", "speed_scale", "sets", "holds", "clear", "sel", "unique", "differ", "k", "j", "x1",
-                           "x2", "scale", "best", "margin", "tiny"})
+    for (const char *nm :
+         {"tol", "speed_scale", "sets",  "holds", "clear",  "sel",  "unique", "differ", "k",        "j",
+          "x1",  "x2",          "scale", "best",  "margin", "tiny", "jac",    "status", "boundary", "near_sets"})
         sys_local_[nm] = scope_.claim(nm);
     c_.pool.set_input_names([&] {
         std::map<ex, std::string, ex_is_less> m = input_ident_;
@@ -86,12 +91,31 @@ void writer::build_system()
     u_.pool.set_input_names(input_ident_);
     for (std::size_t j = 0; j < outs_.size(); ++j)
         u_.output(outs_[j].field, sc.unchanged[j]);
+    if (sc.has_jacobian) {
+        sys_jac_.resize(sc.sets.size());
+        const std::size_t nw = sc.wrt.size();
+        for (std::size_t i = 0; i < sc.velocities.size(); ++i)
+            for (std::size_t w = 0; w < nw; ++w)
+                sys_jac_names_.push_back(
+                    scope_.claim("d_" + outs_[sc.velocities[i]].field + "_d_" + input_ident_.at(sc.wrt[w])));
+        for (std::size_t k = 0; k < sc.sets.size(); ++k) {
+            stage &st = sys_jac_[k];
+            st.pool.set_input_names(input_ident_);
+            for (std::size_t i = 0; i < sc.sets[k].jacobian.size(); ++i)
+                for (std::size_t w = 0; w < nw; ++w)
+                    st.output(sys_jac_names_[i * nw + w], sc.sets[k].jacobian[i][w]);
+        }
+    }
     emit_options locals, result;
     locals.outputs = output_placement::local;
     result.energy_output = static_cast<int>(outs_.size() - 1);
     emit_one(a_, locals);
     emit_one(c_, result);
     u_.em = emit_cpp(u_.prog, u_.outs, {}, {}, scope_.names());
+    emit_options jac_locals;
+    jac_locals.outputs = output_placement::local;
+    for (stage &st : sys_jac_)
+        emit_one(st, jac_locals);
 }
 
 void writer::system_banner()
@@ -148,6 +172,18 @@ void writer::system_tolerance()
     h_ << "    return r;\n}\n} // namespace detail\n\n";
 }
 
+// The scale of condition j of set k: the speeds before impact for a velocity; for an impulse the
+// set's largest contact impulse, or its contact's speed-to-impulse 1 / W_nn times the speeds
+// before, the larger (an impulse near 0 is measured against what rounding makes of it).
+std::string writer::system_scale(std::size_t k, std::size_t j) const
+{
+    const system_code_set::condition &c = cp_.system.sets[k].conditions[j];
+    const std::string &vs = sys_local_.at("speed_scale");
+    if (c.velocity)
+        return vs;
+    return "detail::max_of(s" + std::to_string(k) + "_scale, " + vs + " * " + sys_unit_mass_.at(c.contact) + ")";
+}
+
 // Whether set k holds as computed (h: every condition >= 0) and clearly (g: every condition >=
 // tol times its scale); a rough contact that sticks with no normal impulse carries no
 // tangential one. Its scale: the set's largest contact impulse.
@@ -155,7 +191,7 @@ std::string writer::system_holds(std::size_t k) const
 {
     const system_code &sc = cp_.system;
     const system_code_set &s = sc.sets[k];
-    const std::string &tol = sys_local_.at("tol"), &vs = sys_local_.at("speed_scale");
+    const std::string &tol = sys_local_.at("tol");
     std::vector<std::string> imp;
     for (std::size_t j : sc.impulses)
         imp.push_back(sys_vals_[k][j]);
@@ -163,7 +199,7 @@ std::string writer::system_holds(std::size_t k) const
     std::vector<std::string> holds, clear;
     for (std::size_t j = 0; j < s.conditions.size(); ++j) {
         holds.push_back(sys_conds_[k][j] + " >= T(0)");
-        clear.push_back(sys_conds_[k][j] + " >= " + tol + " * " + (s.conditions[j].velocity ? vs : is));
+        clear.push_back(sys_conds_[k][j] + " >= " + tol + " * " + system_scale(k, j));
     }
     for (const auto &[n, ts] : s.rough_sticks)
         for (std::size_t t : ts) {
@@ -179,6 +215,12 @@ std::string writer::system_holds(std::size_t k) const
     std::string r = scaled ? "    const T " + is + " = " + nested_max(imp) + ";\n" : std::string();
     r += "    const bool h" + kt + " = " + (holds.empty() ? "true" : join(holds, " && ")) + ";\n";
     r += "    const bool g" + kt + " = " + (clear.empty() ? "true" : join(clear, " && ")) + ";\n";
+    if (cp_.system.has_jacobian) {
+        std::vector<std::string> near;
+        for (std::size_t j = 0; j < s.conditions.size(); ++j)
+            near.push_back(sys_conds_[k][j] + " >= -" + tol + " * " + system_scale(k, j));
+        r += "    const bool n" + kt + " = " + (near.empty() ? "true" : join(near, " && ")) + ";\n";
+    }
     return r;
 }
 
@@ -188,8 +230,8 @@ std::string writer::system_holds(std::size_t k) const
 std::string writer::system_nearest() const
 {
     const system_code &sc = cp_.system;
-    const std::string &tol = sys_local_.at("tol"), &vs = sys_local_.at("speed_scale"), &sel = sys_local_.at("sel"),
-                      &best = sys_local_.at("best"), &m = sys_local_.at("margin"), &tiny = sys_local_.at("tiny");
+    const std::string &tol = sys_local_.at("tol"), &sel = sys_local_.at("sel"), &best = sys_local_.at("best"),
+                      &m = sys_local_.at("margin"), &tiny = sys_local_.at("tiny");
     std::string r = "    if (" + sel + " < 0) {\n";
     r += "        // No set holds as computed: the one nearest to holding, within rounding.\n";
     r += "        const T " + tiny + " = std::numeric_limits<T>::min();\n";
@@ -201,8 +243,7 @@ std::string writer::system_nearest() const
         const std::string is = "s" + std::to_string(k) + "_scale";
         std::vector<std::string> terms;
         for (std::size_t j = 0; j < s.conditions.size(); ++j)
-            terms.push_back(sys_conds_[k][j] + " / detail::max_of(" + (s.conditions[j].velocity ? vs : is) + ", " +
-                            tiny + ")");
+            terms.push_back(sys_conds_[k][j] + " / detail::max_of(" + system_scale(k, j) + ", " + tiny + ")");
         r += "        {\n            const T " + m + " = detail::min_of(" + join(terms, ", ") + ");\n";
         r += "            if (" + m + " > " + best + ") {\n                " + best + " = " + m +
              ";\n                " + sel + " = " + std::to_string(k) + ";\n            }\n        }\n";
@@ -239,12 +280,24 @@ void writer::system_select()
     h_ << "    int " << sel << " = -1;\n";
     h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << " && " << sel << " < 0; ++" << k << ")\n";
     h_ << "        if (" << holds << "[" << k << "])\n            " << sel << " = " << k << ";\n";
+    const std::string &boundary = sys_local_.at("boundary");
+    if (sc.has_jacobian)
+        h_ << "    bool " << boundary << " = " << sel << " < 0;\n";
     h_ << system_nearest();
     h_ << "    if (" << sel << " < 0)\n        return fail(friction_status::no_solution);\n";
     h_ << "    auto " << differ << " = [&](T " << x1 << ", T " << x2 << ", T " << scale << ") noexcept {\n";
     h_ << "        return !(detail::abs_of(" << x1 << " - " << x2 << ") <= " << tol << " * (" << scale
        << " + detail::abs_of(" << x1 << ") + detail::abs_of(" << x2 << ")));\n    };\n";
     h_ << "    bool " << unique << " = " << (sc.redundant_joints ? "false" : "true") << ";\n";
+    if (sc.has_jacobian) {
+        h_ << "    const bool " << sys_local_.at("near_sets") << "[" << nsets << "] = {";
+        for (std::size_t i = 0; i < nsets; ++i)
+            h_ << (i ? ", " : "") << "n" << i;
+        h_ << "};\n";
+        h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << "; ++" << k << ")\n";
+        h_ << "        " << boundary << " = " << boundary << " || (" << k << " != " << sel << " && "
+           << sys_local_.at("near_sets") << "[" << k << "]);\n";
+    }
     h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << "; ++" << k << ") {\n";
     h_ << "        if (" << k << " == " << sel << " || !" << clear << "[" << k << "])\n            continue;\n";
     const std::string at = sets + "[" + k + "][" + j + "], " + sets + "[" + sel + "][" + j + "]";
@@ -285,6 +338,8 @@ void writer::system_function()
     for (std::size_t j = 0; j + 1 < nout; ++j)
         h_ << "    out." << outs_[j].field << " = " << sys_sel_[j] << ";\n";
     h_ << "    out.set = " << sel << ";\n    out.impulses_unique = " << unique << ";\n";
+    if (cp_.system.has_jacobian)
+        h_ << "    out.boundary = " << sys_local_.at("boundary") << ";\n";
     std::vector<std::string> terms;
     for (const code_output &of : outs_)
         terms.push_back("out." + of.field);
@@ -294,6 +349,48 @@ void writer::system_function()
     h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
     h_ << "        return fail(friction_status::overflow);\n";
     h_ << "    return friction_status::ok;\n}\n\n";
+}
+
+// NAME_jacobian: NAME, then the derivatives of the selected set's velocities (its closed form
+// differentiated exactly).
+void writer::system_jacobian_function()
+{
+    const system_code &sc = cp_.system;
+    if (!sc.has_jacobian)
+        return;
+    const std::size_t nw = sc.wrt.size(), nv = sc.velocities.size();
+    const std::string &jac = sys_local_.at("jac"), &status = sys_local_.at("status");
+    h_ << "inline constexpr int " << o_.name << "_wrt_count = " << nw << ";\n";
+    h_ << "/// The inputs the Jacobian differentiates by, in the order of its columns.\n";
+    h_ << "inline constexpr const char* " << o_.name << "_wrt_names[] = {";
+    for (const symbol &x : sc.wrt)
+        h_ << names::cpp_string_literal(input_ident_.at(x)) << ", ";
+    h_ << "nullptr};\n\n";
+    h_ << "/// " << o_.name << " and the Jacobian of the velocities after impact (the first " << nv << " of " << o_.name
+       << "_output_names)\n";
+    h_ << "/// by the inputs " << o_.name << "_wrt_names: " << jac << "[i * " << nw
+       << " + j] = d(velocity i)/d(input j), the selected set's\n";
+    h_ << "/// closed form differentiated exactly. Returns the status of " << o_.name
+       << " (jac zero unless ok), or ambiguous\n";
+    h_ << "/// where another set holds within rounding (out.boundary): the impact map is not differentiable\n";
+    h_ << "/// there; out and jac then hold the selected set's values and its one-sided derivatives.\n";
+    h_ << "template <typename T>\nIMPACTGEN_FUNC friction_status " << o_.name << "_jacobian(" << params() << result()
+       << "<T>& out, T* " << jac << ") noexcept\n{\n";
+    h_ << "    const friction_status " << status << " = " << o_.name << "<T>(" << args() << "out);\n";
+    const std::string &k = sys_local_.at("k");
+    h_ << "    for (int " << k << " = 0; " << k << " < " << nv * nw << "; ++" << k << ")\n        " << jac << "[" << k
+       << "] = T(0);\n";
+    h_ << "    if (" << status << " != friction_status::ok)\n        return " << status << ";\n";
+    h_ << "    using std::sqrt;\n";
+    h_ << "    switch (out.set) {\n";
+    for (std::size_t k = 0; k < sys_jac_.size(); ++k) {
+        h_ << "    case " << k << ": {\n" << indent(sys_jac_[k].em.code, "    ");
+        for (std::size_t i = 0; i < sys_jac_names_.size(); ++i)
+            h_ << "        " << jac << "[" << i << "] = " << sys_jac_names_[i] << ";\n";
+        h_ << "        break;\n    }\n";
+    }
+    h_ << "    default:\n        break;\n    }\n";
+    h_ << "    return out.boundary ? friction_status::ambiguous : friction_status::ok;\n}\n\n";
 }
 
 } // namespace impactgen::codegen::writer_detail

@@ -101,7 +101,10 @@ void writer::result_struct()
     if (system())
         h_ << "    int set; ///< the candidate set that holds (" << o_.name
            << "_set_names), -1 when the status is not ok\n"
-           << "    bool impulses_unique; ///< false: the velocities are unique, the impulses one valid choice\n";
+           << "    bool impulses_unique; ///< false: the velocities are unique, the impulses one valid choice\n"
+           << (cp_.system.has_jacobian ? "    bool boundary; ///< another set holds within rounding (the map is not "
+                                         "differentiable here)\n"
+                                       : "");
     else if (!straight())
         h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n";
     for (std::size_t g = 0; g < pl_.output_groups.size(); ++g)
@@ -255,7 +258,8 @@ void writer::unchanged_function(const emitted &code)
         return;
     }
     if (system())
-        h_ << "    out.set = -1;\n    out.impulses_unique = true;\n";
+        h_ << "    out.set = -1;\n    out.impulses_unique = true;\n"
+           << (cp_.system.has_jacobian ? "    out.boundary = false;\n" : "");
     else
         h_ << "    out.regime = impact_regime::smooth;\n";
     h_ << "}\n} // namespace detail\n\n";

@@ -443,6 +443,7 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
         const std::string who = pname(i);
         const std::string name = "contact " + std::to_string(i);
         const std::string pushes = name + " pushes (its normal impulse is not negative)";
+        const std::size_t before = c.conditions.size();
         switch (c.choice[i].regime) {
         case contact_regime::open:
             c.conditions.push_back({simp(c.w[n] + e * q[n]), false,
@@ -478,6 +479,8 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
                                     true});
             break;
         }
+        for (std::size_t k = before; k < c.conditions.size(); ++k)
+            c.conditions[k].contact = i;
     }
 }
 
