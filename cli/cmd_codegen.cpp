@@ -3,7 +3,6 @@
 #include "cli/commands.hpp"
 #include "codegen/codegen.hpp"
 #include "names/identifier.hpp"
-#include "symbolic/system.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -32,7 +31,6 @@ int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
 {
     using namespace impactgen;
     problem p = cli::load(a.what);
-    refuse_system_for(p, "codegen");
     codegen::options o;
     o.source = a.what;
     o.version = IMPACTGEN_VERSION;
@@ -102,9 +100,11 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
         "--name", args->name,
         "function name, a C++ identifier (default: the class or file stem made one: '-' -> '_', x_ before a digit)");
     cmd->add_option("--namespace", args->ns, "namespace of the generated code (default impactgen::generated)");
-    auto *params = cmd->add_option("--params", args->params,
-                                   "comma-separated symbols (or quantity names such as m1, v_x_ball, I1_tt) that stay "
-                                   "function parameters, in this order; every other value is folded in as a constant");
+    auto *params =
+        cmd->add_option("--params", args->params,
+                        "comma-separated symbols (or quantity names such as m1, v_x_ball, I1_tt; of a system also "
+                        "e_c0, mu_c0, O_x_c0, n_x_c0 per contact, J_x_j0 per joint) that stay function "
+                        "parameters, in this order; every other value is folded in as a constant");
     cmd->add_option("--set", args->set, "values of symbols that are not parameters, e.g. m1=2,l=1/2 (exact)");
     cmd->add_flag("--inverse-inertia", args->inverse_inertia,
                   "inertia inputs of free bodies are inverses: 3-D tensors I^-1, planar 1/I (engine convention)");
@@ -112,7 +112,8 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
     cmd->add_flag("--unit-normal", args->unit_normal,
                   "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
     cmd->add_flag("--jacobian", args->jacobian,
-                  "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly");
+                  "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
+                  "(of a system: d(velocities after)/d(inputs) of the set that holds)");
     auto *wrt = cmd->add_option("--wrt", args->wrt,
                                 "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
                                 "input); implies --jacobian");

@@ -204,6 +204,8 @@ bool has_candidates(const problem &p, const options &o)
 
 code_plan make_code_plan(const problem &p, const options &o)
 {
+    if (p.is_system())
+        return system_code_plan(p, o);
     if (has_candidates(p, o))
         return candidates_plan(p, o);
     code_plan cp;

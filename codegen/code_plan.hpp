@@ -10,6 +10,11 @@
 //   process           the phase sequences of Routh's process (poisson, energetic with
 //                     friction, symbolic/routh.hpp): the first whose conditions hold, no
 //                     branch; the regime is its last phase (stick or slide).
+//   system_sets       a system's candidates (symbolic/system.hpp: one per set of contact
+//                     regimes, in the order solve_system tries them): each whose conditions
+//                     hold within rounding is a solution; the first is the answer, another
+//                     with different velocities makes it ambiguous, none is no_solution
+//                     (first_that_holds stops at the first: it cannot tell these apart).
 // A new contact law adds its candidates in symbolic/ and, when they need it, a selection
 // rule here; the one writer (writer.hpp) emits any plan. No C++ text is made here.
 // Private to the codegen library.
@@ -18,6 +23,7 @@
 #include "codegen.hpp"
 
 #include "symbolic/friction.hpp"
+#include "symbolic/system.hpp"
 
 #include <cstddef>
 #include <vector>
@@ -25,7 +31,7 @@
 namespace impactgen::codegen
 {
 
-enum class selection_rule { none, first_that_holds, sliding_angle, process };
+enum class selection_rule { none, first_that_holds, sliding_angle, process, system_sets };
 
 /// An output of the header: the smooth plan's (its value in inputs and steps), or, with a
 /// tangential impulse, one of its world components (computed from the selected impulse).
@@ -33,6 +39,43 @@ struct code_output : output_value {
     bool tangential = false;
     int axis = 0;         ///< tangential: world axis
     std::size_t base = 0; ///< not tangential: index in plan::outputs
+};
+
+/// A system's candidate in the header: its set's name, the outputs' values, and its
+/// conditions, each with the scale its rounding is measured against.
+struct system_code_set {
+    std::string name; ///< "{0 stick, 1 open}"
+    std::vector<GiNaC::ex> values;
+    struct condition {
+        GiNaC::ex value;
+        bool velocity = false;   ///< a velocity (scale: the contacts' speeds before), else an impulse
+        std::size_t contact = 0; ///< the contact it is about
+        std::string meaning;
+    };
+    std::vector<condition> conditions;
+    /// Perfectly rough contacts that stick: (normal impulse output, tangential outputs); with
+    /// no normal impulse they carry no tangential one.
+    std::vector<std::pair<std::size_t, std::vector<std::size_t>>> rough_sticks;
+    /// With a Jacobian: d(velocity output)/d(wrt), per velocity output (system_code::velocities).
+    std::vector<std::vector<GiNaC::ex>> jacobian;
+};
+
+/// What a system's header computes besides its outputs' fields.
+struct system_code {
+    std::vector<system_code_set> sets;
+    std::vector<GiNaC::ex> speeds;         ///< the contact rows' relative velocities before impact
+    std::vector<GiNaC::ex> unit_mass;      ///< per contact 1 / W_nn: speed to impulse (an impulse's rounding scale)
+    std::vector<std::size_t> velocities;   ///< outputs that are velocities (compared for ambiguity)
+    std::vector<std::size_t> impulses;     ///< outputs that are contact impulses (the impulse scale)
+    std::vector<std::size_t> all_impulses; ///< every impulse output (impulses_unique)
+    std::vector<GiNaC::ex> unchanged;      ///< per output, the value of a failed call
+    bool redundant_joints = false;         ///< the joints' impulses are never unique
+    std::vector<GiNaC::ex> energy_before;  ///< kinetic energy before, and after in the selected velocities:
+    GiNaC::ex energy_lost;                 ///< in inputs and the symbols sel (below)
+    std::vector<GiNaC::symbol> sel;        ///< per output, the selected value
+    std::vector<std::pair<GiNaC::ex, std::string>> checks; ///< value >= 0 or > 0 checks: (value, kind)
+    bool has_jacobian = false;
+    std::vector<GiNaC::symbol> wrt; ///< the inputs the Jacobian differentiates by, in order
 };
 
 struct code_plan {
@@ -52,6 +95,8 @@ struct code_plan {
     derivation deriv;
     impact_solution candidates;
     int angle = -1;
+    /// rule system_sets: the system's candidates.
+    system_code system;
 };
 
 /// True when the problem, with the options' --set values folded in, has a law with more
@@ -68,6 +113,15 @@ void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
 /// sequences left out (none holding is no_solution). Throws input_error when every
 /// sequence wedges.
 impact_solution process_candidates(const derivation &d);
+
+/// The plan's inputs in order: --params as given, else the symbols in the order of the
+/// problem's quantities, each with its meaning (plan.cpp).
+void order_plan_inputs(plan &pl, const options &o);
+
+/// The code plan of a system (system_plan.cpp): its candidates' values and conditions in the
+/// inputs the options choose. Throws input_error naming `impacts` for sequential impacts, and
+/// option_error for the options a system does not take.
+code_plan system_code_plan(const problem &p, const options &o);
 
 /// The code plan of a problem under the options (the names of generate()).
 code_plan make_code_plan(const problem &p, const options &o);

@@ -33,6 +33,36 @@ struct quantity {
     std::string meaning;
 };
 
+// A system's own quantities (after its bodies): per contact k its restitution e_ck (when
+// its own), friction mu_ck (when Coulomb's), point O_x_ck and normal n_x_ck; per joint j
+// its point J_x_jj; per pivot its point, as for one contact.
+void system_quantities(problem &p, std::vector<quantity> &q)
+{
+    const int dim = p.dimension;
+    const auto &ax = p.axes;
+    for (std::size_t k = 0; k < p.contacts.size(); ++k) {
+        contact_spec &c = p.contacts[k];
+        const std::string s = "_c" + std::to_string(k), who = "contacts[" + std::to_string(k) + "]";
+        if (c.own_restitution)
+            q.push_back({"e" + s, &c.restitution, "coefficient of restitution of " + who + ", 0 <= e <= 1"});
+        if (auto *law = std::get_if<coulomb>(&c.law))
+            q.push_back({"mu" + s, &law->mu, "coefficient of friction of " + who + " (>= 0)"});
+        for (int a = 0; a < dim; ++a)
+            q.push_back({"O_" + ax[a] + s, &c.point[a], "point of " + who + ", " + ax[a]});
+        for (int a = 0; a < dim; ++a)
+            q.push_back({"n_" + ax[a] + s, &c.normal[a],
+                         "normal of " + who + " (from its first body into its second, any length), " + ax[a]});
+    }
+    for (std::size_t j = 0; j < p.joints.size(); ++j)
+        for (int a = 0; a < dim; ++a)
+            q.push_back({"J_" + ax[a] + "_j" + std::to_string(j), &p.joints[j].point[a],
+                         "point of joints[" + std::to_string(j) + "], " + ax[a]});
+    for (pivot &pv : p.pivots)
+        for (int a = 0; a < dim; ++a)
+            q.push_back({"E_" + ax[a] + suffix(p.bodies[pv.body].label), &pv.point[a],
+                         "pivot of " + p.bodies[pv.body].name + ", " + ax[a]});
+}
+
 // Every liftable quantity of the problem, in problem order; inertia entries
 // (r <= c) stand for both symmetric entries.
 std::vector<quantity> quantities(problem &p)
@@ -64,6 +94,10 @@ std::vector<quantity> quantities(problem &p)
         for (int c = dim == 2 ? 2 : 0; c < 3; ++c)
             q.push_back({"w_" + ax[c] + sub, &b.angular_velocity[c],
                          "angular velocity of " + b.name + " before impact, " + ax[c]});
+    }
+    if (p.is_system()) {
+        system_quantities(p, q);
+        return q;
     }
     for (int c = 0; c < dim; ++c)
         q.push_back({"O_" + ax[c], &p.contact().point[c], "contact point, " + ax[c]});
@@ -671,6 +705,11 @@ void check_unit_normal(const problem &q)
 }
 
 } // namespace
+
+void order_plan_inputs(plan &pl, const options &o)
+{
+    order_inputs(pl, o);
+}
 
 const char *option_error::option_name(option o)
 {

@@ -70,6 +70,8 @@ writer::writer(code_plan cp, const options &o)
 header writer::run()
 {
     name_everything();
+    if (system())
+        return run_system();
     if (straight()) {
         lower_program();
         add_checks(main_, pl_.sol.steps);
@@ -113,6 +115,32 @@ header writer::run()
     return out;
 }
 
+// A system's header: the same sections around its own function.
+header writer::run_system()
+{
+    build_system();
+    banner();
+    preamble();
+    result_struct();
+    system_formulas();
+    unchanged_function(u_.em);
+    system_tolerance();
+    system_function();
+    forwarding_form(false);
+    forwarding_form(true);
+    system_jacobian_function();
+    loop_batch();
+    tables();
+    header out;
+    out.text = h_.str();
+    out.formula = total_;
+    out.checks = a_.em.checks;
+    out.inputs = input_names_;
+    for (const code_output &of : outs_)
+        out.outputs.push_back(of.field);
+    return out;
+}
+
 // Every name the header declares comes from one scope (names/identifier.hpp): the
 // emitter's own names first, then inputs, steps and the locals derived from outputs and
 // inputs, so no user name can shadow or collide with another.
@@ -122,11 +150,18 @@ void writer::name_everything()
         if (names::is_safe_identifier(r))
             scope_.reserve(r);
     // A member named view or T would hide the view type or the template parameter; regime
-    // is the result's member with candidates.
-    for (names::identifier_scope *sc : {&in_members_, &members_})
-        for (const char *own : {"view", "T", "regime"})
-            if (!straight() || std::string(own) != "regime")
-                sc->reserve(own);
+    // is the result's member with candidates, set and impulses_unique a system's.
+    for (names::identifier_scope *sc : {&in_members_, &members_}) {
+        for (const char *own : {"view", "T"})
+            sc->reserve(own);
+        if (system()) {
+            sc->reserve("set");
+            sc->reserve("impulses_unique");
+            sc->reserve("boundary");
+        } else if (!straight()) {
+            sc->reserve("regime");
+        }
+    }
     // clang-format off
     const std::vector<const char *> straight_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_jacobian", "_jacobian_result", "_wrt_count",
@@ -138,6 +173,9 @@ void writer::name_everything()
     // clang-format on
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);
+    if (system())
+        for (const char *suffix : {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names"})
+            scope_.reserve(o_.name + suffix);
     for (const symbol &x : cp_.inputs) {
         input_names_.push_back(scope_.claim(x.get_name()));
         input_ident_[x] = input_names_.back();
@@ -156,7 +194,7 @@ void writer::name_everything()
         in_views_.push_back(in_members_.claim(g.name));
     for (const group &g : pl_.output_groups)
         out_views_.push_back(members_.claim(g.name));
-    if (!straight() && q_.dimension >= 2)
+    if (!straight() && !system() && q_.dimension >= 2)
         tangential_view_ = members_.claim("tangential_impulse");
 }
 

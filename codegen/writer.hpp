@@ -86,9 +86,11 @@ public:
     writer(code_plan cp, const options &o);
 
     header run();
+    header run_system();
 
 private:
     bool straight() const { return cp_.rule == selection_rule::none; }
+    bool system() const { return cp_.rule == selection_rule::system_sets; }
     const char *status_type() const { return straight() ? "impact_status" : "friction_status"; }
 
     // ---- names (one scope for the function's names, one per struct)
@@ -156,6 +158,18 @@ private:
     const std::string &selection_text();
     void main_function(bool unchecked);
     void loop_batch();
+
+    // ---- rule system_sets: a system's candidate sets (writer_system.cpp)
+    void build_system();
+    void system_banner();
+    void system_formulas();
+    void system_tolerance();
+    std::string system_holds(std::size_t k) const;
+    std::string system_nearest() const;
+    std::string system_scale(std::size_t k, std::size_t j) const;
+    void system_select();
+    void system_function();
+    void system_jacobian_function();
 
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
@@ -245,6 +259,13 @@ private:
     stage a_, b_, s_, c_, u_;
     emitted a_unchecked_;   // stage A with only the checks of the state (the unchecked variant)
     std::string selection_; // the selection and the post-impact state, as both functions write them
+
+    // ---- rule system_sets: names of the locals
+    std::vector<std::string> sys_mu_, sys_speed_, sys_sel_;
+    std::vector<std::vector<std::string>> sys_vals_, sys_conds_;
+    std::map<std::string, std::string> sys_local_;
+    std::vector<stage> sys_jac_;
+    std::vector<std::string> sys_jac_names_, sys_unit_mass_;
 };
 
 } // namespace writer_detail

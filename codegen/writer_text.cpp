@@ -29,6 +29,8 @@ void writer::banner()
     h_ << "//   " << names::comment_text(command_line(o_)) << "\n";
     if (straight())
         straight_banner();
+    else if (system())
+        system_banner();
     else
         candidates_banner();
 }
@@ -96,11 +98,18 @@ void writer::result_struct()
     h_ << "template <typename T> struct " << result() << " {\n";
     for (const code_output &of : outs_)
         h_ << "    T " << of.field << "; ///< " << names::comment_text(of.meaning) << "\n";
-    if (!straight())
+    if (system())
+        h_ << "    int set; ///< the candidate set that holds (" << o_.name
+           << "_set_names), -1 when the status is not ok\n"
+           << "    bool impulses_unique; ///< false: the velocities are unique, the impulses one valid choice\n"
+           << (cp_.system.has_jacobian ? "    bool boundary; ///< another set holds within rounding (the map is not "
+                                         "differentiable here)\n"
+                                       : "");
+    else if (!straight())
         h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n";
     for (std::size_t g = 0; g < pl_.output_groups.size(); ++g)
         group_view(out_views_[g], pl_.output_groups[g]);
-    if (!straight()) {
+    if (!straight() && !system()) {
         std::vector<std::string> e, f;
         for (std::size_t k : cp_.tangential) {
             e.push_back("&" + outs_[k].field);
@@ -235,6 +244,7 @@ void writer::unchanged_function(const emitted &code)
     h_ << "\nnamespace detail {\n";
     h_ << "/// What a failed call of " << o_.name << " returns: the state unchanged (velocities as\n";
     h_ << (straight() ? "/// before, impulses, approach velocity and energy lost zero).\n"
+           : system() ? "/// before; impulses and energy lost zero; set -1).\n"
                       : "/// before; impulses, approach velocity and energy lost zero; regime smooth).\n");
     h_ << "template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void " << unchanged() << "(";
     for (const std::string &nm : input_names_)
@@ -246,7 +256,11 @@ void writer::unchanged_function(const emitted &code)
         h_ << "}\n\n";
         return;
     }
-    h_ << "    out.regime = impact_regime::smooth;\n";
+    if (system())
+        h_ << "    out.set = -1;\n    out.impulses_unique = true;\n"
+           << (cp_.system.has_jacobian ? "    out.boundary = false;\n" : "");
+    else
+        h_ << "    out.regime = impact_regime::smooth;\n";
     h_ << "}\n} // namespace detail\n\n";
 }
 
@@ -297,14 +311,16 @@ void writer::loop_batch()
     h_ << "/// The same over n impacts in structure-of-arrays form: in[j][i] is input j (order of\n";
     h_ << "/// " << o_.name << "_input_names) of impact i, out[j][i] output j (order of " << o_.name
        << "_output_names),\n";
-    h_ << "/// status[i] its status and, unless regime is null, regime[i] its regime. One call of " << o_.name << "\n";
-    h_ << "/// per impact (the regime selection branches).";
+    const std::string what = system() ? "set" : "regime";
+    h_ << "/// status[i] its status and, unless " << what << " is null, " << what << "[i] its " << what
+       << ". One call of " << o_.name << "\n";
+    h_ << "/// per impact (the " << (system() ? "set" : "regime") << " selection branches).";
     if (energy_index < outs_.size())
         h_ << " with_energy_lost = false: out[" << energy_index << "] is not written (it may be null).";
     h_ << "\n";
     h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_FUNC void " << o_.name
-       << "_batch(long n, const T* const* in, T* const* out, friction_status* status, impact_regime* regime) "
-          "noexcept\n{\n";
+       << "_batch(long n, const T* const* in, T* const* out, friction_status* status, "
+       << (system() ? "int* set" : "impact_regime* regime") << ") noexcept\n{\n";
     if (input_names_.empty())
         h_ << "    (void)in;\n";
     h_ << "    for (long i = 0; i < n; ++i) {\n";
@@ -316,7 +332,7 @@ void writer::loop_batch()
     for (std::size_t j = 0; j < outs_.size(); ++j)
         h_ << (j == energy_index ? "        if constexpr (with_energy_lost)\n    " : "") << "        out[" << j
            << "][i] = r." << outs_[j].field << ";\n";
-    h_ << "        if (regime)\n            regime[i] = r.regime;\n";
+    h_ << "        if (" << what << ")\n            " << what << "[i] = r." << what << ";\n";
     h_ << "    }\n}\n\n";
 }
 
@@ -339,6 +355,16 @@ void writer::tables()
         h_ << "inline constexpr op_count " << o_.name << "_ops{" << em_.formula.add << ", " << em_.formula.mul << ", "
            << em_.formula.div << ", " << em_.formula.sqrt << "};\n\n";
         h_ << "/// The members of r in the order of " << o_.name << "_output_names.\n";
+    } else if (system()) {
+        h_ << "nullptr};\n";
+        h_ << "inline constexpr int " << o_.name << "_set_count = " << cp_.system.sets.size() << ";\n";
+        h_ << "/// The candidate sets (result.set indexes them): each contact's regime.\n";
+        h_ << "inline constexpr const char* " << o_.name << "_set_names[] = {";
+        for (const system_code_set &s : cp_.system.sets)
+            h_ << names::cpp_string_literal(s.name) << ", ";
+        h_ << "nullptr};\n\n";
+        h_ << "/// The members of r in the order of " << o_.name
+           << "_output_names (set and impulses_unique are not among them).\n";
     } else {
         h_ << "nullptr};\n\n";
         h_ << "/// The members of r in the order of " << o_.name << "_output_names (the regime is not among them).\n";

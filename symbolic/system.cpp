@@ -447,12 +447,13 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
         const std::string who = pname(i);
         const std::string name = "contact " + std::to_string(i);
         const std::string pushes = name + " pushes (its normal impulse is not negative)";
+        const std::size_t before = c.conditions.size();
         switch (c.choice[i].regime) {
         case contact_regime::open:
             c.conditions.push_back({simp(c.w[n] + e * q[n]), false,
                                     "u'_" + std::to_string(i) + " + e u_" + std::to_string(i) + " >= 0 (" + who +
                                         " leaves no slower than e times its approach)",
-                                    name + " leaves no slower than e times its approach speed"});
+                                    name + " leaves no slower than e times its approach speed", true});
             break;
         case contact_regime::smooth:
             c.conditions.push_back(
@@ -478,9 +479,12 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
                                         " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + ")",
                                     name + " slides " +
                                         (c.choice[i].sign > 0 ? "along its tangent" : "against its tangent") +
-                                        " after impact"});
+                                        " after impact",
+                                    true});
             break;
         }
+        for (std::size_t k = before; k < c.conditions.size(); ++k)
+            c.conditions[k].contact = i;
     }
 }
 

@@ -45,8 +45,10 @@ const char *contact_regime_name(contact_regime r);
 struct system_condition {
     ex value;
     bool strict = false;
-    std::string meaning; ///< e.g. "P_0 >= 0 (contacts[0] pushes)" (formulas: the inequality and the key)
-    std::string words;   ///< the same in a person's words, for documents: "contact 0 pushes"
+    std::string meaning;     ///< e.g. "P_0 >= 0 (contacts[0] pushes)" (formulas: the inequality and the key)
+    std::string words;       ///< the same in a person's words, for documents: "contact 0 pushes"
+    bool velocity = false;   ///< a velocity after impact (open, slide direction), else an impulse
+    std::size_t contact = 0; ///< the contact it is about
 };
 
 /// One candidate of the law: a regime per contact, its closed form and its conditions.
