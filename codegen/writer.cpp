@@ -327,7 +327,13 @@ void writer::add_checks(stage &s, const std::vector<step> &steps)
                 add_check(s, st.sym, check::positive, "singular", "effective inverse mass k > 0, finite");
             break;
         case step_role::response_determinant:
-            add_check(s, st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
+            // The stick candidate needs det K > 0; where it is not (K singular: a body pinned at
+            // a fixed point struck by one many orders of magnitude heavier) only that candidate
+            // is dropped (stick_possible) and the slides may still hold. Routh's process stops.
+            if (cp_.rule == selection_rule::process)
+                add_check(s, st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
+            else
+                det_K_ = st.sym;
             break;
         default:
             break;

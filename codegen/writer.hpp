@@ -34,6 +34,7 @@ using namespace form_text;
 std::string indent(const std::string &code, const std::string &by);
 bool depends_on(const ex &e, const exset &syms);
 std::vector<check> state_checks(const std::vector<check> &checks);
+std::string position_text(const problem &q); // the convention of position vectors, as comment lines
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'
 // values, its outputs and checks, and the code emitted for them.
@@ -218,6 +219,8 @@ private:
     std::vector<symbol> sel_P_, sel_F_;
     symbol sel_N_{"friction_N"};
     ex scale_ = 0; // the scale of K (n.K n) the candidates divide it by, or 0
+    ex det_K_ = 0; // det K of the stick candidate (its step), when the stick candidate may be dropped at run time
+    std::string det_K_name_, stick_possible_name_;
     std::vector<std::string> sel_P_names_, sel_F_names_;
     std::string sel_N_name_;
     std::vector<ex> c_values_;
