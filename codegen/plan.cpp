@@ -695,6 +695,8 @@ const char *option_error::option_name(option o)
         return "jacobian";
     case wrt:
         return "wrt";
+    case rows:
+        return "rows";
     }
     return "?";
 }

@@ -71,6 +71,7 @@ header writer::run()
         build_stages();
         emit_stages();
     }
+    build_rows();
     banner();
     preamble();
     result_struct();
@@ -91,6 +92,7 @@ header writer::run()
     forwarding_form(false);
     forwarding_form(true);
     jacobian_function();
+    rows_function();
     if (straight())
         straight_batch();
     else
@@ -124,10 +126,10 @@ void writer::name_everything()
     const std::vector<const char *> straight_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_jacobian", "_jacobian_result", "_wrt_count",
         "_wrt_names", "_checked", "_batch", "_batch_pass", "_input_count", "_output_count", "_input_names",
-        "_output_names", "_ops", "_to_array"};
+        "_output_names", "_ops", "_to_array", "_rows", "_row", "_rows_result"};
     const std::vector<const char *> candidate_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_batch", "_input_count", "_output_count",
-        "_input_names", "_output_names", "_to_array"};
+        "_input_names", "_output_names", "_to_array", "_rows", "_row", "_rows_result"};
     // clang-format on
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);

@@ -113,6 +113,11 @@ private:
     void fast_function();
     void unchecked_function();
     void jacobian_function();
+    // ---- --rows: the contact's rows for an iterative solver (writer_rows.cpp)
+    void build_rows();
+    void rows_function();
+    void rows_structs();
+    std::string rows_body();
     void straight_batch();
 
     // ---- a selection rule: the candidates' programs (writer_stages.cpp)
@@ -246,6 +251,8 @@ private:
     stage a_, b_, s_, c_, u_;
     emitted a_unchecked_;   // stage A with only the checks of the state (the unchecked variant)
     std::string selection_; // the selection and the post-impact state, as both functions write them
+    stage rows_;            // --rows: the primitive values of the rows
+    std::map<std::string, std::string> rows_name_;
 };
 
 } // namespace writer_detail
