@@ -20,6 +20,7 @@
 //   box-box     a dynamic box tilted 15..40 degrees falls with spin on one corner onto a
 //               dynamic box lying flat (densities 0.5..2): a non-central impact, one
 //               manifold point.
+// (A two-point manifold, a box landing on two corners, is in box2d_manifold_bench.cpp.)
 // Counters: ns_per_impact; for box2d/<case> also max_rel_error and mean_rel_error: the
 // largest and mean |v'_box2d - v'_exact| / max(|v|, |v'|) over every body's velocity and
 // spin (spin times the body's size) of the case's contacts. Box2D computes in float and

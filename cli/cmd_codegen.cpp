@@ -24,7 +24,7 @@ std::vector<std::string> split(const std::string &s, char sep)
 
 struct codegen_args {
     std::string what, out_dir, output, name, ns = "impactgen::generated", params, set, wrt;
-    bool inverse_inertia = false, inverse_mass = false, unit_normal = false, jacobian = false;
+    bool inverse_inertia = false, inverse_mass = false, unit_normal = false, jacobian = false, rows = false;
 };
 
 int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
@@ -53,6 +53,7 @@ int run(const codegen_args &a, CLI::Option *params_opt, CLI::Option *wrt_opt)
     o.inverse_mass = a.inverse_mass;
     o.unit_normal = a.unit_normal;
     o.jacobian = a.jacobian || wrt_opt->count() > 0;
+    o.rows = a.rows;
     if (wrt_opt->count() > 0 && a.wrt.empty())
         throw input_error("--wrt: no input named (expected input names separated by commas)");
     cli::split_wrt(a.wrt, o.wrt);
@@ -111,6 +112,9 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
     cmd->add_flag("--inverse-mass", args->inverse_mass, "mass inputs are inverse masses 1/m (engine convention)");
     cmd->add_flag("--unit-normal", args->unit_normal,
                   "the normal inputs are a unit vector (engine convention): not normalised, checked to have length 1");
+    cmd->add_flag("--rows", args->rows,
+                  "also emit NAME_rows: the contact's Jacobian rows, effective masses along the normal and the "
+                  "tangents and the bias of restitution, for an iterative (sequential-impulse) solver");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
                   "(of a system: d(velocities after)/d(inputs) of the set that holds)");

@@ -8,14 +8,14 @@
 #                      [PARAMS <symbol>...]
 #                      [SET <symbol>=<value>...]
 #                      [INVERSE_MASS] [INVERSE_INERTIA] [UNIT_NORMAL]
-#                      [JACOBIAN] [WRT <input>...])
+#                      [JACOBIAN] [WRT <input>...] [ROWS])
 #
 # Runs, at build time,
 #
 #   impactgen codegen <file.json> --output <dir>/<target>.hpp --name <function>
 #                     [--namespace <namespace>] [--params a,b,c] [--set a=1,b=1/2]
 #                     [--inverse-mass] [--inverse-inertia] [--unit-normal]
-#                     [--jacobian] [--wrt a,b]
+#                     [--jacobian] [--wrt a,b] [--rows]
 #
 # and defines an INTERFACE library <target> whose include directory holds
 # <target>.hpp, so that
@@ -53,6 +53,9 @@
 #   WRT        the inputs the Jacobian differentiates by, in this order
 #              (WRT vx vy -> --wrt vx,vy); implies JACOBIAN. At least one item.
 #              Default (JACOBIAN alone): every input.
+#   ROWS       option: also emit <function>_rows, the contact's Jacobian rows,
+#              effective masses and restitution bias for an iterative solver
+#              (-> --rows).
 #
 # A malformed item (a SET item without '=', with an empty symbol or value, an
 # empty PARAMS or WRT item, a ',' in any item) or a keyword without its values
@@ -67,11 +70,11 @@ include_guard(GLOBAL)
 
 function(impactgen_generate target)
   cmake_parse_arguments(PARSE_ARGV 1 arg
-    "INVERSE_MASS;INVERSE_INERTIA;UNIT_NORMAL;JACOBIAN" "PROBLEM;NAME;NAMESPACE" "PARAMS;SET;WRT")
+    "INVERSE_MASS;INVERSE_INERTIA;UNIT_NORMAL;JACOBIAN;ROWS" "PROBLEM;NAME;NAMESPACE" "PARAMS;SET;WRT")
   set(where "impactgen_generate(${target})")
   if(arg_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "${where}: unknown arguments: ${arg_UNPARSED_ARGUMENTS} (keywords: PROBLEM NAME NAMESPACE "
-                        "PARAMS SET INVERSE_MASS INVERSE_INERTIA UNIT_NORMAL JACOBIAN WRT)")
+                        "PARAMS SET INVERSE_MASS INVERSE_INERTIA UNIT_NORMAL JACOBIAN WRT ROWS)")
   endif()
   if(arg_KEYWORDS_MISSING_VALUES)
     message(FATAL_ERROR "${where}: no value given for ${arg_KEYWORDS_MISSING_VALUES}")
@@ -174,6 +177,9 @@ function(impactgen_generate target)
   if(DEFINED arg_WRT)
     list(JOIN arg_WRT "," wrt)
     list(APPEND options --wrt "${wrt}")
+  endif()
+  if(arg_ROWS)
+    list(APPEND options --rows)
   endif()
 
   # The options as a file rewritten only when they change: the rule depends on

@@ -31,6 +31,7 @@ struct options {
     bool unit_normal = false;     ///< the normal inputs are a unit vector: no normalisation (engine convention)
     bool jacobian = false;        ///< also emit <name>_jacobian: values and d(outputs)/d(wrt)
     std::vector<std::string> wrt; ///< inputs the Jacobian differentiates by (empty: every input), in order
+    bool rows = false;            ///< also emit <name>_rows: the contact's rows for an iterative solver
 };
 
 /// An option that cannot be honoured. The library names the option by `which`
@@ -38,7 +39,18 @@ struct options {
 class option_error : public input_error
 {
 public:
-    enum option { set, params, inverse_inertia, inverse_mass, function_name, name_space, unit_normal, jacobian, wrt };
+    enum option {
+        set,
+        params,
+        inverse_inertia,
+        inverse_mass,
+        function_name,
+        name_space,
+        unit_normal,
+        jacobian,
+        wrt,
+        rows
+    };
     option_error(option which, const std::string &message, std::string symbol = "")
         : input_error(message), which(which), symbol(std::move(symbol))
     {

@@ -87,7 +87,8 @@ std::vector<quantity> quantities(problem &p)
                              "inertia tensor of " + b.name + " about its centre of mass, " + ax[r] + ax[c] + " entry"});
         }
         for (int c = 0; c < dim; ++c)
-            q.push_back({"r_" + ax[c] + sub, &b.position[c], "centre of mass of " + b.name + ", " + ax[c]});
+            q.push_back({"r_" + ax[c] + sub, &b.position[c],
+                         "position of the centre of mass of " + b.name + " from the origin, " + ax[c]});
         for (int c = 0; c < dim; ++c)
             q.push_back({"v_" + ax[c] + sub, &b.velocity[c],
                          "velocity of the centre of mass of " + b.name + " before impact, " + ax[c]});
@@ -100,14 +101,14 @@ std::vector<quantity> quantities(problem &p)
         return q;
     }
     for (int c = 0; c < dim; ++c)
-        q.push_back({"O_" + ax[c], &p.contact().point[c], "contact point, " + ax[c]});
+        q.push_back({"O_" + ax[c], &p.contact().point[c], "position of the contact point from the origin, " + ax[c]});
     for (int c = 0; c < dim; ++c)
         q.push_back(
             {"n_" + ax[c], &p.contact().normal[c], "contact normal (from body 1 into body 2, any length), " + ax[c]});
     for (pivot &pv : p.pivots)
         for (int c = 0; c < dim; ++c)
             q.push_back({"E_" + ax[c] + suffix(p.bodies[pv.body].label), &pv.point[c],
-                         "pivot of " + p.bodies[pv.body].name + ", " + ax[c]});
+                         "position of the pivot of " + p.bodies[pv.body].name + " from the origin, " + ax[c]});
     return q;
 }
 
@@ -615,15 +616,16 @@ void plan_groups(plan &pl)
             add_input((inv == pl.inverse_tensor.end() ? "I" : "inv_I") + s, 3, 3, entries,
                       (inv == pl.inverse_tensor.end() ? "inertia tensor of " : "inverse inertia tensor of ") + b.name);
         }
-        add_input("r" + s, dim, 1, vec(b.position), "centre of mass of " + b.name);
+        add_input("r" + s, dim, 1, vec(b.position), "position of the centre of mass of " + b.name + " from the origin");
         add_input("v" + s, dim, 1, vec(b.velocity), "velocity of the centre of mass of " + b.name + " before impact");
         if (dim == 3)
             add_input("w" + s, 3, 1, vec(b.angular_velocity), "angular velocity of " + b.name + " before impact");
     }
-    add_input("O", dim, 1, vec(q.contact().point), "contact point");
+    add_input("O", dim, 1, vec(q.contact().point), "position of the contact point from the origin");
     add_input("n", dim, 1, vec(q.contact().normal), "contact normal");
     for (const pivot &pv : q.pivots)
-        add_input("E" + suffix(q.bodies[pv.body].label), dim, 1, vec(pv.point), "pivot of " + q.bodies[pv.body].name);
+        add_input("E" + suffix(q.bodies[pv.body].label), dim, 1, vec(pv.point),
+                  "position of the pivot of " + q.bodies[pv.body].name + " from the origin");
 
     // Outputs: every component of a vector is an output, or there is no group.
     std::map<std::tuple<int, std::size_t>, std::vector<std::size_t>> found;
@@ -732,6 +734,8 @@ const char *option_error::option_name(option o)
         return "jacobian";
     case wrt:
         return "wrt";
+    case rows:
+        return "rows";
     }
     return "?";
 }

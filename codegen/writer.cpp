@@ -80,6 +80,7 @@ header writer::run()
         build_stages();
         emit_stages();
     }
+    build_rows();
     banner();
     preamble();
     result_struct();
@@ -100,6 +101,7 @@ header writer::run()
     forwarding_form(false);
     forwarding_form(true);
     jacobian_function();
+    rows_function();
     if (straight())
         straight_batch();
     else
@@ -166,10 +168,10 @@ void writer::name_everything()
     const std::vector<const char *> straight_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_jacobian", "_jacobian_result", "_wrt_count",
         "_wrt_names", "_checked", "_batch", "_batch_pass", "_input_count", "_output_count", "_input_names",
-        "_output_names", "_ops", "_to_array"};
+        "_output_names", "_ops", "_to_array", "_rows", "_row", "_rows_result"};
     const std::vector<const char *> candidate_suffixes = {
         "", "_result", "_input", "_unchanged", "_unchecked", "_batch", "_input_count", "_output_count",
-        "_input_names", "_output_names", "_to_array"};
+        "_input_names", "_output_names", "_to_array", "_rows", "_row", "_rows_result"};
     // clang-format on
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);
@@ -372,7 +374,13 @@ void writer::add_checks(stage &s, const std::vector<step> &steps)
                 add_check(s, st.sym, check::positive, "singular", "effective inverse mass k > 0, finite");
             break;
         case step_role::response_determinant:
-            add_check(s, st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
+            // The stick candidate needs det K > 0; where it is not (K singular: a body pinned at
+            // a fixed point struck by one many orders of magnitude heavier) only that candidate
+            // is dropped (stick_possible) and the slides may still hold. Routh's process stops.
+            if (cp_.rule == selection_rule::process)
+                add_check(s, st.sym, check::positive, "singular", "contact response det K > 0, finite (stick)");
+            else
+                det_K_ = st.sym;
             break;
         default:
             break;

@@ -36,6 +36,7 @@ bool depends_on(const ex &e, const exset &syms);
 std::vector<check> state_checks(const std::vector<check> &checks);
 /// The `using std::sqrt;` (and std::cos, std::sin) lines a function body needs for the code of `e`.
 std::string math_usings(const emitted &e);
+std::string position_text(const problem &q); // the convention of position vectors, as comment lines
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'
 // values, its outputs and checks, and the code emitted for them.
@@ -116,6 +117,11 @@ private:
     void fast_function();
     void unchecked_function();
     void jacobian_function();
+    // ---- --rows: the contact's rows for an iterative solver (writer_rows.cpp)
+    void build_rows();
+    void rows_function();
+    void rows_structs();
+    std::string rows_body();
     void straight_batch();
 
     // ---- a selection rule: the candidates' programs (writer_stages.cpp)
@@ -234,6 +240,8 @@ private:
     std::vector<symbol> sel_P_, sel_F_;
     symbol sel_N_{"friction_N"};
     ex scale_ = 0; // the scale of K (n.K n) the candidates divide it by, or 0
+    ex det_K_ = 0; // det K of the stick candidate (its step), when the stick candidate may be dropped at run time
+    std::string det_K_name_, stick_possible_name_;
     std::vector<std::string> sel_P_names_, sel_F_names_;
     std::string sel_N_name_;
     std::vector<ex> c_values_;
@@ -266,6 +274,8 @@ private:
     std::map<std::string, std::string> sys_local_;
     std::vector<stage> sys_jac_;
     std::vector<std::string> sys_jac_names_, sys_unit_mass_;
+    stage rows_;            // --rows: the primitive values of the rows
+    std::map<std::string, std::string> rows_name_;
 };
 
 } // namespace writer_detail

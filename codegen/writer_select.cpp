@@ -47,6 +47,8 @@ std::string writer::near_text(const case_names &cn) const
     std::vector<std::string> parts;
     for (std::size_t a = 0; a < cn.P.size(); ++a)
         parts.push_back("detail::abs_of<T>(" + cn.P[a] + " - " + sn.P[a] + ") <= " + merge_name_);
+    if (!stick_possible_name_.empty()) // no stick candidate: no slide is it
+        parts.insert(parts.begin(), stick_possible_name_);
     return join(parts, " && ");
 }
 
@@ -56,11 +58,20 @@ std::string writer::near_text(const case_names &cn) const
 void writer::emit_closed_forms(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
+    const bool droppable = stick && !stick_possible_name_.empty();
+    if (droppable) // K singular here (within rounding): no stick candidate, the slides may hold
+        h_ << ind << "const bool " << stick_possible_name_ << " = ((static_cast<unsigned>(" << det_K_name_
+           << " > T(0)) & static_cast<unsigned>(detail::finite<T>(" << det_K_name_
+           << "))) != 0u); // det K > 0, finite: the stick candidate exists\n";
     for (std::size_t i = 0; i < f_.cases.size(); ++i)
         if (static_cast<int>(i) != angle_) {
             closed_.push_back(i);
             holds_.push_back(stick && i == 0 ? stick_holds_name_ : scope_.claim(names_[i].prefix + "holds"));
-            h_ << ind << "const bool " << holds_.back() << " = " << holds_text(names_[i], f_.cases[i]) << "; // "
+            std::string holds = holds_text(names_[i], f_.cases[i]);
+            if (droppable && i == 0)
+                holds = "((static_cast<unsigned>(" + stick_possible_name_ + ") & static_cast<unsigned>(" + holds +
+                        ")) != 0u)";
+            h_ << ind << "const bool " << holds_.back() << " = " << holds << "; // "
                << names::comment_text(f_.cases[i].name) << "\n";
         }
     for (const std::string &hname : holds_)
@@ -200,20 +211,33 @@ void writer::emit_unresolved(const std::string &ind)
 {
     const bool stick = f_.stick() != nullptr;
     const std::string i2 = ind + "    ";
-    std::vector<std::string> values;
+    // The values of the candidates: a stick candidate that does not exist (det K <= 0) is not
+    // one of them, and where nothing else holds K singular is the reason.
+    const bool droppable = stick && !stick_possible_name_.empty();
+    std::vector<std::string> values, stick_values;
     for (std::size_t i = 0; i < names_.size(); ++i) {
         if (static_cast<int>(i) == angle_)
             continue;
         const case_names &cn = names_[i];
-        values.push_back(cn.N);
-        values.insert(values.end(), cn.P.begin(), cn.P.end());
-        values.insert(values.end(), cn.cond.begin(), cn.cond.end());
+        std::vector<std::string> &to = droppable && i == 0 ? stick_values : values;
+        to.push_back(cn.N);
+        to.insert(to.end(), cn.P.begin(), cn.P.end());
+        to.insert(to.end(), cn.cond.begin(), cn.cond.end());
     }
     values.insert(values.end(), trig_names_.begin(), trig_names_.end());
-    const std::string finite = "if (!detail::finite<T>(" + balanced_sum(values) + ")" +
-                               (angle_ >= 0 ? " || !" + slides_finite_name_ : std::string()) + ")\n";
-    const std::string verdict =
-        "return fail(" + count_name_ + " == 0 ? friction_status::no_solution : friction_status::ambiguous);\n";
+    std::vector<std::string> not_finite;
+    if (!values.empty())
+        not_finite.push_back("!detail::finite<T>(" + balanced_sum(values) + ")");
+    if (droppable)
+        not_finite.push_back("(" + stick_possible_name_ + " && !detail::finite<T>(" + balanced_sum(stick_values) +
+                             "))");
+    if (angle_ >= 0)
+        not_finite.push_back("!" + slides_finite_name_);
+    const std::string finite = "if (" + join(not_finite, " || ") + ")\n";
+    const std::string none =
+        droppable ? "(" + stick_possible_name_ + " ? friction_status::no_solution : friction_status::singular)"
+                  : std::string("friction_status::no_solution");
+    const std::string verdict = "return fail(" + count_name_ + " == 0 ? " + none + " : friction_status::ambiguous);\n";
     if (cp_.rule == selection_rule::process) {
         // The phase sequences split the inputs by comparisons of closed forms: where two hold
         // (on a phase boundary within rounding) they give the same impact, the first is taken;

@@ -6,7 +6,8 @@
 //   1. stage A, one straight-line program (CSE over everything in it): the shared steps
 //      (K = K_1 + K_2 as the sum of the bodies' responses 1/m + (I^-1 (r x e)) x r, u, u_n),
 //      the validity checks of the smooth headers (restitution, masses, inertia, normal,
-//      approach, then det K > 0 for the stick candidate: status singular), every
+//      approach, n.K n > 0: status singular; det K as a value: the stick candidate exists
+//      where det K > 0, else only it is dropped -- stick_possible), every
 //      closed-form candidate (stick; planar: slides along +e_t and -e_t; 3-D isotropic: the
 //      slide along u_t) with its impulse and the values of its conditions, and for a 3-D
 //      slide without closed form the five coefficients of its angle equation
@@ -510,6 +511,14 @@ void writer::build_stage_a()
     for (std::size_t i = 0; i < a_steps_.size(); ++i)
         a_.bind_step(a_steps_[i], a_step_names_[i]);
     add_checks(a_, a_steps_);
+    if (!det_K_.is_zero()) {
+        // det K as a value: the stick candidate exists where it is > 0 (only that candidate is
+        // dropped where it is not); K itself must be in range: n.K n > 0, finite (singular, as
+        // the smooth header's k > 0), so that K scaled by it is finite.
+        add_check(a_, s_D0_, check::positive, "singular", "n.K n > 0, finite (the contact response in range)");
+        det_K_name_ = scope_.claim("stick_det_K");
+        a_.output(det_K_name_, det_K_);
+    }
     // mu as a value (when it is not simply an input or a number)
     const ex &mu = q.contact().friction();
     if (is_a<symbol>(mu) && input_ident_.count(mu)) {
@@ -677,7 +686,8 @@ void writer::build_stage_s()
     n0.value = s_N0_value_.subs(s_D0_ == d0.sym);
     const std::string n0_name = scope_.claim("N_0");
     s_.bind_step(n0, n0_name);
-    add_check(s_, d0.sym, check::positive, "singular", "mu = 0: n.K n > 0, finite");
+    if (det_K_.is_zero()) // (else stage A checked it)
+        add_check(s_, d0.sym, check::positive, "singular", "mu = 0: n.K n > 0, finite");
     s_.output(sel_N_name_, n0.sym);
     for (std::size_t a = 0; a < s_P0_.size(); ++a) {
         s_.output(sel_P_names_[a], s_P0_[a]);
@@ -751,6 +761,8 @@ void writer::emit_stages()
     }
     count_name_ = scope_.claim("n_holding");
     stick_holds_name_ = scope_.claim("stick_holds");
+    if (!det_K_name_.empty())
+        stick_possible_name_ = scope_.claim("stick_possible");
     regime_name_ = scope_.claim("regime_now");
     roots_c_name_ = scope_.claim("root_c");
     roots_s_name_ = scope_.claim("root_s");

@@ -200,15 +200,16 @@ void writer::straight_banner()
 
 void writer::straight_formulas()
 {
+    h_ << position_text(pl_.prob);
     h_ << "// Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,\n";
-    h_ << "// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):\n";
+    h_ << "// s_1 = -1, s_2 = +1; r_i the lever arm above):\n";
     h_ << "//   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a "
           "particle;\n";
-    h_ << "//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)\n";
-    h_ << "//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points "
+    h_ << "//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = r_EC = C - E)\n";
+    h_ << "//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x r_{C1 O}          (u < 0: the contact points "
           "approach)\n";
     h_ << "//   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)\n";
-    h_ << "//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i\n";
+    h_ << "//   v'_i = v_i + s_i N n / m_i (pinned: w' x r_EC),  w'_i = w_i + s_i N g_i\n";
     h_ << "//   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n\n";
     if (o_.inverse_inertia && pl_.prob.dimension == 2)
         h_ << "// Input convention: inverse moments of inertia inv_I = 1/I (as physics engines store them).\n";

@@ -148,9 +148,27 @@ void writer::process_intro()
     h_ << "// contact wedges: no finite impulse ends the compression).\n";
 }
 
+// The one convention of position vectors (the documents' r_PQ = Q - P), said in every header:
+// the position inputs are from the origin of the axes, the lever arms from a centre of mass
+// (or pivot) to the contact point.
+std::string position_text(const problem &q)
+{
+    bool origin = true;
+    for (int c = 0; c < q.dimension; ++c)
+        origin = origin && q.contact().point[static_cast<std::size_t>(c)].is_zero();
+    std::string t = "// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The\n"
+                    "// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are\n"
+                    "// inputs) are position vectors from the origin of the axes; the lever arm of body i is\n"
+                    "// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i).";
+    if (origin)
+        t += " Here O is the\n// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).";
+    return t + "\n";
+}
+
 void writer::candidates_formulas()
 {
     const int dim = q_.dimension;
+    h_ << position_text(q_);
     if (cp_.rule == selection_rule::process) {
         process_intro();
         conditions_and_steps();
@@ -161,7 +179,9 @@ void writer::candidates_formulas()
     h_ << "// u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law\n";
     h_ << "// u'.n = -e u_n and Coulomb's |P_t| <= mu P_n give the candidates\n";
     if (f_.stick())
-        h_ << "//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;\n";
+        h_ << "//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone; a candidate\n"
+           << "//          only where det K > 0 (else K is singular within rounding: the slides are the\n"
+           << "//          candidates, and none holding is singular);\n";
     else
         h_ << "//   (not stick: K is singular here -- a body pinned at a fixed point struck by one that cannot\n"
            << "//   move -- so no impulse stops the tangential slip while restitution holds)\n";

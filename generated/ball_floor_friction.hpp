@@ -191,8 +191,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -205,7 +205,7 @@ enum class friction_status : int {
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the contact response K is singular (det K <= 0), or n.K n <= 0 (mu = 0)
+    singular,            ///< the contact response K is singular (det K <= 0) where the answer needs it (no slide holds; Routh's process), or n.K n <= 0 (mu = 0)
     overflow,            ///< finite inputs whose result overflows
     invalid_friction,    ///< mu < 0 or not finite
     no_solution,         ///< no regime satisfies its conditions (strong coupling of normal and tangential motion)
@@ -893,12 +893,12 @@ template <typename T> struct ball_floor_friction_result {
 template <typename T> struct ball_floor_friction_input {
     T e; ///< coefficient of restitution, 0 <= e <= 1
     T mu; ///< coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)
-    T R; ///< centre of mass of ball, n
+    T R; ///< position of the centre of mass of ball from the origin, n
     T m; ///< mass of ball (> 0)
     T v_t; ///< velocity of the centre of mass of ball before impact, t
     T v_n; ///< velocity of the centre of mass of ball before impact, n
     T w; ///< angular velocity of ball before impact, b
-    /// centre of mass of ball (vector)
+    /// position of the centre of mass of ball from the origin (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> r_ball() noexcept { return {{nullptr, &R}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> r_ball() const noexcept { return {{nullptr, &R}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
     /// velocity of the centre of mass of ball before impact (vector)
@@ -906,11 +906,18 @@ template <typename T> struct ball_floor_friction_input {
     IMPACTGEN_MEMBER view<const T, 2, 1> v_ball() const noexcept { return {{&v_t, &v_n}, {0.0, 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // The law (impactgen's symbolic/friction.hpp): P = P_n n + P_t the impulse on body 2 (-P on
 // body 1), u the relative velocity v_B - v_A of the contact points, u_n = u.n < 0, and
 // u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law
 // u'.n = -e u_n and Coulomb's |P_t| <= mu P_n give the candidates
-//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;
+//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone; a candidate
+//          only where det K > 0 (else K is singular within rounding: the slides are the
+//          candidates, and none holding is singular);
 //   slide along a unit tangent d: P = N (n - mu d), D = n.K(n - mu d), N = -(1 + e) u_n / D,
 //          holding when D > 0 and u'_t = lambda d with lambda > 0;
 //   d = +e_t or -e_t, e_t = (1, 0).
@@ -942,6 +949,7 @@ template <typename T> struct ball_floor_friction_input {
 //   slide_pos_lambda = u_t + slide_pos_N * (0 - slide_pos_lambda_p1)
 //   slide_neg_lambda = -(u_t + slide_pos_N * slide_pos_lambda_p1)
 //   c_stick_cond1_p1 = stick_P_n * mu
+//   stick_det_K = stick_D_K
 //   c_stick_N = stick_P_n
 //   c_stick_P_t = stick_P_t
 //   c_stick_F_t = stick_P_t
@@ -1013,7 +1021,7 @@ template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void ball_floor_friction_unc
 /// with_energy_lost = false: out.energy_lost is left 0 (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
 ///   mu: coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)
-///   R: centre of mass of ball, n
+///   R: position of the centre of mass of ball from the origin, n
 ///   m: mass of ball (> 0)
 ///   v_t: velocity of the centre of mass of ball before impact, t
 ///   v_n: velocity of the centre of mass of ball before impact, n
@@ -1040,11 +1048,11 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
         return fail(impact_status::invalid_inertia);
     const T K_scale = T(1) / m;
     const T K_nn = T(1) / (m * K_scale);
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T K_tt = K_nn * (T(7) / T(2));
     const T u_t = R * w + v_t;
     const T stick_D_K = K_nn * K_tt;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -(K_nn * u_t * inv_stick_D_K);
     const T stick_P_n = inv_stick_D_K * (T(0) - K_tt * (v_n + v_n * e));
@@ -1055,6 +1063,7 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     const T slide_pos_lambda = u_t + slide_pos_N * (T(0) - slide_pos_lambda_p1);
     const T slide_neg_lambda = -(u_t + slide_pos_N * slide_pos_lambda_p1);
     const T c_stick_cond1_p1 = stick_P_n * mu;
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1089,8 +1098,6 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     T sel_F_n = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1098,7 +1105,8 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
         sel_P_n = N_0;
         sel_F_n = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         const bool slide_pos_holds = ((static_cast<unsigned>(c_slide_pos_cond1 > T(0)) & static_cast<unsigned>(c_slide_pos_cond2 > T(0))) != 0u); // slide along +e_t
         const bool slide_neg_holds = ((static_cast<unsigned>(c_slide_neg_cond1 > T(0)) & static_cast<unsigned>(c_slide_neg_cond2 > T(0))) != 0u); // slide along -e_t
         int n_holding = static_cast<int>(stick_holds) + static_cast<int>(slide_pos_holds) + static_cast<int>(slide_neg_holds);
@@ -1114,10 +1122,10 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
             const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n));
             int n_apart = 0; // slides holding that are not the stick solution
             bool at_stick = stick_holds; // some candidate is the stick solution
-            const bool slide_pos_near = detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
+            const bool slide_pos_near = stick_possible && detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_pos_near;
             n_apart += slide_pos_holds && !slide_pos_near ? 1 : 0;
-            const bool slide_neg_near = detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
+            const bool slide_neg_near = stick_possible && detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_neg_near;
             n_apart += slide_neg_holds && !slide_neg_near ? 1 : 0;
             if (n_apart == 0 && at_stick) {
@@ -1129,9 +1137,9 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
                 sel_P_n = c_stick_P_n;
                 sel_F_n = c_stick_F_n;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + ((c_stick_cond2 + c_slide_pos_N) + (c_slide_pos_P_t + c_slide_pos_P_n))) + (((c_slide_pos_cond1 + c_slide_pos_cond2) + (c_slide_neg_N + c_slide_neg_P_t)) + ((c_slide_neg_P_n + c_slide_neg_cond1) + c_slide_neg_cond2))))
+                if (!detail::finite<T>((((c_slide_pos_N + c_slide_pos_P_t) + (c_slide_pos_P_n + c_slide_pos_cond1)) + ((c_slide_pos_cond2 + c_slide_neg_N) + (c_slide_neg_P_t + c_slide_neg_P_n))) + (c_slide_neg_cond1 + c_slide_neg_cond2)) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + c_stick_cond2)))
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }
@@ -1175,11 +1183,11 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
         return fail(impact_status::not_approaching);
     const T K_scale = T(1) / m;
     const T K_nn = T(1) / (m * K_scale);
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T K_tt = K_nn * (T(7) / T(2));
     const T u_t = R * w + v_t;
     const T stick_D_K = K_nn * K_tt;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -(K_nn * u_t * inv_stick_D_K);
     const T stick_P_n = inv_stick_D_K * (T(0) - K_tt * (v_n + v_n * e));
@@ -1190,6 +1198,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
     const T slide_pos_lambda = u_t + slide_pos_N * (T(0) - slide_pos_lambda_p1);
     const T slide_neg_lambda = -(u_t + slide_pos_N * slide_pos_lambda_p1);
     const T c_stick_cond1_p1 = stick_P_n * mu;
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1224,8 +1233,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
     T sel_F_n = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1233,7 +1240,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
         sel_P_n = N_0;
         sel_F_n = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         const bool slide_pos_holds = ((static_cast<unsigned>(c_slide_pos_cond1 > T(0)) & static_cast<unsigned>(c_slide_pos_cond2 > T(0))) != 0u); // slide along +e_t
         const bool slide_neg_holds = ((static_cast<unsigned>(c_slide_neg_cond1 > T(0)) & static_cast<unsigned>(c_slide_neg_cond2 > T(0))) != 0u); // slide along -e_t
         int n_holding = static_cast<int>(stick_holds) + static_cast<int>(slide_pos_holds) + static_cast<int>(slide_neg_holds);
@@ -1249,10 +1257,10 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
             const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n));
             int n_apart = 0; // slides holding that are not the stick solution
             bool at_stick = stick_holds; // some candidate is the stick solution
-            const bool slide_pos_near = detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
+            const bool slide_pos_near = stick_possible && detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_pos_near;
             n_apart += slide_pos_holds && !slide_pos_near ? 1 : 0;
-            const bool slide_neg_near = detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
+            const bool slide_neg_near = stick_possible && detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_neg_near;
             n_apart += slide_neg_holds && !slide_neg_near ? 1 : 0;
             if (n_apart == 0 && at_stick) {
@@ -1264,9 +1272,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
                 sel_P_n = c_stick_P_n;
                 sel_F_n = c_stick_F_n;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + ((c_stick_cond2 + c_slide_pos_N) + (c_slide_pos_P_t + c_slide_pos_P_n))) + (((c_slide_pos_cond1 + c_slide_pos_cond2) + (c_slide_neg_N + c_slide_neg_P_t)) + ((c_slide_neg_P_n + c_slide_neg_cond1) + c_slide_neg_cond2))))
+                if (!detail::finite<T>((((c_slide_pos_N + c_slide_pos_P_t) + (c_slide_pos_P_n + c_slide_pos_cond1)) + ((c_slide_pos_cond2 + c_slide_neg_N) + (c_slide_neg_P_t + c_slide_neg_P_n))) + (c_slide_neg_cond1 + c_slide_neg_cond2)) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + c_stick_cond2)))
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }

@@ -215,12 +215,12 @@ template <typename T> struct central_direct_input {
     T R1; ///< appears in r_n1
     T v_n1; ///< velocity of the centre of mass of 1 before impact, n
     T m2; ///< mass of 2 (> 0)
-    T R2; ///< centre of mass of 2, n
+    T R2; ///< position of the centre of mass of 2 from the origin, n
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     /// velocity of the centre of mass of 1 before impact (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{nullptr, &v_n1}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{nullptr, &v_n1}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
-    /// centre of mass of 2 (vector)
+    /// position of the centre of mass of 2 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{nullptr, &R2}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{nullptr, &R2}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
@@ -228,13 +228,18 @@ template <typename T> struct central_direct_input {
     IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{nullptr, &v_n2}, {IMPACTGEN_WIDE(0.0), 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
-// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):
+// s_1 = -1, s_2 = +1; r_i the lever arm above):
 //   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a particle;
-//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)
-//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points approach)
+//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = r_EC = C - E)
+//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x r_{C1 O}          (u < 0: the contact points approach)
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
-//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
+//   v'_i = v_i + s_i N n / m_i (pinned: w' x r_EC),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
 // This problem, step by step, as the code below computes it:
 //   w_1 = 1 / m1
@@ -318,7 +323,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status central_direct_checked(T e, T m1, T 
 ///   R1: appears in r_n1
 ///   v_n1: velocity of the centre of mass of 1 before impact, n
 ///   m2: mass of 2 (> 0)
-///   R2: centre of mass of 2, n
+///   R2: position of the centre of mass of 2 from the origin, n
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_direct(T e, T m1, T R1, T v_n1, T m2, T R2, T v_n2, central_direct_result<T>& out) noexcept

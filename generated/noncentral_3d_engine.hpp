@@ -232,9 +232,9 @@ template <typename T> struct noncentral_3d_engine_input {
     T inv_I1_nn; ///< inverse inertia tensor of 1 (world axes), nn entry
     T inv_I1_nb; ///< inverse inertia tensor of 1 (world axes), nb entry
     T inv_I1_bb; ///< inverse inertia tensor of 1 (world axes), bb entry
-    T r_t1; ///< centre of mass of 1, t
-    T r_n1; ///< centre of mass of 1, n
-    T r_b1; ///< centre of mass of 1, b
+    T r_t1; ///< position of the centre of mass of 1 from the origin, t
+    T r_n1; ///< position of the centre of mass of 1 from the origin, n
+    T r_b1; ///< position of the centre of mass of 1 from the origin, b
     T v_t1; ///< velocity of the centre of mass of 1 before impact, t
     T v_n1; ///< velocity of the centre of mass of 1 before impact, n
     T v_b1; ///< velocity of the centre of mass of 1 before impact, b
@@ -248,9 +248,9 @@ template <typename T> struct noncentral_3d_engine_input {
     T inv_I2_nn; ///< inverse inertia tensor of 2 (world axes), nn entry
     T inv_I2_nb; ///< inverse inertia tensor of 2 (world axes), nb entry
     T inv_I2_bb; ///< inverse inertia tensor of 2 (world axes), bb entry
-    T r_t2; ///< centre of mass of 2, t
-    T r_n2; ///< centre of mass of 2, n
-    T r_b2; ///< centre of mass of 2, b
+    T r_t2; ///< position of the centre of mass of 2 from the origin, t
+    T r_n2; ///< position of the centre of mass of 2 from the origin, n
+    T r_b2; ///< position of the centre of mass of 2 from the origin, b
     T v_t2; ///< velocity of the centre of mass of 2 before impact, t
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     T v_b2; ///< velocity of the centre of mass of 2 before impact, b
@@ -260,7 +260,7 @@ template <typename T> struct noncentral_3d_engine_input {
     /// inverse inertia tensor of 1 (matrix, row-major)
     IMPACTGEN_MEMBER view<T, 3, 3> inv_I1() noexcept { return {{&inv_I1_tt, &inv_I1_tn, &inv_I1_tb, &inv_I1_tn, &inv_I1_nn, &inv_I1_nb, &inv_I1_tb, &inv_I1_nb, &inv_I1_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 3> inv_I1() const noexcept { return {{&inv_I1_tt, &inv_I1_tn, &inv_I1_tb, &inv_I1_tn, &inv_I1_nn, &inv_I1_nb, &inv_I1_tb, &inv_I1_nb, &inv_I1_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
-    /// centre of mass of 1 (vector)
+    /// position of the centre of mass of 1 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 3, 1> r1() noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 1> r1() const noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0, 0.0, 0.0}}; }
     /// velocity of the centre of mass of 1 before impact (vector)
@@ -272,7 +272,7 @@ template <typename T> struct noncentral_3d_engine_input {
     /// inverse inertia tensor of 2 (matrix, row-major)
     IMPACTGEN_MEMBER view<T, 3, 3> inv_I2() noexcept { return {{&inv_I2_tt, &inv_I2_tn, &inv_I2_tb, &inv_I2_tn, &inv_I2_nn, &inv_I2_nb, &inv_I2_tb, &inv_I2_nb, &inv_I2_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 3> inv_I2() const noexcept { return {{&inv_I2_tt, &inv_I2_tn, &inv_I2_tb, &inv_I2_tn, &inv_I2_nn, &inv_I2_nb, &inv_I2_tb, &inv_I2_nb, &inv_I2_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
-    /// centre of mass of 2 (vector)
+    /// position of the centre of mass of 2 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 3, 1> r2() noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 1> r2() const noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0, 0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
@@ -283,13 +283,18 @@ template <typename T> struct noncentral_3d_engine_input {
     IMPACTGEN_MEMBER view<const T, 3, 1> w2() const noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0, 0.0, 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
-// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):
+// s_1 = -1, s_2 = +1; r_i the lever arm above):
 //   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a particle;
-//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)
-//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points approach)
+//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = r_EC = C - E)
+//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x r_{C1 O}          (u < 0: the contact points approach)
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
-//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
+//   v'_i = v_i + s_i N n / m_i (pinned: w' x r_EC),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
 // Input convention: inverse inertia tensors inv_I (as physics engines store them), so g_i = inv_I_i (r_i x n).
 // Input convention: inverse masses inv_m = 1/m.
@@ -460,9 +465,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked(T e, T 
 ///   inv_I1_nn: inverse inertia tensor of 1 (world axes), nn entry
 ///   inv_I1_nb: inverse inertia tensor of 1 (world axes), nb entry
 ///   inv_I1_bb: inverse inertia tensor of 1 (world axes), bb entry
-///   r_t1: centre of mass of 1, t
-///   r_n1: centre of mass of 1, n
-///   r_b1: centre of mass of 1, b
+///   r_t1: position of the centre of mass of 1 from the origin, t
+///   r_n1: position of the centre of mass of 1 from the origin, n
+///   r_b1: position of the centre of mass of 1 from the origin, b
 ///   v_t1: velocity of the centre of mass of 1 before impact, t
 ///   v_n1: velocity of the centre of mass of 1 before impact, n
 ///   v_b1: velocity of the centre of mass of 1 before impact, b
@@ -476,9 +481,9 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked(T e, T 
 ///   inv_I2_nn: inverse inertia tensor of 2 (world axes), nn entry
 ///   inv_I2_nb: inverse inertia tensor of 2 (world axes), nb entry
 ///   inv_I2_bb: inverse inertia tensor of 2 (world axes), bb entry
-///   r_t2: centre of mass of 2, t
-///   r_n2: centre of mass of 2, n
-///   r_b2: centre of mass of 2, b
+///   r_t2: position of the centre of mass of 2 from the origin, t
+///   r_n2: position of the centre of mass of 2 from the origin, n
+///   r_b2: position of the centre of mass of 2 from the origin, b
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   v_b2: velocity of the centre of mass of 2 before impact, b

@@ -192,8 +192,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -206,7 +206,7 @@ enum class friction_status : int {
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the contact response K is singular (det K <= 0), or n.K n <= 0 (mu = 0)
+    singular,            ///< the contact response K is singular (det K <= 0) where the answer needs it (no slide holds; Routh's process), or n.K n <= 0 (mu = 0)
     overflow,            ///< finite inputs whose result overflows
     invalid_friction,    ///< mu < 0 or not finite
     no_solution,         ///< no regime satisfies its conditions (strong coupling of normal and tangential motion)
@@ -920,9 +920,9 @@ template <typename T> struct noncentral_3d_friction_input {
     T I1_nn; ///< inertia tensor of 1 about its centre of mass, nn entry
     T I1_nb; ///< inertia tensor of 1 about its centre of mass, nb entry
     T I1_bb; ///< inertia tensor of 1 about its centre of mass, bb entry
-    T r_t1; ///< centre of mass of 1, t
-    T r_n1; ///< centre of mass of 1, n
-    T r_b1; ///< centre of mass of 1, b
+    T r_t1; ///< position of the centre of mass of 1 from the origin, t
+    T r_n1; ///< position of the centre of mass of 1 from the origin, n
+    T r_b1; ///< position of the centre of mass of 1 from the origin, b
     T v_t1; ///< velocity of the centre of mass of 1 before impact, t
     T v_n1; ///< velocity of the centre of mass of 1 before impact, n
     T v_b1; ///< velocity of the centre of mass of 1 before impact, b
@@ -936,9 +936,9 @@ template <typename T> struct noncentral_3d_friction_input {
     T I2_nn; ///< inertia tensor of 2 about its centre of mass, nn entry
     T I2_nb; ///< inertia tensor of 2 about its centre of mass, nb entry
     T I2_bb; ///< inertia tensor of 2 about its centre of mass, bb entry
-    T r_t2; ///< centre of mass of 2, t
-    T r_n2; ///< centre of mass of 2, n
-    T r_b2; ///< centre of mass of 2, b
+    T r_t2; ///< position of the centre of mass of 2 from the origin, t
+    T r_n2; ///< position of the centre of mass of 2 from the origin, n
+    T r_b2; ///< position of the centre of mass of 2 from the origin, b
     T v_t2; ///< velocity of the centre of mass of 2 before impact, t
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     T v_b2; ///< velocity of the centre of mass of 2 before impact, b
@@ -948,7 +948,7 @@ template <typename T> struct noncentral_3d_friction_input {
     /// inertia tensor of 1 (matrix, row-major)
     IMPACTGEN_MEMBER view<T, 3, 3> I1() noexcept { return {{&I1_tt, &I1_tn, &I1_tb, &I1_tn, &I1_nn, &I1_nb, &I1_tb, &I1_nb, &I1_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 3> I1() const noexcept { return {{&I1_tt, &I1_tn, &I1_tb, &I1_tn, &I1_nn, &I1_nb, &I1_tb, &I1_nb, &I1_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
-    /// centre of mass of 1 (vector)
+    /// position of the centre of mass of 1 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 3, 1> r1() noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 1> r1() const noexcept { return {{&r_t1, &r_n1, &r_b1}, {0.0, 0.0, 0.0}}; }
     /// velocity of the centre of mass of 1 before impact (vector)
@@ -960,7 +960,7 @@ template <typename T> struct noncentral_3d_friction_input {
     /// inertia tensor of 2 (matrix, row-major)
     IMPACTGEN_MEMBER view<T, 3, 3> I2() noexcept { return {{&I2_tt, &I2_tn, &I2_tb, &I2_tn, &I2_nn, &I2_nb, &I2_tb, &I2_nb, &I2_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 3> I2() const noexcept { return {{&I2_tt, &I2_tn, &I2_tb, &I2_tn, &I2_nn, &I2_nb, &I2_tb, &I2_nb, &I2_bb}, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}; }
-    /// centre of mass of 2 (vector)
+    /// position of the centre of mass of 2 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 3, 1> r2() noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0, 0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 3, 1> r2() const noexcept { return {{&r_t2, &r_n2, &r_b2}, {0.0, 0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
@@ -971,11 +971,18 @@ template <typename T> struct noncentral_3d_friction_input {
     IMPACTGEN_MEMBER view<const T, 3, 1> w2() const noexcept { return {{&w_t2, &w_n2, &w_b2}, {0.0, 0.0, 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // The law (impactgen's symbolic/friction.hpp): P = P_n n + P_t the impulse on body 2 (-P on
 // body 1), u the relative velocity v_B - v_A of the contact points, u_n = u.n < 0, and
 // u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law
 // u'.n = -e u_n and Coulomb's |P_t| <= mu P_n give the candidates
-//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;
+//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone; a candidate
+//          only where det K > 0 (else K is singular within rounding: the slides are the
+//          candidates, and none holding is singular);
 //   slide along a unit tangent d: P = N (n - mu d), D = n.K(n - mu d), N = -(1 + e) u_n / D,
 //          holding when D > 0 and u'_t = lambda d with lambda > 0;
 //   d = cos(theta) e_t + sin(theta) e_b with theta a root of g(theta) = n.(h x d),
@@ -1078,6 +1085,7 @@ template <typename T> struct noncentral_3d_friction_input {
 //   slide_m11_p1 = trig_b2_p3 - trig_b2_p7
 //   slide_m22_p1 = trig_b2_p1 - trig_b2_p5
 //   unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * 2
+//   stick_det_K = stick_D_K
 //   c_stick_N = stick_P_n
 //   c_stick_P_t = stick_P_t
 //   c_stick_F_t = stick_P_t
@@ -1256,9 +1264,9 @@ template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void noncentral_3d_friction_
 ///   I1_nn: inertia tensor of 1 about its centre of mass, nn entry
 ///   I1_nb: inertia tensor of 1 about its centre of mass, nb entry
 ///   I1_bb: inertia tensor of 1 about its centre of mass, bb entry
-///   r_t1: centre of mass of 1, t
-///   r_n1: centre of mass of 1, n
-///   r_b1: centre of mass of 1, b
+///   r_t1: position of the centre of mass of 1 from the origin, t
+///   r_n1: position of the centre of mass of 1 from the origin, n
+///   r_b1: position of the centre of mass of 1 from the origin, b
 ///   v_t1: velocity of the centre of mass of 1 before impact, t
 ///   v_n1: velocity of the centre of mass of 1 before impact, n
 ///   v_b1: velocity of the centre of mass of 1 before impact, b
@@ -1272,9 +1280,9 @@ template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void noncentral_3d_friction_
 ///   I2_nn: inertia tensor of 2 about its centre of mass, nn entry
 ///   I2_nb: inertia tensor of 2 about its centre of mass, nb entry
 ///   I2_bb: inertia tensor of 2 about its centre of mass, bb entry
-///   r_t2: centre of mass of 2, t
-///   r_n2: centre of mass of 2, n
-///   r_b2: centre of mass of 2, b
+///   r_t2: position of the centre of mass of 2 from the origin, t
+///   r_n2: position of the centre of mass of 2 from the origin, n
+///   r_b2: position of the centre of mass of 2 from the origin, b
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   v_b2: velocity of the centre of mass of 2 before impact, b
@@ -1345,6 +1353,8 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T K_tn_p2 = J_nb2 * r_t2;
     const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
     const T K_nn = K_scale * inv_K_scale;
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
     const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
     const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
@@ -1363,8 +1373,6 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T stick_D_K_p2 = K_nn * K_bb - K_nb * K_nb;
     const T stick_D_K_p3 = K_tn * K_bb - K_tb * K_nb;
     const T stick_D_K = K_tb * stick_D_K_p1 + K_tt * stick_D_K_p2 - K_tn * stick_D_K_p3;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T stick_P_t_p1 = u_n + u_n * e;
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -((u_b * stick_D_K_p1 + u_t * stick_D_K_p2 - stick_D_K_p3 * stick_P_t_p1) * inv_stick_D_K);
@@ -1394,6 +1402,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     const T slide_m11_p1 = trig_b2_p3 - trig_b2_p7;
     const T slide_m22_p1 = trig_b2_p1 - trig_b2_p5;
     const T unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * T(2);
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1454,8 +1463,6 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
     T sel_F_b = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1465,7 +1472,8 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
         sel_P_b = T(0);
         sel_F_b = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         int n_holding = static_cast<int>(stick_holds);
         regime_now = stick_holds ? impact_regime::stick : impact_regime::slide;
         sel_N = c_stick_N;
@@ -1532,7 +1540,7 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
                 const T c_slide_cond1 = slide_D_s;
                 const T c_slide_cond2 = slide_lambda;
                 slides_finite = slides_finite && detail::finite<T>((c_slide_cond1 + c_slide_cond2) + c_slide_N);
-                const bool slide_near = detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
+                const bool slide_near = stick_possible && detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
                 at_stick = at_stick || slide_near;
                 if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
                     n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
@@ -1572,9 +1580,9 @@ IMPACTGEN_FUNC friction_status noncentral_3d_friction(T e, T mu, T m1, T I1_tt, 
                 sel_P_b = c_stick_P_b;
                 sel_F_b = c_stick_F_b;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
+                if (!detail::finite<T>(((trig_a0 + trig_a1) + (trig_b1 + trig_a2)) + trig_b2) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + (c_stick_cond1 + c_stick_cond2))) || !slides_finite)
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }
@@ -1688,6 +1696,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     const T K_tn_p2 = J_nb2 * r_t2;
     const T K_tn = -(inv_K_scale * (K_scale_p1 * r_n1 + K_scale_p2 * r_n2 - r_b1 * (K_tn_p1 - J_tn1 * r_b1) - r_b2 * (K_tn_p2 - J_tn2 * r_b2)));
     const T K_nn = K_scale * inv_K_scale;
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T K_tb_p1 = K_tn_p1 - J_tb1 * r_n1;
     const T K_tb_p2 = K_tn_p2 - J_tb2 * r_n2;
     const T K_tb_p3 = J_nn1 * r_t1 - J_tn1 * r_n1;
@@ -1706,8 +1716,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     const T stick_D_K_p2 = K_nn * K_bb - K_nb * K_nb;
     const T stick_D_K_p3 = K_tn * K_bb - K_tb * K_nb;
     const T stick_D_K = K_tb * stick_D_K_p1 + K_tt * stick_D_K_p2 - K_tn * stick_D_K_p3;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T stick_P_t_p1 = u_n + u_n * e;
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -((u_b * stick_D_K_p1 + u_t * stick_D_K_p2 - stick_D_K_p3 * stick_P_t_p1) * inv_stick_D_K);
@@ -1737,6 +1745,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     const T slide_m11_p1 = trig_b2_p3 - trig_b2_p7;
     const T slide_m22_p1 = trig_b2_p1 - trig_b2_p5;
     const T unique_monotone_p1 = trig_a0_p1 + trig_a0_p3 - trig_a2_p1 * T(2);
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1797,8 +1806,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
     T sel_F_b = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1808,7 +1815,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
         sel_P_b = T(0);
         sel_F_b = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         int n_holding = static_cast<int>(stick_holds);
         regime_now = stick_holds ? impact_regime::stick : impact_regime::slide;
         sel_N = c_stick_N;
@@ -1875,7 +1883,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
                 const T c_slide_cond1 = slide_D_s;
                 const T c_slide_cond2 = slide_lambda;
                 slides_finite = slides_finite && detail::finite<T>((c_slide_cond1 + c_slide_cond2) + c_slide_N);
-                const bool slide_near = detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
+                const bool slide_near = stick_possible && detail::abs_of<T>(c_slide_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_P_n - c_stick_P_n) <= merge && detail::abs_of<T>(c_slide_P_b - c_stick_P_b) <= merge;
                 at_stick = at_stick || slide_near;
                 if (((static_cast<unsigned>(c_slide_cond1 > T(0)) & static_cast<unsigned>(c_slide_cond2 > T(0))) != 0u)) {
                     n_apart += slide_near ? 0 : (every_direction ? 2 : 1);
@@ -1915,9 +1923,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status noncentral_3d_friction_unchecked(T 
                 sel_P_b = c_stick_P_b;
                 sel_F_b = c_stick_F_b;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + ((c_stick_cond1 + c_stick_cond2) + (trig_a0 + trig_a1))) + ((trig_b1 + trig_a2) + trig_b2)) || !slides_finite)
+                if (!detail::finite<T>(((trig_a0 + trig_a1) + (trig_b1 + trig_a2)) + trig_b2) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_P_b)) + (c_stick_cond1 + c_stick_cond2))) || !slides_finite)
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }

@@ -226,13 +226,17 @@ template <typename T> struct pinned_planar_input {
     IMPACTGEN_MEMBER view<const T, 2, 1> v1_2() const noexcept { return {{&v1, nullptr}, {0.0, IMPACTGEN_WIDE(0.0)}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i).
 // Formulas (impactgen's closed form; n the unit normal from body 1 into body 2,
-// s_1 = -1, s_2 = +1; r_i = O - C_i for a free body, O - E for a body pinned at E):
+// s_1 = -1, s_2 = +1; r_i the lever arm above):
 //   w_i  = 1/m_i + (r_i x n) . g_i,  g_i = I_i^{-1} (r_i x n)  (free rigid body; 1/m_i for a particle;
-//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = C - E)
-//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x (O - C_1)        (u < 0: the contact points approach)
+//          pinned: (r_i x n) . g_i with I_E = I_C + m (|d|^2 1 - d d^T), d = r_EC = C - E)
+//   u    = (v_B - v_A) . n,  v_A = v_C1 + w_1 x r_{C1 O}          (u < 0: the contact points approach)
 //   k    = w_1 + w_2,  N = -(1 + e) u / k                          (impulse per unit normal)
-//   v'_i = v_i + s_i N n / m_i (pinned: w' x (C - E)),  w'_i = w_i + s_i N g_i
+//   v'_i = v_i + s_i N n / m_i (pinned: w' x r_EC),  w'_i = w_i + s_i N g_i
 //   T_lost = -sum_i (s_i N a_i + N^2 w_i / 2),  a_i = v_{contact point of i} . n
 // This problem, step by step, as the code below computes it:
 //   w_1 = 1 / m1

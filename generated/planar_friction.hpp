@@ -191,8 +191,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -205,7 +205,7 @@ enum class friction_status : int {
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the contact response K is singular (det K <= 0), or n.K n <= 0 (mu = 0)
+    singular,            ///< the contact response K is singular (det K <= 0) where the answer needs it (no slide holds; Routh's process), or n.K n <= 0 (mu = 0)
     overflow,            ///< finite inputs whose result overflows
     invalid_friction,    ///< mu < 0 or not finite
     no_solution,         ///< no regime satisfies its conditions (strong coupling of normal and tangential motion)
@@ -901,25 +901,25 @@ template <typename T> struct planar_friction_input {
     T mu; ///< coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)
     T m1; ///< mass of 1 (> 0)
     T I1; ///< moment of inertia of 1 about its centre of mass (> 0)
-    T r_t1; ///< centre of mass of 1, t
-    T r_n1; ///< centre of mass of 1, n
+    T r_t1; ///< position of the centre of mass of 1 from the origin, t
+    T r_n1; ///< position of the centre of mass of 1 from the origin, n
     T v_t1; ///< velocity of the centre of mass of 1 before impact, t
     T v_n1; ///< velocity of the centre of mass of 1 before impact, n
     T w_b1; ///< angular velocity of 1 before impact, b
     T m2; ///< mass of 2 (> 0)
     T I2; ///< moment of inertia of 2 about its centre of mass (> 0)
-    T r_t2; ///< centre of mass of 2, t
-    T r_n2; ///< centre of mass of 2, n
+    T r_t2; ///< position of the centre of mass of 2 from the origin, t
+    T r_n2; ///< position of the centre of mass of 2 from the origin, n
     T v_t2; ///< velocity of the centre of mass of 2 before impact, t
     T v_n2; ///< velocity of the centre of mass of 2 before impact, n
     T w_b2; ///< angular velocity of 2 before impact, b
-    /// centre of mass of 1 (vector)
+    /// position of the centre of mass of 1 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> r1() noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> r1() const noexcept { return {{&r_t1, &r_n1}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 1 before impact (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> v1() noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> v1() const noexcept { return {{&v_t1, &v_n1}, {0.0, 0.0}}; }
-    /// centre of mass of 2 (vector)
+    /// position of the centre of mass of 2 from the origin (vector)
     IMPACTGEN_MEMBER view<T, 2, 1> r2() noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
     IMPACTGEN_MEMBER view<const T, 2, 1> r2() const noexcept { return {{&r_t2, &r_n2}, {0.0, 0.0}}; }
     /// velocity of the centre of mass of 2 before impact (vector)
@@ -927,11 +927,18 @@ template <typename T> struct planar_friction_input {
     IMPACTGEN_MEMBER view<const T, 2, 1> v2() const noexcept { return {{&v_t2, &v_n2}, {0.0, 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // The law (impactgen's symbolic/friction.hpp): P = P_n n + P_t the impulse on body 2 (-P on
 // body 1), u the relative velocity v_B - v_A of the contact points, u_n = u.n < 0, and
 // u' = u + K P after the impact with K = K_1 + K_2 the contact response. Newton's law
 // u'.n = -e u_n and Coulomb's |P_t| <= mu P_n give the candidates
-//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone;
+//   stick: u'_t = 0, P = -K^{-1} (u + e u_n n), holding inside the friction cone; a candidate
+//          only where det K > 0 (else K is singular within rounding: the slides are the
+//          candidates, and none holding is singular);
 //   slide along a unit tangent d: P = N (n - mu d), D = n.K(n - mu d), N = -(1 + e) u_n / D,
 //          holding when D > 0 and u'_t = lambda d with lambda > 0;
 //   d = +e_t or -e_t, e_t = (1, 0).
@@ -975,6 +982,7 @@ template <typename T> struct planar_friction_input {
 //   slide_neg_P_t = mu * slide_neg_N
 //   slide_neg_lambda = -(u_t + slide_neg_N * (K_tn + slide_pos_lambda_p1))
 //   c_stick_cond1_p1 = stick_P_n * mu
+//   stick_det_K = stick_D_K
 //   c_stick_N = stick_P_n
 //   c_stick_P_t = stick_P_t
 //   c_stick_F_t = stick_P_t
@@ -1063,15 +1071,15 @@ template <typename T> IMPACTGEN_COLD IMPACTGEN_FUNC void planar_friction_unchang
 ///   mu: coefficient of friction mu >= 0 (Coulomb: |P_t| <= mu P_n)
 ///   m1: mass of 1 (> 0)
 ///   I1: moment of inertia of 1 about its centre of mass (> 0)
-///   r_t1: centre of mass of 1, t
-///   r_n1: centre of mass of 1, n
+///   r_t1: position of the centre of mass of 1 from the origin, t
+///   r_n1: position of the centre of mass of 1 from the origin, n
 ///   v_t1: velocity of the centre of mass of 1 before impact, t
 ///   v_n1: velocity of the centre of mass of 1 before impact, n
 ///   w_b1: angular velocity of 1 before impact, b
 ///   m2: mass of 2 (> 0)
 ///   I2: moment of inertia of 2 about its centre of mass (> 0)
-///   r_t2: centre of mass of 2, t
-///   r_n2: centre of mass of 2, n
+///   r_t2: position of the centre of mass of 2 from the origin, t
+///   r_n2: position of the centre of mass of 2 from the origin, n
 ///   v_t2: velocity of the centre of mass of 2 before impact, t
 ///   v_n2: velocity of the centre of mass of 2 before impact, n
 ///   w_b2: angular velocity of 2 before impact, b
@@ -1105,13 +1113,13 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     const T K_tt = (inv_m2 + inv_m1 + inv_I1 * r_n1 * r_n1 + inv_I2 * r_n2 * r_n2) * inv_K_scale;
     const T K_tn = -(inv_K_scale * (inv_I1 * r_t1 * r_n1 + inv_I2 * r_t2 * r_n2));
     const T K_nn = K_scale * inv_K_scale;
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
         return fail(impact_status::not_approaching);
     const T stick_D_K = K_tt * K_nn - K_tn * K_tn;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T stick_P_t_p1 = u_n + u_n * e;
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -((K_nn * u_t - K_tn * stick_P_t_p1) * inv_stick_D_K);
@@ -1128,6 +1136,7 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     const T slide_neg_P_t = mu * slide_neg_N;
     const T slide_neg_lambda = -(u_t + slide_neg_N * (K_tn + slide_pos_lambda_p1));
     const T c_stick_cond1_p1 = stick_P_n * mu;
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1164,8 +1173,6 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
     T sel_F_n = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1173,7 +1180,8 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
         sel_P_n = N_0;
         sel_F_n = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         const bool slide_pos_holds = ((static_cast<unsigned>(c_slide_pos_cond1 > T(0)) & static_cast<unsigned>(c_slide_pos_cond2 > T(0))) != 0u); // slide along +e_t
         const bool slide_neg_holds = ((static_cast<unsigned>(c_slide_neg_cond1 > T(0)) & static_cast<unsigned>(c_slide_neg_cond2 > T(0))) != 0u); // slide along -e_t
         int n_holding = static_cast<int>(stick_holds) + static_cast<int>(slide_pos_holds) + static_cast<int>(slide_neg_holds);
@@ -1189,10 +1197,10 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
             const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n));
             int n_apart = 0; // slides holding that are not the stick solution
             bool at_stick = stick_holds; // some candidate is the stick solution
-            const bool slide_pos_near = detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
+            const bool slide_pos_near = stick_possible && detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_pos_near;
             n_apart += slide_pos_holds && !slide_pos_near ? 1 : 0;
-            const bool slide_neg_near = detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
+            const bool slide_neg_near = stick_possible && detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_neg_near;
             n_apart += slide_neg_holds && !slide_neg_near ? 1 : 0;
             if (n_apart == 0 && at_stick) {
@@ -1204,9 +1212,9 @@ IMPACTGEN_FUNC friction_status planar_friction(T e, T mu, T m1, T I1, T r_t1, T 
                 sel_P_n = c_stick_P_n;
                 sel_F_n = c_stick_F_n;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + ((c_stick_cond2 + c_slide_pos_N) + (c_slide_pos_P_t + c_slide_pos_P_n))) + (((c_slide_pos_cond1 + c_slide_pos_cond2) + (c_slide_neg_N + c_slide_neg_P_t)) + ((c_slide_neg_P_n + c_slide_neg_cond1) + c_slide_neg_cond2))))
+                if (!detail::finite<T>((((c_slide_pos_N + c_slide_pos_P_t) + (c_slide_pos_P_n + c_slide_pos_cond1)) + ((c_slide_pos_cond2 + c_slide_neg_N) + (c_slide_neg_P_t + c_slide_neg_P_n))) + (c_slide_neg_cond1 + c_slide_neg_cond2)) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + c_stick_cond2)))
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }
@@ -1263,13 +1271,13 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
     const T K_tt = (inv_m2 + inv_m1 + inv_I1 * r_n1 * r_n1 + inv_I2 * r_n2 * r_n2) * inv_K_scale;
     const T K_tn = -(inv_K_scale * (inv_I1 * r_t1 * r_n1 + inv_I2 * r_t2 * r_n2));
     const T K_nn = K_scale * inv_K_scale;
+    if (!(K_nn > T(0) && detail::finite(K_nn))) // n.K n > 0, finite (the contact response in range)
+        return fail(impact_status::singular);
     const T u_t = r_n2 * w_b2 + v_t2 - r_n1 * w_b1 - v_t1;
     const T u_n = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
     if (!(u_n < T(0))) // the contact points approach: u_n < 0
         return fail(impact_status::not_approaching);
     const T stick_D_K = K_tt * K_nn - K_tn * K_tn;
-    if (!(stick_D_K > T(0) && detail::finite(stick_D_K))) // contact response det K > 0, finite (stick)
-        return fail(impact_status::singular);
     const T stick_P_t_p1 = u_n + u_n * e;
     const T inv_stick_D_K = T(1) / stick_D_K;
     const T stick_P_t = -((K_nn * u_t - K_tn * stick_P_t_p1) * inv_stick_D_K);
@@ -1286,6 +1294,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
     const T slide_neg_P_t = mu * slide_neg_N;
     const T slide_neg_lambda = -(u_t + slide_neg_N * (K_tn + slide_pos_lambda_p1));
     const T c_stick_cond1_p1 = stick_P_n * mu;
+    const T stick_det_K = stick_D_K;
     const T c_stick_N = stick_P_n;
     const T c_stick_P_t = stick_P_t;
     const T c_stick_F_t = stick_P_t;
@@ -1322,8 +1331,6 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
     T sel_F_n = T(0);
     impact_regime regime_now = impact_regime::smooth;
     if (mu == T(0)) { // the smooth impact
-        if (!(lk_K_nn > T(0) && detail::finite(lk_K_nn))) // mu = 0: n.K n > 0, finite
-            return fail(impact_status::singular);
         const T N_0 = -((e + T(1)) * lk_u_n / lk_K_nn);
         sel_N = N_0;
         sel_P_t = T(0);
@@ -1331,7 +1338,8 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
         sel_P_n = N_0;
         sel_F_n = T(0);
     } else {
-        const bool stick_holds = ((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u); // stick
+        const bool stick_possible = ((static_cast<unsigned>(stick_det_K > T(0)) & static_cast<unsigned>(detail::finite<T>(stick_det_K))) != 0u); // det K > 0, finite: the stick candidate exists
+        const bool stick_holds = ((static_cast<unsigned>(stick_possible) & static_cast<unsigned>(((static_cast<unsigned>(c_stick_cond1 >= T(0)) & static_cast<unsigned>(c_stick_cond2 >= T(0))) != 0u))) != 0u); // stick
         const bool slide_pos_holds = ((static_cast<unsigned>(c_slide_pos_cond1 > T(0)) & static_cast<unsigned>(c_slide_pos_cond2 > T(0))) != 0u); // slide along +e_t
         const bool slide_neg_holds = ((static_cast<unsigned>(c_slide_neg_cond1 > T(0)) & static_cast<unsigned>(c_slide_neg_cond2 > T(0))) != 0u); // slide along -e_t
         int n_holding = static_cast<int>(stick_holds) + static_cast<int>(slide_pos_holds) + static_cast<int>(slide_neg_holds);
@@ -1347,10 +1355,10 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
             const T merge = detail::boundary_tolerance<T>() * detail::max_of<T>(detail::abs_of<T>(c_stick_P_t), detail::abs_of<T>(c_stick_P_n));
             int n_apart = 0; // slides holding that are not the stick solution
             bool at_stick = stick_holds; // some candidate is the stick solution
-            const bool slide_pos_near = detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
+            const bool slide_pos_near = stick_possible && detail::abs_of<T>(c_slide_pos_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_pos_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_pos_near;
             n_apart += slide_pos_holds && !slide_pos_near ? 1 : 0;
-            const bool slide_neg_near = detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
+            const bool slide_neg_near = stick_possible && detail::abs_of<T>(c_slide_neg_P_t - c_stick_P_t) <= merge && detail::abs_of<T>(c_slide_neg_P_n - c_stick_P_n) <= merge;
             at_stick = at_stick || slide_neg_near;
             n_apart += slide_neg_holds && !slide_neg_near ? 1 : 0;
             if (n_apart == 0 && at_stick) {
@@ -1362,9 +1370,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status planar_friction_unchecked(T e, T mu
                 sel_P_n = c_stick_P_n;
                 sel_F_n = c_stick_F_n;
             } else {
-                if (!detail::finite<T>((((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + ((c_stick_cond2 + c_slide_pos_N) + (c_slide_pos_P_t + c_slide_pos_P_n))) + (((c_slide_pos_cond1 + c_slide_pos_cond2) + (c_slide_neg_N + c_slide_neg_P_t)) + ((c_slide_neg_P_n + c_slide_neg_cond1) + c_slide_neg_cond2))))
+                if (!detail::finite<T>((((c_slide_pos_N + c_slide_pos_P_t) + (c_slide_pos_P_n + c_slide_pos_cond1)) + ((c_slide_pos_cond2 + c_slide_neg_N) + (c_slide_neg_P_t + c_slide_neg_P_n))) + (c_slide_neg_cond1 + c_slide_neg_cond2)) || (stick_possible && !detail::finite<T>(((c_stick_N + c_stick_P_t) + (c_stick_P_n + c_stick_cond1)) + c_stick_cond2)))
                     return fail(friction_status::overflow);
-                return fail(n_holding == 0 ? friction_status::no_solution : friction_status::ambiguous);
+                return fail(n_holding == 0 ? (stick_possible ? friction_status::no_solution : friction_status::singular) : friction_status::ambiguous);
             }
         }
     }

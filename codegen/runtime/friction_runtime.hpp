@@ -10,7 +10,7 @@ enum class friction_status : int {
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the contact response K is singular (det K <= 0), or n.K n <= 0 (mu = 0)
+    singular,            ///< the contact response K is singular (det K <= 0) where the answer needs it (no slide holds; Routh's process), or n.K n <= 0 (mu = 0)
     overflow,            ///< finite inputs whose result overflows
     invalid_friction,    ///< mu < 0 or not finite
     no_solution,         ///< no regime satisfies its conditions (strong coupling of normal and tangential motion)
