@@ -191,8 +191,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_277717F8_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -205,7 +205,7 @@ enum class friction_status : int {
     invalid_restitution, ///< e outside [0, 1]
     not_approaching,     ///< the contact points separate or rest: (v_B - v_A).n >= 0
     invalid_normal,      ///< the normal is zero, denormal or not finite (or, declared unit, not of length 1)
-    singular,            ///< the contact response K is singular (det K <= 0), or n.K n <= 0 (mu = 0)
+    singular,            ///< the contact response K is singular (det K <= 0) where the answer needs it (no slide holds; Routh's process), or n.K n <= 0 (mu = 0)
     overflow,            ///< finite inputs whose result overflows
     invalid_friction,    ///< mu < 0 or not finite
     no_solution,         ///< no regime satisfies its conditions (strong coupling of normal and tangential motion)
@@ -904,6 +904,11 @@ template <typename T> struct rod_rough_floor_input {
     IMPACTGEN_MEMBER view<const T, 2, 1> v_rod() const noexcept { return {{&v_t, &v_n}, {0.0, 0.0}}; }
 };
 
+// Positions: a position vector r_PQ = Q - P goes from the point P to the point Q. The
+// position inputs (centres of mass C_i; the contact point O and pivots E_i when they are
+// inputs) are position vectors from the origin of the axes; the lever arm of body i is
+// r_i = r_{Ci O} = O - C_i (for a body pinned at E_i: r_{Ei O} = O - E_i). Here O is the
+// origin: the inputs of C_i are r_{O Ci} = C_i - O = -r_i (free body).
 // Routh's process (impactgen's symbolic/routh.hpp): P = P_n n + P_t e_t the impulse on body 2
 // (-P on body 1), u the relative velocity v_B - v_A of the contact points, e_t = (1, 0),
 // K_tt, K_tn, K_nn the contact response K = K_1 + K_2 in (e_t, n), u_t = u.e_t, u_n = u.n < 0.

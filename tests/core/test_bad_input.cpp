@@ -1231,8 +1231,7 @@ TEST(Cli, SystemsAnsweredBySolveExplainAndCodegen)
     r = run_cli("formulas --jacobian " + file);
     EXPECT_EQ(r.code, 1);
     EXPECT_TRUE(r.out.empty());
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '
-'), 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find("a system"), std::string::npos) << r.err;
     const std::string sequential = std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/three-balls-sequential.json";
     r = run_cli("solve --json " + sequential);
