@@ -168,7 +168,8 @@ void writer::system_tolerance()
     h_ << "/// The rounding within which " << o_.name << " counts a condition as holding: 2^-(digits/2) of T\n";
     h_ << "/// (1.5e-8 in double, 2.4e-4 in float), relative to the condition's scale.\n";
     h_ << "template <typename T> IMPACTGEN_FUNC T " << o_.name << "_tolerance() noexcept\n{\n";
-    h_ << "    T r(1);\n    for (int k = std::numeric_limits<T>::digits / 2; k > 0; --k)\n        r = r / T(2);\n";
+    h_ << "    T r(1); // 2^-(digits/2): sqrt of the machine epsilon, without a host-only call in device code\n"
+          "    for (T e = detail::machine_epsilon<T>(); e < T(1); e = e * T(4))\n        r = r / T(2);\n";
     h_ << "    return r;\n}\n} // namespace detail\n\n";
 }
 
@@ -234,7 +235,7 @@ std::string writer::system_nearest() const
                       &m = sys_local_.at("margin"), &tiny = sys_local_.at("tiny");
     std::string r = "    if (" + sel + " < 0) {\n";
     r += "        // No set holds as computed: the one nearest to holding, within rounding.\n";
-    r += "        const T " + tiny + " = std::numeric_limits<T>::min();\n";
+    r += "        const T " + tiny + " = detail::smallest_normal<T>();\n";
     r += "        T " + best + " = -" + tol + ";\n";
     for (std::size_t k = 0; k < sc.sets.size(); ++k) {
         const system_code_set &s = sc.sets[k];

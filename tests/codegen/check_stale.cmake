@@ -4,7 +4,8 @@ file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 # (the classes with friction and the law class too: one writer, codegen/writer.hpp)
 set(classes central-direct central-oblique noncentral-3d massive-3d planar pinned-planar
-            planar-friction ball-floor-friction noncentral-3d-friction rod-rough-floor)
+            planar-friction ball-floor-friction noncentral-3d-friction rod-rough-floor
+            compass-gait three-balls double-pendulum-struck two-corner-landing)
 set(stale)
 foreach(cls IN LISTS classes)
   string(REPLACE "-" "_" fn "${cls}")
