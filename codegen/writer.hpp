@@ -274,7 +274,7 @@ private:
     std::map<std::string, std::string> sys_local_;
     std::vector<stage> sys_jac_;
     std::vector<std::string> sys_jac_names_, sys_unit_mass_;
-    stage rows_;            // --rows: the primitive values of the rows
+    stage rows_; // --rows: the primitive values of the rows
     std::map<std::string, std::string> rows_name_;
 };
 
