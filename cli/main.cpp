@@ -216,6 +216,45 @@ struct formulas_args {
 int dispatch(const std::function<int()> &extra_action, CLI::App *list, CLI::App *solve_cmd, CLI::App *formulas,
              CLI::App *bench, const std::string &what, bool json, const std::string &format, int repeats,
              const formulas_args &fa, const std::string &set);
+
+// --help and --version print and exit 0; a usage error is one line and exit 2.
+int parse_error(CLI::App &app, const CLI::ParseError &e, int argc, char **argv)
+{
+    if (e.get_exit_code() == 0) { // --help, --version
+        app.exit(e);
+        std::cout.flush();
+        return std::cout ? 0 : 1;
+    }
+    // A usage error: one line, like every other refusal.
+    std::string what = e.what();
+    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+        std::string known;
+        for (const CLI::App *sub : app.get_subcommands({}))
+            known += (known.empty() ? "" : ", ") + sub->get_name();
+        what = "unknown subcommand \"" + std::string(argv[1]) + "\" (one of " + known + ")";
+    }
+    std::cerr << "impactgen: error: " << impactgen::names::display_text(what)
+              << " (usage: impactgen --help, or impactgen SUBCOMMAND --help)\n";
+    return 2;
+}
+
+void start_time_budget(CLI::App &app, CLI::App *bench, double time_limit)
+{
+    // The time budget: every input the reader accepts is done in well under a
+    // second; a run past the budget is stopped with a message, never left to hang.
+    const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
+    // A sheet explains every exercise: its default budget grows with --count (2 s each).
+    if (CLI::App *sheet = app.get_subcommand("exercises"); *sheet && app.get_option("--time-limit")->count() == 0)
+        time_limit += 2 * sheet->get_option("--count")->as<double>();
+    if (limited)
+        std::thread([time_limit] {
+            std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));
+            std::fprintf(stderr, "impactgen: error: stopped after the time budget of %g s (--time-limit)\n",
+                         time_limit);
+            std::fflush(stderr);
+            std::_Exit(1);
+        }).detach();
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -272,22 +311,7 @@ int main(int argc, char **argv)
         if (!std::isfinite(time_limit))
             throw CLI::ValidationError("--time-limit", "must be a finite number of seconds");
     } catch (const CLI::ParseError &e) {
-        if (e.get_exit_code() == 0) { // --help, --version
-            app.exit(e);
-            std::cout.flush();
-            return std::cout ? 0 : 1;
-        }
-        // A usage error: one line, like every other refusal.
-        std::string what = e.what();
-        if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
-            std::string known;
-            for (const CLI::App *sub : app.get_subcommands({}))
-                known += (known.empty() ? "" : ", ") + sub->get_name();
-            what = "unknown subcommand \"" + std::string(argv[1]) + "\" (one of " + known + ")";
-        }
-        std::cerr << "impactgen: error: " << impactgen::names::display_text(what)
-                  << " (usage: impactgen --help, or impactgen SUBCOMMAND --help)\n";
-        return 2;
+        return parse_error(app, e, argc, argv);
     }
     auto run_command = [&] {
         const bool wrt_given = formulas->get_option("--wrt")->count() > 0;
@@ -296,20 +320,7 @@ int main(int argc, char **argv)
         return dispatch(extra_action, list, solve_cmd, formulas, bench, what, json, format, repeats,
                         {jacobian || wrt_given, wrt}, set);
     };
-    // The time budget: every input the reader accepts is done in well under a
-    // second; a run past the budget is stopped with a message, never left to hang.
-    const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
-    // A sheet explains every exercise: its default budget grows with --count (2 s each).
-    if (CLI::App *sheet = app.get_subcommand("exercises"); *sheet && app.get_option("--time-limit")->count() == 0)
-        time_limit += 2 * sheet->get_option("--count")->as<double>();
-    if (limited)
-        std::thread([time_limit] {
-            std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));
-            std::fprintf(stderr, "impactgen: error: stopped after the time budget of %g s (--time-limit)\n",
-                         time_limit);
-            std::fflush(stderr);
-            std::_Exit(1);
-        }).detach();
+    start_time_budget(app, bench, time_limit);
     try {
         int rc = run_command();
         std::cout.flush();

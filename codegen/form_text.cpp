@@ -221,9 +221,11 @@ emit_options branchless_form(bool share_divisions, int optional_output)
 
 namespace
 {
-// The blocks of a symmetric tensor: axes coupled by a non-zero entry share a block.
-void tensor_blocks(const mat3 &J, int (&block_of)[3])
+// The blocks of a symmetric tensor: axes coupled by a non-zero entry share a block. Each
+// block lists its axes in order; the blocks in the order of their first axis.
+std::vector<std::vector<std::size_t>> tensor_blocks(const mat3 &J)
 {
+    int block_of[3] = {0, 1, 2};
     for (int r = 0; r < 3; ++r)
         for (int c = r + 1; c < 3; ++c)
             if (!tidy(J[r][c]).is_zero()) {
@@ -232,6 +234,16 @@ void tensor_blocks(const mat3 &J, int (&block_of)[3])
                     if (x == from)
                         x = to;
             }
+    std::vector<std::vector<std::size_t>> blocks;
+    for (int first = 0; first < 3; ++first) {
+        std::vector<std::size_t> a;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (block_of[k] == first)
+                a.push_back(k);
+        if (!a.empty())
+            blocks.push_back(a);
+    }
+    return blocks;
 }
 } // namespace
 
@@ -245,16 +257,8 @@ void tensor_blocks(const mat3 &J, int (&block_of)[3])
 std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, const std::array<std::string, 3> &axes,
                                                                  bool with_determinant)
 {
-    int block_of[3] = {0, 1, 2};
-    tensor_blocks(J, block_of);
     std::vector<std::pair<ex, std::string>> minors;
-    for (int first = 0; first < 3; ++first) {
-        std::vector<std::size_t> a;
-        for (std::size_t k = 0; k < 3; ++k)
-            if (block_of[k] == first)
-                a.push_back(k);
-        if (a.empty())
-            continue;
+    for (const std::vector<std::size_t> &a : tensor_blocks(J)) {
         const std::string xx = axes[a[0]] + axes[a[0]];
         minors.push_back({J[a[0]][a[0]], xx + " entry > 0, finite"});
         if (a.size() >= 2) {
@@ -271,14 +275,8 @@ std::vector<std::pair<ex, std::string>> positive_definite_minors(const mat3 &J, 
 std::vector<std::pair<ex, std::string>> positive_semidefinite_minors(const mat3 &J,
                                                                      const std::array<std::string, 3> &axes)
 {
-    int block_of[3] = {0, 1, 2};
-    tensor_blocks(J, block_of);
     std::vector<std::pair<ex, std::string>> minors;
-    for (int first = 0; first < 3; ++first) {
-        std::vector<std::size_t> a;
-        for (std::size_t k = 0; k < 3; ++k)
-            if (block_of[k] == first)
-                a.push_back(k);
+    for (const std::vector<std::size_t> &a : tensor_blocks(J)) {
         for (std::size_t x : a)
             minors.push_back({J[x][x], axes[x] + axes[x] + " entry >= 0, finite"});
         for (std::size_t i = 0; i < a.size(); ++i)

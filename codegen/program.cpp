@@ -18,31 +18,45 @@ int program::make(op o)
     return static_cast<int>(ops_.size()) - 1;
 }
 
+int program::node(op::kind_t k, int a, int b)
+{
+    auto key = std::make_tuple(int(k), a, b);
+    auto it = memo_.find(key);
+    if (it != memo_.end())
+        return it->second;
+    op o;
+    o.kind = k;
+    o.a = a;
+    o.b = b;
+    int id = make(o);
+    memo_[key] = id;
+    return id;
+}
+
+int program::leaf(std::map<std::string, int> &index, const std::string &key, const op &o)
+{
+    auto it = index.find(key);
+    if (it != index.end())
+        return it->second;
+    int id = make(o);
+    index[key] = id;
+    return id;
+}
+
 int program::input(const std::string &name)
 {
-    auto it = inputs_.find(name);
-    if (it != inputs_.end())
-        return it->second;
     op o;
     o.kind = op::input;
     o.name = name;
-    int id = make(o);
-    inputs_[name] = id;
-    return id;
+    return leaf(inputs_, name, o);
 }
 
 int program::constant(const numeric &x)
 {
-    std::string key = number_text(x);
-    auto it = constants_.find(key);
-    if (it != constants_.end())
-        return it->second;
     op o;
     o.kind = op::constant;
     o.value = x;
-    int id = make(o);
-    constants_[key] = id;
-    return id;
+    return leaf(constants_, number_text(x), o);
 }
 
 int program::negate(int a)
@@ -52,46 +66,19 @@ int program::negate(int a)
         return constant(-x.value);
     if (x.kind == op::neg)
         return x.a;
-    auto key = std::make_tuple(int(op::neg), a, -1);
-    auto it = memo_.find(key);
-    if (it != memo_.end())
-        return it->second;
-    op o;
-    o.kind = op::neg;
-    o.a = a;
-    int id = make(o);
-    memo_[key] = id;
-    return id;
+    return node(op::neg, a);
 }
 
 int program::square_root(int a)
 {
     if (at(a).kind == op::constant && at(a).value.is_zero())
         return a;
-    auto key = std::make_tuple(int(op::sqrt_), a, -1);
-    auto it = memo_.find(key);
-    if (it != memo_.end())
-        return it->second;
-    op o;
-    o.kind = op::sqrt_;
-    o.a = a;
-    int id = make(o);
-    memo_[key] = id;
-    return id;
+    return node(op::sqrt_, a);
 }
 
 int program::trig(op::kind_t k, int a)
 {
-    auto key = std::make_tuple(int(k), a, -1);
-    auto it = memo_.find(key);
-    if (it != memo_.end())
-        return it->second;
-    op o;
-    o.kind = k;
-    o.a = a;
-    int id = make(o);
-    memo_[key] = id;
-    return id;
+    return node(k, a);
 }
 
 int program::binary(op::kind_t k, int a, int b)
@@ -134,17 +121,7 @@ int program::binary(op::kind_t k, int a, int b)
     if (k == op::add || k == op::mul)
         if (a > b)
             std::swap(a, b);
-    auto key = std::make_tuple(int(k), a, b);
-    auto it = memo_.find(key);
-    if (it != memo_.end())
-        return it->second;
-    op o;
-    o.kind = k;
-    o.a = a;
-    o.b = b;
-    int id = make(o);
-    memo_[key] = id;
-    return id;
+    return node(k, a, b);
 }
 
 int program::lower(const canonical_pool &pool, const scaled &s)

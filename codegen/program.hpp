@@ -58,6 +58,10 @@ public:
 
 private:
     int make(op o);
+    /// The op k(a, b), made once: the same operation on the same operands is one op.
+    int node(op::kind_t k, int a, int b = -1);
+    /// The leaf o under `key` in `index`, made once.
+    int leaf(std::map<std::string, int> &index, const std::string &key, const op &o);
     int lower_add(const canonical_pool &pool, int cid, bool negated);
     std::map<int, int> lowered_neg_;
     std::vector<op> ops_;

@@ -162,6 +162,8 @@ private:
     void emit_root_loop(const std::string &ind);
     void emit_unresolved(const std::string &ind);
     const std::string &selection_text();
+    /// The final check of a friction header: every output and input finite, or overflow.
+    void overflow_check();
     void main_function(bool unchecked);
     void loop_batch();
 

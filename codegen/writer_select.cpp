@@ -366,18 +366,22 @@ void writer::main_function(bool unchecked)
     if (!mu_input && !mu_name_.empty())
         h_ << mu_check;
     h_ << selection_text();
-    if (!unchecked) {
-        std::vector<std::string> terms;
-        for (const code_output &of : outs_)
-            terms.push_back("out." + of.field);
-        for (const std::string &nm : input_names_)
-            terms.push_back(nm);
-        // (a sum of finite values may overflow: then each is tested, as the smooth headers do)
-        h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-        h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
-        h_ << "        return fail(friction_status::overflow);\n";
-    }
+    if (!unchecked)
+        overflow_check();
     h_ << "    return friction_status::ok;\n}\n\n";
+}
+
+void writer::overflow_check()
+{
+    std::vector<std::string> terms;
+    for (const code_output &of : outs_)
+        terms.push_back("out." + of.field);
+    for (const std::string &nm : input_names_)
+        terms.push_back(nm);
+    // (a sum of finite values may overflow: then each is tested, as the smooth headers do)
+    h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
+    h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
+    h_ << "        return fail(friction_status::overflow);\n";
 }
 
 } // namespace impactgen::codegen::writer_detail

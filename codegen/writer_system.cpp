@@ -341,14 +341,7 @@ void writer::system_function()
     h_ << "    out.set = " << sel << ";\n    out.impulses_unique = " << unique << ";\n";
     if (cp_.system.has_jacobian)
         h_ << "    out.boundary = " << sys_local_.at("boundary") << ";\n";
-    std::vector<std::string> terms;
-    for (const code_output &of : outs_)
-        terms.push_back("out." + of.field);
-    for (const std::string &nm : input_names_)
-        terms.push_back(nm);
-    h_ << "    const T check_sum = " << balanced_sum(terms) << ";\n";
-    h_ << "    if (!detail::finite<T>(check_sum) && !detail::all_finite(" << join(terms, ", ") << "))\n";
-    h_ << "        return fail(friction_status::overflow);\n";
+    overflow_check();
     h_ << "    return friction_status::ok;\n}\n\n";
 }
 

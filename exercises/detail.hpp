@@ -35,6 +35,10 @@ private:
     std::string s_;
 };
 
+/// A contact's point and its normal, in words after "at the point ": "(x, y) m; <normal>, from
+/// <body 1> into <body 2>, is (nx, ny)".
+text &contact_geometry(text &t, const problem &p, const contact_spec &c, const std::string &normal, bool si);
+
 /// The statement: one item per body, then the contact and the coefficients.
 std::vector<std::string> statement(const problem &p, format f, bool units);
 /// What is asked, as one sentence.
@@ -45,6 +49,9 @@ bool long_number(const GiNaC::ex &value);
 std::vector<std::string> short_answers(const exercise &e, format f);
 /// The decimal of an exact value, 4 significant digits ("-0.1429").
 std::string decimal4(const GiNaC::ex &value);
+
+/// RFC 6901: s as a reference token of a JSON pointer ("~" as "~0", "/" as "~1").
+std::string json_pointer_token(const std::string &s);
 
 /// Digits after the point of q when q is a terminating decimal (denominator 2^a 5^b), else -1.
 int decimal_places(const GiNaC::numeric &q);

@@ -1,5 +1,6 @@
 // The quantities an exercise asks for, with their exact values and where the answer file
 // holds them.
+#include "exercises/detail.hpp"
 #include "exercises/exercises.hpp"
 
 #include "symbolic/decide.hpp"
@@ -8,17 +9,16 @@ namespace impactgen::exercises
 {
 using namespace GiNaC;
 
-namespace
-{
-
-/// RFC 6901: "~" is "~0" and "/" is "~1" inside a JSON pointer's reference token.
-std::string token(const std::string &s)
+std::string detail::json_pointer_token(const std::string &s)
 {
     std::string out;
     for (char c : s)
         out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
     return out;
 }
+
+namespace
+{
 
 struct collector {
     const problem &p;
@@ -46,7 +46,7 @@ std::vector<quantity> asked_quantities(const derivation &d, const regime_case &c
         const body &b = p.bodies[i];
         if (p.immovable(i))
             continue;
-        const std::string at = "/bodies/" + token(b.name);
+        const std::string at = "/bodies/" + detail::json_pointer_token(b.name);
         for (int k = 0; k < dim; ++k) // a component that is 0 before and after is not asked
             q.add(at + "/velocity/" + std::to_string(k),
                   "velocity of " + b.name + " after impact, " + p.axes[k] + " component", "m/s", s.after[i].velocity[k],

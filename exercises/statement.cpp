@@ -204,6 +204,15 @@ std::string body_item(const problem &p, std::size_t i, format f, bool si)
 
 } // namespace
 
+text &contact_geometry(text &t, const problem &p, const contact_spec &c, const std::string &normal, bool si)
+{
+    const int dim = p.dimension == 2 ? 2 : 3;
+    return t.vec(c.point, dim)
+        .unit(si ? "m" : "")
+        .w("; " + normal + ", from " + p.bodies[c.body1].name + " into " + p.bodies[c.body2].name + ", is ")
+        .vec(c.normal, dim);
+}
+
 std::vector<std::string> statement(const problem &p, format f, bool si)
 {
     std::vector<std::string> out;
@@ -215,17 +224,13 @@ std::vector<std::string> statement(const problem &p, format f, bool si)
         return out;
     }
     const contact_spec &c = p.contact();
-    const int dim = p.dimension == 2 ? 2 : 3;
     text contact(f);
     // a movable body strikes an immovable one at rest (not "the floor strikes the ball")
     const body &b1 = p.bodies[c.body1], &b2 = p.bodies[c.body2];
     const bool swap = b1.infinite_mass && b1.at_rest() && !b2.infinite_mass;
-    contact
-        .w("Contact: " + (swap ? b2.name + " strikes " + b1.name : b1.name + " strikes " + b2.name) + " at the point ")
-        .vec(c.point, dim)
-        .unit(si ? "m" : "")
-        .w("; the common normal there, from " + p.bodies[c.body1].name + " into " + p.bodies[c.body2].name + ", is ")
-        .vec(c.normal, dim)
+    contact.w("Contact: " + (swap ? b2.name + " strikes " + b1.name : b1.name + " strikes " + b2.name) +
+              " at the point ");
+    contact_geometry(contact, p, c, "the common normal there", si)
         .w(". The coefficient of restitution is ")
         .sym("e", "e")
         .w(" = ")

@@ -13,15 +13,6 @@ using namespace GiNaC;
 namespace
 {
 
-/// RFC 6901: "~" is "~0" and "/" is "~1" inside a JSON pointer's reference token.
-std::string token(const std::string &s)
-{
-    std::string out;
-    for (char c : s)
-        out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
-    return out;
-}
-
 /// The quantities a system's exercise asks for, from its exact answer, with their pointers into
 /// the answer object (print::system_answer_json). Impulses that are one valid choice among many
 /// (impulses_unique false: a box landing flat on four corners) are not asked.
@@ -42,7 +33,7 @@ std::vector<quantity> system_quantities(const problem &p, const system_answer &a
         const body &b = p.bodies[i];
         if (b.infinite_mass || p.immovable(i))
             continue;
-        const std::string at = "/bodies/" + token(b.name);
+        const std::string at = "/bodies/" + json_pointer_token(b.name);
         for (int k = 0; k < dim; ++k)
             add(at + "/velocity/" + std::to_string(k),
                 "velocity of " + b.name + " after impact, " + p.axes[k] + " component", "m/s", r.velocity[i][k],
@@ -122,15 +113,8 @@ std::vector<std::string> system_statement_items(const problem &p, format f, bool
         const contact_spec &k = p.contacts[c];
         text t(f);
         t.w("Contact " + std::to_string(c + 1) + ": between " + p.bodies[k.body1].name + " and " +
-            p.bodies[k.body2].name + " at the point ")
-            .vec(k.point, dim)
-            .unit(si ? "m" : "")
-            .w("; the normal, from " + p.bodies[k.body1].name + " into " + p.bodies[k.body2].name + ", is ")
-            .vec(k.normal, dim)
-            .w("; ")
-            .sym("e", "e")
-            .w(" = ")
-            .num(p.restitution_of(c));
+            p.bodies[k.body2].name + " at the point ");
+        contact_geometry(t, p, k, "the normal", si).w("; ").sym("e", "e").w(" = ").num(p.restitution_of(c));
         if (k.rough)
             t.w("; perfectly rough (it does not slip)");
         else if (!k.friction().is_zero())

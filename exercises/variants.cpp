@@ -139,39 +139,34 @@ problem numeric_base(const problem &base)
             x = 1;
         x = exact(x);
     };
-    for (body &b : p.bodies) {
-        put(b.mass);
-        for (int r = 0; r < 3; ++r) {
-            put(b.position[r]);
-            put(b.velocity[r]);
-            put(b.angular_velocity[r]);
-            for (int c = 0; c < 3; ++c)
-                put(b.inertia[r][c]);
-        }
+    for_each_value(p, put);
+    for (body &b : p.bodies)
         if (b.numbered) {
             b.name = b.label = "body " + b.name;
             b.numbered = false;
         }
-    }
-    for (contact_spec &c : p.contacts) {
-        for (int r = 0; r < 3; ++r) {
-            put(c.point[r]);
-            put(c.normal[r]);
-        }
-        ex mu = c.friction();
-        put(mu);
-        c.set_friction(mu);
-    }
-    for (pivot &pv : p.pivots)
-        for (int r = 0; r < 3; ++r)
-            put(pv.point[r]);
-    for (joint &j : p.joints)
-        for (int r = 0; r < 3; ++r)
-            put(j.point[r]);
-    for (contact_spec &c : p.contacts)
-        put(c.restitution);
-    put(p.restitution);
     return p;
+}
+
+/// A new mass for a body of finite mass, its inertia scaled with it.
+void draw_mass(body &b, generator &g)
+{
+    if (b.infinite_mass)
+        return;
+    const numeric m0 = ex_to<numeric>(b.mass), m = one_digit(m0 * g.pick(factors()));
+    b.mass = m;
+    for (auto &row : b.inertia)
+        for (ex &x : row)
+            x = ex_to<numeric>(x) * m / m0;
+}
+
+/// The body's velocity and spin times f.
+void scale_motion(body &b, const numeric &f)
+{
+    for (int k = 0; k < 3; ++k) {
+        b.velocity[k] = ex_to<numeric>(b.velocity[k]) * f;
+        b.angular_velocity[k] = ex_to<numeric>(b.angular_velocity[k]) * f;
+    }
 }
 
 /// A system's variant: new masses (inertias scaled with them), e and mu per contact, and every
@@ -181,17 +176,8 @@ problem draw_system_values(const problem &p0, generator &g)
     problem q = p0;
     const numeric f = g.pick({numeric(1, 2), 1, 2});
     for (body &b : q.bodies) {
-        if (!b.infinite_mass) {
-            const numeric m0 = ex_to<numeric>(b.mass), m = one_digit(m0 * g.pick(factors()));
-            b.mass = m;
-            for (auto &row : b.inertia)
-                for (ex &x : row)
-                    x = ex_to<numeric>(x) * m / m0;
-        }
-        for (int k = 0; k < 3; ++k) {
-            b.velocity[k] = ex_to<numeric>(b.velocity[k]) * f;
-            b.angular_velocity[k] = ex_to<numeric>(b.angular_velocity[k]) * f;
-        }
+        draw_mass(b, g);
+        scale_motion(b, f);
     }
     q.restitution = g.pick(restitutions());
     for (contact_spec &c : q.contacts) {
@@ -212,19 +198,10 @@ problem draw_values(const problem &orig, const problem &p0, const std::string &r
     for (std::size_t i = 0; i < q.bodies.size(); ++i) {
         body &b = q.bodies[i];
         const body &o = orig.bodies[i];
-        if (!b.infinite_mass) {
-            const numeric m0 = ex_to<numeric>(b.mass), m = one_digit(m0 * g.pick(factors()));
-            b.mass = m;
-            for (auto &row : b.inertia)
-                for (ex &x : row)
-                    x = ex_to<numeric>(x) * m / m0;
-        }
+        draw_mass(b, g);
         if (q.pivot_of(i)) { // a pinned body's motion is one: scaled as a whole, still about its pivot
             const numeric f = g.pick({numeric(1, 2), 1, 2});
-            for (int k = 0; k < 3; ++k) {
-                b.velocity[k] = ex_to<numeric>(b.velocity[k]) * f;
-                b.angular_velocity[k] = ex_to<numeric>(b.angular_velocity[k]) * f;
-            }
+            scale_motion(b, f);
             continue;
         }
         double speed = 0;

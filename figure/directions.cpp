@@ -49,28 +49,7 @@ vec values_of(const vec3 &v, const exmap &values, int dim)
 /// The problem with the illustrative values put in (a numeric twin to solve).
 problem with_values(problem p, const exmap &values)
 {
-    auto put = [&](ex &x) { x = x.subs(values); };
-    for (body &b : p.bodies) {
-        put(b.mass);
-        for (int r = 0; r < 3; ++r) {
-            put(b.position[r]);
-            put(b.velocity[r]);
-            put(b.angular_velocity[r]);
-            for (int c = 0; c < 3; ++c)
-                put(b.inertia[r][c]);
-        }
-    }
-    for (contact_spec &c : p.contacts) {
-        for (int r = 0; r < 3; ++r) {
-            put(c.point[r]);
-            put(c.normal[r]);
-        }
-        c.set_friction(c.friction().subs(values));
-    }
-    for (pivot &pv : p.pivots)
-        for (int r = 0; r < 3; ++r)
-            put(pv.point[r]);
-    put(p.restitution);
+    for_each_value(p, [&](ex &x) { x = x.subs(values); });
     return p;
 }
 

@@ -130,12 +130,7 @@ private:
     void add_path(role r, int body, const std::string &key, std::vector<point> pts, bool closed, bool filled,
                   bool dashed = false, bool thin = false)
     {
-        item it;
-        it.kind = item::path;
-        it.what = r;
-        it.body = body;
-        it.key = key;
-        it.points = std::move(pts);
+        item it = make_item(item::path, r, body, key, std::move(pts));
         it.closed = closed;
         it.filled = filled;
         it.dashed = dashed;
@@ -144,12 +139,7 @@ private:
     }
     void add_circle(role r, int body, const std::string &key, point c, double radius, bool filled)
     {
-        item it;
-        it.kind = item::circle;
-        it.what = r;
-        it.body = body;
-        it.key = key;
-        it.points = {c};
+        item it = make_item(item::circle, r, body, key, {c});
         it.radius = radius;
         it.filled = filled;
         g_.items.push_back(std::move(it));
@@ -159,13 +149,7 @@ private:
     {
         if (!(length(to - from) > 0.02))
             return false;
-        item it;
-        it.kind = item::arrow;
-        it.what = r;
-        it.body = body;
-        it.key = key;
-        it.points = {from, to};
-        g_.items.push_back(std::move(it));
+        g_.items.push_back(make_item(item::arrow, r, body, key, {from, to}));
         return true;
     }
     void add_math(role r, int body, const std::string &key, point at, point direction, const std::string &tex,
@@ -217,13 +201,8 @@ place place_of(point dir)
 void builder::add_math(role r, int body, const std::string &key, point at, point direction, const std::string &tex,
                        const std::string &text, const std::string &sub)
 {
-    label l;
     const point u = unit2(direction, {0, 0});
-    l.at = at + label_gap * u;
-    l.side = place_of(u);
-    l.what = r;
-    l.body = body;
-    l.key = key;
+    label l = make_label(at + label_gap * u, place_of(u), r, body, key);
     l.tex = tex;
     l.text = text;
     l.sub = sub;
@@ -232,12 +211,7 @@ void builder::add_math(role r, int body, const std::string &key, point at, point
 
 void builder::add_name(int body, point at, place side)
 {
-    label l;
-    l.at = at;
-    l.side = side;
-    l.what = role::body;
-    l.body = body;
-    l.key = "name" + index_[static_cast<std::size_t>(body)];
+    label l = make_label(at, side, role::body, body, "name" + index_[static_cast<std::size_t>(body)]);
     l.is_name = true;
     l.name = g_.bodies[static_cast<std::size_t>(body)].name;
     g_.labels.push_back(std::move(l));

@@ -1,11 +1,14 @@
 // Internal to figure/: small 3-vector and 2-point arithmetic in doubles (figure.cpp,
-// values.cpp).
+// values.cpp), and the items and labels of a drawing started (figure.cpp, system.cpp).
 #pragma once
 
 #include "figure/figure.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace impactgen::figure::detail
 {
@@ -88,6 +91,30 @@ inline point perp(point a)
 inline double finite(double v)
 {
     return std::isfinite(v) ? v : 0.0;
+}
+
+/// An item: its kind, role, body, key and points; the caller sets the rest.
+inline item make_item(item::kind_t k, role what, int body, const std::string &key, std::vector<point> points)
+{
+    item it;
+    it.kind = k;
+    it.what = what;
+    it.body = body;
+    it.key = key;
+    it.points = std::move(points);
+    return it;
+}
+
+/// A label: where it sits, its role, body and key; the caller sets its text or name.
+inline label make_label(point at, place side, role what, int body, const std::string &key)
+{
+    label l;
+    l.at = at;
+    l.side = side;
+    l.what = what;
+    l.body = body;
+    l.key = key;
+    return l;
 }
 
 } // namespace impactgen::figure::detail

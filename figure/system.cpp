@@ -60,12 +60,7 @@ frame fit_frame(const problem &p)
 void add_item(drawing &g, item::kind_t k, role what, int b, const std::string &key, std::vector<point> pts,
               bool closed = false, bool filled = false, bool thin = false, double radius = 0)
 {
-    item it;
-    it.kind = k;
-    it.what = what;
-    it.body = b;
-    it.key = key;
-    it.points = std::move(pts);
+    item it = make_item(k, what, b, key, std::move(pts));
     it.closed = closed;
     it.filled = filled;
     it.thin = thin;
@@ -76,12 +71,7 @@ void add_item(drawing &g, item::kind_t k, role what, int b, const std::string &k
 void add_math_label(drawing &g, point at, place side, role what, int b, const std::string &key, const std::string &text,
                     const std::string &sub)
 {
-    label l;
-    l.at = at;
-    l.side = side;
-    l.what = what;
-    l.body = b;
-    l.key = key;
+    label l = make_label(at, side, what, b, key);
     l.text = text;
     l.sub = sub;
     l.tex = text + "_{" + sub + "}";
@@ -239,12 +229,7 @@ void draw_centres(drawing &g, const problem &p, const frame &f)
         if (vmax > 0 && length(v) > 1e-12)
             add_item(g, item::arrow, role::velocity, bi, "v", {C, C + (0.3 / vmax) * v});
         add_item(g, item::circle, role::centre, bi, "C", {C});
-        label l;
-        l.at = C;
-        l.side = place::west;
-        l.what = role::body;
-        l.body = bi;
-        l.key = "body";
+        label l = make_label(C, place::west, role::body, bi, "body");
         l.is_name = true;
         l.name = B.name;
         g.labels.push_back(l);

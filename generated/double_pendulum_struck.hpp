@@ -192,8 +192,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_659BBDF9_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_3E3708F6_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_3E3708F6_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -655,6 +655,89 @@ IMPACTGEN_FUNC void trig2_refine(T a0, T a1, T b1, T a2, T b2, int n, const T* c
     }
 }
 
+/// The arcs between the 16 angles k pi / 8 (u: cos, sin of them; v: of twice them; w = pi / 8)
+/// where the filter f (keep: its five coefficients as g's, or null) is negative throughout,
+/// f(ends) + max|f'| w/2 < 0, as bits: they hold no root wanted.
+template <typename T>
+IMPACTGEN_FUNC unsigned trig2_dropped(const T* keep, const T* uc, const T* us, const T* vc, const T* vs, T w) noexcept
+{
+    using std::sqrt;
+    unsigned drop = 0;
+    if (keep == nullptr || !detail::all_finite(keep[0], keep[1], keep[2], keep[3], keep[4]))
+        return drop;
+    const T mk = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(keep[0]), abs_of<T>(keep[1])), max_of<T>(abs_of<T>(keep[2]), abs_of<T>(keep[3]))), abs_of<T>(keep[4]));
+    if (!(mk > T(0)))
+        return drop;
+    const T rk = T(1) / mk;
+    const T k0 = keep[0] * rk, k1 = keep[1] * rk, k2 = keep[2] * rk, k3 = keep[3] * rk, k4 = keep[4] * rk;
+    const T half = (sqrt(k1 * k1 + k2 * k2) + T(2) * sqrt(k3 * k3 + k4 * k4)) * w / T(2);
+    T f[17];
+    for (int k = 0; k < 17; ++k)
+        f[k] = k0 + k1 * uc[k] + k2 * us[k] + k3 * vc[k] + k4 * vs[k];
+    for (int k = 0; k < 16; ++k)
+        drop |= static_cast<unsigned>(max_of<T>(f[k], f[k + 1]) + half < T(0)) << k;
+    return drop;
+}
+
+/// The arcs that hold one root each, as trig2_refine takes them: ends, tan of half the
+/// width, g and g' at the ends, width; n of them (at most four).
+template <typename T> struct trig2_found {
+    T cl[4], sl[4], tw[4], gl[4], dl[4], gh[4], dh[4], ww[4];
+    int n = 0;
+};
+
+/// Adds the arc a (tan_half: the tangent of half its width) to f; false when f holds four
+/// already (more roots than g can have: rounding).
+template <typename T> IMPACTGEN_FUNC bool trig2_add(trig2_found<T>& f, const trig2_arc<T>& a, T tan_half) noexcept
+{
+    if (f.n == 4)
+        return false;
+    f.cl[f.n] = a.cl;
+    f.sl[f.n] = a.sl;
+    f.tw[f.n] = tan_half;
+    f.gl[f.n] = a.gl;
+    f.dl[f.n] = a.dl;
+    f.gh[f.n] = a.gh;
+    f.dh[f.n] = a.dh;
+    f.ww[f.n] = a.w;
+    ++f.n;
+    return true;
+}
+
+/// Halves the undecided arcs todo[0..top) (the last first) until trig2_classify decides
+/// each half, and adds the halves with one root to f; false when that cannot be done (an
+/// arc halved 6 times, down to pi / 512; a midpoint exactly a root; more than four roots).
+template <typename T>
+IMPACTGEN_FUNC bool trig2_split(T a0, T a1, T b1, T a2, T b2, T L1, T L2, T L3, trig2_arc<T>* todo, int top, trig2_found<T>& f) noexcept
+{
+    using std::sqrt;
+    while (top > 0) {
+        IMPACTGEN_TRIG2_COUNT(split);
+        const trig2_arc<T> a = todo[--top];
+        if (a.depth == 6)
+            return false;
+        T cm = a.cl + a.ch, sm = a.sl + a.sh; // the arc's midpoint: the normalised sum of its ends
+        const T len = T(1) / sqrt(cm * cm + sm * sm);
+        cm *= len;
+        sm *= len;
+        T gm, dm, em;
+        trig2_at(a0, a1, b1, a2, b2, cm, sm, gm, dm, em);
+        if (gm == T(0))
+            return false;
+        const T hw = a.w / T(2);
+        const trig2_arc<T> half[2] = {{a.cl, a.sl, a.gl, a.dl, a.el, cm, sm, gm, dm, em, hw, a.depth + 1},
+                                      {cm, sm, gm, dm, em, a.ch, a.sh, a.gh, a.dh, a.eh, hw, a.depth + 1}};
+        for (const trig2_arc<T>& b : half) {
+            const int kind = trig2_classify(b, L1, L2, L3);
+            if (kind == 2)
+                todo[top++] = b;
+            if (kind == 1 && !trig2_add(f, b, (b.cl * b.sh - b.sl * b.ch) / (T(1) + b.cl * b.ch + b.sl * b.sh))) // tan(w / 2)
+                return false;
+        }
+    }
+    return true;
+}
+
 /// The roots of g(theta) = a0 + a1 cos theta + b1 sin theta + a2 cos 2 theta + b2 sin 2 theta
 /// on the circle, as unit vectors (cos theta, sin theta) in rc[0..n), rs[0..n), n <= 4
 /// returned; -1 when g vanishes identically (every direction), -2 when a coefficient is
@@ -699,22 +782,7 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     const T us[17] = {T(0), c3, c2, c1, T(1), c1, c2, c3, T(0), -c3, -c2, -c1, T(-1), -c1, -c2, -c3, T(0)};
     const T vc[17] = {T(1), c2, T(0), -c2, T(-1), -c2, T(0), c2, T(1), c2, T(0), -c2, T(-1), -c2, T(0), c2, T(1)};
     const T vs[17] = {T(0), c2, T(1), c2, T(0), -c2, T(-1), -c2, T(0), c2, T(1), c2, T(0), -c2, T(-1), -c2, T(0)};
-    // The filter f (keep: its five coefficients as g's, or null): arcs where f < 0 throughout,
-    // f(ends) + max|f'| w/2 < 0, hold no root wanted.
-    unsigned drop = 0;
-    if (keep != nullptr && detail::all_finite(keep[0], keep[1], keep[2], keep[3], keep[4])) {
-        const T mk = max_of<T>(max_of<T>(max_of<T>(abs_of<T>(keep[0]), abs_of<T>(keep[1])), max_of<T>(abs_of<T>(keep[2]), abs_of<T>(keep[3]))), abs_of<T>(keep[4]));
-        if (mk > T(0)) {
-            const T rk = T(1) / mk;
-            const T k0 = keep[0] * rk, k1 = keep[1] * rk, k2 = keep[2] * rk, k3 = keep[3] * rk, k4 = keep[4] * rk;
-            const T half = (sqrt(k1 * k1 + k2 * k2) + T(2) * sqrt(k3 * k3 + k4 * k4)) * w / T(2);
-            T f[17];
-            for (int k = 0; k < 17; ++k)
-                f[k] = k0 + k1 * uc[k] + k2 * us[k] + k3 * vc[k] + k4 * vs[k];
-            for (int k = 0; k < 16; ++k)
-                drop |= static_cast<unsigned>(max_of<T>(f[k], f[k + 1]) + half < T(0)) << k;
-        }
-    }
+    const unsigned drop = trig2_dropped<T>(keep, uc, us, vc, vs, w);
     if (drop == 0xFFFFu)
         return 0; // no root wanted anywhere
     T g[17], dg[17], eg[17];
@@ -741,9 +809,8 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
     // Arcs with one root: those where g changes sign and the first order test or
     // trig2_classify says so, and the halves of undecided arcs that trig2_classify
     // decides (at most 6 halvings: arcs down to pi / 512).
-    T cl[4], sl[4], tw[4], gl[4], dl[4], gh[4], dh[4], ww[4];
+    trig2_found<T> found;
     const T tw0 = detail::constant<T>(IMPACTGEN_WIDE(0.1989123673796580069098427269237060575042)); // tan(pi / 16)
-    int n = 0;
     trig2_arc<T> todo[24]; // a stack of undecided arcs: 16 + 6 + 1 entries at most
     int top = 0;
     for (unsigned bits = change | open; bits != 0u; bits &= bits - 1u) {
@@ -752,59 +819,15 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
         const int kind = ((open >> k) & 1u) != 0u ? trig2_classify(a, L1, L2, L3) : 1;
         if (kind == 2)
             todo[top++] = a;
-        if (kind != 1)
-            continue;
-        if (n == 4)
+        if (kind == 1 && !trig2_add(found, a, tw0))
             return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
-        cl[n] = a.cl;
-        sl[n] = a.sl;
-        tw[n] = tw0;
-        gl[n] = a.gl;
-        dl[n] = a.dl;
-        gh[n] = a.gh;
-        dh[n] = a.dh;
-        ww[n] = a.w;
-        ++n;
     }
-    while (top > 0) {
-        IMPACTGEN_TRIG2_COUNT(split);
-        const trig2_arc<T> a = todo[--top];
-        if (a.depth == 6)
-            return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
-        T cm = a.cl + a.ch, sm = a.sl + a.sh; // the arc's midpoint: the normalised sum of its ends
-        const T len = T(1) / sqrt(cm * cm + sm * sm);
-        cm *= len;
-        sm *= len;
-        T gm, dm, em;
-        trig2_at(a0, a1, b1, a2, b2, cm, sm, gm, dm, em);
-        if (gm == T(0))
-            return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
-        const T hw = a.w / T(2);
-        const trig2_arc<T> half[2] = {{a.cl, a.sl, a.gl, a.dl, a.el, cm, sm, gm, dm, em, hw, a.depth + 1},
-                                      {cm, sm, gm, dm, em, a.ch, a.sh, a.gh, a.dh, a.eh, hw, a.depth + 1}};
-        for (const trig2_arc<T>& b : half) {
-            const int kind = trig2_classify(b, L1, L2, L3);
-            if (kind == 2)
-                todo[top++] = b;
-            if (kind != 1)
-                continue;
-            if (n == 4)
-                return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
-            cl[n] = b.cl;
-            sl[n] = b.sl;
-            tw[n] = (b.cl * b.sh - b.sl * b.ch) / (T(1) + b.cl * b.ch + b.sl * b.sh); // tan(w / 2)
-            gl[n] = b.gl;
-            dl[n] = b.dl;
-            gh[n] = b.gh;
-            dh[n] = b.dh;
-            ww[n] = b.w;
-            ++n;
-        }
-    }
-    if (n == 0)
+    if (!trig2_split(a0, a1, b1, a2, b2, L1, L2, L3, todo, top, found))
+        return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
+    if (found.n == 0)
         return 0;
-    trig2_refine(a0, a1, b1, a2, b2, n, cl, sl, tw, gl, dl, gh, dh, ww, rc, rs);
-    return n;
+    trig2_refine(a0, a1, b1, a2, b2, found.n, found.cl, found.sl, found.tw, found.gl, found.dl, found.gh, found.dh, found.ww, rc, rs);
+    return found.n;
 }
 
 /// The sliding direction (c, s) (cos and sin of its angle from e_t towards e_b) of the one

@@ -78,23 +78,60 @@ void append_hex_escapes(std::string &out, std::string_view bytes)
         append_hex_escape(out, static_cast<unsigned char>(c));
 }
 
-} // namespace
-
-std::string comment_text(std::string_view s)
+// Walks s one unit at a time; `each` appends to out what the unit stands for.
+template <typename Each> std::string per_unit(std::string_view s, Each each)
 {
     std::string out;
     out.reserve(s.size());
     for (std::size_t i = 0; i < s.size();) {
         const unit u = next_unit(s, i);
-        const std::string_view bytes = s.substr(i, u.len);
+        each(out, u, s.substr(i, u.len));
         i += u.len;
+    }
+    return out;
+}
+
+/// A character and the text that stands for it.
+struct replacement {
+    char c;
+    const char *text;
+};
+
+// The text that stands for c in table, or null when c stands for itself.
+template <std::size_t N> const char *replaced(const replacement (&table)[N], char c)
+{
+    for (const replacement &r : table)
+        if (r.c == c)
+            return r.text;
+    return nullptr;
+}
+
+const replacement latex_replacements[] = {{'#', "\\#"},
+                                          {'$', "\\$"},
+                                          {'%', "\\%"},
+                                          {'&', "\\&"},
+                                          {'_', "\\_"},
+                                          {'{', "\\{"},
+                                          {'}', "\\}"},
+                                          {'~', "\\textasciitilde{}"},
+                                          {'^', "\\textasciicircum{}"},
+                                          {'\\', "\\textbackslash{}"}};
+
+const replacement html_replacements[] = {
+    {'&', "&amp;"}, {'<', "&lt;"}, {'>', "&gt;"}, {'"', "&quot;"}, {'\'', "&#39;"}};
+
+} // namespace
+
+std::string comment_text(std::string_view s)
+{
+    return per_unit(s, [](std::string &out, const unit &u, std::string_view bytes) {
         if (!u.valid || (u.len > 1 && is_hidden(u.cp))) {
             append_hex_escapes(out, bytes);
-            continue;
+            return;
         }
         if (u.len > 1) {
             out += bytes;
-            continue;
+            return;
         }
         const auto c = static_cast<unsigned char>(bytes[0]);
         const char prev = out.empty() ? '\0' : out.back();
@@ -103,8 +140,7 @@ std::string comment_text(std::string_view s)
             append_hex_escape(out, c);
         else
             out += static_cast<char>(c);
-    }
-    return out;
+    });
 }
 
 std::string cpp_string_literal(std::string_view s)
@@ -149,121 +185,44 @@ std::string cpp_string_literal(std::string_view s)
 
 std::string latex_text(std::string_view s)
 {
-    std::string out;
-    out.reserve(s.size());
-    for (std::size_t i = 0; i < s.size();) {
-        const unit u = next_unit(s, i);
-        const std::string_view bytes = s.substr(i, u.len);
-        i += u.len;
-        if (!u.valid) {
+    return per_unit(s, [](std::string &out, const unit &u, std::string_view bytes) {
+        if (!u.valid)
             out += '?';
-            continue;
-        }
-        if (u.len > 1) {
+        else if (u.len > 1)
             out += bytes;
-            continue;
-        }
-        const char c = bytes[0];
-        switch (c) {
-        case '#':
-            out += "\\#";
-            break;
-        case '$':
-            out += "\\$";
-            break;
-        case '%':
-            out += "\\%";
-            break;
-        case '&':
-            out += "\\&";
-            break;
-        case '_':
-            out += "\\_";
-            break;
-        case '{':
-            out += "\\{";
-            break;
-        case '}':
-            out += "\\}";
-            break;
-        case '~':
-            out += "\\textasciitilde{}";
-            break;
-        case '^':
-            out += "\\textasciicircum{}";
-            break;
-        case '\\':
-            out += "\\textbackslash{}";
-            break;
-        default:
-            out += is_control_byte(static_cast<unsigned char>(c)) ? ' ' : c;
-        }
-    }
-    return out;
+        else if (const char *text = replaced(latex_replacements, bytes[0]))
+            out += text;
+        else
+            out += is_control_byte(static_cast<unsigned char>(bytes[0])) ? ' ' : bytes[0];
+    });
 }
 
 std::string html_text(std::string_view s)
 {
-    std::string out;
-    out.reserve(s.size());
-    for (std::size_t i = 0; i < s.size();) {
-        const unit u = next_unit(s, i);
-        const std::string_view bytes = s.substr(i, u.len);
-        i += u.len;
+    return per_unit(s, [](std::string &out, const unit &u, std::string_view bytes) {
         if (!u.valid) {
             out += "&#xFFFD;";
-            continue;
-        }
-        if (u.len > 1) {
+        } else if (u.len > 1) {
             if (u.cp > 0x9F) // C1 controls are dropped
                 out += bytes;
-            continue;
+        } else if (const char *text = replaced(html_replacements, bytes[0])) {
+            out += text;
+        } else if (bytes[0] == '\t' || bytes[0] == '\n' || !is_control_byte(static_cast<unsigned char>(bytes[0]))) {
+            out += bytes[0];
         }
-        const char c = bytes[0];
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        case '\'':
-            out += "&#39;";
-            break;
-        case '\t':
-        case '\n':
-            out += c;
-            break;
-        default:
-            if (!is_control_byte(static_cast<unsigned char>(c)))
-                out += c;
-        }
-    }
-    return out;
+    });
 }
 
 std::string xml_text(std::string_view s)
 {
     // html_text per code point, except the two non-characters XML 1.0 excludes
     // from its Char production: replaced like an invalid byte.
-    std::string out;
-    out.reserve(s.size());
-    for (std::size_t i = 0; i < s.size();) {
-        const unit u = next_unit(s, i);
-        const std::string_view bytes = s.substr(i, u.len);
-        i += u.len;
+    return per_unit(s, [](std::string &out, const unit &u, std::string_view bytes) {
         if (u.valid && (u.cp == 0xFFFE || u.cp == 0xFFFF))
             out += "&#xFFFD;";
         else
             out += html_text(bytes);
-    }
-    return out;
+    });
 }
 
 std::string display_text(std::string_view s, std::size_t max_bytes)

@@ -458,6 +458,18 @@ section no_stick_section(const context &)
 
 // ---------------------------------------------------------------- 6. slide
 
+// text, then the aside in parentheses when there is one.
+paragraph with_aside(paragraph text, const paragraph &aside)
+{
+    if (!aside.spans.empty()) {
+        text.w(" (");
+        for (const span &x : aside.spans)
+            text.spans.push_back(x);
+        text.w(")");
+    }
+    return text;
+}
+
 section slide_section(const context &c)
 {
     section sec{c.has_stick() ? "If the test fails: sliding" : "Sliding", {}};
@@ -519,13 +531,7 @@ section slide_section(const context &c)
             gn.t("with $c_d² + s_d² = 1$: a trigonometric polynomial of degree 2 in $θ$, at most four roots; no closed "
                  "form, so "
                  "a numeric problem's roots are found numerically");
-            if (!g.note.spans.empty()) {
-                gn.w(" (");
-                for (const span &x : g.note.spans)
-                    gn.spans.push_back(x);
-                gn.w(")");
-            }
-            g.note = gn;
+            g.note = with_aside(gn, g.note);
             sec.rows({g});
         }
         sec.para(paragraph().w(std::string("It holds when") + (sc.needs_angle ? " (at a root θ)" : "") + ":"));
@@ -624,6 +630,45 @@ section slide_regimes_section(const context &c)
     return sec;
 }
 
+// The energy the bodies lose: the general formula, its stick and slide forms, and each
+// regime's loss.
+void energy_part(section &sec, const context &c)
+{
+    const regime_case &st = c.stick();
+    sec.para(paragraph().t(
+        "Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
+        "mean relative velocity of the contact points:"));
+    sec.rows(
+        {formula_row("T_lost = T - T′ = -P·(u + u′)/2",
+                     "T_{\\text{lost}} = T - T' = -\\underline{P}\\cdot(\\underline{u} + \\underline{u}')/2"),
+         formula_row("stick (u′ = -e u_n e_n):   T_lost = -(F·u + (1 - e) N u_n)/2",
+                     "\\text{stick: } T_{\\text{lost}} = -(\\underline{F}\\cdot\\underline{u} + (1 - e)\\,N u_n)/2",
+                     "$(1 - e) N u_n ≤ 0$ is the loss of restitution; $~F·~u$, the work of friction on the sliding "
+                     "before impact"),
+         formula_row("slide (u′ = λ d - e u_n e_n):   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2",
+                     "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + \\lambda) - "
+                     "(1 - e)\\,u_n)/2",
+                     "both terms are losses when the sliding keeps its direction ($~d·~u > 0$)")});
+    std::vector<math_row> energy;
+    const ex T = symbol("T", "T");
+    ex before = tidy(st.sol.energy_before);
+    if (printable(before, 200)) {
+        math_row r = row(T, before);
+        r.note.t("kinetic energy before impact (bodies of finite mass); $T′ = T - T_lost$");
+        energy.push_back(r);
+    }
+    for (const regime_case &rc : c.f.cases) {
+        const ex lost = energy_lost_formula(c, rc);
+        if (!rc.needs_angle && !identically_zero(rc.sol, lost - rc.sol.energy_lost))
+            continue;
+        math_row r = srow(symbol("T_lost", "T_{\\text{lost}}"), lost);
+        paragraph note = regime_words(rc);
+        r.note = with_aside(note, r.note);
+        energy.push_back(r);
+    }
+    sec.rows(energy);
+}
+
 section regimes_section(const context &c)
 {
     section sec{"The regimes as conditions on μ, and the energy", {}};
@@ -683,45 +728,7 @@ section regimes_section(const context &c)
             "At $μ = μ*$ the stick impulse lies on the edge of the cone: there $λ = 0$ and the slide's impulse equals "
             "the stick impulse, so the answer changes continuously with $μ$."));
 
-    // Energy.
-    sec.para(paragraph().t(
-        "Energy: as $K$ is symmetric, the kinetic energy the bodies lose is the work of the contact impulse over the "
-        "mean relative velocity of the contact points:"));
-    sec.rows(
-        {formula_row("T_lost = T - T′ = -P·(u + u′)/2",
-                     "T_{\\text{lost}} = T - T' = -\\underline{P}\\cdot(\\underline{u} + \\underline{u}')/2"),
-         formula_row("stick (u′ = -e u_n e_n):   T_lost = -(F·u + (1 - e) N u_n)/2",
-                     "\\text{stick: } T_{\\text{lost}} = -(\\underline{F}\\cdot\\underline{u} + (1 - e)\\,N u_n)/2",
-                     "$(1 - e) N u_n ≤ 0$ is the loss of restitution; $~F·~u$, the work of friction on the sliding "
-                     "before impact"),
-         formula_row("slide (u′ = λ d - e u_n e_n):   T_lost = N (μ (d·u + λ) - (1 - e) u_n)/2",
-                     "\\text{slide: } T_{\\text{lost}} = N\\,(\\mu\\,(\\underline{d}\\cdot\\underline{u} + \\lambda) - "
-                     "(1 - e)\\,u_n)/2",
-                     "both terms are losses when the sliding keeps its direction ($~d·~u > 0$)")});
-    std::vector<math_row> energy;
-    const ex T = symbol("T", "T");
-    ex before = tidy(st.sol.energy_before);
-    if (printable(before, 200)) {
-        math_row r = row(T, before);
-        r.note.t("kinetic energy before impact (bodies of finite mass); $T′ = T - T_lost$");
-        energy.push_back(r);
-    }
-    for (const regime_case &rc : c.f.cases) {
-        const ex lost = energy_lost_formula(c, rc);
-        if (!rc.needs_angle && !identically_zero(rc.sol, lost - rc.sol.energy_lost))
-            continue;
-        math_row r = srow(symbol("T_lost", "T_{\\text{lost}}"), lost);
-        paragraph note = regime_words(rc);
-        if (!r.note.spans.empty()) {
-            note.w(" (");
-            for (const span &x : r.note.spans)
-                note.spans.push_back(x);
-            note.w(")");
-        }
-        r.note = note;
-        energy.push_back(r);
-    }
-    sec.rows(energy);
+    energy_part(sec, c);
     return sec;
 }
 

@@ -56,35 +56,37 @@ math_row value_row(const ex &lhs, const ex &rhs, const std::string &note)
     return r;
 }
 
+// A body as the statement gives it: its mass, inertia, centre and motion before impact.
+paragraph body_item(const problem &p, const body &B)
+{
+    paragraph q;
+    q.w(display_name(B) + ": ");
+    if (B.infinite_mass) {
+        q.w("infinite mass (it keeps its motion), velocity ");
+        return vector_span(q, B.velocity, p.dimension);
+    }
+    q.w("mass ").m(B.mass);
+    if (!B.particle) {
+        q.w(", moment of inertia about its centre ");
+        if (p.dimension == 2)
+            q.m(B.inertia[2][2]);
+        else
+            q.w("(a matrix)");
+    }
+    vector_span(q.w(", centre at "), B.position, p.dimension);
+    vector_span(q.w(", velocity before "), B.velocity, p.dimension);
+    if (!B.particle && p.dimension == 2)
+        q.w(", angular velocity before ").m(B.angular_velocity[2]);
+    else if (!B.particle)
+        vector_span(q.w(", angular velocity before "), B.angular_velocity, 3);
+    return q.w(B.particle ? " (a particle)" : "");
+}
+
 std::vector<paragraph> body_items(const problem &p)
 {
     std::vector<paragraph> items;
-    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
-        const body &B = p.bodies[b];
-        paragraph q;
-        q.w(display_name(B) + ": ");
-        if (B.infinite_mass) {
-            q.w("infinite mass (it keeps its motion), velocity ");
-            vector_span(q, B.velocity, p.dimension);
-            items.push_back(q);
-            continue;
-        }
-        q.w("mass ").m(B.mass);
-        if (!B.particle) {
-            q.w(", moment of inertia about its centre ");
-            if (p.dimension == 2)
-                q.m(B.inertia[2][2]);
-            else
-                q.w("(a matrix)");
-        }
-        vector_span(q.w(", centre at "), B.position, p.dimension);
-        vector_span(q.w(", velocity before "), B.velocity, p.dimension);
-        if (!B.particle && p.dimension == 2)
-            q.w(", angular velocity before ").m(B.angular_velocity[2]);
-        else if (!B.particle)
-            vector_span(q.w(", angular velocity before "), B.angular_velocity, 3);
-        items.push_back(q.w(B.particle ? " (a particle)" : ""));
-    }
+    for (const body &B : p.bodies)
+        items.push_back(body_item(p, B));
     return items;
 }
 

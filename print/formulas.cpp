@@ -22,18 +22,23 @@ struct formula_line {
     std::string meaning;
 };
 
+// The unknowns with their values (unknown_values: unknown == value, in the derivation's
+// order), but the normal impulse, which is already a step.
+void add_unknowns(const derivation &d, const ex &unknown_values, std::vector<formula_line> &lines)
+{
+    for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
+        const unknown &u = d.unknowns[k];
+        if (u.kind != unknown_kind::normal_impulse)
+            lines.push_back({u.sym.get_name(), symbol_latex(u.sym), unknown_values.op(k).rhs(), u.meaning});
+    }
+}
+
 std::vector<formula_line> collect(const derivation &d, const solution &s)
 {
     std::vector<formula_line> lines;
     for (const step &st : s.steps)
         lines.push_back({st.sym.get_name(), symbol_latex(st.sym), st.value, st.meaning});
-    for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
-        const unknown &u = d.unknowns[k];
-        if (u.kind == unknown_kind::normal_impulse)
-            continue; // N is already a step
-        ex v = s.unknown_values.op(k).rhs();
-        lines.push_back({u.sym.get_name(), symbol_latex(u.sym), v, u.meaning});
-    }
+    add_unknowns(d, s.unknown_values, lines);
     return lines;
 }
 
@@ -95,22 +100,13 @@ std::string relation(const regime_condition &c)
     return c.strict ? " > 0" : " >= 0";
 }
 
-struct case_line {
-    std::string name_text, name_tex;
-    ex value;
-    std::string meaning;
-};
+using case_line = formula_line;
 
 std::vector<case_line> case_results(const derivation &d, const regime_case &c)
 {
     std::vector<case_line> lines;
     const problem &p = d.prob;
-    for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
-        const unknown &u = d.unknowns[k];
-        if (u.kind == unknown_kind::normal_impulse)
-            continue;
-        lines.push_back({u.sym.get_name(), symbol_latex(u.sym), c.sol.unknown_values.op(k).rhs(), u.meaning});
-    }
+    add_unknowns(d, c.sol.unknown_values, lines);
     if (p.dimension == 3)
         for (int a = 0; a < 3; ++a)
             if (!is_a<symbol>(c.tangential_impulse[a])) // a step already

@@ -33,11 +33,7 @@ namespace
 
 // One body of the contact: its response (response.hpp) with the inverse inertia as the
 // steps keep it.
-struct side {
-    body_response r;
-    int sign = 1;          // body 1 receives -P, body 2 +P
-    mat3 inv = zero_mat(); // inverse inertia about C (free) or E (pinned); planar: [2][2] only
-};
+using side = contact_side;
 
 // Change of the contact point's velocity for the impulse P on this body.
 vec3 point_response(const side &sd, const vec3 &P)
@@ -54,7 +50,7 @@ vec3 unit_axis(int a)
 
 // The shared part: sides, K, u, u_n (steps in s).
 struct shared_part {
-    side sides[2];
+    std::array<side, 2> sides;
     mat3 K = zero_mat(); // entries: steps or inline values
     vec3 u = zero_vec(); // relative velocity of the contact points, world
     ex un;               // u . n_hat (step)
@@ -154,34 +150,7 @@ shared_part build_shared(const derivation &d, solution &s, step_builder &sb)
 // Bodies after impact, pivot impulses and energies for the impulse P (world, on body 2).
 void finish_case(const derivation &d, const shared_part &sh, regime_case &c)
 {
-    const problem &p = d.prob;
-    solution &s = c.sol;
-    s.after.resize(p.bodies.size());
-    for (std::size_t i = 0; i < p.bodies.size(); ++i)
-        s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
-    s.pivot_impulses.assign(p.pivots.size(), zero_vec());
-    for (const side &sd : sh.sides) {
-        const body &b = p.bodies[sd.r.index];
-        if (b.infinite_mass)
-            continue;
-        const pivot *pv = p.pivot_of(sd.r.index);
-        const vec3 Pi = ex(sd.sign) * c.impulse;
-        const vec3 dw = spin_change(sd.r, sd.inv, Pi), dv = centre_velocity_change(sd.r, Pi, dw);
-        for (int a = 0; a < 3; ++a) {
-            s.after[sd.r.index].velocity[a] = b.velocity[a] + dv[a];
-            s.after[sd.r.index].angular_velocity[a] = b.angular_velocity[a] + dw[a];
-        }
-        if (pv) {
-            const std::size_t k = static_cast<std::size_t>(pv - p.pivots.data());
-            s.pivot_impulses[k] = pivot_impulse(sd.r, Pi, dv);
-            if (p.dimension == 2)
-                s.pivot_impulses[k][2] = 0;
-        }
-    }
-    s.unknown_values = unknown_values(d, s);
-    set_energies(p, s);
-    s.energy_after = s.energy_after_direct;
-    s.energy_lost = s.energy_before - s.energy_after_direct;
+    apply_impulse(d, sh.sides, c, false);
 }
 
 void add_tangential(const derivation &d, regime_case &c, step_builder &sb, const ex &Pn)
@@ -455,6 +424,38 @@ regime_case substituted(const regime_case &c, const ex &inputs, const lst &value
 }
 
 } // namespace
+
+void apply_impulse(const derivation &d, const std::array<contact_side, 2> &sides, regime_case &c, bool tidied)
+{
+    auto clean = [tidied](const ex &x) { return tidied ? tidy(x) : x; };
+    const problem &p = d.prob;
+    solution &s = c.sol;
+    s.after.resize(p.bodies.size());
+    for (std::size_t i = 0; i < p.bodies.size(); ++i)
+        s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
+    s.pivot_impulses.assign(p.pivots.size(), zero_vec());
+    for (const contact_side &sd : sides) {
+        const body &b = p.bodies[sd.r.index];
+        if (b.infinite_mass)
+            continue;
+        const vec3 Pi = ex(sd.sign) * c.impulse;
+        const vec3 dw = spin_change(sd.r, sd.inv, Pi), dv = centre_velocity_change(sd.r, Pi, dw);
+        for (int a = 0; a < 3; ++a) {
+            s.after[sd.r.index].velocity[a] = clean(b.velocity[a] + dv[a]);
+            s.after[sd.r.index].angular_velocity[a] = clean(b.angular_velocity[a] + dw[a]);
+        }
+        if (const pivot *pv = p.pivot_of(sd.r.index)) {
+            const std::size_t k = static_cast<std::size_t>(pv - p.pivots.data());
+            s.pivot_impulses[k] = pivot_impulse(sd.r, Pi, dv);
+            if (p.dimension == 2)
+                s.pivot_impulses[k][2] = 0;
+        }
+    }
+    s.unknown_values = unknown_values(d, s);
+    set_energies(p, s);
+    s.energy_after = s.energy_after_direct;
+    s.energy_lost = clean(s.energy_before - s.energy_after_direct);
+}
 
 friction_solution solve_friction(const derivation &d)
 {

@@ -924,26 +924,7 @@ std::string show_value(const ex &e)
 problem substitute(const problem &p, const ex &values)
 {
     problem q = p;
-    auto sv = [&](vec3 &v) { v = subs(v, values); };
-    q.restitution = p.restitution.subs(values);
-    for (body &b : q.bodies) {
-        b.mass = b.mass.subs(values);
-        for (auto &row : b.inertia)
-            sv(row);
-        sv(b.position);
-        sv(b.velocity);
-        sv(b.angular_velocity);
-    }
-    for (contact_spec &c : q.contacts) {
-        sv(c.point);
-        sv(c.normal);
-        c.set_friction(c.friction().subs(values));
-        c.restitution = c.restitution.subs(values);
-    }
-    for (pivot &pv : q.pivots)
-        sv(pv.point);
-    for (joint &j : q.joints)
-        sv(j.point);
+    for_each_value(q, [&](ex &x) { x = x.subs(values); });
     return q;
 }
 

@@ -173,6 +173,40 @@ std::string display_name(const body &b);
 vec3 point_velocity(const body &b, const vec3 &q);
 vec3 point_velocity(const body &b, const vec3 &v, const vec3 &w, const vec3 &q);
 
+/// Calls put(ex &) on every value of the problem a number can stand for: the restitution, each
+/// body's mass, position, velocity, spin and inertia, each contact's point, normal, friction
+/// coefficient and restitution, each pivot's and joint's point.
+template <typename Put> void for_each_value(problem &p, Put &&put)
+{
+    put(p.restitution);
+    for (body &b : p.bodies) {
+        put(b.mass);
+        for (int r = 0; r < 3; ++r) {
+            put(b.position[r]);
+            put(b.velocity[r]);
+            put(b.angular_velocity[r]);
+            for (int c = 0; c < 3; ++c)
+                put(b.inertia[r][c]);
+        }
+    }
+    for (contact_spec &c : p.contacts) {
+        for (int r = 0; r < 3; ++r) {
+            put(c.point[r]);
+            put(c.normal[r]);
+        }
+        ex mu = c.friction();
+        put(mu);
+        c.set_friction(mu);
+        put(c.restitution);
+    }
+    for (pivot &pv : p.pivots)
+        for (int r = 0; r < 3; ++r)
+            put(pv.point[r]);
+    for (joint &j : p.joints)
+        for (int r = 0; r < 3; ++r)
+            put(j.point[r]);
+}
+
 /// The problem with every symbol replaced (symbol == value list).
 problem substitute(const problem &p, const GiNaC::ex &symbol_values);
 

@@ -28,6 +28,15 @@ struct body_response {
     mat3 inertia = zero_mat(); ///< about C (free: as given) or about E (pinned: parallel-axis theorem)
 };
 
+/// One body of a contact: its response, the sign of the contact impulse it receives (body 1
+/// -P, body 2 +P) and its inverse inertia about C (free) or E (pinned) as the caller keeps it
+/// (planar: [2][2] only).
+struct contact_side {
+    body_response r;
+    int sign = 1;
+    mat3 inv = zero_mat();
+};
+
 /// The inertia of a body about the point E: I_C + m (|d|^2 1 - d d^T), d = C - E, each entry
 /// tidied (planar problems read the [2][2] entry, I_C + m |d|^2).
 mat3 inertia_about(const body &b, const vec3 &E);

@@ -327,11 +327,7 @@ std::string contact_where(const problem &p, const std::string &key)
 }
 
 // The two bodies of the contact with their inverse inertia (planar: the [2][2] entry).
-struct process_side {
-    body_response r;
-    int sign = 1; // body 1 receives -P, body 2 +P
-    mat3 inv = zero_mat();
-};
+using process_side = contact_side;
 
 std::array<process_side, 2> sides_of(const problem &p)
 {
@@ -344,37 +340,6 @@ std::array<process_side, 2> sides_of(const problem &p)
         if (x.r.movable && !x.r.particle)
             x.inv[2][2] = 1 / x.r.inertia[2][2];
     return sd;
-}
-
-// The bodies after the impulse P (world, on body 2), the pivots' impulses and the energies.
-void finish(const derivation &d, regime_case &c)
-{
-    const problem &p = d.prob;
-    solution &s = c.sol;
-    s.after.resize(p.bodies.size());
-    for (std::size_t i = 0; i < p.bodies.size(); ++i)
-        s.after[i] = {p.bodies[i].velocity, p.bodies[i].angular_velocity};
-    s.pivot_impulses.assign(p.pivots.size(), zero_vec());
-    for (const process_side &sd : sides_of(p)) {
-        const body &b = p.bodies[sd.r.index];
-        if (b.infinite_mass)
-            continue;
-        const vec3 Pi = ex(sd.sign) * c.impulse;
-        const vec3 dw = spin_change(sd.r, sd.inv, Pi), dv = centre_velocity_change(sd.r, Pi, dw);
-        for (int a = 0; a < 3; ++a) {
-            s.after[sd.r.index].velocity[a] = tidy(b.velocity[a] + dv[a]);
-            s.after[sd.r.index].angular_velocity[a] = tidy(b.angular_velocity[a] + dw[a]);
-        }
-        if (const pivot *pv = p.pivot_of(sd.r.index)) {
-            const std::size_t k = static_cast<std::size_t>(pv - p.pivots.data());
-            s.pivot_impulses[k] = pivot_impulse(sd.r, Pi, dv);
-            s.pivot_impulses[k][2] = 0;
-        }
-    }
-    s.unknown_values = unknown_values(d, s);
-    set_energies(p, s);
-    s.energy_after = s.energy_after_direct;
-    s.energy_lost = tidy(s.energy_before - s.energy_after_direct);
 }
 
 regime_case case_of(const derivation &d, const solution &shared, const process_sequence &q)
@@ -395,7 +360,7 @@ regime_case case_of(const derivation &d, const solution &shared, const process_s
         c.direction[a] = 0;
     }
     c.sliding_speed = q.tangential_velocity;
-    finish(d, c);
+    apply_impulse(d, sides_of(d.prob), c, true); // a planar process: no pivot impulse along z
     return c;
 }
 

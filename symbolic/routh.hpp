@@ -25,7 +25,9 @@
 #pragma once
 
 #include "friction.hpp"
+#include "response.hpp"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -83,5 +85,11 @@ process_inputs process_inputs_of(const derivation &d, solution &s);
 /// input_error naming contact.law when the problem's contact has friction and a law other than
 /// newton. `what` names the output ("explain", "codegen").
 void require_newton_for_output(const problem &p, const std::string &what);
+
+/// A candidate's solution from its impulse c.impulse (world, on body 2), the friction candidates'
+/// and the process's alike: the bodies after impact, the pivots' impulses (planar: no z
+/// component), the unknowns' values and the energies; with tidied, each velocity after and
+/// the energy lost tidied.
+void apply_impulse(const derivation &d, const std::array<contact_side, 2> &sides, regime_case &c, bool tidied);
 
 } // namespace impactgen
