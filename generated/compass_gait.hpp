@@ -192,8 +192,8 @@ template <typename T, typename... U> IMPACTGEN_FUNC constexpr T min_of(T x, T y,
 } // namespace detail
 #endif
 
-#ifndef IMPACTGEN_FRICTION_PREAMBLE_3E3708F6_IMPACTGEN_GENERATED_815A1DA3C3B820F8
-#define IMPACTGEN_FRICTION_PREAMBLE_3E3708F6_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#ifndef IMPACTGEN_FRICTION_PREAMBLE_D11F01FC_IMPACTGEN_GENERATED_815A1DA3C3B820F8
+#define IMPACTGEN_FRICTION_PREAMBLE_D11F01FC_IMPACTGEN_GENERATED_815A1DA3C3B820F8
 /// Why a call of a generated function with friction computed no post-impact state; the
 /// first values are those of impact_status (same numbers). On any status but ok the
 /// result holds the state unchanged: the velocities as before the impact, every impulse,
@@ -731,7 +731,7 @@ IMPACTGEN_FUNC bool trig2_split(T a0, T a1, T b1, T a2, T b2, T L1, T L2, T L3, 
             const int kind = trig2_classify(b, L1, L2, L3);
             if (kind == 2)
                 todo[top++] = b;
-            if (kind == 1 && !trig2_add(f, b, (b.cl * b.sh - b.sl * b.ch) / (T(1) + b.cl * b.ch + b.sl * b.sh))) // tan(w / 2)
+            if (kind == 1 && !trig2_add<T>(f, b, (b.cl * b.sh - b.sl * b.ch) / (T(1) + b.cl * b.ch + b.sl * b.sh))) // tan(w / 2)
                 return false;
         }
     }
@@ -819,10 +819,10 @@ template <typename T> IMPACTGEN_FUNC int trig2_roots(T a0, T a1, T b1, T a2, T b
         const int kind = ((open >> k) & 1u) != 0u ? trig2_classify(a, L1, L2, L3) : 1;
         if (kind == 2)
             todo[top++] = a;
-        if (kind == 1 && !trig2_add(found, a, tw0))
+        if (kind == 1 && !trig2_add<T>(found, a, tw0))
             return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
     }
-    if (!trig2_split(a0, a1, b1, a2, b2, L1, L2, L3, todo, top, found))
+    if (!trig2_split<T>(a0, a1, b1, a2, b2, L1, L2, L3, todo, top, found))
         return trig2_roots_circle(a0, a1, b1, a2, b2, g, rc, rs);
     if (found.n == 0)
         return 0;
