@@ -2,6 +2,7 @@
 
 #include "answer.hpp"
 #include "canonical.hpp"
+#include "explain_system.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
 #include "symbolic/system_process.hpp"
@@ -453,8 +454,9 @@ std::string system_formulas_text(const problem &p, bool latex)
 {
     const std::vector<system_candidate> cs = system_candidates(p);
     std::ostringstream os;
-    os << (latex ? "% " : "") << "System: " << p.contacts.size() << " contact(s), " << p.joints.size() << " joint(s), "
-       << p.pivots.size() << " pivot(s). "
+    os << (latex ? "% " : "") << "System: " << detail::count_of(p.contacts.size(), "contact", "contacts") << ", "
+       << detail::count_of(p.joints.size(), "joint", "joints") << ", "
+       << detail::count_of(p.pivots.size(), "pivot", "pivots") << ". "
        << (system_follows_process(p)
                ? "Candidates of Routh's process at contact 0 (restitution by the " +
                      std::string(law_name(p.contacts[0].law_of_restitution)) +

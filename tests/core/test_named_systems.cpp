@@ -2,6 +2,8 @@
 // system whose worked example is the example file's problem, and carries the published
 // results in its closed form -- the compass gait's two conserved angular momenta, the three
 // balls' simultaneous and sequential answers, the double pendulum's impulse as derived by hand.
+#include "print/answer.hpp"
+#include "print/formulas.hpp"
 #include "symbolic/decide.hpp"
 #include "symbolic/derivation.hpp"
 #include "symbolic/named_systems.hpp"
@@ -182,6 +184,86 @@ TEST(NamedSystems, TwoCornerLandingOneCornerStrikesTheOtherRests)
     for (const system_candidate& c : cs)
         names.insert(c.name());
     EXPECT_EQ(names.size(), 16u);
+}
+
+// Where one corner sticks the other cannot slip (both lie on the ground line and move alike
+// along it), and where both stick only the sum of their friction impulses is fixed. The law
+// holds whenever some split fits both friction cones; where no basic split does (neither corner
+// alone can carry the whole friction impulse), a split with one impulse on its cone's edge (a
+// slide with zero slip) does. A grid of landings, each decided exactly: never refused where a
+// split fits, every answer obeys Coulomb's law at both corners, and the impulses are not unique.
+TEST(NamedSystems, TwoCornerLandingEverySplitThatFitsIsFound)
+{
+    const problem p = find_named_class("two-corner-landing")->build();
+    using GiNaC::numeric;
+    int edge_only = 0, answered = 0;
+    for (const numeric& b : {numeric(1, 2), numeric(1), numeric(2)})
+        for (const numeric& mu : {numeric(1, 5), numeric(1, 2), numeric(1)})
+            for (const numeric& vx : {numeric(-2), numeric(-1), numeric(0), numeric(1), numeric(2)})
+                for (const numeric& w : {numeric(-2), numeric(1), numeric(2)}) {
+                    const problem q = substitute(p, GiNaC::lst{S("m") == 1, S("a") == 1, S("b") == b, S("e") == numeric(1, 2),
+                                                               S("mu") == mu, S("v_x") == vx, S("w") == w});
+                    bool basic_stick = false;
+                    for (const system_candidate& c : system_candidates(q))
+                        if (c.name() == "{0 stick, 1 stick}")
+                            basic_stick = basic_stick || system_candidate_failure(c) < 0;
+                    system_answer a;
+                    try {
+                        a = solve_system(q);
+                    } catch (const input_error& e) {
+                        continue; // e.g. not an impact, or a foot that would have to pull
+                    }
+                    ++answered;
+                    body after = q.bodies[1];
+                    after.velocity = a.result.velocity[1];
+                    after.angular_velocity = a.result.angular_velocity[1];
+                    for (std::size_t i = 0; i < 2; ++i) {
+                        const ex P = a.result.normal_impulse[i], F = a.result.tangential_impulse[i][0];
+                        const vec3 u0 = point_velocity(q.bodies[1], q.contacts[i].point);
+                        const vec3 u1 = point_velocity(after, q.contacts[i].point);
+                        EXPECT_NE(decide(P), decision::negative);
+                        EXPECT_NE(decide(u1[1] + numeric(1, 2) * u0[1]), decision::negative);
+                        EXPECT_EQ(decide(P * (u1[1] + numeric(1, 2) * u0[1])), decision::zero);
+                        EXPECT_NE(decide(mu * P - abs(F)), decision::negative) << "outside the cone";
+                        if (decide(P) == decision::positive && decide(mu * P - abs(F)) == decision::positive) {
+                            EXPECT_EQ(decide(u1[0]), decision::zero) << "inside the cone and slipping";
+                        }
+                        if (decide(u1[0]) != decision::zero) { // slipping: F opposes the slip, on the edge
+                            EXPECT_EQ(decide(F + mu * P * u1[0] / abs(u1[0])), decision::zero);
+                        }
+                    }
+                    if (!basic_stick && a.result.regimes[0] != contact_regime::open &&
+                        a.result.regimes[1] != contact_regime::open &&
+                        decide(point_velocity(after, q.contacts[0].point)[0]) == decision::zero) {
+                        ++edge_only; // both corners stick, at a split no basic solution gives
+                        // the split is unique only where both impulses are on their cones' edges
+                        bool both_edges = true;
+                        for (std::size_t k = 0; k < 2; ++k)
+                            both_edges = both_edges && decide(mu * a.result.normal_impulse[k] -
+                                                              abs(a.result.tangential_impulse[k][0])) == decision::zero;
+                        EXPECT_EQ(a.impulses_unique, both_edges) << a.result.name();
+                    }
+                }
+    EXPECT_GT(answered, 50);
+    EXPECT_GT(edge_only, 0) << "the grid holds no landing whose split is only on a cone's edge";
+}
+
+// The plain-text answer and formulas of a system count in words, and a body named by a number
+// is "body 1", not a bare "1:".
+TEST(NamedSystems, TextCountsInWordsAndNamesNumberedBodies)
+{
+    const problem p = find_named_class("three-balls")->build();
+    const problem q = substitute(p, GiNaC::lst{S("m") == 1, S("R") == 1, S("e") == 1, S("v") == 1});
+    const std::string t = print::system_answer_text(q, solve_system(q));
+    EXPECT_NE(t.find("System of three bodies, two contacts, no joint, no pivot;"), std::string::npos) << t;
+    EXPECT_NE(t.find("\n  body 1:\n"), std::string::npos) << t;
+    EXPECT_EQ(t.find("\n  1:"), std::string::npos) << t;
+    EXPECT_EQ(t.find("(s)"), std::string::npos) << t;
+    const std::string f = print::system_formulas_text(find_named_class("compass-gait")->build(), false);
+    EXPECT_EQ(f.rfind("System: two contacts, one joint, no pivot. ", 0), 0u) << f.substr(0, 80);
+    const std::string d = print::system_answer_text(from_file("double-pendulum-struck.json"),
+                                                    solve_system(from_file("double-pendulum-struck.json")));
+    EXPECT_EQ(d.rfind("System of three bodies, one contact, one joint, one pivot;", 0), 0u) << d.substr(0, 80);
 }
 
 namespace {
