@@ -8,6 +8,7 @@
 #include "symbolic/derivation.hpp"
 #include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
+#include "symbolic/system_jacobian.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include <set>
 #include <chrono>
 #include <cstdio>
+#include <random>
 #include <sys/wait.h>
 
 using namespace impactgen;
@@ -266,6 +268,60 @@ TEST(NamedSystems, TextCountsInWordsAndNamesNumberedBodies)
     EXPECT_EQ(d.rfind("System of three bodies, one contact, one joint, one pivot;", 0), 0u) << d.substr(0, 80);
 }
 
+// formulas --jacobian of a system: every candidate set's derivatives of the velocities after
+// impact against central finite differences of its closed form, at seeded random rational
+// points (exact arithmetic, step 1e-4 of the value: the difference's error is of order h^2
+// times the third derivative, far below the 1e-5 relative bound), for two named classes; --wrt
+// chooses the columns, and a name that is not a symbol is refused naming --wrt.
+TEST(NamedSystems, JacobianOfEverySetMatchesCentralDifferences)
+{
+    using GiNaC::numeric;
+    std::mt19937 g(2026);
+    for (const char* name : {"compass-gait", "double-pendulum-struck"}) {
+        const problem p = find_named_class(name)->build();
+        const system_jacobian j = system_jacobian_of(p, {});
+        ASSERT_EQ(j.wrt.size(), p.parameters().size());
+        ASSERT_EQ(j.sets.size(), system_candidates(p).size());
+        int checked = 0;
+        for (int trial = 0; trial < 3; ++trial) {
+            std::vector<numeric> x; // masses, lengths, e in (0, 1); speeds of either sign
+            for (const GiNaC::symbol& s : j.wrt) {
+                const numeric r(std::uniform_int_distribution<int>(1, 999)(g), 1000);
+                const std::string n = s.get_name();
+                const bool speed = n == "w1" || n == "w2" || n == "v" || n == "w" || n == "v_x";
+                x.push_back(speed ? 2 * r - 1 : n == "e" ? r : 1 + 3 * r);
+            }
+            auto at = [&](std::size_t moved, const numeric& h) {
+                GiNaC::lst l;
+                for (std::size_t k = 0; k < x.size(); ++k)
+                    l.append(j.wrt[k] == (k == moved ? x[k] + h : x[k]));
+                return l;
+            };
+            for (const system_set_jacobian& s : j.sets)
+                for (std::size_t o = 0; o < j.outputs.size(); ++o) {
+                    const system_velocity_output& out = j.outputs[o];
+                    const ex v = (out.angular ? s.candidate.angular_velocity : s.candidate.velocity)[out.body]
+                                                                                                 [static_cast<std::size_t>(out.component)];
+                    for (std::size_t w = 0; w < j.wrt.size(); ++w) {
+                        const numeric h = (abs(x[w]) + 1) / 10000;
+                        const ex fd = (v.subs(at(w, h)) - v.subs(at(w, -h))) / (2 * h);
+                        const ex d = s.entries[o][w].subs(at(w, 0));
+                        const double a = GiNaC::ex_to<numeric>(GiNaC::evalf(d)).to_double(),
+                                     b = GiNaC::ex_to<numeric>(GiNaC::evalf(fd)).to_double();
+                        EXPECT_NEAR(a, b, 1e-5 * (1 + std::abs(a))) << name << " " << s.candidate.name() << " d/d "
+                                                                  << j.wrt[w].get_name();
+                        ++checked;
+                    }
+                }
+        }
+        EXPECT_GT(checked, 100) << name;
+        const system_jacobian one = system_jacobian_of(p, {j.wrt.back().get_name()});
+        ASSERT_EQ(one.wrt.size(), 1u);
+        EXPECT_TRUE(same(one.sets[0].entries[0][0], j.sets[0].entries[0][j.wrt.size() - 1]));
+        EXPECT_THROW(system_jacobian_of(p, {"nonesuch"}), input_error);
+    }
+}
+
 namespace {
 // Runs the command line; its exit status and the wall time in seconds.
 int run_timed(const std::string& args, double& seconds, std::string& out)
@@ -317,4 +373,23 @@ TEST(Cli, SolveNamedSystemClassWithSet)
     std::string out;
     EXPECT_EQ(run_timed("solve three-balls --set m=1,R=1,e=1", seconds, out), 1) << "v is missing";
     EXPECT_NE(out.find("v"), std::string::npos);
+}
+
+// The command: formulas --jacobian of a system prints each set's Jacobian (text, json), and a
+// numeric system or an unknown --wrt is refused in one line naming --wrt.
+TEST(Cli, FormulasJacobianOfASystem)
+{
+    double seconds = 0;
+    std::string out;
+    ASSERT_EQ(run_timed("formulas compass-gait --jacobian --wrt w1,w2", seconds, out), 0) << out;
+    EXPECT_NE(out.find("Set {0 stick, 1 open}:"), std::string::npos) << out;
+    EXPECT_NE(out.find("d w'_swing / d w2 = "), std::string::npos) << out;
+    ASSERT_EQ(run_timed("formulas double-pendulum-struck --format json --wrt v", seconds, out), 0) << out;
+    EXPECT_NE(out.find("\"jacobian\""), std::string::npos);
+    for (const std::string& bad : std::vector<std::string>{"formulas compass-gait --wrt q",
+                                  "formulas '" + std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json' --jacobian"}) {
+        EXPECT_EQ(run_timed(bad, seconds, out), 1) << bad;
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+        EXPECT_NE(out.find("--wrt"), std::string::npos) << out;
+    }
 }
