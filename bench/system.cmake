@@ -14,7 +14,7 @@ foreach(spec IN ITEMS
   string(REPLACE "-" "_" fn ${stem})
   set(json ${PROJECT_SOURCE_DIR}/examples/systems/${stem}.json)
   add_custom_command(OUTPUT ${system_bench_dir}/${fn}.hpp
-    COMMAND impactgen codegen ${json} --params ${params} --name ${fn} --namespace impactgen::bench_system
+    COMMAND impactgen --time-limit 0 codegen ${json} --params ${params} --name ${fn} --namespace impactgen::bench_system
             --output ${system_bench_dir}/${fn}.hpp
     DEPENDS impactgen ${json} VERBATIM)
   list(APPEND system_bench_headers ${system_bench_dir}/${fn}.hpp)

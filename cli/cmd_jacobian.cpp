@@ -259,4 +259,20 @@ int process_jacobian_formulas(const problem &p, const std::string &format, const
     return 0;
 }
 
+int system_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt)
+{
+    std::vector<std::string> names;
+    split_wrt(wrt, names);
+    const system_jacobian j = system_jacobian_of(p, names);
+    if (format == "json") {
+        nlohmann::ordered_json a = print::system_formulas_json(p);
+        a["jacobian"] = print::system_jacobian_json(p, j);
+        std::cout << a.dump(2) << "\n";
+    } else {
+        std::cout << print::system_formulas_text(p, format == "latex")
+                  << print::system_jacobian_text(p, j, format == "latex");
+    }
+    return 0;
+}
+
 } // namespace impactgen::cli

@@ -131,8 +131,8 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
 {
     problem p = load(what);
     if (p.is_system()) { // format version 3: every candidate of the law with its conditions
-        if (jacobian)
-            refuse_system_for(p, "formulas --jacobian");
+        if (jacobian)    // every candidate set's closed form differentiated (symbolic/system_jacobian.hpp)
+            return cli::system_jacobian_formulas(p, format, wrt);
         std::cout << (format == "json" ? print::system_formulas_json(p).dump(2) + "\n"
                                        : print::system_formulas_text(p, format == "latex"));
         return 0;
@@ -287,7 +287,7 @@ int main(int argc, char **argv)
     formulas->add_flag("--jacobian", jacobian,
                        "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen "
                        "--jacobian computes them; with friction under \"poisson\" or \"energetic\", per phase "
-                       "sequence of Routh's process");
+                       "sequence of Routh's process; for a system, the velocities after impact per candidate set");
     formulas->add_option("--wrt", wrt,
                          "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 

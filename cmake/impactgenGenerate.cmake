@@ -205,7 +205,7 @@ function(impactgen_generate target)
     OUTPUT "${stamp}"
     BYPRODUCTS "${header}"
     COMMAND "${CMAKE_COMMAND}" -E make_directory "${include_dir}"
-    COMMAND impactgen::impactgen codegen "${problem}" --output "${header}" ${options}
+    COMMAND impactgen::impactgen --time-limit 0 codegen "${problem}" --output "${header}" ${options}
     COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
     DEPENDS "${problem}" "${options_file}" impactgen::impactgen
     COMMENT "impactgen: generating ${target}.hpp from ${arg_PROBLEM}"

@@ -944,11 +944,11 @@ template <typename T> struct two_corner_landing_input {
 //     s1_cond4 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
 //   set 2 {0 slide +t, 1 open}:
 //     s2_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s2_cond2 >= 0  (u'_t > 0 (contacts[0] slides along +t))
+//     s2_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
 //     s2_cond3 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
 //   set 3 {0 slide -t, 1 open}:
 //     s3_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s3_cond2 >= 0  (u'_t < 0 (contacts[0] slides along -t))
+//     s3_cond2 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip))
 //     s3_cond3 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
 //   set 4 {0 open, 1 stick}:
 //     s4_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
@@ -971,56 +971,56 @@ template <typename T> struct two_corner_landing_input {
 //     s6_cond6 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 7 {0 slide +t, 1 stick}:
 //     s7_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s7_cond2 >= 0  (u'_t > 0 (contacts[0] slides along +t))
+//     s7_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
 //     s7_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
 //     s7_cond4 >= 0  (mu P_n - P_t >= 0 (contacts[1] inside the cone))
 //     s7_cond5 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 8 {0 slide -t, 1 stick}:
 //     s8_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s8_cond2 >= 0  (u'_t < 0 (contacts[0] slides along -t))
+//     s8_cond2 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip))
 //     s8_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
 //     s8_cond4 >= 0  (mu P_n - P_t >= 0 (contacts[1] inside the cone))
 //     s8_cond5 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 9 {0 open, 1 slide +t}:
 //     s9_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
 //     s9_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s9_cond3 >= 0  (u'_t > 0 (contacts[1] slides along +t))
+//     s9_cond3 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 10 {0 stick, 1 slide +t}:
 //     s10_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s10_cond2 >= 0  (mu P_n - P_t >= 0 (contacts[0] inside the cone))
 //     s10_cond3 >= 0  (mu P_n + P_t >= 0 (contacts[0] inside the cone))
 //     s10_cond4 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s10_cond5 >= 0  (u'_t > 0 (contacts[1] slides along +t))
+//     s10_cond5 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 11 {0 slide +t, 1 slide +t}:
 //     s11_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s11_cond2 >= 0  (u'_t > 0 (contacts[0] slides along +t))
+//     s11_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
 //     s11_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s11_cond4 >= 0  (u'_t > 0 (contacts[1] slides along +t))
+//     s11_cond4 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 12 {0 slide -t, 1 slide +t}:
 //     s12_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s12_cond2 >= 0  (u'_t < 0 (contacts[0] slides along -t))
+//     s12_cond2 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip))
 //     s12_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s12_cond4 >= 0  (u'_t > 0 (contacts[1] slides along +t))
+//     s12_cond4 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 13 {0 open, 1 slide -t}:
 //     s13_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
 //     s13_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s13_cond3 >= 0  (u'_t < 0 (contacts[1] slides along -t))
+//     s13_cond3 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
 //   set 14 {0 stick, 1 slide -t}:
 //     s14_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s14_cond2 >= 0  (mu P_n - P_t >= 0 (contacts[0] inside the cone))
 //     s14_cond3 >= 0  (mu P_n + P_t >= 0 (contacts[0] inside the cone))
 //     s14_cond4 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s14_cond5 >= 0  (u'_t < 0 (contacts[1] slides along -t))
+//     s14_cond5 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
 //   set 15 {0 slide +t, 1 slide -t}:
 //     s15_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s15_cond2 >= 0  (u'_t > 0 (contacts[0] slides along +t))
+//     s15_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
 //     s15_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s15_cond4 >= 0  (u'_t < 0 (contacts[1] slides along -t))
+//     s15_cond4 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
 //   set 16 {0 slide -t, 1 slide -t}:
 //     s16_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s16_cond2 >= 0  (u'_t < 0 (contacts[0] slides along -t))
+//     s16_cond2 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip))
 //     s16_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s16_cond4 >= 0  (u'_t < 0 (contacts[1] slides along -t))
+//     s16_cond4 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
 // This problem, step by step, as the code below computes it:
 //   check_p1 = a_2 * a_2
 //   check_p2 = b * b

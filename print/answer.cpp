@@ -1,5 +1,6 @@
 #include "answer.hpp"
 
+#include "explain_system.hpp"
 #include "expression.hpp"
 #include "names/escape.hpp"
 
@@ -301,9 +302,12 @@ std::string system_answer_text(const problem &p, const system_answer &a)
     };
     const system_candidate &r = a.result;
     const int n = p.dimension;
-    os << "System of " << p.bodies.size() << " bodies, " << p.contacts.size() << " contact(s), " << p.joints.size()
-       << " joint(s), " << p.pivots.size() << " pivot(s); impacts " << (a.sequential ? "sequential" : "simultaneous")
-       << "\n\n";
+    using detail::body_label;
+    using detail::count_of;
+    os << "System of " << count_of(p.bodies.size(), "body", "bodies") << ", "
+       << count_of(p.contacts.size(), "contact", "contacts") << ", " << count_of(p.joints.size(), "joint", "joints")
+       << ", " << count_of(p.pivots.size(), "pivot", "pivots") << "; impacts "
+       << (a.sequential ? "sequential" : "simultaneous") << "\n\n";
     if (a.sequential) {
         os << "Sequence of contacts:";
         for (std::size_t k : a.sequence)
@@ -312,7 +316,7 @@ std::string system_answer_text(const problem &p, const system_answer &a)
     }
     os << "After impact:\n";
     for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-        os << "  " << p.bodies[i].name << ":\n";
+        os << "  " << body_label(p.bodies[i].name) << ":\n";
         os << "    velocity          " << show_vec(r.velocity[i], n) << "\n";
         os << "    angular velocity  " << (n == 2 ? show(r.angular_velocity[i][2]) : show_vec(r.angular_velocity[i], 3))
            << "\n";
@@ -330,11 +334,11 @@ std::string system_answer_text(const problem &p, const system_answer &a)
         }
     }
     for (std::size_t j = 0; j < r.joint_impulses.size(); ++j)
-        os << "  joint impulse " << j << " on " << p.bodies[p.joints[j].body2].name << "  "
+        os << "  joint impulse " << j << " on " << body_label(p.bodies[p.joints[j].body2].name) << "  "
            << show_vec(r.joint_impulses[j], n) << "\n";
     for (std::size_t k = 0; k < r.pivot_impulses.size(); ++k)
-        os << "  pivot impulse on " << p.bodies[p.pivots[k].body].name << "  " << show_vec(r.pivot_impulses[k], n)
-           << "\n";
+        os << "  pivot impulse on " << body_label(p.bodies[p.pivots[k].body].name) << "  "
+           << show_vec(r.pivot_impulses[k], n) << "\n";
     if (!a.impulses_unique)
         os << "  (the impulses are not unique: these are one valid choice; the velocities are unique)\n";
     os << "Kinetic energy:\n";

@@ -302,6 +302,25 @@ bool candidates_by_impulse(section &sec, const explain_input &in)
     return true;
 }
 
+// Routh's process in a summary: the phases, the end of compression and the end of restitution by
+// the contact's law (Poisson's impulse ratio or Stronge's work ratio).
+void process_rows(std::vector<math_row> &rows, const std::string &e_n, const explain_input &in)
+{
+    rows.push_back(formula_row("slide along d: dP = (e_n - μ d) dN;  stick: u_t = 0 with |P_t| ≤ μ P_n",
+                               "\\text{slide along } \\hat{\\underline{d}}:\\ d\\underline{P} = (" + e_n +
+                                   " - \\mu\\hat{\\underline{d}})\\,dN;\\quad \\text{stick: } u_t = 0,\\ |P_t| "
+                                   "\\le \\mu P_n"));
+    rows.push_back(formula_row("end of compression: u_n = 0 at N = N_c",
+                               "\\text{end of compression: } u_n = 0 \\text{ at } N = N_c"));
+    if (std::holds_alternative<poisson_restitution>(in.d.prob.contact().law_of_restitution))
+        rows.push_back(formula_row("end of restitution (Poisson): N = (1 + e) N_c",
+                                   "\\text{end of restitution (Poisson): } N = (1 + e)\\,N_c"));
+    else
+        rows.push_back(formula_row("end of restitution (Stronge): W_r = -e² W_c, the normal work",
+                                   "\\text{end of restitution (Stronge): } W_r = -e^2 W_c\\ "
+                                   "\\text{(the work of the normal impulse)}"));
+}
+
 // The rows of a summary in vector form, for free bodies whose steps are too many to list (3-D
 // bodies with full inertia tensors): r_i = O - C_i locates the contact point from body i's
 // centre of mass; the impulse P acts on body 2 and -P on body 1.
@@ -345,6 +364,16 @@ void vector_form(section &sec, const explain_input &in)
                    "\\underline{\\underline{I}}_" + i + "^{-1}(\\underline{r}_" + i + " \\times " + P + ")";
         }
         rows.push_back(formula_row(text, tex));
+    }
+    if (friction && follows_process(in.d.prob.contact().law_of_restitution)) {
+        // restitution followed through the impact (Routh): the impulse grows phase by phase, so
+        // the law is stated, not Newton's end-of-impact formula
+        process_rows(rows, e_n, in);
+        sec.boxed_rows(rows);
+        sec.para(paragraph().t("The contact's relative velocity changes linearly with the impulse within each phase; "
+                               "the phases, where each ends and the impulse $~P$ at the end of restitution are "
+                               "derived phase by phase in the full derivation."));
+        return;
     }
     if (friction) {
         rows.push_back(formula_row("stick (u′_t = 0): P = -K⁻¹(u + e u_n e_n)",

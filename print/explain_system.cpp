@@ -363,7 +363,12 @@ std::string count_of(std::size_t n, const std::string &one, const std::string &m
 {
     static const char *const small[] = {"no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine"};
     const std::string number = n < 10 ? small[n] : std::to_string(n);
-    return number + " " + (n == 1 ? one : many);
+    return number + " " + (n <= 1 ? one : many); // "no joint", "one joint", "two joints"
+}
+std::string body_label(const std::string &name)
+{
+    const bool number = !name.empty() && name.find_first_not_of("0123456789") == std::string::npos;
+    return number ? "body " + name : name;
 }
 void system_candidate_values(section &s, const derivation &d, const system_candidate &c)
 {

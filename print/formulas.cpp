@@ -2,6 +2,7 @@
 
 #include "answer.hpp"
 #include "canonical.hpp"
+#include "explain_system.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
 #include "symbolic/system_process.hpp"
@@ -449,8 +450,9 @@ std::string system_formulas_text(const problem &p, bool latex)
 {
     const std::vector<system_candidate> cs = system_candidates(p);
     std::ostringstream os;
-    os << (latex ? "% " : "") << "System: " << p.contacts.size() << " contact(s), " << p.joints.size() << " joint(s), "
-       << p.pivots.size() << " pivot(s). "
+    os << (latex ? "% " : "") << "System: " << detail::count_of(p.contacts.size(), "contact", "contacts") << ", "
+       << detail::count_of(p.joints.size(), "joint", "joints") << ", "
+       << detail::count_of(p.pivots.size(), "pivot", "pivots") << ". "
        << (system_follows_process(p)
                ? "Candidates of Routh's process at contact 0 (restitution by the " +
                      std::string(law_name(p.contacts[0].law_of_restitution)) +
@@ -490,6 +492,75 @@ nlohmann::ordered_json system_formulas_json(const problem &p)
         list.push_back(j);
     }
     out["candidates"] = list;
+    return out;
+}
+
+namespace
+{
+// The name of a velocity after impact, as system_values writes it.
+std::string output_name(const problem &p, const system_velocity_output &o)
+{
+    const char *ax[3] = {"x", "y", "z"};
+    const std::string &b = p.bodies[o.body].name;
+    if (!o.angular)
+        return "v'_" + std::string(ax[o.component]) + "," + b;
+    return p.dimension == 2 ? "w'_" + b : "w'_" + std::string(ax[o.component]) + "," + b;
+}
+} // namespace
+
+std::string system_jacobian_text(const problem &p, const system_jacobian &j, bool latex)
+{
+    std::ostringstream os;
+    const std::string c = latex ? "% " : "";
+    os << "\n"
+       << c << "Jacobian of the impact map per candidate set, d(velocity after impact)/d(input), each set's closed\n"
+       << c << "form differentiated exactly (inputs:";
+    for (const symbol &x : j.wrt)
+        os << " " << x.get_name();
+    os << ").\n"
+       << c << "Where a set's conditions hold strictly the map is smooth; on a boundary between sets (a condition\n"
+       << c << "= 0) its derivative is one-sided: each neighbouring set's own.\n";
+    for (const system_set_jacobian &s : j.sets) {
+        os << "\n" << c << "Set " << s.candidate.name() << ":\n";
+        std::size_t zeros = 0;
+        for (std::size_t o = 0; o < j.outputs.size(); ++o)
+            for (std::size_t w = 0; w < j.wrt.size(); ++w) {
+                if (s.entries[o][w].is_zero()) {
+                    ++zeros;
+                    continue;
+                }
+                os << (latex ? "" : "  ") << "d " << output_name(p, j.outputs[o]) << " / d " << j.wrt[w].get_name()
+                   << " = " << sys_expr(s.entries[o][w], latex) << (latex ? " \\\\" : "") << "\n";
+            }
+        os << c << (latex ? "" : "  ") << "(" << zeros << " of the " << j.outputs.size() * j.wrt.size()
+           << " entries are 0 and not listed)\n";
+    }
+    return os.str();
+}
+
+nlohmann::ordered_json system_jacobian_json(const problem &p, const system_jacobian &j)
+{
+    nlohmann::ordered_json out, wrt = nlohmann::ordered_json::array(), sets = nlohmann::ordered_json::array();
+    for (const symbol &x : j.wrt)
+        wrt.push_back(x.get_name());
+    for (const system_set_jacobian &s : j.sets) {
+        nlohmann::ordered_json js, conds = nlohmann::ordered_json::array(), m = nlohmann::ordered_json::object();
+        js["set"] = s.candidate.name();
+        for (const system_condition &k : s.candidate.conditions)
+            conds.push_back({{"value", sys_expr(k.value, false)}, {"strict", k.strict}, {"meaning", k.meaning}});
+        js["conditions"] = conds;
+        for (std::size_t o = 0; o < j.outputs.size(); ++o) {
+            nlohmann::ordered_json row = nlohmann::ordered_json::object();
+            for (std::size_t w = 0; w < j.wrt.size(); ++w)
+                row[j.wrt[w].get_name()] = sys_expr(s.entries[o][w], false);
+            m[output_name(p, j.outputs[o])] = row;
+        }
+        js["matrix"] = m;
+        sets.push_back(js);
+    }
+    out["wrt"] = wrt;
+    out["sets"] = sets;
+    out["boundary"] = "on a boundary between sets (a condition = 0) the derivative is one-sided";
     return out;
 }
 

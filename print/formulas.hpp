@@ -3,7 +3,7 @@
 #pragma once
 
 #include "symbolic/friction.hpp"
-#include "symbolic/system.hpp"
+#include "symbolic/system_jacobian.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -37,5 +37,10 @@ GiNaC::ex stick_threshold(const derivation &d, const friction_solution &f);
 std::string system_formulas_text(const problem &p, bool latex);
 /// {"candidates": [{"set", "regimes", "answer", "conditions"}]}: expressions in GiNaC's syntax.
 nlohmann::ordered_json system_formulas_json(const problem &p);
+/// formulas --jacobian of a system: after the candidates, each set's Jacobian of the velocities
+/// after impact by the inputs (symbolic/system_jacobian.hpp), in the candidates' notation.
+std::string system_jacobian_text(const problem &p, const system_jacobian &j, bool latex);
+/// {"wrt": [..], "sets": [{"set", "conditions", "matrix": {output: {input: d}}}]}
+nlohmann::ordered_json system_jacobian_json(const problem &p, const system_jacobian &j);
 
 } // namespace impactgen::print

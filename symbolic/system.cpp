@@ -474,12 +474,17 @@ void add_conditions(const model &m, core &c, const std::vector<ex> &q, const std
         case contact_regime::slide:
             c.conditions.push_back(
                 {c.lambda[n], false, "P_" + std::to_string(i) + " >= 0 (" + who + " pushes)", pushes});
-            c.conditions.push_back({simp(c.choice[i].sign * c.w[m.trows[i][0]]), true,
-                                    std::string("u'_t ") + (c.choice[i].sign > 0 ? "> 0" : "< 0") + " (" + who +
-                                        " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + ")",
+            // Not strict: a contact whose slip after impact is 0 with its friction impulse on the
+            // cone's edge obeys Coulomb's law (|P_t| <= mu P_n where u'_t = 0), whichever way it
+            // would slip. Two corners of a box on one ground line slip alike, so where one sticks
+            // the other's slip is exactly 0, and the stick splits that fit both cones end at
+            // such sets: without them the law would be refused where it holds.
+            c.conditions.push_back({simp(c.choice[i].sign * c.w[m.trows[i][0]]), false,
+                                    std::string("u'_t ") + (c.choice[i].sign > 0 ? ">= 0" : "<= 0") + " (" + who +
+                                        " slides along " + (c.choice[i].sign > 0 ? "+t" : "-t") + " or does not slip)",
                                     name + " slides " +
                                         (c.choice[i].sign > 0 ? "along its tangent" : "against its tangent") +
-                                        " after impact",
+                                        " after impact (or does not slip)",
                                     true});
             break;
         }

@@ -24,9 +24,13 @@
 // with friction, tangent rows (2-D: t_i = (-n_y, n_x), as long as n_i; 3-D perfectly rough: two
 // tangents). The law per contact, 0 <= P_i _|_ u'_i + e_i u_i >= 0 with Coulomb or no slip, is
 // solved by one closed-form candidate per active set and regime: open (P_i = 0), smooth,
-// stick (u'_t,i = 0), slide (2-D: P_t,i = -s mu_i P_i, s = +-1). Each candidate's linear system
-// is square; a singular one is no candidate (its solutions with P >= 0 are those of a smaller
-// set, Caratheodory). For a numeric problem every condition is decided exactly.
+// stick (u'_t,i = 0), slide (2-D: P_t,i = -s mu_i P_i, s = +-1, with s u'_t,i >= 0: a slide with
+// zero slip is the impulse on the cone's edge, which Coulomb's law allows). Each candidate's
+// linear system is square; a singular one gives its basic solutions. The solutions of a set
+// under the law's inequalities form a polyhedron; each of its vertices is a basic solution of
+// some set, its active inequalities being open contacts (P_i = 0) or cone edges (slides with
+// zero slip), so the law holds for some candidate whenever it holds at all. For a numeric
+// problem every condition is decided exactly.
 #pragma once
 
 #include "problem.hpp"

@@ -2,10 +2,13 @@
 // system whose worked example is the example file's problem, and carries the published
 // results in its closed form -- the compass gait's two conserved angular momenta, the three
 // balls' simultaneous and sequential answers, the double pendulum's impulse as derived by hand.
+#include "print/answer.hpp"
+#include "print/formulas.hpp"
 #include "symbolic/decide.hpp"
 #include "symbolic/derivation.hpp"
 #include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
+#include "symbolic/system_jacobian.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +16,7 @@
 #include <set>
 #include <chrono>
 #include <cstdio>
+#include <random>
 #include <sys/wait.h>
 
 using namespace impactgen;
@@ -184,6 +188,140 @@ TEST(NamedSystems, TwoCornerLandingOneCornerStrikesTheOtherRests)
     EXPECT_EQ(names.size(), 16u);
 }
 
+// Where one corner sticks the other cannot slip (both lie on the ground line and move alike
+// along it), and where both stick only the sum of their friction impulses is fixed. The law
+// holds whenever some split fits both friction cones; where no basic split does (neither corner
+// alone can carry the whole friction impulse), a split with one impulse on its cone's edge (a
+// slide with zero slip) does. A grid of landings, each decided exactly: never refused where a
+// split fits, every answer obeys Coulomb's law at both corners, and the impulses are not unique.
+TEST(NamedSystems, TwoCornerLandingEverySplitThatFitsIsFound)
+{
+    const problem p = find_named_class("two-corner-landing")->build();
+    using GiNaC::numeric;
+    int edge_only = 0, answered = 0;
+    for (const numeric& b : {numeric(1, 2), numeric(1), numeric(2)})
+        for (const numeric& mu : {numeric(1, 5), numeric(1, 2), numeric(1)})
+            for (const numeric& vx : {numeric(-2), numeric(-1), numeric(0), numeric(1), numeric(2)})
+                for (const numeric& w : {numeric(-2), numeric(1), numeric(2)}) {
+                    const problem q = substitute(p, GiNaC::lst{S("m") == 1, S("a") == 1, S("b") == b, S("e") == numeric(1, 2),
+                                                               S("mu") == mu, S("v_x") == vx, S("w") == w});
+                    bool basic_stick = false;
+                    for (const system_candidate& c : system_candidates(q))
+                        if (c.name() == "{0 stick, 1 stick}")
+                            basic_stick = basic_stick || system_candidate_failure(c) < 0;
+                    system_answer a;
+                    try {
+                        a = solve_system(q);
+                    } catch (const input_error& e) {
+                        continue; // e.g. not an impact, or a foot that would have to pull
+                    }
+                    ++answered;
+                    body after = q.bodies[1];
+                    after.velocity = a.result.velocity[1];
+                    after.angular_velocity = a.result.angular_velocity[1];
+                    for (std::size_t i = 0; i < 2; ++i) {
+                        const ex P = a.result.normal_impulse[i], F = a.result.tangential_impulse[i][0];
+                        const vec3 u0 = point_velocity(q.bodies[1], q.contacts[i].point);
+                        const vec3 u1 = point_velocity(after, q.contacts[i].point);
+                        EXPECT_NE(decide(P), decision::negative);
+                        EXPECT_NE(decide(u1[1] + numeric(1, 2) * u0[1]), decision::negative);
+                        EXPECT_EQ(decide(P * (u1[1] + numeric(1, 2) * u0[1])), decision::zero);
+                        EXPECT_NE(decide(mu * P - abs(F)), decision::negative) << "outside the cone";
+                        if (decide(P) == decision::positive && decide(mu * P - abs(F)) == decision::positive) {
+                            EXPECT_EQ(decide(u1[0]), decision::zero) << "inside the cone and slipping";
+                        }
+                        if (decide(u1[0]) != decision::zero) { // slipping: F opposes the slip, on the edge
+                            EXPECT_EQ(decide(F + mu * P * u1[0] / abs(u1[0])), decision::zero);
+                        }
+                    }
+                    if (!basic_stick && a.result.regimes[0] != contact_regime::open &&
+                        a.result.regimes[1] != contact_regime::open &&
+                        decide(point_velocity(after, q.contacts[0].point)[0]) == decision::zero) {
+                        ++edge_only; // both corners stick, at a split no basic solution gives
+                        // the split is unique only where both impulses are on their cones' edges
+                        bool both_edges = true;
+                        for (std::size_t k = 0; k < 2; ++k)
+                            both_edges = both_edges && decide(mu * a.result.normal_impulse[k] -
+                                                              abs(a.result.tangential_impulse[k][0])) == decision::zero;
+                        EXPECT_EQ(a.impulses_unique, both_edges) << a.result.name();
+                    }
+                }
+    EXPECT_GT(answered, 50);
+    EXPECT_GT(edge_only, 0) << "the grid holds no landing whose split is only on a cone's edge";
+}
+
+// The plain-text answer and formulas of a system count in words, and a body named by a number
+// is "body 1", not a bare "1:".
+TEST(NamedSystems, TextCountsInWordsAndNamesNumberedBodies)
+{
+    const problem p = find_named_class("three-balls")->build();
+    const problem q = substitute(p, GiNaC::lst{S("m") == 1, S("R") == 1, S("e") == 1, S("v") == 1});
+    const std::string t = print::system_answer_text(q, solve_system(q));
+    EXPECT_NE(t.find("System of three bodies, two contacts, no joint, no pivot;"), std::string::npos) << t;
+    EXPECT_NE(t.find("\n  body 1:\n"), std::string::npos) << t;
+    EXPECT_EQ(t.find("\n  1:"), std::string::npos) << t;
+    EXPECT_EQ(t.find("(s)"), std::string::npos) << t;
+    const std::string f = print::system_formulas_text(find_named_class("compass-gait")->build(), false);
+    EXPECT_EQ(f.rfind("System: two contacts, one joint, no pivot. ", 0), 0u) << f.substr(0, 80);
+    const std::string d = print::system_answer_text(from_file("double-pendulum-struck.json"),
+                                                    solve_system(from_file("double-pendulum-struck.json")));
+    EXPECT_EQ(d.rfind("System of three bodies, one contact, one joint, one pivot;", 0), 0u) << d.substr(0, 80);
+}
+
+// formulas --jacobian of a system: every candidate set's derivatives of the velocities after
+// impact against central finite differences of its closed form, at seeded random rational
+// points (exact arithmetic, step 1e-4 of the value: the difference's error is of order h^2
+// times the third derivative, far below the 1e-5 relative bound), for two named classes; --wrt
+// chooses the columns, and a name that is not a symbol is refused naming --wrt.
+TEST(NamedSystems, JacobianOfEverySetMatchesCentralDifferences)
+{
+    using GiNaC::numeric;
+    std::mt19937 g(2026);
+    for (const char* name : {"compass-gait", "double-pendulum-struck"}) {
+        const problem p = find_named_class(name)->build();
+        const system_jacobian j = system_jacobian_of(p, {});
+        ASSERT_EQ(j.wrt.size(), p.parameters().size());
+        ASSERT_EQ(j.sets.size(), system_candidates(p).size());
+        int checked = 0;
+        for (int trial = 0; trial < 3; ++trial) {
+            std::vector<numeric> x; // masses, lengths, e in (0, 1); speeds of either sign
+            for (const GiNaC::symbol& s : j.wrt) {
+                const numeric r(std::uniform_int_distribution<int>(1, 999)(g), 1000);
+                const std::string n = s.get_name();
+                const bool speed = n == "w1" || n == "w2" || n == "v" || n == "w" || n == "v_x";
+                x.push_back(speed ? 2 * r - 1 : n == "e" ? r : 1 + 3 * r);
+            }
+            auto at = [&](std::size_t moved, const numeric& h) {
+                GiNaC::lst l;
+                for (std::size_t k = 0; k < x.size(); ++k)
+                    l.append(j.wrt[k] == (k == moved ? x[k] + h : x[k]));
+                return l;
+            };
+            for (const system_set_jacobian& s : j.sets)
+                for (std::size_t o = 0; o < j.outputs.size(); ++o) {
+                    const system_velocity_output& out = j.outputs[o];
+                    const ex v = (out.angular ? s.candidate.angular_velocity : s.candidate.velocity)[out.body]
+                                                                                                 [static_cast<std::size_t>(out.component)];
+                    for (std::size_t w = 0; w < j.wrt.size(); ++w) {
+                        const numeric h = (abs(x[w]) + 1) / 10000;
+                        const ex fd = (v.subs(at(w, h)) - v.subs(at(w, -h))) / (2 * h);
+                        const ex d = s.entries[o][w].subs(at(w, 0));
+                        const double a = GiNaC::ex_to<numeric>(GiNaC::evalf(d)).to_double(),
+                                     b = GiNaC::ex_to<numeric>(GiNaC::evalf(fd)).to_double();
+                        EXPECT_NEAR(a, b, 1e-5 * (1 + std::abs(a))) << name << " " << s.candidate.name() << " d/d "
+                                                                  << j.wrt[w].get_name();
+                        ++checked;
+                    }
+                }
+        }
+        EXPECT_GT(checked, 100) << name;
+        const system_jacobian one = system_jacobian_of(p, {j.wrt.back().get_name()});
+        ASSERT_EQ(one.wrt.size(), 1u);
+        EXPECT_TRUE(same(one.sets[0].entries[0][0], j.sets[0].entries[0][j.wrt.size() - 1]));
+        EXPECT_THROW(system_jacobian_of(p, {"nonesuch"}), input_error);
+    }
+}
+
 namespace {
 // Runs the command line; its exit status and the wall time in seconds.
 int run_timed(const std::string& args, double& seconds, std::string& out)
@@ -235,4 +373,23 @@ TEST(Cli, SolveNamedSystemClassWithSet)
     std::string out;
     EXPECT_EQ(run_timed("solve three-balls --set m=1,R=1,e=1", seconds, out), 1) << "v is missing";
     EXPECT_NE(out.find("v"), std::string::npos);
+}
+
+// The command: formulas --jacobian of a system prints each set's Jacobian (text, json), and a
+// numeric system or an unknown --wrt is refused in one line naming --wrt.
+TEST(Cli, FormulasJacobianOfASystem)
+{
+    double seconds = 0;
+    std::string out;
+    ASSERT_EQ(run_timed("formulas compass-gait --jacobian --wrt w1,w2", seconds, out), 0) << out;
+    EXPECT_NE(out.find("Set {0 stick, 1 open}:"), std::string::npos) << out;
+    EXPECT_NE(out.find("d w'_swing / d w2 = "), std::string::npos) << out;
+    ASSERT_EQ(run_timed("formulas double-pendulum-struck --format json --wrt v", seconds, out), 0) << out;
+    EXPECT_NE(out.find("\"jacobian\""), std::string::npos);
+    for (const std::string& bad : std::vector<std::string>{"formulas compass-gait --wrt q",
+                                  "formulas '" + std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json' --jacobian"}) {
+        EXPECT_EQ(run_timed(bad, seconds, out), 1) << bad;
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+        EXPECT_NE(out.find("--wrt"), std::string::npos) << out;
+    }
 }

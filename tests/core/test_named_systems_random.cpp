@@ -17,8 +17,16 @@
 // rounding bound with room), the reference a condition >= -1e-10 of the speed scale times the
 // smallest mass (its one tolerance serves impulses too). Where no candidate passes in floating
 // point the exact decision chooses; where the exact decision refuses (no set, or two with
-// different velocities) the reference must not find exactly one set. One instance in five is
-// moved to within 1e-6 of the zero of one candidate's condition.
+// different velocities) the reference must not find exactly one set, and where it refuses with
+// no set the reference must find none either. One instance in five is moved to within 1e-6 of
+// the zero of one candidate's condition.
+//
+// Refusals that remain, all of compass-gait (default seed: 3,817 with no set, 2,227 with two sets
+// of different velocities, of 20,000): its feet are perfectly rough, and with random speeds and
+// proportions the stance foot would often need a pulling impulse to stick (no set: the law has no
+// solution, and the reference finds none), or both "stance lifts off" and "stance stays" obey the
+// law. No other class has a refusal, and none is allowed where a set holds in floating point
+// (a slide with zero slip is a candidate: symbolic/system.hpp).
 #include "numeric/system_reference.hpp"
 #include "print/expression.hpp"
 #include "symbolic/decide.hpp"
@@ -197,7 +205,8 @@ GiNaC::lst exact_values(const std::vector<GiNaC::symbol>& syms, const std::vecto
 }
 
 struct tally {
-    int compared = 0, exact = 0, near_boundary = 0, skipped = 0, boundary_made = 0, refused = 0, ambiguous = 0, exact_none = 0;
+    int compared = 0, exact = 0, near_boundary = 0, skipped = 0, boundary_made = 0, refused = 0, ambiguous = 0, exact_none = 0,
+        none_but_reference = 0;
 };
 
 } // namespace
@@ -322,6 +331,9 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
                 // Refused exactly: no set satisfies the law (a foot that would have to pull to
                 // stick), or two sets with different velocities; the reference finds no single set.
                 EXPECT_TRUE(ra.holding != 1) << name << " sample " << s << ": " << e.what();
+                // No set at all where the reference finds one within its tolerance: only on a boundary.
+                if (std::string(e.what()).find("no set") != std::string::npos && ra.holding > 0)
+                    ++t.none_but_reference;
                 ++t.refused;
                 continue;
             }
@@ -344,23 +356,12 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
                 if (std::string(e.what()).find("more than one") != std::string::npos)
                     ++t.ambiguous;
                 else {
-                    // Known limitation of the exact decision (symbolic/system.cpp), reported: a
-                    // sliding contact must slip strictly after impact (u'_t < 0), and a singular set
-                    // of sticking contacts is tried only at its basic solutions. When one corner
-                    // sticks, the other's slip after impact is exactly 0 (both corners of the box
-                    // slip alike), so "slide" fails by its strict inequality at exactly 0 while the
-                    // law holds (Coulomb allows |F| = mu P without slip), and the stick split that
-                    // fits both cones is not a basic solution. Every such case must be exactly that.
+                    // None found exactly where the floating point and the reference accept a set:
+                    // the exact decision must never do this (a slide with zero slip, the impulse
+                    // on the cone's edge, is a candidate: symbolic/system.hpp).
                     ++t.exact_none;
-                    bool explained = false;
-                    for (const system_candidate& c : system_candidates(substitute(p, exact_values(syms, x))))
-                        if (c.name() == cs[chosen].name()) {
-                            const long f = system_candidate_failure(c);
-                            explained = f >= 0 && static_cast<std::size_t>(f) < c.conditions.size() &&
-                                        c.conditions[static_cast<std::size_t>(f)].strict &&
-                                        c.conditions[static_cast<std::size_t>(f)].value.is_zero();
-                        }
-                    EXPECT_TRUE(explained) << name << " sample " << s << ": " << e.what();
+                    ADD_FAILURE() << name << " sample " << s << ": " << cs[chosen].name() << " holds in floating point; "
+                                  << e.what();
                 }
                 continue;
             }
@@ -393,11 +394,13 @@ TEST_P(NamedSystemsRandom, ClosedFormAgreesWithTheReference)
               << " where the reference finds no set within its tolerance, " << t.refused
               << " refused exactly (no set holds), " << t.ambiguous
               << " where two sets hold with different velocities (refused exactly), " << t.exact_none
-              << " where the exact decision finds no set but a candidate holds in floating point, " << seconds << " s\n";
+              << " where the exact decision finds no set but a candidate holds in floating point, " << t.none_but_reference
+              << " refused exactly (no set) where the reference finds sets within its tolerance, " << seconds << " s\n";
     EXPECT_GE(t.compared, n / 4);
     EXPECT_LT(t.skipped, n / 10);
     EXPECT_LT(t.near_boundary, n / 100 + 1);
-    EXPECT_LT(t.exact_none, n / 10 + 1); // about 4 % of two-corner-landing, each asserted above
+    EXPECT_EQ(t.exact_none, 0); // the law holds for a set wherever a set holds (each also reported above)
+    EXPECT_EQ(t.none_but_reference, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Classes, NamedSystemsRandom,
