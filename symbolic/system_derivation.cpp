@@ -53,7 +53,8 @@ void system_unknowns(derivation &d, std::vector<impulse_at> &impulses)
         if (B.infinite_mass)
             continue;
         for (int k = 0; k < dim; ++k) {
-            symbol s(quantity_name("v", axis_name[k], B.label, true));
+            // the LaTeX name escapes the body's name, as the one-contact documents do
+            symbol s(quantity_name("v", axis_name[k], B.label, true), quantity_tex("v", axis_name[k], B.label, true));
             d.velocity_after[b][k] = s;
             d.system_unknowns.push_back({s, "velocity of the centre of " + display_name(B) + " after impact"});
         }

@@ -525,3 +525,21 @@ TEST(SystemExplain, NamedClassesLatexCompiles)
         EXPECT_EQ(out.undefined_refs, 0) << c.name;
     }
 }
+
+// A body's name with LaTeX's special characters is escaped in the unknowns' LaTeX names too
+// (the velocities were not: "v'_{x,st%a_n#c}" commented out the rest of the line), and the
+// HTML's MathML translation takes every name.
+TEST(SystemExplain, HostileBodyNamesAreEscapedInTheUnknowns)
+{
+    std::ifstream in(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/compass-gait.json");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const auto &[from, to] : {std::pair<std::string, std::string>{"\"stance\"", "\"st%a_n#c\""},
+                                   {"\"swing\"", "\"sw\\\\ing~^\""}})
+        for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+            text.replace(at, from.size(), to);
+    const document doc = explain_system(derive(read_problem(text, "hostile.json")));
+    const std::string tex = explain_latex(doc);
+    EXPECT_EQ(tex.find("st%a"), std::string::npos);
+    EXPECT_NE(tex.find("v'_{x,\\text{st\\%a\\_n\\#c}}"), std::string::npos);
+    EXPECT_NO_THROW(explain_html(doc));
+}
