@@ -51,6 +51,11 @@ struct system_code_set {
         bool velocity = false;   ///< a velocity (scale: the contacts' speeds before), else an impulse
         std::size_t contact = 0; ///< the contact it is about
         std::string meaning;
+        /// The value is 0 for every input (a slip that another contact's sticking fixes, a
+        /// redundant contact's speed): it holds (>= 0) or fails (> 0) exactly as the exact
+        /// decision has it, never by rounding.
+        bool identically_zero = false;
+        bool strict = false;
     };
     std::vector<condition> conditions;
     /// Perfectly rough contacts that stick: (normal impulse output, tangential outputs); with

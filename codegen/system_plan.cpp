@@ -229,7 +229,7 @@ code_plan system_code_plan(const problem &p, const options &o)
         for (const output_source &os : src)
             s.values.push_back(os.value ? os.value(c) : ex(0));
         for (const system_condition &k : c.conditions)
-            s.conditions.push_back({k.value, k.velocity, k.contact, k.meaning});
+            s.conditions.push_back({k.value, k.velocity, k.contact, k.meaning, k.value.is_zero(), k.strict});
         for (std::size_t i = 0; i < c.regimes.size(); ++i) {
             if (c.regimes[i] != contact_regime::stick || !q.contacts[i].rough)
                 continue;

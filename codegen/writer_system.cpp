@@ -69,6 +69,10 @@ void writer::build_system()
             a_.output(vals.back(), s.values[j]);
         }
         for (std::size_t j = 0; j < s.conditions.size(); ++j) {
+            if (s.conditions[j].identically_zero) { // decided when generating: nothing to compute
+                conds.push_back("0");
+                continue;
+            }
             conds.push_back(scope_.claim(pre + "cond" + std::to_string(j + 1)));
             a_.output(conds.back(), s.conditions[j].value);
         }
@@ -144,14 +148,18 @@ void writer::system_formulas()
     h_ << "// for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8\n";
     h_ << "// in double); else no_solution. Another set that holds clearly (every condition >= tol times\n";
     h_ << "// its scale) with different velocities makes the call ambiguous, with different impulses makes\n";
-    h_ << "// impulses_unique false.\n";
+    h_ << "// impulses_unique false. A condition that is 0 for every input (the speed of a contact at rest,\n";
+    h_ << "// a corner's slip that another corner's sticking fixes at 0) is decided exactly, as the closed\n";
+    h_ << "// form decides it: it holds, and its set can hold clearly.\n";
     h_ << "// The candidate sets and their conditions:\n";
     for (std::size_t k = 0; k < sc.sets.size(); ++k) {
         h_ << "//   set " << k << " " << names::comment_text(sc.sets[k].name)
            << (sc.sets[k].conditions.empty() ? "" : ":") << "\n";
-        for (std::size_t j = 0; j < sc.sets[k].conditions.size(); ++j)
-            h_ << "//     " << sys_conds_[k][j] << " >= 0  (" << names::comment_text(sc.sets[k].conditions[j].meaning)
-               << ")\n";
+        for (std::size_t j = 0; j < sc.sets[k].conditions.size(); ++j) {
+            const system_code_set::condition &c = sc.sets[k].conditions[j];
+            h_ << "//     " << sys_conds_[k][j] << (c.strict ? " > 0  (" : " >= 0  (") << names::comment_text(c.meaning)
+               << ")" << (c.identically_zero ? (c.strict ? ", never holds" : ", holds for every input") : "") << "\n";
+        }
     }
     h_ << "// This problem, step by step, as the code below computes it:\n";
     for (const auto &[lhs, rhs] : a_.em.assignments)
@@ -199,7 +207,15 @@ std::string writer::system_holds(std::size_t k) const
     const std::string is = "s" + std::to_string(k) + "_scale";
     std::vector<std::string> holds, clear;
     for (std::size_t j = 0; j < s.conditions.size(); ++j) {
-        holds.push_back(sys_conds_[k][j] + " >= T(0)");
+        const system_code_set::condition &c = s.conditions[j];
+        if (c.identically_zero) { // decided exactly, as solve decides it: 0 >= 0 holds, 0 > 0 fails
+            if (c.strict) {
+                holds.push_back("false");
+                clear.push_back("false");
+            }
+            continue;
+        }
+        holds.push_back(sys_conds_[k][j] + (c.strict ? " > T(0)" : " >= T(0)"));
         clear.push_back(sys_conds_[k][j] + " >= " + tol + " * " + system_scale(k, j));
     }
     for (const auto &[n, ts] : s.rough_sticks)
@@ -212,14 +228,17 @@ std::string writer::system_holds(std::size_t k) const
     const std::string kt = std::to_string(k);
     bool scaled = !s.rough_sticks.empty();
     for (const auto &c : s.conditions)
-        scaled = scaled || !c.velocity;
+        scaled = scaled || (!c.velocity && !c.identically_zero);
     std::string r = scaled ? "    const T " + is + " = " + nested_max(imp) + ";\n" : std::string();
     r += "    const bool h" + kt + " = " + (holds.empty() ? "true" : join(holds, " && ")) + ";\n";
     r += "    const bool g" + kt + " = " + (clear.empty() ? "true" : join(clear, " && ")) + ";\n";
     if (cp_.system.has_jacobian) {
         std::vector<std::string> near;
         for (std::size_t j = 0; j < s.conditions.size(); ++j)
-            near.push_back(sys_conds_[k][j] + " >= -" + tol + " * " + system_scale(k, j));
+            if (!s.conditions[j].identically_zero)
+                near.push_back(sys_conds_[k][j] + " >= -" + tol + " * " + system_scale(k, j));
+            else if (s.conditions[j].strict)
+                near.push_back("false");
         r += "    const bool n" + kt + " = " + (near.empty() ? "true" : join(near, " && ")) + ";\n";
     }
     return r;
@@ -239,12 +258,15 @@ std::string writer::system_nearest() const
     r += "        T " + best + " = -" + tol + ";\n";
     for (std::size_t k = 0; k < sc.sets.size(); ++k) {
         const system_code_set &s = sc.sets[k];
-        if (s.conditions.empty())
-            continue;
-        const std::string is = "s" + std::to_string(k) + "_scale";
         std::vector<std::string> terms;
-        for (std::size_t j = 0; j < s.conditions.size(); ++j)
-            terms.push_back(sys_conds_[k][j] + " / detail::max_of(" + system_scale(k, j) + ", " + tiny + ")");
+        bool never = false;
+        for (std::size_t j = 0; j < s.conditions.size(); ++j) {
+            never = never || (s.conditions[j].identically_zero && s.conditions[j].strict);
+            if (!s.conditions[j].identically_zero)
+                terms.push_back(sys_conds_[k][j] + " / detail::max_of(" + system_scale(k, j) + ", " + tiny + ")");
+        }
+        if (terms.empty() || never)
+            continue;
         r += "        {\n            const T " + m + " = detail::min_of(" + join(terms, ", ") + ");\n";
         r += "            if (" + m + " > " + best + ") {\n                " + best + " = " + m +
              ";\n                " + sel + " = " + std::to_string(k) + ";\n            }\n        }\n";

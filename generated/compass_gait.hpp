@@ -936,17 +936,19 @@ template <typename T> struct compass_gait_input {
 // for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8
 // in double); else no_solution. Another set that holds clearly (every condition >= tol times
 // its scale) with different velocities makes the call ambiguous, with different impulses makes
-// impulses_unique false.
+// impulses_unique false. A condition that is 0 for every input (the speed of a contact at rest,
+// a corner's slip that another corner's sticking fixes at 0) is decided exactly, as the closed
+// form decides it: it holds, and its set can hold clearly.
 // The candidate sets and their conditions:
 //   set 0 {0 open, 1 open}:
 //     s0_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s0_cond2 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
+//     0 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach)), holds for every input
 //   set 1 {0 stick, 1 open}:
 //     s1_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s1_cond2 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
 //   set 2 {0 open, 1 stick}:
 //     s2_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s2_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
+//     0 >= 0  (P_1 >= 0 (contacts[1] pushes)), holds for every input
 //   set 3 {0 stick, 1 stick}:
 //     s3_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s3_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
@@ -1086,7 +1088,6 @@ template <typename T> struct compass_gait_input {
 //   s0_joint_impulse_x_j0 = 0
 //   s0_joint_impulse_y_j0 = 0
 //   s0_cond1 = u_row0_p3
-//   s0_cond2 = 0
 //   s1_v_x_stance = (1/2) * (s1_v_x_stance_p4 * 64 + s1_v_x_stance_p6 * 8 + s1_v_x_stance_p8 + 4 *
 //       s1_v_x_stance_p10 + s1_v_x_stance_p12 * 7 + 4 * s1_v_x_stance_p14 - s1_v_x_stance_p16 -
 //       s1_v_x_stance_p17 * 32 - 32 * s1_v_x_stance_p18 - s1_v_x_stance_p19 * 26 - s1_v_x_stance_p21) *
@@ -1143,7 +1144,6 @@ template <typename T> struct compass_gait_input {
 //   s2_joint_impulse_x_j0 = 0
 //   s2_joint_impulse_y_j0 = 0
 //   s2_cond1 = u_row0_p3
-//   s2_cond2 = 0
 //   s3_v_x_stance = 0
 //   s3_v_y_stance = 0
 //   s3_w_z_stance = 0
@@ -1367,7 +1367,6 @@ IMPACTGEN_FUNC friction_status compass_gait(T m, T I_C, T a_2, T h, T w1, T w2, 
     const T s0_joint_impulse_x_j0 = T(0);
     const T s0_joint_impulse_y_j0 = T(0);
     const T s0_cond1 = u_row0_p3;
-    const T s0_cond2 = T(0);
     const T s1_v_x_stance = (T(1) / T(2)) * (s1_v_x_stance_p4 * T(64) + s1_v_x_stance_p6 * T(8) + s1_v_x_stance_p8 + T(4) * s1_v_x_stance_p10 + s1_v_x_stance_p12 * T(7) + T(4) * s1_v_x_stance_p14 - s1_v_x_stance_p16 - s1_v_x_stance_p17 * T(32) - T(32) * s1_v_x_stance_p18 - s1_v_x_stance_p19 * T(26) - s1_v_x_stance_p21) * s1_v_x_stance_p22;
     const T s1_v_y_stance = -((T(1) / T(2)) * s1_v_x_stance_p22 * (T(64) * s1_v_y_stance_p2 + s1_v_y_stance_p3 + s1_v_y_stance_p5 + T(32) * s1_v_y_stance_p6 + T(7) * s1_v_y_stance_p8 - T(32) * s1_v_y_stance_p10 - s1_v_y_stance_p12 - T(4) * s1_v_y_stance_p14 - s1_v_y_stance_p17 - T(4) * s1_v_y_stance_p18 - s1_v_y_stance_p20));
     const T s1_w_z_stance = s1_v_x_stance_p22 * (T(16) * s1_v_x_stance_p3 + T(16) * s1_w_z_stance_p1 + T(8) * w2 * unit_mass_c0_p5 + T(16) * w1 * unit_mass_c0_p6 + s1_w_z_stance_p2 * T(3) + T(2) * s1_w_z_stance_p3 + T(3) * s1_w_z_stance_p4 - T(8) * s1_v_x_stance_p15 - T(26) * w1 * unit_mass_c0_p10 - T(2) * s1_w_z_stance_p5);
@@ -1399,7 +1398,6 @@ IMPACTGEN_FUNC friction_status compass_gait(T m, T I_C, T a_2, T h, T w1, T w2, 
     const T s2_joint_impulse_x_j0 = T(0);
     const T s2_joint_impulse_y_j0 = T(0);
     const T s2_cond1 = u_row0_p3;
-    const T s2_cond2 = T(0);
     const T s3_v_x_stance = T(0);
     const T s3_v_y_stance = T(0);
     const T s3_w_z_stance = T(0);
@@ -1418,14 +1416,14 @@ IMPACTGEN_FUNC friction_status compass_gait(T m, T I_C, T a_2, T h, T w1, T w2, 
     const T s3_cond2 = s3_normal_impulse_c1_p2;
     const T tol = detail::compass_gait_tolerance<T>();
     const T speed_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(u_row0), detail::abs_of(u_row1)), detail::abs_of(u_row2)), detail::abs_of(u_row3)), detail::abs_of(before_v_x_stance)), detail::abs_of(before_v_y_stance)), detail::abs_of(before_w_z_stance)), detail::abs_of(before_v_x_swing)), detail::abs_of(before_v_y_swing)), detail::abs_of(before_w_z_swing));
-    const bool h0 = s0_cond1 >= T(0) && s0_cond2 >= T(0);
-    const bool g0 = s0_cond1 >= tol * speed_scale && s0_cond2 >= tol * speed_scale;
+    const bool h0 = s0_cond1 >= T(0);
+    const bool g0 = s0_cond1 >= tol * speed_scale;
     const T s1_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s1_normal_impulse_c0), detail::abs_of(s1_tangential_impulse_x_c0)), detail::abs_of(s1_tangential_impulse_y_c0)), detail::abs_of(s1_normal_impulse_c1)), detail::abs_of(s1_tangential_impulse_x_c1)), detail::abs_of(s1_tangential_impulse_y_c1));
     const bool h1 = s1_cond1 >= T(0) && s1_cond2 >= T(0) && (s1_normal_impulse_c0 > tol * s1_scale || detail::abs_of(s1_tangential_impulse_x_c0) <= tol * s1_scale) && (s1_normal_impulse_c0 > tol * s1_scale || detail::abs_of(s1_tangential_impulse_y_c0) <= tol * s1_scale);
     const bool g1 = s1_cond1 >= tol * detail::max_of(s1_scale, speed_scale * unit_mass_c0) && s1_cond2 >= tol * speed_scale && (s1_normal_impulse_c0 > tol * s1_scale || detail::abs_of(s1_tangential_impulse_x_c0) <= tol * s1_scale) && (s1_normal_impulse_c0 > tol * s1_scale || detail::abs_of(s1_tangential_impulse_y_c0) <= tol * s1_scale);
     const T s2_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s2_normal_impulse_c0), detail::abs_of(s2_tangential_impulse_x_c0)), detail::abs_of(s2_tangential_impulse_y_c0)), detail::abs_of(s2_normal_impulse_c1)), detail::abs_of(s2_tangential_impulse_x_c1)), detail::abs_of(s2_tangential_impulse_y_c1));
-    const bool h2 = s2_cond1 >= T(0) && s2_cond2 >= T(0) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_x_c1) <= tol * s2_scale) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_y_c1) <= tol * s2_scale);
-    const bool g2 = s2_cond1 >= tol * speed_scale && s2_cond2 >= tol * detail::max_of(s2_scale, speed_scale * unit_mass_c1) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_x_c1) <= tol * s2_scale) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_y_c1) <= tol * s2_scale);
+    const bool h2 = s2_cond1 >= T(0) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_x_c1) <= tol * s2_scale) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_y_c1) <= tol * s2_scale);
+    const bool g2 = s2_cond1 >= tol * speed_scale && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_x_c1) <= tol * s2_scale) && (s2_normal_impulse_c1 > tol * s2_scale || detail::abs_of(s2_tangential_impulse_y_c1) <= tol * s2_scale);
     const T s3_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s3_normal_impulse_c0), detail::abs_of(s3_tangential_impulse_x_c0)), detail::abs_of(s3_tangential_impulse_y_c0)), detail::abs_of(s3_normal_impulse_c1)), detail::abs_of(s3_tangential_impulse_x_c1)), detail::abs_of(s3_tangential_impulse_y_c1));
     const bool h3 = s3_cond1 >= T(0) && s3_cond2 >= T(0) && (s3_normal_impulse_c0 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_x_c0) <= tol * s3_scale) && (s3_normal_impulse_c0 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_y_c0) <= tol * s3_scale) && (s3_normal_impulse_c1 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_x_c1) <= tol * s3_scale) && (s3_normal_impulse_c1 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_y_c1) <= tol * s3_scale);
     const bool g3 = s3_cond1 >= tol * detail::max_of(s3_scale, speed_scale * unit_mass_c0) && s3_cond2 >= tol * detail::max_of(s3_scale, speed_scale * unit_mass_c1) && (s3_normal_impulse_c0 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_x_c0) <= tol * s3_scale) && (s3_normal_impulse_c0 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_y_c0) <= tol * s3_scale) && (s3_normal_impulse_c1 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_x_c1) <= tol * s3_scale) && (s3_normal_impulse_c1 > tol * s3_scale || detail::abs_of(s3_tangential_impulse_y_c1) <= tol * s3_scale);
@@ -1446,7 +1444,7 @@ IMPACTGEN_FUNC friction_status compass_gait(T m, T I_C, T a_2, T h, T w1, T w2, 
         const T tiny = detail::smallest_normal<T>();
         T best = -tol;
         {
-            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny), s0_cond2 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 0;
@@ -1460,7 +1458,7 @@ IMPACTGEN_FUNC friction_status compass_gait(T m, T I_C, T a_2, T h, T w1, T w2, 
             }
         }
         {
-            const T margin = detail::min_of(s2_cond1 / detail::max_of(speed_scale, tiny), s2_cond2 / detail::max_of(detail::max_of(s2_scale, speed_scale * unit_mass_c1), tiny));
+            const T margin = detail::min_of(s2_cond1 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 2;

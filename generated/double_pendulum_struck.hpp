@@ -935,7 +935,9 @@ template <typename T> struct double_pendulum_struck_input {
 // for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8
 // in double); else no_solution. Another set that holds clearly (every condition >= tol times
 // its scale) with different velocities makes the call ambiguous, with different impulses makes
-// impulses_unique false.
+// impulses_unique false. A condition that is 0 for every input (the speed of a contact at rest,
+// a corner's slip that another corner's sticking fixes at 0) is decided exactly, as the closed
+// form decides it: it holds, and its set can hold clearly.
 // The candidate sets and their conditions:
 //   set 0 {0 open}:
 //     s0_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))

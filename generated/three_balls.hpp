@@ -928,17 +928,19 @@ template <typename T> struct three_balls_input {
 // for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8
 // in double); else no_solution. Another set that holds clearly (every condition >= tol times
 // its scale) with different velocities makes the call ambiguous, with different impulses makes
-// impulses_unique false.
+// impulses_unique false. A condition that is 0 for every input (the speed of a contact at rest,
+// a corner's slip that another corner's sticking fixes at 0) is decided exactly, as the closed
+// form decides it: it holds, and its set can hold clearly.
 // The candidate sets and their conditions:
 //   set 0 {0 open, 1 open}:
 //     s0_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s0_cond2 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
+//     0 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach)), holds for every input
 //   set 1 {0 smooth, 1 open}:
 //     s1_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s1_cond2 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
 //   set 2 {0 open, 1 smooth}:
 //     s2_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s2_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
+//     0 >= 0  (P_1 >= 0 (contacts[1] pushes)), holds for every input
 //   set 3 {0 smooth, 1 smooth}:
 //     s3_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s3_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
@@ -972,7 +974,6 @@ template <typename T> struct three_balls_input {
 //   s0_normal_impulse_c0 = 0
 //   s0_normal_impulse_c1 = 0
 //   s0_cond1 = s0_cond1_p2
-//   s0_cond2 = 0
 //   s1_v_x1 = v * (1/2) - (1/2) * s0_cond1_p1
 //   s1_v_y1 = 0
 //   s1_v_x2 = s1_v_x2_p2
@@ -992,7 +993,6 @@ template <typename T> struct three_balls_input {
 //   s2_normal_impulse_c0 = 0
 //   s2_normal_impulse_c1 = 0
 //   s2_cond1 = s0_cond1_p2
-//   s2_cond2 = 0
 //   s3_v_x1 = v * (1/3) - s0_cond1_p1 * (2/3)
 //   s3_v_y1 = 0
 //   s3_v_x2 = s3_v_x2_p1
@@ -1093,7 +1093,6 @@ IMPACTGEN_FUNC friction_status three_balls(T e, T m, T v, T R, three_balls_resul
     const T s0_normal_impulse_c0 = T(0);
     const T s0_normal_impulse_c1 = T(0);
     const T s0_cond1 = s0_cond1_p2;
-    const T s0_cond2 = T(0);
     const T s1_v_x1 = v * (T(1) / T(2)) - (T(1) / T(2)) * s0_cond1_p1;
     const T s1_v_y1 = T(0);
     const T s1_v_x2 = s1_v_x2_p2;
@@ -1113,7 +1112,6 @@ IMPACTGEN_FUNC friction_status three_balls(T e, T m, T v, T R, three_balls_resul
     const T s2_normal_impulse_c0 = T(0);
     const T s2_normal_impulse_c1 = T(0);
     const T s2_cond1 = s0_cond1_p2;
-    const T s2_cond2 = T(0);
     const T s3_v_x1 = v * (T(1) / T(3)) - s0_cond1_p1 * (T(2) / T(3));
     const T s3_v_y1 = T(0);
     const T s3_v_x2 = s3_v_x2_p1;
@@ -1126,14 +1124,13 @@ IMPACTGEN_FUNC friction_status three_balls(T e, T m, T v, T R, three_balls_resul
     const T s3_cond2 = s3_normal_impulse_c1_p1;
     const T tol = detail::three_balls_tolerance<T>();
     const T speed_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(u_row0), detail::abs_of(u_row1)), detail::abs_of(before_v_x1)), detail::abs_of(before_v_y1)), detail::abs_of(before_v_x2)), detail::abs_of(before_v_y2)), detail::abs_of(before_v_x3)), detail::abs_of(before_v_y3));
-    const bool h0 = s0_cond1 >= T(0) && s0_cond2 >= T(0);
-    const bool g0 = s0_cond1 >= tol * speed_scale && s0_cond2 >= tol * speed_scale;
+    const bool h0 = s0_cond1 >= T(0);
+    const bool g0 = s0_cond1 >= tol * speed_scale;
     const T s1_scale = detail::max_of(detail::abs_of(s1_normal_impulse_c0), detail::abs_of(s1_normal_impulse_c1));
     const bool h1 = s1_cond1 >= T(0) && s1_cond2 >= T(0);
     const bool g1 = s1_cond1 >= tol * detail::max_of(s1_scale, speed_scale * unit_mass_c0) && s1_cond2 >= tol * speed_scale;
-    const T s2_scale = detail::max_of(detail::abs_of(s2_normal_impulse_c0), detail::abs_of(s2_normal_impulse_c1));
-    const bool h2 = s2_cond1 >= T(0) && s2_cond2 >= T(0);
-    const bool g2 = s2_cond1 >= tol * speed_scale && s2_cond2 >= tol * detail::max_of(s2_scale, speed_scale * unit_mass_c1);
+    const bool h2 = s2_cond1 >= T(0);
+    const bool g2 = s2_cond1 >= tol * speed_scale;
     const T s3_scale = detail::max_of(detail::abs_of(s3_normal_impulse_c0), detail::abs_of(s3_normal_impulse_c1));
     const bool h3 = s3_cond1 >= T(0) && s3_cond2 >= T(0);
     const bool g3 = s3_cond1 >= tol * detail::max_of(s3_scale, speed_scale * unit_mass_c0) && s3_cond2 >= tol * detail::max_of(s3_scale, speed_scale * unit_mass_c1);
@@ -1154,7 +1151,7 @@ IMPACTGEN_FUNC friction_status three_balls(T e, T m, T v, T R, three_balls_resul
         const T tiny = detail::smallest_normal<T>();
         T best = -tol;
         {
-            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny), s0_cond2 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 0;
@@ -1168,7 +1165,7 @@ IMPACTGEN_FUNC friction_status three_balls(T e, T m, T v, T R, three_balls_resul
             }
         }
         {
-            const T margin = detail::min_of(s2_cond1 / detail::max_of(speed_scale, tiny), s2_cond2 / detail::max_of(detail::max_of(s2_scale, speed_scale * unit_mass_c1), tiny));
+            const T margin = detail::min_of(s2_cond1 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 2;

@@ -932,11 +932,13 @@ template <typename T> struct two_corner_landing_input {
 // for a velocity, the set's largest contact impulse for an impulse; tol = 2^-(digits/2), about 1.5e-8
 // in double); else no_solution. Another set that holds clearly (every condition >= tol times
 // its scale) with different velocities makes the call ambiguous, with different impulses makes
-// impulses_unique false.
+// impulses_unique false. A condition that is 0 for every input (the speed of a contact at rest,
+// a corner's slip that another corner's sticking fixes at 0) is decided exactly, as the closed
+// form decides it: it holds, and its set can hold clearly.
 // The candidate sets and their conditions:
 //   set 0 {0 open, 1 open}:
 //     s0_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s0_cond2 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach))
+//     0 >= 0  (u'_1 + e u_1 >= 0 (contacts[1] leaves no slower than e times its approach)), holds for every input
 //   set 1 {0 stick, 1 open}:
 //     s1_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s1_cond2 >= 0  (mu P_n - P_t >= 0 (contacts[0] inside the cone))
@@ -971,26 +973,26 @@ template <typename T> struct two_corner_landing_input {
 //     s6_cond6 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 7 {0 slide +t, 1 stick}:
 //     s7_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s7_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
+//     0 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip)), holds for every input
 //     s7_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
 //     s7_cond4 >= 0  (mu P_n - P_t >= 0 (contacts[1] inside the cone))
 //     s7_cond5 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 8 {0 slide -t, 1 stick}:
 //     s8_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
-//     s8_cond2 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip))
+//     0 >= 0  (u'_t <= 0 (contacts[0] slides along -t or does not slip)), holds for every input
 //     s8_cond3 >= 0  (P_1 >= 0 (contacts[1] pushes))
 //     s8_cond4 >= 0  (mu P_n - P_t >= 0 (contacts[1] inside the cone))
 //     s8_cond5 >= 0  (mu P_n + P_t >= 0 (contacts[1] inside the cone))
 //   set 9 {0 open, 1 slide +t}:
 //     s9_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s9_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
+//     0 >= 0  (P_1 >= 0 (contacts[1] pushes)), holds for every input
 //     s9_cond3 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 10 {0 stick, 1 slide +t}:
 //     s10_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s10_cond2 >= 0  (mu P_n - P_t >= 0 (contacts[0] inside the cone))
 //     s10_cond3 >= 0  (mu P_n + P_t >= 0 (contacts[0] inside the cone))
 //     s10_cond4 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s10_cond5 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
+//     0 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip)), holds for every input
 //   set 11 {0 slide +t, 1 slide +t}:
 //     s11_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s11_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
@@ -1003,14 +1005,14 @@ template <typename T> struct two_corner_landing_input {
 //     s12_cond4 >= 0  (u'_t >= 0 (contacts[1] slides along +t or does not slip))
 //   set 13 {0 open, 1 slide -t}:
 //     s13_cond1 >= 0  (u'_0 + e u_0 >= 0 (contacts[0] leaves no slower than e times its approach))
-//     s13_cond2 >= 0  (P_1 >= 0 (contacts[1] pushes))
+//     0 >= 0  (P_1 >= 0 (contacts[1] pushes)), holds for every input
 //     s13_cond3 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
 //   set 14 {0 stick, 1 slide -t}:
 //     s14_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s14_cond2 >= 0  (mu P_n - P_t >= 0 (contacts[0] inside the cone))
 //     s14_cond3 >= 0  (mu P_n + P_t >= 0 (contacts[0] inside the cone))
 //     s14_cond4 >= 0  (P_1 >= 0 (contacts[1] pushes))
-//     s14_cond5 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip))
+//     0 >= 0  (u'_t <= 0 (contacts[1] slides along -t or does not slip)), holds for every input
 //   set 15 {0 slide +t, 1 slide -t}:
 //     s15_cond1 >= 0  (P_0 >= 0 (contacts[0] pushes))
 //     s15_cond2 >= 0  (u'_t >= 0 (contacts[0] slides along +t or does not slip))
@@ -1239,7 +1241,6 @@ template <typename T> struct two_corner_landing_input {
 //   s0_tangential_impulse_x_c1 = 0
 //   s0_tangential_impulse_y_c1 = 0
 //   s0_cond1 = s0_cond1_p2
-//   s0_cond2 = 0
 //   s1_v_x_box = (s1_v_x_box_p6 + s1_v_x_box_p8 - s1_v_x_box_p9) * inv_check_p3 * (1/4)
 //   s1_v_y_box = -((1/4) * inv_check_p3 * (s1_v_y_box_p3 + s1_v_y_box_p5 - s1_v_y_box_p8 - s1_v_y_box_p9 -
 //       s1_v_y_box_p11))
@@ -1348,7 +1349,6 @@ template <typename T> struct two_corner_landing_input {
 //       s7_tangential_impulse_x_c1_p8 - s7_tangential_impulse_x_c1_p10 - s7_tangential_impulse_x_c1_p11)
 //   s7_tangential_impulse_y_c1 = 0
 //   s7_cond1 = s7_normal_impulse_c0_p3
-//   s7_cond2 = 0
 //   s7_cond3 = s5_normal_impulse_c1_p3
 //   s7_cond4 = s7_cond4_p3
 //   s7_cond5 = s7_cond5_p2
@@ -1364,7 +1364,6 @@ template <typename T> struct two_corner_landing_input {
 //       s7_tangential_impulse_x_c1_p6 - s7_tangential_impulse_x_c1_p4 - s7_tangential_impulse_x_c1_p2)
 //   s8_tangential_impulse_y_c1 = 0
 //   s8_cond1 = s7_normal_impulse_c0_p3
-//   s8_cond2 = 0
 //   s8_cond3 = s5_normal_impulse_c1_p3
 //   s8_cond4 = s8_cond4_p1
 //   s8_cond5 = -s8_cond5_p1
@@ -1378,7 +1377,6 @@ template <typename T> struct two_corner_landing_input {
 //   s9_tangential_impulse_x_c1 = 0
 //   s9_tangential_impulse_y_c1 = 0
 //   s9_cond1 = s0_cond1_p2
-//   s9_cond2 = 0
 //   s9_cond3 = u_row1_p3
 //   s10_v_x_box = s1_v_x_box_p1
 //   s10_v_y_box = s0_cond1_p1
@@ -1395,7 +1393,6 @@ template <typename T> struct two_corner_landing_input {
 //   s10_cond2 = s8_cond5_p1
 //   s10_cond3 = s7_cond5_p2
 //   s10_cond4 = s5_normal_impulse_c1_p3
-//   s10_cond5 = 0
 //   s11_v_x_box = v_x + s11_v_x_box_p1 + s11_v_x_box_p2
 //   s11_v_y_box = s0_cond1_p1
 //   s11_w_z_box = s5_w_z_box_p1
@@ -1434,7 +1431,6 @@ template <typename T> struct two_corner_landing_input {
 //   s13_tangential_impulse_x_c1 = 0
 //   s13_tangential_impulse_y_c1 = 0
 //   s13_cond1 = s0_cond1_p2
-//   s13_cond2 = 0
 //   s13_cond3 = u_row1_p2
 //   s14_v_x_box = s1_v_x_box_p1
 //   s14_v_y_box = s0_cond1_p1
@@ -1451,7 +1447,6 @@ template <typename T> struct two_corner_landing_input {
 //   s14_cond2 = s8_cond4_p1
 //   s14_cond3 = -s7_cond4_p3
 //   s14_cond4 = s5_normal_impulse_c1_p3
-//   s14_cond5 = 0
 //   s15_v_x_box = -((1/3) * (s7_tangential_impulse_x_c1_p11 + s7_tangential_impulse_x_c1_p9 +
 //       s7_tangential_impulse_x_c1_p7 + s7_tangential_impulse_x_c1_p5 + s12_v_x_box_p2 -
 //       s7_tangential_impulse_x_c1_p2) * s15_v_x_box_p1)
@@ -1747,7 +1742,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s0_tangential_impulse_x_c1 = T(0);
     const T s0_tangential_impulse_y_c1 = T(0);
     const T s0_cond1 = s0_cond1_p2;
-    const T s0_cond2 = T(0);
     const T s1_v_x_box = (s1_v_x_box_p6 + s1_v_x_box_p8 - s1_v_x_box_p9) * inv_check_p3 * (T(1) / T(4));
     const T s1_v_y_box = -((T(1) / T(4)) * inv_check_p3 * (s1_v_y_box_p3 + s1_v_y_box_p5 - s1_v_y_box_p8 - s1_v_y_box_p9 - s1_v_y_box_p11));
     const T s1_w_z_box = -((T(1) / T(4)) * inv_check_p3 * (s1_w_z_box_p2 + s1_w_z_box_p4 + s1_w_z_box_p6 - s1_w_z_box_p7));
@@ -1838,7 +1832,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s7_tangential_impulse_x_c1 = (T(1) / T(6)) * inv_a_2 * m * (s7_tangential_impulse_x_c1_p1 + s7_tangential_impulse_x_c1_p2 - s7_tangential_impulse_x_c1_p4 - s7_tangential_impulse_x_c1_p6 - s7_tangential_impulse_x_c1_p8 - s7_tangential_impulse_x_c1_p10 - s7_tangential_impulse_x_c1_p11);
     const T s7_tangential_impulse_y_c1 = T(0);
     const T s7_cond1 = s7_normal_impulse_c0_p3;
-    const T s7_cond2 = T(0);
     const T s7_cond3 = s5_normal_impulse_c1_p3;
     const T s7_cond4 = s7_cond4_p3;
     const T s7_cond5 = s7_cond5_p2;
@@ -1852,7 +1845,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s8_tangential_impulse_x_c1 = (T(1) / T(6)) * inv_a_2 * m * (s7_tangential_impulse_x_c1_p11 + s7_tangential_impulse_x_c1_p10 + s7_tangential_impulse_x_c1_p8 + s7_tangential_impulse_x_c1_p1 + s7_tangential_impulse_x_c1_p6 - s7_tangential_impulse_x_c1_p4 - s7_tangential_impulse_x_c1_p2);
     const T s8_tangential_impulse_y_c1 = T(0);
     const T s8_cond1 = s7_normal_impulse_c0_p3;
-    const T s8_cond2 = T(0);
     const T s8_cond3 = s5_normal_impulse_c1_p3;
     const T s8_cond4 = s8_cond4_p1;
     const T s8_cond5 = -s8_cond5_p1;
@@ -1866,7 +1858,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s9_tangential_impulse_x_c1 = T(0);
     const T s9_tangential_impulse_y_c1 = T(0);
     const T s9_cond1 = s0_cond1_p2;
-    const T s9_cond2 = T(0);
     const T s9_cond3 = u_row1_p3;
     const T s10_v_x_box = s1_v_x_box_p1;
     const T s10_v_y_box = s0_cond1_p1;
@@ -1881,7 +1872,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s10_cond2 = s8_cond5_p1;
     const T s10_cond3 = s7_cond5_p2;
     const T s10_cond4 = s5_normal_impulse_c1_p3;
-    const T s10_cond5 = T(0);
     const T s11_v_x_box = v_x + s11_v_x_box_p1 + s11_v_x_box_p2;
     const T s11_v_y_box = s0_cond1_p1;
     const T s11_w_z_box = s5_w_z_box_p1;
@@ -1918,7 +1908,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s13_tangential_impulse_x_c1 = T(0);
     const T s13_tangential_impulse_y_c1 = T(0);
     const T s13_cond1 = s0_cond1_p2;
-    const T s13_cond2 = T(0);
     const T s13_cond3 = u_row1_p2;
     const T s14_v_x_box = s1_v_x_box_p1;
     const T s14_v_y_box = s0_cond1_p1;
@@ -1933,7 +1922,6 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const T s14_cond2 = s8_cond4_p1;
     const T s14_cond3 = -s7_cond4_p3;
     const T s14_cond4 = s5_normal_impulse_c1_p3;
-    const T s14_cond5 = T(0);
     const T s15_v_x_box = -((T(1) / T(3)) * (s7_tangential_impulse_x_c1_p11 + s7_tangential_impulse_x_c1_p9 + s7_tangential_impulse_x_c1_p7 + s7_tangential_impulse_x_c1_p5 + s12_v_x_box_p2 - s7_tangential_impulse_x_c1_p2) * s15_v_x_box_p1);
     const T s15_v_y_box = s0_cond1_p1;
     const T s15_w_z_box = s5_w_z_box_p1;
@@ -1966,8 +1954,8 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
         return fail(friction_status::invalid_friction);
     const T tol = detail::two_corner_landing_tolerance<T>();
     const T speed_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(u_row0), detail::abs_of(u_row1)), detail::abs_of(u_row2)), detail::abs_of(u_row3)), detail::abs_of(before_v_x_box)), detail::abs_of(before_v_y_box)), detail::abs_of(before_w_z_box));
-    const bool h0 = s0_cond1 >= T(0) && s0_cond2 >= T(0);
-    const bool g0 = s0_cond1 >= tol * speed_scale && s0_cond2 >= tol * speed_scale;
+    const bool h0 = s0_cond1 >= T(0);
+    const bool g0 = s0_cond1 >= tol * speed_scale;
     const T s1_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s1_normal_impulse_c0), detail::abs_of(s1_tangential_impulse_x_c0)), detail::abs_of(s1_tangential_impulse_y_c0)), detail::abs_of(s1_normal_impulse_c1)), detail::abs_of(s1_tangential_impulse_x_c1)), detail::abs_of(s1_tangential_impulse_y_c1));
     const bool h1 = s1_cond1 >= T(0) && s1_cond2 >= T(0) && s1_cond3 >= T(0) && s1_cond4 >= T(0);
     const bool g1 = s1_cond1 >= tol * detail::max_of(s1_scale, speed_scale * unit_mass_c0) && s1_cond2 >= tol * detail::max_of(s1_scale, speed_scale * unit_mass_c0) && s1_cond3 >= tol * detail::max_of(s1_scale, speed_scale * unit_mass_c0) && s1_cond4 >= tol * speed_scale;
@@ -1987,29 +1975,27 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
     const bool h6 = s6_cond1 >= T(0) && s6_cond2 >= T(0) && s6_cond3 >= T(0) && s6_cond4 >= T(0) && s6_cond5 >= T(0) && s6_cond6 >= T(0);
     const bool g6 = s6_cond1 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c0) && s6_cond2 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c0) && s6_cond3 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c0) && s6_cond4 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c1) && s6_cond5 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c1) && s6_cond6 >= tol * detail::max_of(s6_scale, speed_scale * unit_mass_c1);
     const T s7_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s7_normal_impulse_c0), detail::abs_of(s7_tangential_impulse_x_c0)), detail::abs_of(s7_tangential_impulse_y_c0)), detail::abs_of(s7_normal_impulse_c1)), detail::abs_of(s7_tangential_impulse_x_c1)), detail::abs_of(s7_tangential_impulse_y_c1));
-    const bool h7 = s7_cond1 >= T(0) && s7_cond2 >= T(0) && s7_cond3 >= T(0) && s7_cond4 >= T(0) && s7_cond5 >= T(0);
-    const bool g7 = s7_cond1 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c0) && s7_cond2 >= tol * speed_scale && s7_cond3 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1) && s7_cond4 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1) && s7_cond5 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1);
+    const bool h7 = s7_cond1 >= T(0) && s7_cond3 >= T(0) && s7_cond4 >= T(0) && s7_cond5 >= T(0);
+    const bool g7 = s7_cond1 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c0) && s7_cond3 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1) && s7_cond4 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1) && s7_cond5 >= tol * detail::max_of(s7_scale, speed_scale * unit_mass_c1);
     const T s8_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s8_normal_impulse_c0), detail::abs_of(s8_tangential_impulse_x_c0)), detail::abs_of(s8_tangential_impulse_y_c0)), detail::abs_of(s8_normal_impulse_c1)), detail::abs_of(s8_tangential_impulse_x_c1)), detail::abs_of(s8_tangential_impulse_y_c1));
-    const bool h8 = s8_cond1 >= T(0) && s8_cond2 >= T(0) && s8_cond3 >= T(0) && s8_cond4 >= T(0) && s8_cond5 >= T(0);
-    const bool g8 = s8_cond1 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c0) && s8_cond2 >= tol * speed_scale && s8_cond3 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1) && s8_cond4 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1) && s8_cond5 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1);
-    const T s9_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s9_normal_impulse_c0), detail::abs_of(s9_tangential_impulse_x_c0)), detail::abs_of(s9_tangential_impulse_y_c0)), detail::abs_of(s9_normal_impulse_c1)), detail::abs_of(s9_tangential_impulse_x_c1)), detail::abs_of(s9_tangential_impulse_y_c1));
-    const bool h9 = s9_cond1 >= T(0) && s9_cond2 >= T(0) && s9_cond3 >= T(0);
-    const bool g9 = s9_cond1 >= tol * speed_scale && s9_cond2 >= tol * detail::max_of(s9_scale, speed_scale * unit_mass_c1) && s9_cond3 >= tol * speed_scale;
+    const bool h8 = s8_cond1 >= T(0) && s8_cond3 >= T(0) && s8_cond4 >= T(0) && s8_cond5 >= T(0);
+    const bool g8 = s8_cond1 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c0) && s8_cond3 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1) && s8_cond4 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1) && s8_cond5 >= tol * detail::max_of(s8_scale, speed_scale * unit_mass_c1);
+    const bool h9 = s9_cond1 >= T(0) && s9_cond3 >= T(0);
+    const bool g9 = s9_cond1 >= tol * speed_scale && s9_cond3 >= tol * speed_scale;
     const T s10_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s10_normal_impulse_c0), detail::abs_of(s10_tangential_impulse_x_c0)), detail::abs_of(s10_tangential_impulse_y_c0)), detail::abs_of(s10_normal_impulse_c1)), detail::abs_of(s10_tangential_impulse_x_c1)), detail::abs_of(s10_tangential_impulse_y_c1));
-    const bool h10 = s10_cond1 >= T(0) && s10_cond2 >= T(0) && s10_cond3 >= T(0) && s10_cond4 >= T(0) && s10_cond5 >= T(0);
-    const bool g10 = s10_cond1 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond2 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond3 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond4 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c1) && s10_cond5 >= tol * speed_scale;
+    const bool h10 = s10_cond1 >= T(0) && s10_cond2 >= T(0) && s10_cond3 >= T(0) && s10_cond4 >= T(0);
+    const bool g10 = s10_cond1 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond2 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond3 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c0) && s10_cond4 >= tol * detail::max_of(s10_scale, speed_scale * unit_mass_c1);
     const T s11_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s11_normal_impulse_c0), detail::abs_of(s11_tangential_impulse_x_c0)), detail::abs_of(s11_tangential_impulse_y_c0)), detail::abs_of(s11_normal_impulse_c1)), detail::abs_of(s11_tangential_impulse_x_c1)), detail::abs_of(s11_tangential_impulse_y_c1));
     const bool h11 = s11_cond1 >= T(0) && s11_cond2 >= T(0) && s11_cond3 >= T(0) && s11_cond4 >= T(0);
     const bool g11 = s11_cond1 >= tol * detail::max_of(s11_scale, speed_scale * unit_mass_c0) && s11_cond2 >= tol * speed_scale && s11_cond3 >= tol * detail::max_of(s11_scale, speed_scale * unit_mass_c1) && s11_cond4 >= tol * speed_scale;
     const T s12_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s12_normal_impulse_c0), detail::abs_of(s12_tangential_impulse_x_c0)), detail::abs_of(s12_tangential_impulse_y_c0)), detail::abs_of(s12_normal_impulse_c1)), detail::abs_of(s12_tangential_impulse_x_c1)), detail::abs_of(s12_tangential_impulse_y_c1));
     const bool h12 = s12_cond1 >= T(0) && s12_cond2 >= T(0) && s12_cond3 >= T(0) && s12_cond4 >= T(0);
     const bool g12 = s12_cond1 >= tol * detail::max_of(s12_scale, speed_scale * unit_mass_c0) && s12_cond2 >= tol * speed_scale && s12_cond3 >= tol * detail::max_of(s12_scale, speed_scale * unit_mass_c1) && s12_cond4 >= tol * speed_scale;
-    const T s13_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s13_normal_impulse_c0), detail::abs_of(s13_tangential_impulse_x_c0)), detail::abs_of(s13_tangential_impulse_y_c0)), detail::abs_of(s13_normal_impulse_c1)), detail::abs_of(s13_tangential_impulse_x_c1)), detail::abs_of(s13_tangential_impulse_y_c1));
-    const bool h13 = s13_cond1 >= T(0) && s13_cond2 >= T(0) && s13_cond3 >= T(0);
-    const bool g13 = s13_cond1 >= tol * speed_scale && s13_cond2 >= tol * detail::max_of(s13_scale, speed_scale * unit_mass_c1) && s13_cond3 >= tol * speed_scale;
+    const bool h13 = s13_cond1 >= T(0) && s13_cond3 >= T(0);
+    const bool g13 = s13_cond1 >= tol * speed_scale && s13_cond3 >= tol * speed_scale;
     const T s14_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s14_normal_impulse_c0), detail::abs_of(s14_tangential_impulse_x_c0)), detail::abs_of(s14_tangential_impulse_y_c0)), detail::abs_of(s14_normal_impulse_c1)), detail::abs_of(s14_tangential_impulse_x_c1)), detail::abs_of(s14_tangential_impulse_y_c1));
-    const bool h14 = s14_cond1 >= T(0) && s14_cond2 >= T(0) && s14_cond3 >= T(0) && s14_cond4 >= T(0) && s14_cond5 >= T(0);
-    const bool g14 = s14_cond1 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond2 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond3 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond4 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c1) && s14_cond5 >= tol * speed_scale;
+    const bool h14 = s14_cond1 >= T(0) && s14_cond2 >= T(0) && s14_cond3 >= T(0) && s14_cond4 >= T(0);
+    const bool g14 = s14_cond1 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond2 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond3 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c0) && s14_cond4 >= tol * detail::max_of(s14_scale, speed_scale * unit_mass_c1);
     const T s15_scale = detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::max_of(detail::abs_of(s15_normal_impulse_c0), detail::abs_of(s15_tangential_impulse_x_c0)), detail::abs_of(s15_tangential_impulse_y_c0)), detail::abs_of(s15_normal_impulse_c1)), detail::abs_of(s15_tangential_impulse_x_c1)), detail::abs_of(s15_tangential_impulse_y_c1));
     const bool h15 = s15_cond1 >= T(0) && s15_cond2 >= T(0) && s15_cond3 >= T(0) && s15_cond4 >= T(0);
     const bool g15 = s15_cond1 >= tol * detail::max_of(s15_scale, speed_scale * unit_mass_c0) && s15_cond2 >= tol * speed_scale && s15_cond3 >= tol * detail::max_of(s15_scale, speed_scale * unit_mass_c1) && s15_cond4 >= tol * speed_scale;
@@ -2046,7 +2032,7 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
         const T tiny = detail::smallest_normal<T>();
         T best = -tol;
         {
-            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny), s0_cond2 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s0_cond1 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 0;
@@ -2095,28 +2081,28 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
             }
         }
         {
-            const T margin = detail::min_of(s7_cond1 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c0), tiny), s7_cond2 / detail::max_of(speed_scale, tiny), s7_cond3 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny), s7_cond4 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny), s7_cond5 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny));
+            const T margin = detail::min_of(s7_cond1 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c0), tiny), s7_cond3 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny), s7_cond4 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny), s7_cond5 / detail::max_of(detail::max_of(s7_scale, speed_scale * unit_mass_c1), tiny));
             if (margin > best) {
                 best = margin;
                 sel = 7;
             }
         }
         {
-            const T margin = detail::min_of(s8_cond1 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c0), tiny), s8_cond2 / detail::max_of(speed_scale, tiny), s8_cond3 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny), s8_cond4 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny), s8_cond5 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny));
+            const T margin = detail::min_of(s8_cond1 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c0), tiny), s8_cond3 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny), s8_cond4 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny), s8_cond5 / detail::max_of(detail::max_of(s8_scale, speed_scale * unit_mass_c1), tiny));
             if (margin > best) {
                 best = margin;
                 sel = 8;
             }
         }
         {
-            const T margin = detail::min_of(s9_cond1 / detail::max_of(speed_scale, tiny), s9_cond2 / detail::max_of(detail::max_of(s9_scale, speed_scale * unit_mass_c1), tiny), s9_cond3 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s9_cond1 / detail::max_of(speed_scale, tiny), s9_cond3 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 9;
             }
         }
         {
-            const T margin = detail::min_of(s10_cond1 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond2 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond3 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond4 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c1), tiny), s10_cond5 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s10_cond1 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond2 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond3 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c0), tiny), s10_cond4 / detail::max_of(detail::max_of(s10_scale, speed_scale * unit_mass_c1), tiny));
             if (margin > best) {
                 best = margin;
                 sel = 10;
@@ -2137,14 +2123,14 @@ IMPACTGEN_FUNC friction_status two_corner_landing(T e, T b, T m, T a_2, T v_x, T
             }
         }
         {
-            const T margin = detail::min_of(s13_cond1 / detail::max_of(speed_scale, tiny), s13_cond2 / detail::max_of(detail::max_of(s13_scale, speed_scale * unit_mass_c1), tiny), s13_cond3 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s13_cond1 / detail::max_of(speed_scale, tiny), s13_cond3 / detail::max_of(speed_scale, tiny));
             if (margin > best) {
                 best = margin;
                 sel = 13;
             }
         }
         {
-            const T margin = detail::min_of(s14_cond1 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond2 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond3 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond4 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c1), tiny), s14_cond5 / detail::max_of(speed_scale, tiny));
+            const T margin = detail::min_of(s14_cond1 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond2 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond3 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c0), tiny), s14_cond4 / detail::max_of(detail::max_of(s14_scale, speed_scale * unit_mass_c1), tiny));
             if (margin > best) {
                 best = margin;
                 sel = 14;
