@@ -1,5 +1,6 @@
-// explain --format html in a real browser: every named class and every example
-// problem of examples/problems and examples/friction is written by the command line, opened in
+// explain --format html in a real browser: every named class (smooth, with friction, and the
+// named systems) and every example problem of examples/problems, examples/friction, examples/laws
+// and examples/systems is written by the command line, opened in
 // headless Chromium, and
 //   - the DOM after parsing (--dump-dom) has <math> elements, one id="eq-N"
 //     per numbered equation, the figure's <svg> when the document has a figure
@@ -13,6 +14,7 @@
 // call runs under `timeout 60`.
 #include "print/explain.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/named_systems.hpp"
 
 #include "latex_tools.hpp"
 
@@ -156,23 +158,31 @@ struct page {
     std::string what; ///< the argument of `impactgen explain`, relative to the source tree
 };
 
-// The named classes (smooth and with friction), examples/problems/*.json, examples/friction/*.json and
-// examples/systems/*.json;
-// names only: the documents are built in the test that needs one.
+// The named classes (smooth, with friction, and the named systems), examples/problems/*.json,
+// examples/friction/*.json, examples/laws/*.json and examples/systems/*.json; names only: the
+// documents are built in the test that needs one. A page is named as its class or its file's
+// stem; a file whose stem is a class's name (examples/systems/compass-gait.json, the worked example
+// of the class compass-gait) is named with its folder in front: systems-compass-gait.
 std::vector<page> pages()
 {
     std::vector<page> out;
-    for (const auto* list : {&named_classes(), &friction_classes()})
+    for (const auto* list : {&named_classes(), &friction_classes(), &system_classes()})
         for (const named_class& c : *list)
             out.push_back({c.name, c.name});
+    const std::size_t classes = out.size();
     for (const char* dir : {"examples/problems", "examples/friction", "examples/laws", "examples/systems"}) {
         std::vector<fs::path> files;
         for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir))
             if (entry.path().extension() == ".json")
                 files.push_back(entry.path());
         std::sort(files.begin(), files.end());
-        for (const fs::path& f : files)
-            out.push_back({f.stem().string(), std::string(dir) + "/" + f.filename().string()});
+        for (const fs::path& f : files) {
+            std::string name = f.stem().string();
+            if (std::any_of(out.begin(), out.begin() + static_cast<long>(classes),
+                            [&](const page& pg) { return pg.name == name; }))
+                name = fs::path(dir).filename().string() + "-" + name;
+            out.push_back({name, std::string(dir) + "/" + f.filename().string()});
+        }
     }
     return out;
 }
@@ -231,6 +241,31 @@ std::string dom_text(const std::string& s)
 class Browser : public ::testing::TestWithParam<std::string> {};
 
 } // namespace
+
+// The list of pages: every named class of every kind (as `impactgen list` has them) and every
+// example file is a page, each under its own name.
+TEST(BrowserPages, EveryNamedClassAndExampleFileIsAPage)
+{
+    const std::vector<page> all = pages();
+    std::set<std::string> names, what;
+    for (const page& p : all) {
+        EXPECT_TRUE(names.insert(p.name).second) << "two pages named " << p.name;
+        what.insert(p.what);
+    }
+    for (const auto* list : {&named_classes(), &friction_classes(), &system_classes()}) {
+        for (const named_class& c : *list) {
+            EXPECT_EQ(what.count(c.name), 1u) << "the class " << c.name << " is not a page";
+        }
+    }
+    for (const char* c : {"compass-gait", "three-balls", "double-pendulum-struck", "two-corner-landing"})
+        EXPECT_EQ(what.count(c), 1u) << c;
+    for (const char* dir : {"examples/problems", "examples/friction", "examples/laws", "examples/systems"})
+        for (const auto& entry : fs::directory_iterator(fs::path(IMPACTGEN_SOURCE_DIR) / dir)) {
+            if (entry.path().extension() == ".json") {
+                EXPECT_EQ(what.count(std::string(dir) + "/" + entry.path().filename().string()), 1u) << entry.path();
+            }
+        }
+}
 
 TEST_P(Browser, ParsesAndRendersThePage)
 {
