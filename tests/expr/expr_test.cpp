@@ -2,6 +2,7 @@
 // over it, and code generation reading the same tree.
 #include "codegen/canonical.hpp"
 #include "expr/print.hpp"
+#include "expr/roles.hpp"
 #include "expr/tree.hpp"
 
 #include <gtest/gtest.h>
@@ -69,7 +70,8 @@ TEST(ExprTree, TheSignOfASumMovesToTheCoefficient)
 
 TEST(ExprPrint, FourSyntaxesOfOneTree)
 {
-    const symbol a("a"), b("b"), w("w_z1");
+    const symbol a("a"), b("b");
+    const symbol w = expr::symbol_with_role("w_z1", "", expr::symbol_role::angular_velocity);
     const ex e = sqrt(a) / (2 * pow(b, 2)) + w;
     const expr::shared_tree shared;
     expr::tree &t = shared.get();
@@ -94,6 +96,30 @@ TEST(ExprPrint, WhatNoSyntaxPrintsIsAnErrorNotATreeFailure)
     const int id = t.of(a + I);
     EXPECT_THROW(expr::print(t, id, expr::syntax::text), std::invalid_argument);
     EXPECT_THROW(expr::print(t, t.of(2.5 * a), expr::syntax::parser), std::invalid_argument);
+}
+
+// ω comes from the role the model gave a symbol, never from its name: two symbols named alike
+// print alike unless one of them is an angular velocity.
+TEST(ExprPrint, OmegaOnlyForASymbolWhoseRoleIsAnAngularVelocity)
+{
+    const symbol user("w_t1"), weight("weight"), w("w"), primed("w'_z1");
+    const symbol spin = expr::symbol_with_role("w_t1", "\\omega_{t1}", expr::symbol_role::angular_velocity);
+    const symbol spin_after = expr::symbol_with_role("w'_z1", "\\omega'_{z1}", expr::symbol_role::angular_velocity);
+    EXPECT_EQ(text(user), "w_t1");
+    EXPECT_EQ(text(weight), "weight");
+    EXPECT_EQ(text(w), "w");
+    EXPECT_EQ(text(primed), "w′_z1");
+    EXPECT_EQ(text(spin), "ω_t1");
+    EXPECT_EQ(text(spin_after), "ω′_z1");
+    EXPECT_EQ(expr::role_of(user), expr::symbol_role::none);
+    EXPECT_EQ(expr::role_of(spin), expr::symbol_role::angular_velocity);
+    // In a sum each keeps its own: the user's w_t1 beside the spin ω_t1.
+    const std::string sum = text(user + 2 * spin);
+    EXPECT_NE(sum.find("w_t1"), std::string::npos) << sum;
+    EXPECT_NE(sum.find("2·ω_t1"), std::string::npos) << sum;
+    // Copies of a symbol are the symbol: the role goes with them.
+    const ex copy = spin;
+    EXPECT_EQ(text(copy * copy), "ω_t1²");
 }
 
 TEST(ExprTree, NestedScopesKeepTheSharedNodes)
