@@ -1,6 +1,8 @@
 // The one canonical expression layer (expr/): the tree's sharing, order and signs, the printer
 // over it, and code generation reading the same tree.
 #include "codegen/canonical.hpp"
+#include "codegen/form_text.hpp"
+#include "codegen/program.hpp"
 #include "expr/print.hpp"
 #include "expr/roles.hpp"
 #include "expr/tree.hpp"
@@ -157,4 +159,31 @@ TEST(ExprCodegen, CodeGenerationReadsTheSameCanonicalForm)
     EXPECT_EQ(pool.at(s.node).kind, codegen::cnode::sin_);
     EXPECT_THROW(pool.convert(exp(a)), std::runtime_error);
     EXPECT_THROW(pool.convert(tan(a)), std::runtime_error);
+}
+
+// The emitter and the header writers put parentheses by the structure of what they combine (the
+// precedence of its top operation), never by looking for a space in its text: a negation or a
+// call whose text has spaces stays bare, a sum or a product is parenthesised.
+TEST(ExprCodegen, ParenthesesComeFromTheStructureNotTheText)
+{
+    codegen::program prog;
+    const int x = prog.input("x"), y = prog.input("y");
+    const int sum = prog.binary(codegen::op::add, x, y);
+    const int negated = prog.negate(sum);
+    const int product = prog.binary(codegen::op::mul, x, y);
+    auto energy = [&](int id) {
+        codegen::emit_options o;
+        o.energy_output = 0;
+        return codegen::emit_cpp(prog, {{"energy_lost", id}}, {}, {}, {}, o).code;
+    };
+    EXPECT_NE(energy(negated).find("with_energy_lost ? -(x + y) : T(0)"), std::string::npos) << energy(negated);
+    EXPECT_NE(energy(product).find("with_energy_lost ? (x * y) : T(0)"), std::string::npos) << energy(product);
+    EXPECT_NE(energy(x).find("with_energy_lost ? x : T(0)"), std::string::npos) << energy(x);
+    // Sums of names: each partial sum is a sum, parenthesised as an operand of the next.
+    EXPECT_EQ(codegen::form_text::balanced_sum({"a", "b", "c"}), "(a + b) + c");
+    EXPECT_EQ(codegen::form_text::balanced_sum({"a", "b", "c", "d"}), "(a + b) + (c + d)");
+    // The finiteness sum of a branchless form: a call with spaces in its text is an atom.
+    const std::string t =
+        codegen::form_text::timed_sum({{"f(a + b)", 0, false, 4}, {"-(c + d)", 0, false, 3}, {"p * q", 0, false, 2}});
+    EXPECT_EQ(t, "T((p * q) + (f(a + b) + -(c + d)))"); // the two earliest summed first
 }
