@@ -357,18 +357,10 @@ std::vector<section> process_chapter_impl::results() const
 
 // ---- the laws' words (explain_process.hpp: the one document hook of a restitution law) ----
 
-namespace
-{
-template <class... F> struct each_law : F... {
-    using F::operator()...;
-};
-template <class... F> each_law(F...) -> each_law<F...>;
-} // namespace
-
 restitution_words words_of(const restitution_law &law)
 {
     return std::visit(
-        each_law{
+        law_cases{
             [](const newton_restitution &) -> restitution_words {
                 throw std::logic_error("Newton's law of restitution is not followed through the impact");
             },
