@@ -63,7 +63,7 @@ std::string entry_name(const codegen::plan &pl, const codegen::output_value &ov,
     const bool after = ov.kind == codegen::output_value::velocity || ov.kind == codegen::output_value::angular_velocity;
     const std::string out = ov.field + (after ? "'" : "");
     if (!latex)
-        return "d " + out + " / d " + print::symbol_text(x.get_name());
+        return "d " + out + " / d " + print::symbol_text(x);
     std::string tex;
     if (const step *st = step_of(pl, ov)) {
         tex = print::symbol_latex(st->sym);
@@ -99,11 +99,11 @@ std::string jacobian_text(const codegen::plan &pl)
     os << "\nJacobian of the impact map, d(output after impact)/d(input), by the chain rule through the steps above\n";
     os << "(inputs: ";
     for (std::size_t k = 0; k < j.wrt.size(); ++k)
-        os << (k ? ", " : "") << print::symbol_text(j.wrt[k].get_name());
+        os << (k ? ", " : "") << print::symbol_text(j.wrt[k]);
     os << ")\n\n";
     for (const step &st : j.steps)
-        os << print::symbol_text(st.sym.get_name()) << " = " << print::canonical_text(st.value) << "\n    ("
-           << st.meaning << ")\n";
+        os << print::symbol_text(st.sym) << " = " << print::canonical_text(st.value) << "\n    (" << st.meaning
+           << ")\n";
     std::size_t zeros = 0;
     for (std::size_t o = 0; o < pl.outputs.size(); ++o)
         for (std::size_t k = 0; k < j.wrt.size(); ++k) {
@@ -184,11 +184,11 @@ std::string process_jacobian_text(const process_jacobian &j, bool latex)
        << c << "Jacobian of the impact map per phase sequence of Routh's process, d(output)/d(input) by the chain\n"
        << c << "rule through the contact's steps (inputs:";
     for (const symbol &x : j.wrt)
-        os << " " << print::symbol_text(x.get_name());
+        os << " " << print::symbol_text(x);
     os << "). Inside a sequence (every condition strict) the map is smooth; on a boundary between two\n"
        << c << "sequences (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n\n";
     for (const step &st : j.derivative_steps)
-        os << c << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+        os << c << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
     for (const sequence_jacobian &q : j.sequences) {
         os << "\n" << c << "Sequence " << q.sequence << (q.conditions.empty() ? " (the one that holds)" : "") << ":\n";
         for (const process_condition &k : q.conditions)
@@ -201,7 +201,7 @@ std::string process_jacobian_text(const process_jacobian &j, bool latex)
                     ++zeros;
                     continue;
                 }
-                os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w].get_name()) << " = "
+                os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w]) << " = "
                    << expr(q.entries[o][w], latex) << "\n";
             }
         os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size()

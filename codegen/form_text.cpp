@@ -43,18 +43,21 @@ std::string wrap_comment(const std::string &lhs, const std::string &rhs)
 }
 
 // A balanced sum: finite unless some term is not (or it overflows, checked term by term).
-std::string balanced_sum(std::vector<std::string> level)
+std::string balanced_sum(const std::vector<std::string> &names)
 {
+    std::vector<code_term> level;
+    for (const std::string &nm : names)
+        level.push_back({nm, 4});
+    auto operand = [](const code_term &x) { return parenthesised_in_sum(x.precedence) ? "(" + x.text + ")" : x.text; };
     while (level.size() > 1) {
-        std::vector<std::string> next;
+        std::vector<code_term> next;
         for (std::size_t i = 0; i + 1 < level.size(); i += 2)
-            next.push_back((level[i].find(' ') != std::string::npos ? "(" + level[i] + ")" : level[i]) + " + " +
-                           (level[i + 1].find(' ') != std::string::npos ? "(" + level[i + 1] + ")" : level[i + 1]));
+            next.push_back({operand(level[i]) + " + " + operand(level[i + 1]), 1});
         if (level.size() % 2)
             next.push_back(level.back());
         level = next;
     }
-    return level.empty() ? std::string() : level[0];
+    return level.empty() ? std::string() : level[0].text;
 }
 
 // The sum of the terms, added in the order their values are ready (the two earliest
@@ -68,6 +71,7 @@ std::string timed_sum(const std::vector<sum_term> &terms)
         std::string text;
         int ready;
         std::size_t order;
+        int precedence;
     };
     std::vector<node> nodes;
     std::string optional;
@@ -75,17 +79,16 @@ std::string timed_sum(const std::vector<sum_term> &terms)
         if (t.optional)
             optional = t.text;
         else
-            nodes.push_back({t.text, t.ready, nodes.size()});
+            nodes.push_back({t.text, t.ready, nodes.size(), t.precedence});
     }
-    auto wrap = [](const std::string &x) { return x.find(' ') != std::string::npos ? "(" + x + ")" : x; };
+    auto wrap = [](const node &x) { return parenthesised_in_sum(x.precedence) ? "(" + x.text + ")" : x.text; };
     std::size_t next = nodes.size();
     while (nodes.size() > 1) {
         auto earlier = [](const node &a, const node &b) {
             return a.ready != b.ready ? a.ready < b.ready : a.order < b.order;
         };
         std::sort(nodes.begin(), nodes.end(), earlier);
-        node sum{wrap(nodes[0].text) + " + " + wrap(nodes[1].text), std::max(nodes[0].ready, nodes[1].ready) + 3,
-                 next++};
+        node sum{wrap(nodes[0]) + " + " + wrap(nodes[1]), std::max(nodes[0].ready, nodes[1].ready) + 3, next++, 1};
         nodes.erase(nodes.begin(), nodes.begin() + 2);
         nodes.push_back(sum);
     }
@@ -93,7 +96,7 @@ std::string timed_sum(const std::vector<sum_term> &terms)
         return nodes.empty() ? std::string() : "T(" + nodes[0].text + ")";
     if (nodes.empty())
         return "T(" + optional + ")";
-    return "with_energy_lost ? T(" + wrap(nodes[0].text) + " + " + optional + ") : T(" + nodes[0].text + ")";
+    return "with_energy_lost ? T(" + wrap(nodes[0]) + " + " + optional + ") : T(" + nodes[0].text + ")";
 }
 
 // Minimums the flag of a branchless form takes (one per list of more than one term).

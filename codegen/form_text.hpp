@@ -25,7 +25,9 @@ std::string command_line(const options &o);
 /// namespace that cannot be one.
 void check_names(const options &o);
 std::string wrap_comment(const std::string &lhs, const std::string &rhs);
-std::string balanced_sum(std::vector<std::string> level);
+/// The names of values summed as a balanced tree, ((a + b) + (c + d)) + e: each partial sum
+/// parenthesised as an operand of the next (by its structure: it is a sum).
+std::string balanced_sum(const std::vector<std::string> &names);
 /// The leading principal minors that make a symmetric tensor positive definite, block by
 /// block (with the determinant of a block of all three axes only when with_determinant).
 std::vector<std::pair<GiNaC::ex, std::string>>
@@ -37,12 +39,14 @@ std::vector<std::pair<GiNaC::ex, std::string>> positive_semidefinite_minors(cons
                                                                             const std::array<std::string, 3> &axes);
 
 // A term of the finiteness sum of a branchless form: its text, when its value is ready
-// (an estimate of the latency from the inputs, in cycles) and whether the form may leave
-// it 0 (energy_lost under with_energy_lost = false: then it is not added at all).
+// (an estimate of the latency from the inputs, in cycles), whether the form may leave
+// it 0 (energy_lost under with_energy_lost = false: then it is not added at all), and the
+// precedence of its top operation (code_term: 4 for a name).
 struct sum_term {
     std::string text;
     int ready = 0;
     bool optional = false;
+    int precedence = 4;
 };
 std::string timed_sum(const std::vector<sum_term> &terms);
 std::size_t mins(const emitted &em);

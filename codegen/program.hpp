@@ -104,6 +104,22 @@ struct check {
 /// As exact fractions: 1 - 2^-17 and 1 + 2^-17 (exact in float).
 inline constexpr long unit_tolerance_denominator = 131072;
 
+/// A C++ expression the emitter wrote, with the precedence of its top operation on the
+/// printer's scale (1 a sum or difference, 2 a product or quotient, 3 a negation, 4 an atom: a
+/// name, a number, a call), so that whoever combines it further puts parentheses by its
+/// structure, never by reading its text.
+struct code_term {
+    std::string text;
+    int precedence = 4;
+};
+
+/// True when a code term of this precedence takes parentheses as an operand of a sum the writers
+/// build (a + b): it is itself a sum or a binary product or quotient.
+inline bool parenthesised_in_sum(int precedence)
+{
+    return precedence <= 2;
+}
+
 struct emitted {
     std::string code;  ///< the function body, indented by 4
     op_counts formula; ///< arithmetic of the closed form
@@ -111,7 +127,7 @@ struct emitted {
     bool uses_sqrt = false;
     bool uses_trig = false; ///< cos or sin: the function needs `using std::cos; using std::sin;`
     // Branchless: the checks, for the caller to fold into one flag.
-    std::vector<std::string> finite_terms;   ///< values that must be finite (tested in one sum)
+    std::vector<code_term> finite_terms;     ///< values that must be finite (tested in one sum)
     std::vector<std::string> positive_terms; ///< values that must be > 0 (their min)
     std::vector<std::string> nonneg_terms;   ///< values that must be >= 0 (their min)
     std::vector<std::string>

@@ -173,6 +173,12 @@ void add_unique(std::vector<std::string> &v, const std::string &t)
         v.push_back(t);
 }
 
+void add_unique(std::vector<code_term> &v, const std::string &t, int precedence)
+{
+    if (std::none_of(v.begin(), v.end(), [&](const code_term &x) { return x.text == t; }))
+        v.push_back({t, precedence});
+}
+
 // One emission of the program: which values are reached and named, which are
 // implied finite by the outputs, which reciprocals share a division, then the
 // code in program order with each check right after the value it tests.
@@ -446,7 +452,7 @@ private:
             // x > 0 follows from the positive terms before it (k = w_1 + w_2 of
             // reciprocals > 0 and squares): no term of the min; its finiteness as any other.
             if (!covered_[static_cast<std::size_t>(id)])
-                add_unique(out_.finite_terms, x);
+                add_unique(out_.finite_terms, x, p);
             out_.check_comments.push_back(c.comment);
             return;
         }
@@ -464,7 +470,7 @@ private:
                 positive_ids_.insert(rid);
                 add_unique(out_.positive_terms, var_.at(rid));
                 if (!covered_[static_cast<std::size_t>(rid)])
-                    add_unique(out_.finite_terms, var_.at(rid));
+                    add_unique(out_.finite_terms, var_.at(rid), 4);
                 out_.check_comments.push_back(c.comment);
                 return;
             }
@@ -493,7 +499,7 @@ private:
         }
         // (unless the finiteness of the outputs implies it)
         if (!covered_[static_cast<std::size_t>(id)])
-            add_unique(out_.finite_terms, x);
+            add_unique(out_.finite_terms, x, p);
         out_.check_comments.push_back(c.comment);
     }
 
@@ -533,7 +539,7 @@ private:
             positive_ids_.insert(rid);
             add_unique(out_.positive_terms, var_.at(rid));
             if (!covered_[static_cast<std::size_t>(rid)])
-                add_unique(out_.finite_terms, var_.at(rid));
+                add_unique(out_.finite_terms, var_.at(rid), 4);
             prefolded_comments_[rid].push_back(c.comment);
             reach_[xi] = false;
             materialised_[xi] = false;
@@ -633,7 +639,7 @@ private:
             std::string r = fresh("rcp_r");
             declare(r, "T(1) / " + q[0]);
             ++out_.formula.div;
-            out_.finite_terms.push_back(q[0]);
+            out_.finite_terms.push_back({q[0], 4});
             s.push_back(r);
         } else {
             std::string pq = fresh("rcp_p"), r = fresh("rcp_r"), s1 = fresh("rcp_s1"), s2 = fresh("rcp_s2");
@@ -644,7 +650,7 @@ private:
             out_.formula.mul += 3;
             ++out_.formula.div;
             out_.normal_terms.push_back(pq);
-            out_.finite_terms.push_back(pq);
+            out_.finite_terms.push_back({pq, 4});
             s = {s1, s2};
         }
         for (std::size_t j = 0; j < pairs.size(); ++j) {
@@ -730,7 +736,7 @@ private:
             int p;
             std::string v = printer_().text(id, p);
             if (static_cast<int>(k) == energy_output_)
-                v = (v.find(' ') != std::string::npos ? "with_energy_lost ? (" + v + ")" : "with_energy_lost ? " + v) +
+                v = (parenthesised_in_sum(p) ? "with_energy_lost ? (" + v + ")" : "with_energy_lost ? " + v) +
                     " : T(0)";
             switch (placement_) {
             case output_placement::result:

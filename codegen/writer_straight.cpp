@@ -100,9 +100,11 @@ void writer::emit_forms()
                              energy_optional && static_cast<int>(k) == energy});
         for (const std::string &nm : unused_inputs)
             t.push_back({nm, 0, false});
-        for (const std::string &x : form.finite_terms)
-            if (!has(x))
-                t.push_back({x, id_of_name.count(x) ? ready[static_cast<std::size_t>(id_of_name.at(x))] : 0, false});
+        for (const code_term &x : form.finite_terms)
+            if (!has(x.text))
+                t.push_back({x.text,
+                             id_of_name.count(x.text) ? ready[static_cast<std::size_t>(id_of_name.at(x.text))] : 0,
+                             false, x.precedence});
         return t;
     };
     fast_terms_ = finite_terms(fast_, true);

@@ -138,9 +138,13 @@ void writer::process_intro()
     h_ << "// As P_n grows, u is linear in it within a phase: slide along the slip s (dP_t = -s mu dP_n),\n";
     h_ << "// stick (u_t = 0, dP_t = -K_tn / K_tt dP_n) or reverse; compression ends at u_n = 0 (P_c, work\n";
     h_ << "// W_c), restitution at "
-       << (std::holds_alternative<poisson_restitution>(q_.contact().law_of_restitution)
-               ? "P_n = (1 + e) P_c (Poisson)"
-               : "normal work -e^2 W_c (energetic; per phase x = 2R / (v + sqrt(v^2 + 2 b R)))")
+       << std::visit(law_cases{[](const newton_restitution &) { return "u'_n = -e u_n (Newton)"; },
+                               [](const poisson_restitution &) { return "P_n = (1 + e) P_c (Poisson)"; },
+                               [](const energetic_restitution &) {
+                                   return "normal work -e^2 W_c (energetic; per phase "
+                                          "x = 2R / (v + sqrt(v^2 + 2 b R)))";
+                               }},
+                     q_.contact().law_of_restitution)
        << ".\n";
     h_ << "// Each phase sequence below is a candidate in closed form with the conditions that select it;\n";
     h_ << "// mu = 0 is the smooth impact. The first candidate whose conditions hold is the answer (two\n";

@@ -212,10 +212,7 @@ printed writer::leaf(const ex &e) const
         const symbol &s = ex_to<symbol>(e);
         if (sx_ == syntax::mathml)
             return {one(tex_to_mathml(symbol_latex(s))), p_atom};
-        return {sx_ == syntax::latex    ? symbol_latex(s)
-                : sx_ == syntax::parser ? s.get_name()
-                                        : symbol_text(s.get_name()),
-                p_atom};
+        return {sx_ == syntax::latex ? symbol_latex(s) : sx_ == syntax::parser ? s.get_name() : symbol_text(s), p_atom};
     }
     std::ostringstream os;
     if (sx_ == syntax::latex || sx_ == syntax::mathml)
@@ -470,7 +467,7 @@ std::string mathml_one(const std::string &elements)
     return one(elements);
 }
 
-std::string symbol_text(const std::string &name)
+std::string symbol_text(const std::string &name, symbol_role role)
 {
     std::string out;
     std::size_t i = 0;
@@ -480,21 +477,9 @@ std::string symbol_text(const std::string &name)
         std::size_t k = word.size();
         return k == name.size() || name[k] == '_' || name[k] == '\'';
     };
-    // w is ω for angular velocities only (w′..., w_b1, w_z,ball), not for the
-    // effective inverse masses w_1, w_ball.
-    auto angular = [&] {
-        if (name.size() > 1 && name[1] == '\'')
-            return true;
-        if (name.size() < 4 || name[1] != '_' || std::string("tnbxyz").find(name[2]) == std::string::npos)
-            return false;
-        if (name[3] == ',')
-            return true;
-        for (std::size_t k = 3; k < name.size(); ++k)
-            if (!std::isdigit(static_cast<unsigned char>(name[k])))
-                return false;
-        return true;
-    };
-    if (starts("w") && angular()) {
+    // The Greek letters written out (tau, eps, rho: as GiNaC's TeX names show them), and the w
+    // of an angular velocity (its role, set by the model: expr/roles.hpp).
+    if (role == symbol_role::angular_velocity && !name.empty() && name[0] == 'w') {
         out = "ω";
         i = 1;
     } else if (starts("tau")) {
@@ -510,6 +495,11 @@ std::string symbol_text(const std::string &name)
     for (; i < name.size(); ++i)
         out += name[i] == '\'' ? std::string("′") : std::string(1, name[i]);
     return out;
+}
+
+std::string symbol_text(const symbol &s)
+{
+    return symbol_text(s.get_name(), role_of(s));
 }
 
 std::string symbol_latex(const symbol &s)

@@ -1,6 +1,6 @@
 // The printer over the canonical tree (expr/tree.hpp): one walk of the tree, four
 // syntaxes that differ only where the format does.
-//   text    Unicode for a terminal: ω for w, τ for tau, ε for eps, ′ for ',
+//   text    Unicode for a terminal: ω for an angular velocity's w, τ for tau, ε for eps, ′ for ',
 //           · for products, ², ³ for small powers, √ for square roots, a/b.
 //           The text form of a node is also its order key in the tree.
 //   latex   for amsmath: \frac, \sqrt, symbols by their TeX names. A power of
@@ -18,6 +18,7 @@
 // (std::invalid_argument), never silently wrong output.
 #pragma once
 
+#include "roles.hpp"
 #include "tree.hpp"
 
 #include <string>
@@ -42,8 +43,11 @@ printed print_factor(tree &t, const factor &f, syntax s, tex_to_mathml_fn mathml
 /// The terms of a sum node as written, each (negative, text without its sign).
 std::vector<std::pair<bool, std::string>> print_terms(tree &t, int id, syntax s, tex_to_mathml_fn mathml = nullptr);
 
-/// A symbol's name for a terminal: w -> ω (angular velocities only), tau -> τ, eps -> ε, ' -> ′.
-std::string symbol_text(const std::string &name);
+/// A symbol's name for a terminal: tau -> τ, eps -> ε, rho -> ρ, ' -> ′, and for an angular
+/// velocity (the role, never the name: expr/roles.hpp) its leading w -> ω.
+std::string symbol_text(const std::string &name, symbol_role role = symbol_role::none);
+/// The symbol's name for a terminal, with the role the model gave it.
+std::string symbol_text(const GiNaC::symbol &s);
 /// A symbol's TeX name, with multi-character subscripts braced.
 std::string symbol_latex(const GiNaC::symbol &s);
 /// MathML elements as one element (an <mrow> around several).

@@ -126,8 +126,8 @@ struct drawing {
 
 /// The impact drawn from its derivation (problem + contact frame d.n_hat,
 /// d.t_dir, d.b_dir). Symbols left in the problem take illustrative values:
-/// for a named class a fixed table (bodies on their own side of the tangent
-/// plane, approaching); for a problem file a value by the symbol's first role
+/// for a named class the values it gave its quantities (problem::illustrate: bodies
+/// on their own side of the tangent plane, approaching); for a problem file a value by the symbol's first role
 /// (masses and diagonal inertias 1, off-diagonal inertias 0, e = 1/2, the
 /// contact point 0, a centre 0.8 from O on its body's side, a pivot beyond
 /// the centre, velocities that approach, spins 0). Never throws for a

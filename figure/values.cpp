@@ -4,11 +4,9 @@
 #include "figure/values.hpp"
 
 #include "figure/geometry.hpp"
-#include "symbolic/named_classes.hpp"
 
 #include <cmath>
 #include <exception>
-#include <map>
 
 namespace impactgen::figure::detail
 {
@@ -87,31 +85,24 @@ void settle(exmap &known, const ex &e, double target, double fallback)
             known[s] = numeric(fallback);
 }
 
-/// The named classes' symbols (symbolic/named_classes.cpp): bodies on their
-/// own side of the tangent plane, centres off the line of impact for the
-/// non-central classes, velocities that approach. A symbol the table lacks is
-/// placed by what it is in the problem (a spin 0, an inertia entry 1 on the
-/// diagonal and 0 off it), never by its name; anything else 1.
-double named_class_value(const problem &p, const symbol &s)
+/// A named class's symbol: the value the class gave it where it put it in a quantity
+/// (problem::illustrative: bodies on their own side of the tangent plane, centres off the line of
+/// impact for the non-central classes, velocities that approach), else by the quantity it is in
+/// (a spin 0, an inertia entry 1 on the diagonal and 0 off it), anything else 1. Never by its name.
+ex class_value(const problem &p, const symbol &s)
 {
-    static const std::map<std::string, double> table = {
-        {"m1", 1},      {"m2", 1.5},     {"m", 1},      {"e", 0.8},     {"mu", 0.3},    {"R1", 1},      {"R2", 0.8},
-        {"R", 1},       {"l", 1.5},      {"v1", 1},     {"r_t1", -0.5}, {"r_n1", -0.9}, {"r_b1", 0.3},  {"r_t2", 0.6},
-        {"r_n2", 1.0},  {"r_b2", -0.25}, {"v_t1", 0.5}, {"v_n1", 1.0},  {"v_b1", 0.3},  {"v_t2", -0.4}, {"v_n2", -0.6},
-        {"v_b2", -0.2}, {"v_t", 1.0},    {"v_n", -1.2}, {"I1", 0.25},   {"I2", 0.25},
-    };
-    const auto it = table.find(s.get_name());
-    if (it != table.end())
+    const auto it = p.illustrative.find(s);
+    if (it != p.illustrative.end())
         return it->second;
     for (const body &b : p.bodies)
         for (std::size_t r = 0; r < 3; ++r) {
             if (b.angular_velocity[r].is_equal(s))
-                return 0;
+                return numeric(0.0);
             for (std::size_t c = 0; c < 3; ++c)
                 if (b.inertia[r][c].is_equal(s))
-                    return r == c ? 1 : 0;
+                    return numeric(r == c ? 1.0 : 0.0);
         }
-    return 1;
+    return numeric(1.0);
 }
 
 exmap illustrative_values(const problem &p)
@@ -120,9 +111,9 @@ exmap illustrative_values(const problem &p)
     const std::vector<symbol> all = p.parameters();
     if (all.empty())
         return known;
-    if (find_named_class(p.source)) {
+    if (p.illustrated) {
         for (const symbol &s : all)
-            known[s] = numeric(named_class_value(p, s));
+            known[s] = class_value(p, s);
         return known;
     }
     const bool planar = p.dimension == 2;

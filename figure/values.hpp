@@ -16,7 +16,8 @@ double number(const GiNaC::ex &e, const GiNaC::exmap &values, double fallback);
 std::vector<GiNaC::symbol> symbols_in(const GiNaC::ex &e);
 
 /// The illustrative value of every symbol of the problem (empty for a numeric problem): for a
-/// named class a fixed table, for a problem file a value by each symbol's first role.
+/// named class the values it gave its quantities (problem::illustrative), for a problem file a
+/// value by each symbol's first role; never by a symbol's name.
 GiNaC::exmap illustrative_values(const problem &p);
 
 } // namespace impactgen::figure::detail

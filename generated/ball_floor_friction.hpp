@@ -1178,7 +1178,7 @@ IMPACTGEN_FUNC friction_status ball_floor_friction(T e, T mu, T R, T m, T v_t, T
     out.tangential_impulse_t = lk_1 * sel_F_t;
     out.tangential_impulse_n = lk_1 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (-(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
+    out.energy_lost = with_energy_lost ? -(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2))) : T(0);
     out.regime = regime_now;
     const T check_sum = (((out.v_t_ball + out.v_n_ball) + (out.w_b_ball + out.normal_impulse)) + ((out.tangential_impulse_t + out.tangential_impulse_n) + (out.approach_velocity + out.energy_lost))) + (((e + mu) + (R + m)) + ((v_t + v_n) + w));
     if (!detail::finite<T>(check_sum) && !detail::all_finite(out.v_t_ball, out.v_n_ball, out.w_b_ball, out.normal_impulse, out.tangential_impulse_t, out.tangential_impulse_n, out.approach_velocity, out.energy_lost, e, mu, R, m, v_t, v_n, w))
@@ -1313,7 +1313,7 @@ IMPACTGEN_HOT IMPACTGEN_FUNC friction_status ball_floor_friction_unchecked(T e, 
     out.tangential_impulse_t = lk_1 * sel_F_t;
     out.tangential_impulse_n = lk_1 * sel_F_n;
     out.approach_velocity = lk_u_n;
-    out.energy_lost = with_energy_lost ? (-(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2)))) : T(0);
+    out.energy_lost = with_energy_lost ? -(sel_P_t * lk_1 * ((w_b_ball_p1 * T(5) + w * T(2)) * R + T(2) * w * R + v_t_ball_p2 * T(2) + v_t * T(4)) * (T(1) / T(4)) + sel_P_n * lk_1 * (v_n_ball_p1 + v_n * T(2)) * (T(1) / T(2))) : T(0);
     out.regime = regime_now;
     return friction_status::ok;
 }

@@ -18,9 +18,9 @@ std::string mathml_of_tex(const std::string &tex)
 
 } // namespace
 
-std::string symbol_text(const std::string &name)
+std::string symbol_text(const symbol &s)
 {
-    return expr::symbol_text(name);
+    return expr::symbol_text(s);
 }
 
 std::string symbol_latex(const symbol &s)

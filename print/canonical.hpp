@@ -55,8 +55,9 @@ inline std::string canonical_mathml(const GiNaC::ex &e)
 /// term, its whole text (sign included). For breaking a long sum over lines.
 std::vector<std::pair<bool, std::string>> canonical_terms(const GiNaC::ex &e, syntax s);
 
-/// A symbol's name for a terminal: w -> ω, tau -> τ, eps -> ε, ' -> ′.
-std::string symbol_text(const std::string &name);
+/// A symbol's name for a terminal: tau -> τ, eps -> ε, rho -> ρ, ' -> ′; an angular velocity's
+/// (the role the model gave it, expr/roles.hpp) leading w -> ω.
+std::string symbol_text(const GiNaC::symbol &s);
 /// A symbol's TeX name, with multi-character subscripts braced.
 std::string symbol_latex(const GiNaC::symbol &s);
 /// A symbol as MathML: symbol_latex through tex_to_mathml, one element.

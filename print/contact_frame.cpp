@@ -1,5 +1,6 @@
 #include "contact_frame.hpp"
 
+#include "expr/roles.hpp"
 #include "symbolic/decide.hpp"
 
 #include <algorithm>
@@ -144,11 +145,13 @@ ex factored(const ex &x)
     return is_a<add>(x) ? collect_common_factors(x) : x;
 }
 
-// A world vector to write through frame components: base, TeX base, body label, after impact.
+// A world vector to write through frame components: base, TeX base, body label, after impact,
+// the components' role (an angular velocity's are ω in text).
 struct framed_vector {
     const vec3 &world;
     const std::string &base, &base_tex, &label;
     bool after;
+    expr::symbol_role role;
 };
 
 // Names x's frame components (v′_t1 = e_t · v′_1, ...) into `into` and writes x's world
@@ -167,8 +170,8 @@ bool name_in_frame(contact_frame_view &v, int dim, const framed_vector &x, const
             if (world[c].is_equal(world[k]))
                 return false;
     for (int k = 0; k < dim; ++k) {
-        frame.emplace_back(quantity_name(x.base, frame_axes[k], x.label, x.after),
-                           quantity_tex(x.base_tex, frame_axes[k], x.label, x.after));
+        frame.push_back(expr::symbol_with_role(quantity_name(x.base, frame_axes[k], x.label, x.after),
+                                               quantity_tex(x.base_tex, frame_axes[k], x.label, x.after), x.role));
         ex combination = 0;
         for (int c = 0; c < dim; ++c)
             combination += v.e[k][c] * world[c];
@@ -332,8 +335,9 @@ contact_frame_view contact_frame_view_of(const derivation &d)
     std::map<std::size_t, std::vector<symbol>> spin_after, spin_before;
     std::vector<symbol> frame;
     auto rename = [&](const vec3 &world, const std::string &base, const std::string &base_tex, const std::string &label,
-                      bool after, const std::vector<std::string> &meanings, std::vector<frame_component> &into) {
-        return name_in_frame(v, dim, {world, base, base_tex, label, after}, meanings, into, frame);
+                      bool after, const std::vector<std::string> &meanings, std::vector<frame_component> &into,
+                      expr::symbol_role role = expr::symbol_role::none) {
+        return name_in_frame(v, dim, {world, base, base_tex, label, after, role}, meanings, into, frame);
     };
 
     // Unknowns, in the derivation's order: the world components of one vector are
@@ -358,10 +362,11 @@ contact_frame_view contact_frame_view_of(const derivation &d)
             meanings.push_back(frame_meaning(p, u.kind, owner_body, true));
         }
         const std::string &label = p.bodies[owner_body].label;
-        const bool ok = u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
-                        : u.kind == unknown_kind::angular_velocity
-                            ? rename(world, "w", "\\omega", label, true, meanings, v.unknowns)
-                            : rename(world, "R", "R", label, false, meanings, v.unknowns);
+        const bool ok =
+            u.kind == unknown_kind::velocity ? rename(world, "v", "v", label, true, meanings, v.unknowns)
+            : u.kind == unknown_kind::angular_velocity
+                ? rename(world, "w", "\\omega", label, true, meanings, v.unknowns, expr::symbol_role::angular_velocity)
+                : rename(world, "R", "R", label, false, meanings, v.unknowns);
         if (!ok)
             return world_only();
         if (u.kind == unknown_kind::angular_velocity)
@@ -380,7 +385,8 @@ contact_frame_view contact_frame_view_of(const derivation &d)
             meanings.clear();
             for (int k = 0; k < dim; ++k)
                 meanings.push_back(frame_meaning(p, unknown_kind::angular_velocity, i, false));
-            if (rename(b.angular_velocity, "w", "\\omega", b.label, false, meanings, v.inputs))
+            if (rename(b.angular_velocity, "w", "\\omega", b.label, false, meanings, v.inputs,
+                       expr::symbol_role::angular_velocity))
                 spin_before[i] = frame;
         }
     }

@@ -7,6 +7,7 @@
 
 #include "canonical.hpp"
 #include "contact_frame.hpp"
+#include "expr/roles.hpp"
 #include "expression.hpp"
 #include "figure/figure.hpp"
 #include "names/escape.hpp"
@@ -650,11 +651,15 @@ bool notes_example(const std::string &class_name, worked_example &out)
 problem detail::symbolized(const problem &p, lst &values, std::vector<std::string> &units)
 {
     problem q = p;
+    q.illustrated = false; // its symbols are new: a named class's figure values are not theirs
+    q.illustrative.clear();
     auto name = [&](const std::string &base, const std::string &base_tex, const std::string &axis, const body &b,
                     ex &slot, quantity what) {
         if (slot.is_zero())
             return;
-        symbol s(quantity_name(base, axis, b.label, false), quantity_tex(base_tex, axis, b.label, false));
+        const symbol s = expr::symbol_with_role(
+            quantity_name(base, axis, b.label, false), quantity_tex(base_tex, axis, b.label, false),
+            what == quantity::angular_velocity ? expr::symbol_role::angular_velocity : expr::symbol_role::none);
         values.append(s == slot);
         units.push_back(unit(p, what));
         slot = s;

@@ -15,6 +15,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <variant>
 
 namespace impactgen::print::detail
 {
@@ -43,12 +45,6 @@ process_inputs library_inputs(const explain_input &in)
     for (ex *x : {&q.Ktt, &q.Ktn, &q.Knn, &q.ut, &q.un})
         *x = x->subs(same);
     return q;
-}
-
-// Whether law is Poisson's (else energetic).
-bool poisson(const restitution_law &law)
-{
-    return std::holds_alternative<poisson_restitution>(law);
 }
 
 // The sign s of the first slide: +1 when the contact slips along +e_t. From the candidate's
@@ -163,11 +159,7 @@ public:
                 seqs.push_back(s);
         coulomb_parts = chapter(coulomb{}, in);
     }
-    std::string title() const override
-    {
-        return poisson(in.s.law) ? "Impact with friction, Poisson's restitution"
-                                 : "Impact with friction, energetic restitution";
-    }
+    std::string title() const override { return words_of(in.s.law).title; }
     bool symbols_first() const override { return false; }
     setup_parts setup() const override;
     std::vector<section> statement() const override;
@@ -185,13 +177,7 @@ setup_parts process_chapter_impl::setup() const
 {
     setup_parts parts = coulomb_parts->setup();
     parts.kind = "A planar (2-D) impact with Coulomb friction, followed through the impact";
-    parts.law.push_back(
-        poisson(in.s.law)
-            ? paragraph().t("Restitution is measured by impulses (Poisson): $e$ is the ratio of the normal impulse of "
-                            "restitution to that of compression.")
-            : paragraph().t("Restitution is measured by work (Stronge's energetic coefficient): $e²$ is the ratio of "
-                            "the work the normal force gives back in restitution to the work it absorbs in "
-                            "compression."));
+    parts.law.push_back(words_of(in.s.law).setup);
     return parts;
 }
 
@@ -209,14 +195,7 @@ std::vector<section> process_chapter_impl::statement() const
               formula_row("|dP_t| ≤ μ dP_n", "|dP_{t}| \\le \\mu\\,dP_{n}", "sticking")});
     number_rows(sec, 1);
     sec.para(paragraph().t("Compression ends where $u_n = 0$, at $P_n = P_c$. Restitution ends by the law:"));
-    if (poisson(in.s.law))
-        sec.rows({formula_row("P_n = (1 + e) P_c", "P_{n} = (1 + e)\\,P_{c}",
-                              "Poisson: the impulse of restitution is e times that of compression")});
-    else
-        sec.rows(
-            {formula_row("W_r = -e² W_c,  W = ∫ u_n dP_n", "W_{r} = -e^{2}\\,W_{c},\\quad W = \\int u_{n}\\,dP_{n}",
-                         "energetic: the work given back is e² times the work absorbed; it never creates "
-                         "energy")});
+    sec.rows({words_of(in.s.law).end});
     number_rows(sec, 3);
     return {sec};
 }
@@ -286,7 +265,7 @@ section process_chapter_impl::sequence_section(std::size_t k) const
         const process_sequence &sq = seqs[k];
         sec.para(paragraph().t("Compression ends where $u_n = 0$:"));
         std::vector<math_row> rows{value_of("P_c", "P_{c}", shown(sq.compression_impulse, numeric))};
-        if (!poisson(in.s.law))
+        if (words_of(in.s.law).compression_work)
             rows.push_back(value_of("W_c", "W_{c}", shown(sq.compression_work, numeric),
                                     paragraph().w("the normal work of compression")));
         sec.rows(rows);
@@ -375,6 +354,46 @@ std::vector<section> process_chapter_impl::results() const
 }
 
 } // namespace
+
+// ---- the laws' words (explain_process.hpp: the one document hook of a restitution law) ----
+
+restitution_words words_of(const restitution_law &law)
+{
+    return std::visit(
+        law_cases{
+            [](const newton_restitution &) -> restitution_words {
+                throw std::logic_error("Newton's law of restitution is not followed through the impact");
+            },
+            [](const poisson_restitution &) {
+                restitution_words w;
+                w.title = "Impact with friction, Poisson's restitution";
+                w.setup = paragraph().t("Restitution is measured by impulses (Poisson): $e$ is the ratio of the "
+                                        "normal impulse of restitution to that of compression.");
+                w.end = formula_row("P_n = (1 + e) P_c", "P_{n} = (1 + e)\\,P_{c}",
+                                    "Poisson: the impulse of restitution is e times that of compression");
+                w.summary_end = formula_row("end of restitution (Poisson): N = (1 + e) N_c",
+                                            "\\text{end of restitution (Poisson): } N = (1 + e)\\,N_c");
+                return w;
+            },
+            [](const energetic_restitution &) {
+                restitution_words w;
+                w.title = "Impact with friction, energetic restitution";
+                w.setup = paragraph().t("Restitution is measured by work (Stronge's energetic coefficient): $e²$ is "
+                                        "the ratio of the work the normal force gives back in restitution to the "
+                                        "work it absorbs in compression.");
+                w.end = formula_row("W_r = -e² W_c,  W = ∫ u_n dP_n",
+                                    "W_{r} = -e^{2}\\,W_{c},\\quad W = \\int u_{n}\\,dP_{n}",
+                                    "energetic: the work given back is e² times the work absorbed; it never "
+                                    "creates energy");
+                w.summary_end = formula_row("end of restitution (Stronge): W_r = -e² W_c, the normal work",
+                                            "\\text{end of restitution (Stronge): } W_r = -e^2 W_c\\ "
+                                            "\\text{(the work of the normal impulse)}");
+                w.compression_work = true;
+                return w;
+            },
+        },
+        law);
+}
 
 std::unique_ptr<law_chapter> process_chapter(const explain_input &in)
 {

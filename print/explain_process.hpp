@@ -17,6 +17,18 @@ namespace impactgen::print::detail
 /// The chapter of a contact with friction and law poisson or energetic.
 std::unique_ptr<law_chapter> process_chapter(const explain_input &in);
 
+/// What a restitution law followed through the impact says in the documents: the one hook a law
+/// adds to them (explain_process.cpp, words_of; the chapter and the summary read nothing else
+/// of the law). A new alternative of restitution_law does not build until it has its words.
+struct restitution_words {
+    std::string title;             ///< the chapter's title
+    paragraph setup;               ///< the set-up's sentence on how restitution is measured
+    math_row end;                  ///< the end of restitution, in the process section
+    math_row summary_end;          ///< the end of restitution, in a summary
+    bool compression_work = false; ///< the solution lists the normal work of compression W_c
+};
+restitution_words words_of(const restitution_law &law);
+
 /// One point of the relative velocity's path: the normal impulse and (u_t, u_n) there.
 struct path_point {
     double pn = 0, ut = 0, un = 0;

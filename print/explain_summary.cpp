@@ -5,6 +5,7 @@
 #include "explain_law.hpp"
 
 #include "canonical.hpp"
+#include "explain_process.hpp"
 #include "expression.hpp"
 #include "symbolic/decide.hpp"
 
@@ -312,13 +313,7 @@ void process_rows(std::vector<math_row> &rows, const std::string &e_n, const exp
                                    "\\le \\mu P_n"));
     rows.push_back(formula_row("end of compression: u_n = 0 at N = N_c",
                                "\\text{end of compression: } u_n = 0 \\text{ at } N = N_c"));
-    if (std::holds_alternative<poisson_restitution>(in.d.prob.contact().law_of_restitution))
-        rows.push_back(formula_row("end of restitution (Poisson): N = (1 + e) N_c",
-                                   "\\text{end of restitution (Poisson): } N = (1 + e)\\,N_c"));
-    else
-        rows.push_back(formula_row("end of restitution (Stronge): W_r = -e² W_c, the normal work",
-                                   "\\text{end of restitution (Stronge): } W_r = -e^2 W_c\\ "
-                                   "\\text{(the work of the normal impulse)}"));
+    rows.push_back(words_of(in.d.prob.contact().law_of_restitution).summary_end);
 }
 
 // The rows of a summary in vector form, for free bodies whose steps are too many to list (3-D

@@ -18,7 +18,7 @@ namespace
 
 // One formula document, printed by a format-specific line writer.
 struct formula_line {
-    std::string name_text, name_tex;
+    std::string name_text, name_tex; ///< as printed (text: symbol_text, with the symbol's role)
     ex value;
     std::string meaning;
 };
@@ -30,7 +30,7 @@ void add_unknowns(const derivation &d, const ex &unknown_values, std::vector<for
     for (std::size_t k = 0; k < d.unknowns.size(); ++k) {
         const unknown &u = d.unknowns[k];
         if (u.kind != unknown_kind::normal_impulse)
-            lines.push_back({u.sym.get_name(), symbol_latex(u.sym), unknown_values.op(k).rhs(), u.meaning});
+            lines.push_back({symbol_text(u.sym), symbol_latex(u.sym), unknown_values.op(k).rhs(), u.meaning});
     }
 }
 
@@ -38,7 +38,7 @@ std::vector<formula_line> collect(const derivation &d, const solution &s)
 {
     std::vector<formula_line> lines;
     for (const step &st : s.steps)
-        lines.push_back({st.sym.get_name(), symbol_latex(st.sym), st.value, st.meaning});
+        lines.push_back({symbol_text(st.sym), symbol_latex(st.sym), st.value, st.meaning});
     add_unknowns(d, s.unknown_values, lines);
     return lines;
 }
@@ -61,7 +61,7 @@ std::string formulas_text(const derivation &d, const solution &s)
            << (d.prob.dimension == 3 ? ", " + canonical_text(d.n_hat[2]) : "") << ")\n";
     os << "\n";
     for (const formula_line &l : collect(d, s))
-        os << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n    (" << l.meaning << ")\n";
+        os << l.name_text << " = " << canonical_text(l.value) << "\n    (" << l.meaning << ")\n";
     return os.str();
 }
 
@@ -146,7 +146,7 @@ std::string process_text(const derivation &d, const friction_solution &f)
     os << "unit normal n = (" << canonical_text(f.n_hat[0]) << ", " << canonical_text(f.n_hat[1])
        << "), tangent e_t = (" << canonical_text(f.e_t[0]) << ", " << canonical_text(f.e_t[1]) << ")\n\n";
     for (const step &st : f.shared.steps)
-        os << symbol_text(st.sym.get_name()) << " = " << canonical_text(st.value) << "\n    (" << st.meaning << ")\n";
+        os << symbol_text(st.sym) << " = " << canonical_text(st.value) << "\n    (" << st.meaning << ")\n";
     for (std::size_t ci = 0; ci < f.cases.size(); ++ci) {
         const regime_case &c = f.cases[ci];
         os << "\nSequence " << ci + 1 << ": " << phases_text(c) << "\n";
@@ -155,7 +155,7 @@ std::string process_text(const derivation &d, const friction_solution &f)
         os << "  N = " << canonical_text(c.sol.normal_impulse) << "\n  F = " << canonical_text(c.tangential_scalar)
            << "\n";
         for (const case_line &l : case_results(d, c))
-            os << "  " << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n";
+            os << "  " << l.name_text << " = " << canonical_text(l.value) << "\n";
         if (!c.process_conditions.empty()) {
             os << "  holds when:\n";
             for (const process_condition &pc : c.process_conditions)
@@ -263,20 +263,20 @@ std::string formulas_text(const derivation &d, const friction_solution &f)
     const std::size_t shared = shared_count(f);
     const auto &first = f.cases.front().sol.steps;
     for (std::size_t k = 0; k < shared; ++k)
-        os << symbol_text(first[k].sym.get_name()) << " = " << canonical_text(first[k].value) << "\n    ("
-           << first[k].meaning << ")\n";
+        os << symbol_text(first[k].sym) << " = " << canonical_text(first[k].value) << "\n    (" << first[k].meaning
+           << ")\n";
     for (std::size_t ci = 0; ci < f.cases.size(); ++ci) {
         const regime_case &c = f.cases[ci];
         os << "\nRegime " << ci + 1 << ": " << c.name << "\n";
         for (std::size_t k = shared; k < c.sol.steps.size(); ++k)
-            os << "  " << symbol_text(c.sol.steps[k].sym.get_name()) << " = " << canonical_text(c.sol.steps[k].value)
+            os << "  " << symbol_text(c.sol.steps[k].sym) << " = " << canonical_text(c.sol.steps[k].value)
                << "\n      (" << c.sol.steps[k].meaning << ")\n";
         if (c.needs_angle)
             os << "  the sliding direction d = c_d e_t + s_d e_b (c_d^2 + s_d^2 = 1) solves\n      0 = "
                << canonical_text(c.angle_equation)
                << "\n      (u'_t parallel to d: a trigonometric polynomial of degree 2 in the sliding angle)\n";
         for (const case_line &l : case_results(d, c))
-            os << "  " << symbol_text(l.name_text) << " = " << canonical_text(l.value) << "\n";
+            os << "  " << l.name_text << " = " << canonical_text(l.value) << "\n";
         os << "  holds when:\n";
         for (const regime_condition &rc : c.conditions)
             os << "    " << rc.meaning << ":  " << canonical_text(rc.value) << relation(rc) << "\n";

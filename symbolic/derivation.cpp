@@ -1,6 +1,7 @@
 #include "derivation.hpp"
 #include "decide.hpp"
 
+#include "expr/roles.hpp"
 #include "names/escape.hpp"
 
 #include <cctype>
@@ -364,8 +365,9 @@ void unknowns_of(derivation &d)
         }
         if (!b.particle) {
             for (int c = (dim == 2 ? 2 : 0); c < 3; ++c) {
-                symbol s =
-                    fresh(quantity_name("w", ax[c], b.label, true), quantity_tex("\\omega", ax[c], b.label, true));
+                symbol s = expr::symbol_with_role(quantity_name("w", ax[c], b.label, true),
+                                                  quantity_tex("\\omega", ax[c], b.label, true),
+                                                  expr::symbol_role::angular_velocity);
                 d.unknowns.push_back(
                     {s, unknown_kind::angular_velocity, i, c,
                      "angular velocity of " + display_name(b) + " after impact, " + ax[c] + " component"});

@@ -1,6 +1,8 @@
 #include "named_classes.hpp"
 #include "named_systems.hpp"
 
+#include "expr/roles.hpp"
+
 namespace impactgen
 {
 using namespace GiNaC;
@@ -11,6 +13,12 @@ namespace
 ex S(const std::string &name, const std::string &tex = "")
 {
     return symbol_named(name, tex);
+}
+
+// An angular velocity of the notes (w_b1, w_t2): ω in every document.
+ex spin(const std::string &name, const std::string &tex)
+{
+    return expr::set_role(symbol_named(name, tex), expr::symbol_role::angular_velocity);
 }
 
 // Body "1" or "2" with the notes' symbols: m1, v_t1, v_n1, v_b1, w_t1, ..., position r_t1 ... of C1 relative to O.
@@ -30,11 +38,11 @@ body free_body(const std::string &k, int dim, bool rigid, bool full_inertia)
         return b;
     if (dim == 2) {
         b.inertia[2][2] = S("I" + k, "I_{" + k + "}");
-        b.angular_velocity[2] = S("w_b" + k, "\\omega_{b" + k + "}");
+        b.angular_velocity[2] = spin("w_b" + k, "\\omega_{b" + k + "}");
         return b;
     }
     for (int c = 0; c < 3; ++c)
-        b.angular_velocity[c] = S(std::string("w_") + ax[c] + k, std::string("\\omega_{") + ax[c] + k + "}");
+        b.angular_velocity[c] = spin(std::string("w_") + ax[c] + k, std::string("\\omega_{") + ax[c] + k + "}");
     for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c) {
             if (!full_inertia && r != c)
@@ -47,12 +55,39 @@ body free_body(const std::string &k, int dim, bool rigid, bool full_inertia)
     return b;
 }
 
+// The figure of a free body of the notes (free_body), by body (1, 2) and quantity: on its own side
+// of the tangent plane, its centre off the line of impact, its velocity approaching the other's.
+void illustrate_free_body(problem &p, std::size_t i)
+{
+    static const double mass[2] = {1, 1.5}, planar_inertia = 0.25;
+    static const double position[2][3] = {{-0.5, -0.9, 0.3}, {0.6, 1.0, -0.25}};
+    static const double velocity[2][3] = {{0.5, 1.0, 0.3}, {-0.4, -0.6, -0.2}};
+    const body &b = p.bodies[i];
+    p.illustrate(b.mass, mass[i]);
+    for (int c = 0; c < p.dimension; ++c) {
+        p.illustrate(b.position[c], position[i][c]);
+        p.illustrate(b.velocity[c], velocity[i][c]);
+    }
+    if (p.dimension == 2)
+        p.illustrate(b.inertia[2][2], planar_inertia);
+}
+
+// Two free bodies of the notes, illustrated.
+void free_bodies(problem &p, const body &b1, const body &b2)
+{
+    p.bodies = {b1, b2};
+    illustrate_free_body(p, 0);
+    illustrate_free_body(p, 1);
+}
+
 problem base(const std::string &name, int dim)
 {
     problem p;
     p.source = name;
+    p.illustrated = true;
     p.dimension = dim;
     p.restitution = S("e");
+    p.illustrate(p.restitution, 0.8);
     p.axes = {"t", "n", "b"};
     p.contact().body1 = 0;
     p.contact().body2 = 1;
@@ -69,7 +104,9 @@ problem central_direct()
     b2.position = {0, S("R2", "R_{2}"), 0};
     b1.velocity[0] = 0;
     b2.velocity[0] = 0;
-    p.bodies = {b1, b2};
+    free_bodies(p, b1, b2);
+    p.illustrate(S("R1"), 1);
+    p.illustrate(S("R2"), 0.8);
     return p;
 }
 
@@ -79,14 +116,16 @@ problem central_oblique()
     body b1 = free_body("1", 3, false, false), b2 = free_body("2", 3, false, false);
     b1.position = {0, -S("R1", "R_{1}"), 0};
     b2.position = {0, S("R2", "R_{2}"), 0};
-    p.bodies = {b1, b2};
+    free_bodies(p, b1, b2);
+    p.illustrate(S("R1"), 1);
+    p.illustrate(S("R2"), 0.8);
     return p;
 }
 
 problem noncentral_3d()
 {
     problem p = base("noncentral-3d", 3);
-    p.bodies = {free_body("1", 3, true, true), free_body("2", 3, true, true)};
+    free_bodies(p, free_body("1", 3, true, true), free_body("2", 3, true, true));
     return p;
 }
 
@@ -98,14 +137,14 @@ problem massive_3d()
     b2.mass = 0;
     b2.particle = true; // an infinite mass needs no inertia: its motion is given
     b2.inertia = zero_mat();
-    p.bodies = {free_body("1", 3, true, true), b2};
+    free_bodies(p, free_body("1", 3, true, true), b2);
     return p;
 }
 
 problem planar()
 {
     problem p = base("planar", 2);
-    p.bodies = {free_body("1", 2, true, false), free_body("2", 2, true, false)};
+    free_bodies(p, free_body("1", 2, true, false), free_body("2", 2, true, false));
     return p;
 }
 
@@ -116,8 +155,10 @@ problem pinned_planar()
 {
     problem p;
     p.source = "pinned-planar";
+    p.illustrated = true;
     p.dimension = 2;
     p.restitution = S("e");
+    p.illustrate(p.restitution, 0.8);
     p.axes = {"x", "y", "z"};
     ex l = S("l"), m1 = S("m1"), m2 = S("m2");
     body ball;
@@ -139,6 +180,10 @@ problem pinned_planar()
     p.contact().point = {0, -l, 0};
     p.contact().normal = {1, 0, 0};
     p.pivots = {pivot{1, zero_vec()}};
+    p.illustrate(m1, 1);
+    p.illustrate(m2, 1.5);
+    p.illustrate(l, 1.5);
+    p.illustrate(ball.velocity[0], 1);
     return p;
 }
 
@@ -147,6 +192,7 @@ problem with_friction(problem p, const std::string &name)
 {
     p.source = name;
     p.contact().set_friction(S("mu", "\\mu"));
+    p.illustrate(p.contact().friction(), 0.3);
     return p;
 }
 
@@ -180,6 +226,11 @@ problem ball_floor_friction()
     ball.velocity = {S("v_t", "v_{t}"), S("v_n", "v_{n}"), 0};
     ball.angular_velocity[2] = S("w", "\\omega");
     p.bodies = {floor, ball};
+    // a ball of unit mass and radius that approaches the floor and slides along it
+    p.illustrate(m, 1);
+    p.illustrate(R, 1);
+    p.illustrate(ball.velocity[0], 1.0);
+    p.illustrate(ball.velocity[1], -1.2);
     return with_friction(p, "ball-floor-friction");
 }
 
@@ -204,6 +255,10 @@ problem rod_rough_floor()
     rod.velocity = {S("v_t", "v_{t}"), S("v_n", "v_{n}"), 0};
     rod.angular_velocity[2] = S("w", "\\omega");
     p.bodies = {floor, rod};
+    p.illustrate(m, 1);
+    p.illustrate(l, 1.5);
+    p.illustrate(rod.velocity[0], 1.0);
+    p.illustrate(rod.velocity[1], -1.2);
     p = with_friction(p, "rod-rough-floor");
     p.contact().law_of_restitution = energetic_restitution{};
     return p;

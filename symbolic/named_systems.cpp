@@ -50,6 +50,7 @@ problem system_base(const std::string &name, const std::string &title, const std
 {
     problem p;
     p.source = name;
+    p.illustrated = true;
     p.title = title;
     p.description = description;
     p.dimension = 2;
@@ -105,6 +106,7 @@ problem three_balls()
     balls[0].velocity = {v, 0, 0};
     p.bodies = balls;
     p.contacts = {contact(0, 1, {R, 0, 0}, {1, 0, 0}), contact(1, 2, {3 * R, 0, 0}, {1, 0, 0})};
+    p.illustrate(p.restitution, 0.8);
     return p;
 }
 
@@ -129,6 +131,8 @@ problem double_pendulum_struck()
     p.pivots = {pivot{0, zero_vec()}};
     p.joints = {joint{0, 1, {0, -l, 0}}};
     p.contacts = {contact(2, 1, {0, -2 * l, 0}, {1, 0, 0})};
+    p.illustrate(p.restitution, 0.8);
+    p.illustrate(l, 1.5);
     return p;
 }
 
@@ -149,6 +153,8 @@ problem two_corner_landing()
     p.contacts = {contact(0, 1, {-a, 0, 0}, {0, 1, 0}), contact(0, 1, {a, 0, 0}, {0, 1, 0})};
     for (contact_spec &c : p.contacts)
         c.set_friction(mu);
+    p.illustrate(p.restitution, 0.8);
+    p.illustrate(mu, 0.3);
     return p;
 }
 

@@ -122,10 +122,23 @@ struct problem {
     std::array<std::string, 3> axes{"x", "y", "z"}; ///< names of the world axes in printed symbols
     std::string units;                 ///< "" (none given) or "SI": the unit system of every number (prose only)
     std::vector<std::string> warnings; ///< e.g. keys that were ignored
+    /// A named class's figure (symbolic/named_classes.cpp, named_systems.cpp): `illustrated`, and
+    /// the number to draw each of its symbols with, given where the class puts the symbol in a
+    /// quantity (illustrate()); a symbol without one is drawn by the quantity it is in (a spin 0,
+    /// an inertia entry 1 on the diagonal and 0 off it, anything else 1). A problem file is not
+    /// illustrated: its figure places every symbol by the quantity it is in (figure/values.cpp).
+    bool illustrated = false;
+    GiNaC::exmap illustrative;
 
     /// The contact of a one-contact problem (every problem the reader accepts today).
     contact_spec &contact() { return contacts.front(); }
     const contact_spec &contact() const { return contacts.front(); }
+    /// The figure's value of a quantity that is one symbol (anything else: nothing to give).
+    void illustrate(const ex &quantity, double value)
+    {
+        if (GiNaC::is_a<GiNaC::symbol>(quantity))
+            illustrative[quantity] = GiNaC::numeric(value);
+    }
     /// Every symbol the problem's values contain, sorted by name.
     std::vector<GiNaC::symbol> parameters() const;
     bool is_numeric() const { return parameters().empty(); }

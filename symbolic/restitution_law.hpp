@@ -33,6 +33,14 @@ const char *law_name(const restitution_law &law);
 /// The law named by a file's "law" value; throws input_error naming `where` for any other name.
 restitution_law law_from_name(const std::string &name, const std::string &where);
 
+/// One callable per law, for std::visit over a restitution_law: where the laws differ, each site
+/// visits, so that a new alternative does not build until every site has its case (never an
+/// if/else that would give it another law's).
+template <class... F> struct law_cases : F... {
+    using F::operator()...;
+};
+template <class... F> law_cases(F...) -> law_cases<F...>;
+
 /// True for a law measured along the process (poisson, energetic), false for newton.
 inline bool follows_process(const restitution_law &law)
 {

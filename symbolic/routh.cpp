@@ -4,6 +4,9 @@
 #include "names/escape.hpp"
 #include "response.hpp"
 
+#include <stdexcept>
+#include <variant>
+
 namespace impactgen
 {
 using namespace GiNaC;
@@ -205,24 +208,30 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
 // The distance along the phase to the end of restitution, from the state st (compressed).
 void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero)
 {
-    ex xf;
-    if (std::holds_alternative<poisson_restitution>(in_.law)) {
-        xf = fix((1 + in_.e) * st.seq.compression_impulse - st.P);
-    } else {
-        const ex R = fix(-in_.e * in_.e * st.seq.compression_work - st.Wr);
-        const ex un = value(st.un);
-        if (from_zero || (is_constant(un) && decide(tidy(un)) == decision::zero)) {
-            // From u_n = 0 the work b x^2 / 2 grows only where b > 0 (b = 0: a stick with K
-            // singular, whose normal velocity stays 0 and restores nothing).
-            if (!from_zero && !symbolic_ && decide_condition(tidy(value(sl.b))) != decision::positive &&
-                decide(tidy(value(R))) != decision::zero)
-                throw input_error(where_ + ": the contact sticks with its normal velocity held at 0 (the contact "
-                                           "response K is singular): the energetic law's restitution never ends");
-            xf = fix(sqrt(2 * R / sl.b));
-        } else {
-            xf = fix(2 * R / (st.un + sqrt(st.un * st.un + 2 * sl.b * R)));
-        }
-    }
+    // The law's own end of restitution (one case per law: restitution_law.hpp, law_cases).
+    const ex xf = std::visit(
+        law_cases{
+            [&](const newton_restitution &) -> ex {
+                throw std::logic_error("Newton's law of restitution is not followed through the impact");
+            },
+            [&](const poisson_restitution &) { return fix((1 + in_.e) * st.seq.compression_impulse - st.P); },
+            [&](const energetic_restitution &) {
+                const ex R = fix(-in_.e * in_.e * st.seq.compression_work - st.Wr);
+                const ex un = value(st.un);
+                if (from_zero || (is_constant(un) && decide(tidy(un)) == decision::zero)) {
+                    // From u_n = 0 the work b x^2 / 2 grows only where b > 0 (b = 0: a stick with K
+                    // singular, whose normal velocity stays 0 and restores nothing).
+                    if (!from_zero && !symbolic_ && decide_condition(tidy(value(sl.b))) != decision::positive &&
+                        decide(tidy(value(R))) != decision::zero)
+                        throw input_error(where_ + ": the contact sticks with its normal velocity held at 0 (the "
+                                                   "contact response K is singular): the energetic law's "
+                                                   "restitution never ends");
+                    return fix(sqrt(2 * R / sl.b));
+                }
+                return fix(2 * R / (st.un + sqrt(st.un * st.un + 2 * sl.b * R)));
+            },
+        },
+        in_.law);
     if (!stops) {
         advance(st, sl, xf);
         leaf(st, sl);

@@ -5,6 +5,7 @@
 #include "derivation.hpp"
 
 #include "decide.hpp"
+#include "expr/roles.hpp"
 
 namespace impactgen
 {
@@ -62,8 +63,9 @@ void system_unknowns(derivation &d, std::vector<impulse_at> &impulses)
             continue;
         for (int k = dim == 2 ? 2 : 0; k < 3; ++k) {
             // planar: the z axis, as one contact names it; omega in LaTeX as in the one-contact documents
-            symbol s(quantity_name("w", axis_name[k], B.label, true),
-                     quantity_tex("\\omega", axis_name[k], B.label, true));
+            const symbol s = expr::symbol_with_role(quantity_name("w", axis_name[k], B.label, true),
+                                                    quantity_tex("\\omega", axis_name[k], B.label, true),
+                                                    expr::symbol_role::angular_velocity);
             d.angular_velocity_after[b][k] = s;
             d.system_unknowns.push_back({s, "angular velocity of " + display_name(B) + " after impact"});
         }

@@ -1,7 +1,9 @@
 // impactgen explain: content, determinism, golden files, LaTeX.
+#include "expr/roles.hpp"
 #include "print/canonical.hpp"
 #include "print/explain.hpp"
 #include "print/explain_detail.hpp"
+#include "print/formulas.hpp"
 #include "symbolic/named_classes.hpp"
 
 #include "latex_tools.hpp"
@@ -328,13 +330,15 @@ TEST(Cli, BadInputIsOneLineAndExitOne)
 
 TEST(Canonical, SignsAndForms)
 {
-    symbol a("a"), b("b"), c("c"), d("d"), w("w'_z1"), e("e");
+    symbol a("a"), b("b"), c("c"), d("d"), e("e");
+    const symbol w = expr::symbol_with_role("w'_z1", "", expr::symbol_role::angular_velocity);
     EXPECT_EQ(canonical_text((a - b) / (c - d)), canonical_text((b - a) / (d - c)));
     EXPECT_EQ(canonical_text(pow(a, 2) / 2), "a²/2");
     EXPECT_EQ(canonical_text(1 - e * e), "1 - e²");
     EXPECT_EQ(canonical_text(-(1 + e) * a / c), "-(1 + e)·a/c");
     EXPECT_EQ(canonical_text(sqrt(a)), "√a");
     EXPECT_EQ(canonical_text(w), "ω′_z1");
+    EXPECT_EQ(canonical_text(symbol("w'_z1")), "w′_z1"); // no role, no ω
     EXPECT_EQ(canonical_text(symbol("w_1")), "w_1");
     EXPECT_EQ(canonical_latex(numeric(-1, 7)), "-\\frac{1}{7}");
     EXPECT_EQ(canonical_latex(pow(symbol("v'_x1", "v'_{x1}"), 2)), "{v'_{x1}}^{2}");
@@ -350,4 +354,38 @@ TEST(Canonical, SignsAndForms)
         t.replace(k, std::string("³").size(), "^3");
     EXPECT_TRUE((reader2(t) - f).normal().is_zero()) << t;
     EXPECT_THROW(canonical_text(lst{a, b}), std::invalid_argument);
+}
+
+// A user's quantities print as the user wrote them: ω is the role of the angular velocities the
+// model names (expr/roles.hpp), never a name pattern. Masses named w and weight, a velocity named
+// w_x1 and bodies named t1 and n2 (whose effective inverse masses are w_t1, w_n2) once printed
+// w_x1 as ω_x1 and w_t1 as ω_t1; these particles have no angular velocity at all.
+TEST(Canonical, UserQuantitiesNamedLikeASpinPrintAsWritten)
+{
+    // Symbols are shared by name across a process (symbol_named): the classes that name their
+    // spin w (with the TeX name \omega) are built first, so that this file's w is theirs, as it
+    // would be in any process that built them, and so that later tests see their w unchanged.
+    for (const char* cls : {"ball-floor-friction", "rod-rough-floor", "two-corner-landing"})
+        find_named_class(cls)->build();
+    const problem p = read_problem(R"({"dimension": 2, "restitution": "e",
+        "bodies": [{"name": "t1", "mass": "w", "position": [-1, 0], "velocity": ["w_x1", 0]},
+                   {"name": "n2", "mass": "weight", "position": [1, 0], "velocity": [0, 0]}],
+        "contact": {"bodies": ["t1", "n2"], "point": [0, 0], "normal": [1, 0]}})",
+                                   "user.json");
+    const derivation d = derive(p);
+    const impact_solution s = solve_impact(d);
+    const std::string formulas = formulas_text(d, s);
+    EXPECT_NE(formulas.find("w_x1"), std::string::npos) << formulas;
+    EXPECT_NE(formulas.find("weight"), std::string::npos) << formulas;
+    EXPECT_NE(formulas.find("w_t1 = "), std::string::npos) << formulas;
+    EXPECT_EQ(formulas.find("ω"), std::string::npos) << formulas;
+    const std::string text = explain_text(explain(d, s));
+    EXPECT_NE(text.find("w_x1"), std::string::npos);
+    EXPECT_EQ(text.find("ω"), std::string::npos) << text;
+    const std::string latex = formulas_latex(d, s);
+    EXPECT_NE(latex.find("w_{x1}"), std::string::npos) << latex;
+    EXPECT_EQ(latex.find("omega_{x1}"), std::string::npos) << latex;
+    // The model's own angular velocities keep their ω: a rigid body's after impact.
+    const derivation planar = derive(find_named_class("planar")->build());
+    EXPECT_NE(formulas_text(planar, solve_impact(planar)).find("ω′_b1 = "), std::string::npos);
 }

@@ -1,7 +1,10 @@
 // The one canonical expression layer (expr/): the tree's sharing, order and signs, the printer
 // over it, and code generation reading the same tree.
 #include "codegen/canonical.hpp"
+#include "codegen/form_text.hpp"
+#include "codegen/program.hpp"
 #include "expr/print.hpp"
+#include "expr/roles.hpp"
 #include "expr/tree.hpp"
 
 #include <gtest/gtest.h>
@@ -69,7 +72,8 @@ TEST(ExprTree, TheSignOfASumMovesToTheCoefficient)
 
 TEST(ExprPrint, FourSyntaxesOfOneTree)
 {
-    const symbol a("a"), b("b"), w("w_z1");
+    const symbol a("a"), b("b");
+    const symbol w = expr::symbol_with_role("w_z1", "", expr::symbol_role::angular_velocity);
     const ex e = sqrt(a) / (2 * pow(b, 2)) + w;
     const expr::shared_tree shared;
     expr::tree &t = shared.get();
@@ -94,6 +98,30 @@ TEST(ExprPrint, WhatNoSyntaxPrintsIsAnErrorNotATreeFailure)
     const int id = t.of(a + I);
     EXPECT_THROW(expr::print(t, id, expr::syntax::text), std::invalid_argument);
     EXPECT_THROW(expr::print(t, t.of(2.5 * a), expr::syntax::parser), std::invalid_argument);
+}
+
+// ω comes from the role the model gave a symbol, never from its name: two symbols named alike
+// print alike unless one of them is an angular velocity.
+TEST(ExprPrint, OmegaOnlyForASymbolWhoseRoleIsAnAngularVelocity)
+{
+    const symbol user("w_t1"), weight("weight"), w("w"), primed("w'_z1");
+    const symbol spin = expr::symbol_with_role("w_t1", "\\omega_{t1}", expr::symbol_role::angular_velocity);
+    const symbol spin_after = expr::symbol_with_role("w'_z1", "\\omega'_{z1}", expr::symbol_role::angular_velocity);
+    EXPECT_EQ(text(user), "w_t1");
+    EXPECT_EQ(text(weight), "weight");
+    EXPECT_EQ(text(w), "w");
+    EXPECT_EQ(text(primed), "w′_z1");
+    EXPECT_EQ(text(spin), "ω_t1");
+    EXPECT_EQ(text(spin_after), "ω′_z1");
+    EXPECT_EQ(expr::role_of(user), expr::symbol_role::none);
+    EXPECT_EQ(expr::role_of(spin), expr::symbol_role::angular_velocity);
+    // In a sum each keeps its own: the user's w_t1 beside the spin ω_t1.
+    const std::string sum = text(user + 2 * spin);
+    EXPECT_NE(sum.find("w_t1"), std::string::npos) << sum;
+    EXPECT_NE(sum.find("2·ω_t1"), std::string::npos) << sum;
+    // Copies of a symbol are the symbol: the role goes with them.
+    const ex copy = spin;
+    EXPECT_EQ(text(copy * copy), "ω_t1²");
 }
 
 TEST(ExprTree, NestedScopesKeepTheSharedNodes)
@@ -131,4 +159,31 @@ TEST(ExprCodegen, CodeGenerationReadsTheSameCanonicalForm)
     EXPECT_EQ(pool.at(s.node).kind, codegen::cnode::sin_);
     EXPECT_THROW(pool.convert(exp(a)), std::runtime_error);
     EXPECT_THROW(pool.convert(tan(a)), std::runtime_error);
+}
+
+// The emitter and the header writers put parentheses by the structure of what they combine (the
+// precedence of its top operation), never by looking for a space in its text: a negation or a
+// call whose text has spaces stays bare, a sum or a product is parenthesised.
+TEST(ExprCodegen, ParenthesesComeFromTheStructureNotTheText)
+{
+    codegen::program prog;
+    const int x = prog.input("x"), y = prog.input("y");
+    const int sum = prog.binary(codegen::op::add, x, y);
+    const int negated = prog.negate(sum);
+    const int product = prog.binary(codegen::op::mul, x, y);
+    auto energy = [&](int id) {
+        codegen::emit_options o;
+        o.energy_output = 0;
+        return codegen::emit_cpp(prog, {{"energy_lost", id}}, {}, {}, {}, o).code;
+    };
+    EXPECT_NE(energy(negated).find("with_energy_lost ? -(x + y) : T(0)"), std::string::npos) << energy(negated);
+    EXPECT_NE(energy(product).find("with_energy_lost ? (x * y) : T(0)"), std::string::npos) << energy(product);
+    EXPECT_NE(energy(x).find("with_energy_lost ? x : T(0)"), std::string::npos) << energy(x);
+    // Sums of names: each partial sum is a sum, parenthesised as an operand of the next.
+    EXPECT_EQ(codegen::form_text::balanced_sum({"a", "b", "c"}), "(a + b) + c");
+    EXPECT_EQ(codegen::form_text::balanced_sum({"a", "b", "c", "d"}), "(a + b) + (c + d)");
+    // The finiteness sum of a branchless form: a call with spaces in its text is an atom.
+    const std::string t =
+        codegen::form_text::timed_sum({{"f(a + b)", 0, false, 4}, {"-(c + d)", 0, false, 3}, {"p * q", 0, false, 2}});
+    EXPECT_EQ(t, "T((p * q) + (f(a + b) + -(c + d)))"); // the two earliest summed first
 }

@@ -552,6 +552,46 @@ TEST(FigureGeometry, SymbolsOfANamedClassPlacedByWhatTheyAre)
     EXPECT_NEAR(angle, std::atan2(1.0, 1.0), 1e-9);
 }
 
+// The figure's values come from the quantities a symbol is in, never from its name: a problem
+// file whose source reads like a named class and whose symbols carry the names that class gives
+// other quantities (body 1 with planar's m2, r_n2, v_n2, body 2 with its m1, r_n1, v_n1) is drawn
+// as its own: each centre on its body's side of the tangent plane, the bodies approaching. (A
+// table by name put body 1's centre at r_n2 = 1, on body 2's side, and had them separate.)
+TEST(FigureGeometry, SymbolsNamedLikeANamedClassesArePlacedByTheirQuantities)
+{
+    const problem p = read_problem(R"({"dimension": 2, "restitution": "e",
+        "bodies": [{"name": "a", "mass": "m2", "inertia": "I2", "position": ["r_t2", "r_n2"],
+                    "velocity": ["v_t2", "v_n2"], "angular_velocity": "w_b2"},
+                   {"name": "b", "mass": "m1", "inertia": "I1", "position": ["r_t1", "r_n1"],
+                    "velocity": ["v_t1", "v_n1"], "angular_velocity": "w_b1"}],
+        "contact": {"bodies": ["a", "b"], "point": [0, 0], "normal": [0, 1]}})",
+                                   "planar");
+    const GiNaC::exmap values = schematic_values(p);
+    auto value = [&](const char* name) {
+        const auto it = values.find(symbol_named(name));
+        EXPECT_NE(it, values.end()) << name;
+        return it == values.end() ? 0.0 : GiNaC::ex_to<GiNaC::numeric>(it->second).to_double();
+    };
+    EXPECT_LT(value("r_n2"), 0); // body 1 ("a") below the tangent plane, n = +y into body 2
+    EXPECT_GT(value("r_n1"), 0);
+    EXPECT_GT(value("v_n2") - value("v_n1"), 0); // body 1 moves towards body 2 faster: they approach
+    EXPECT_EQ(value("w_b1"), 0);
+    EXPECT_EQ(value("w_b2"), 0);
+    const drawing g = draw(derive(p));
+    const item* c1 = find_item(g, "C1", item::circle);
+    const item* c2 = find_item(g, "C2", item::circle);
+    ASSERT_NE(c1, nullptr);
+    ASSERT_NE(c2, nullptr);
+    EXPECT_LT(c1->points[0].y, 0);
+    EXPECT_GT(c2->points[0].y, 0);
+    // The class itself keeps its figure: its own symbols, the values it gave its quantities.
+    const problem cls = find_named_class("planar")->build();
+    const GiNaC::exmap class_values = schematic_values(cls);
+    EXPECT_EQ(GiNaC::ex_to<GiNaC::numeric>(class_values.at(cls.bodies[0].position[1])).to_double(), -0.9);
+    EXPECT_EQ(GiNaC::ex_to<GiNaC::numeric>(class_values.at(cls.bodies[1].velocity[1])).to_double(), -0.6);
+    EXPECT_EQ(GiNaC::ex_to<GiNaC::numeric>(class_values.at(cls.restitution)).to_double(), 0.8);
+}
+
 TEST(FigureGeometry, DescribeNamesBodiesShapesAndNormal)
 {
     auto text = [](const std::string& file) {
