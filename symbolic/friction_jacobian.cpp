@@ -57,8 +57,8 @@ void differentiate_steps(const std::vector<step> &steps, std::size_t from, std::
 
 // The Jacobian of one candidate: its own steps differentiated along each input (and, for the
 // slide without a closed form, along theta), then its outputs.
-regime_jacobian candidate_jacobian(const problem &p, const regime_case &c, std::size_t shared,
-                                   const std::vector<symbol> &wrt, const std::vector<derivatives> &shared_known)
+regime_jacobian candidate_jacobian(const regime_case &c, std::size_t shared, const std::vector<symbol> &wrt,
+                                   const std::vector<derivatives> &shared_known, const candidate_outputs &outputs_of)
 {
     regime_jacobian r;
     r.name = c.name;
@@ -97,7 +97,7 @@ regime_jacobian candidate_jacobian(const problem &p, const regime_case &c, std::
             angle_rate[w] = rate.sym;
         }
     }
-    for (const auto &o : friction_outputs(p, c)) {
+    for (const auto &o : outputs_of(c)) {
         std::vector<ex> row;
         for (std::size_t w = 0; w < wrt.size(); ++w) {
             ex v = total(o.second, known[w]);
@@ -135,11 +135,11 @@ std::vector<std::pair<std::string, ex>> friction_outputs(const problem &p, const
     return out;
 }
 
-friction_jacobian friction_jacobian_of(const derivation &d, const impact_solution &s,
-                                       const std::vector<std::string> &wrt)
+friction_jacobian friction_jacobian_of(const impact_solution &s, const std::vector<symbol> &wrt,
+                                       const candidate_outputs &outputs_of)
 {
     friction_jacobian j;
-    j.wrt = jacobian_inputs(d.prob, wrt);
+    j.wrt = wrt;
     j.steps = s.shared.steps;
     std::vector<derivatives> known(j.wrt.size());
     for (std::size_t w = 0; w < j.wrt.size(); ++w) {
@@ -149,11 +149,19 @@ friction_jacobian friction_jacobian_of(const derivation &d, const impact_solutio
     }
     for (const regime_case &c : s.cases) {
         if (j.outputs.empty())
-            for (const auto &o : friction_outputs(d.prob, c))
+            for (const auto &o : outputs_of(c))
                 j.outputs.push_back(o.first);
-        j.regimes.push_back(candidate_jacobian(d.prob, c, j.steps.size(), j.wrt, known));
+        j.regimes.push_back(candidate_jacobian(c, j.steps.size(), j.wrt, known, outputs_of));
     }
     return j;
+}
+
+friction_jacobian friction_jacobian_of(const derivation &d, const impact_solution &s,
+                                       const std::vector<std::string> &wrt)
+{
+    const problem &p = d.prob;
+    return friction_jacobian_of(s, jacobian_inputs(p, wrt),
+                                [&p](const regime_case &c) { return friction_outputs(p, c); });
 }
 
 } // namespace impactgen

@@ -19,6 +19,7 @@
 
 #include "friction.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,14 @@ struct friction_jacobian {
 /// when the problem has no symbol.
 friction_jacobian friction_jacobian_of(const derivation &d, const impact_solution &s,
                                        const std::vector<std::string> &wrt);
+
+/// The outputs a Jacobian differentiates: (name, value in the candidate's steps and inputs).
+using candidate_outputs = std::function<std::vector<std::pair<std::string, GiNaC::ex>>(const regime_case &)>;
+
+/// The same for the inputs `wrt` (symbols of the problem) and the outputs `outputs_of` gives each
+/// candidate (the same names, in the same order, for every candidate): what codegen compiles.
+friction_jacobian friction_jacobian_of(const impact_solution &s, const std::vector<GiNaC::symbol> &wrt,
+                                       const candidate_outputs &outputs_of);
 
 /// The outputs of a candidate, in the order of friction_jacobian::outputs: the normal impulse,
 /// the tangential impulse (planar: along e_t; 3-D: world components), then each body of finite
