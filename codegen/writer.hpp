@@ -290,6 +290,7 @@ private:
     std::vector<std::pair<std::string, std::string>> fj_sel_;   // local of the impulse returned, out.field
     std::vector<std::string> fj_speed_, fj_slip_, fj_friction_; // u before (world); slip, friction along e_t (, e_b)
     std::string fj_mu_;
+    bool fj_impulse_scale_ = false, fj_speed_scale_ = false; // a condition of an impulse, of the sliding speed
     stage fj_pre_;
     std::vector<stage> fj_stages_;
     std::vector<std::vector<std::string>> fj_entries_, fj_conds_; // [candidate][row * wrt + column], [candidate][j]

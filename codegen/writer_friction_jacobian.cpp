@@ -58,6 +58,12 @@ void writer::build_candidates_jacobian()
         fj_sel_.push_back({names[selF.back()], "out." + outs_[k].field});
     }
     fj_pre_.pool.set_input_names(names);
+    for (const regime_case &c : f_.cases) // the scales the boundary tests need
+        for (const regime_condition &rc : c.conditions) {
+            fj_speed_scale_ = fj_speed_scale_ || rc.kind == condition_kind::slides;
+            fj_impulse_scale_ = fj_impulse_scale_ ||
+                                (rc.kind != condition_kind::slides && rc.kind != condition_kind::slide_denominator);
+        }
     for (const step &st : f_.shared.steps)
         fj_pre_.bind_step(st, scope_.claim("j_" + st.sym.get_name()));
     mat3 K = zero_mat();
@@ -74,6 +80,8 @@ void writer::build_candidates_jacobian()
         const auto i = static_cast<std::size_t>(a);
         const ex u = d_.vB[i] - d_.vA[i];
         after[i] = u + KP[i];
+        if (!fj_speed_scale_)
+            continue;
         fj_speed_.push_back(scope_.claim("j_u_" + q.axes[i]));
         fj_pre_.output(fj_speed_.back(), u);
     }
@@ -82,16 +90,23 @@ void writer::build_candidates_jacobian()
         F[static_cast<std::size_t>(a)] = selF[static_cast<std::size_t>(a)];
     fj_slip_.push_back(scope_.claim("j_slip_t"));
     fj_pre_.output(fj_slip_.back(), dot(after, d_.e_t));
-    fj_friction_.push_back(scope_.claim("j_friction_t"));
-    fj_pre_.output(fj_friction_.back(), dot(F, d_.e_t));
+    const bool friction_read = dim == 2 || angle_ >= 0; // (the isotropic slide is the one slide)
+    if (friction_read) {
+        fj_friction_.push_back(scope_.claim("j_friction_t"));
+        fj_pre_.output(fj_friction_.back(), dot(F, d_.e_t));
+    }
     if (dim == 3) {
         fj_slip_.push_back(scope_.claim("j_slip_b"));
         fj_pre_.output(fj_slip_.back(), dot(after, d_.e_b));
+    }
+    if (dim == 3 && friction_read) {
         fj_friction_.push_back(scope_.claim("j_friction_b"));
         fj_pre_.output(fj_friction_.back(), dot(F, d_.e_b));
     }
-    fj_mu_ = scope_.claim("j_mu");
-    fj_pre_.output(fj_mu_, q.contact().friction());
+    if (fj_impulse_scale_) {
+        fj_mu_ = scope_.claim("j_mu");
+        fj_pre_.output(fj_mu_, q.contact().friction());
+    }
     // Per candidate: its derivatives and conditions, c and s of the slide without a closed form
     // read as the locals above.
     const std::size_t nw = cj.wrt.size();
@@ -176,7 +191,8 @@ std::string writer::candidates_jacobian_selection() const
                      : "detail::abs_of<T>(" + v[0] + ")";
     };
     r += "    const T " + speed + " = " + size(fj_slip_) + ";\n";
-    r += "    const T " + fs + " = " + size(fj_friction_) + ";\n";
+    if (angle_ >= 0 || !three)
+        r += "    const T " + fs + " = " + size(fj_friction_) + ";\n";
     if (angle_ >= 0)
         r += "    const T " + cd + " = " + fs + " > T(0) ? -" + fj_friction_[0] + " / " + fs + " : " + speed +
              " > T(0) ? " + fj_slip_[0] + " / " + speed + " : T(1);\n" + "    const T " + sd + " = " + fs +
@@ -280,9 +296,11 @@ void writer::candidates_jacobian_function()
     for (const auto &[local, field] : fj_sel_)
         impulse.push_back(local);
     h_ << "    const T " << tol << " = detail::boundary_tolerance<T>();\n";
-    h_ << "    const T " << fj_local_.at("impulse_scale") << " = (T(1) + detail::abs_of<T>(" << fj_mu_ << ")) * ("
-       << abs_sum(impulse) << ");\n";
-    h_ << "    const T " << fj_local_.at("speed_scale") << " = " << abs_sum(fj_speed_) << ";\n";
+    if (fj_impulse_scale_)
+        h_ << "    const T " << fj_local_.at("impulse_scale") << " = (T(1) + detail::abs_of<T>(" << fj_mu_ << ")) * ("
+           << abs_sum(impulse) << ");\n";
+    if (fj_speed_scale_)
+        h_ << "    const T " << fj_local_.at("speed_scale") << " = " << abs_sum(fj_speed_) << ";\n";
     h_ << "    switch (" << cand << ") {\n";
     for (std::size_t c = 0; c < fj_stages_.size(); ++c) {
         h_ << "    case " << c << ": { // " << names::comment_text(f_.cases[c].name) << "\n"
