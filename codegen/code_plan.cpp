@@ -154,15 +154,8 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
         for (const symbol &x : cp.inputs)
             if (!nsyms.count(x))
                 cj.wrt.push_back(x);
-    for (const std::string &nm : wrt) {
-        auto it = std::find_if(cp.inputs.begin(), cp.inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
-        if (it == cp.inputs.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
-                                                                            "function (name it in --params)");
-        if (std::find(cj.wrt.begin(), cj.wrt.end(), *it) != cj.wrt.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
-        cj.wrt.push_back(*it);
-    }
+    if (!wrt.empty())
+        cj.wrt = wrt_inputs(cp.inputs, wrt);
     if (cj.wrt.empty())
         throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
     for (const symbol &x : cj.wrt)
@@ -258,6 +251,21 @@ code_plan candidates_plan(const problem &p, const options &o)
 }
 
 } // namespace
+
+std::vector<symbol> wrt_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
+{
+    std::vector<symbol> out;
+    for (const std::string &nm : wrt) {
+        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
+        if (it == inputs.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
+                                                                            "function (name it in --params)");
+        if (std::find(out.begin(), out.end(), *it) != out.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
+        out.push_back(*it);
+    }
+    return out;
+}
 
 bool has_candidates(const problem &p, const options &o)
 {

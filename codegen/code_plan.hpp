@@ -119,6 +119,10 @@ struct code_plan {
 /// all, so that make_code_plan reports the error.
 bool has_candidates(const problem &p, const options &o);
 
+/// The inputs --wrt names, in its order; option_error(wrt) for a name that is not an input or one
+/// named twice.
+std::vector<GiNaC::symbol> wrt_inputs(const std::vector<GiNaC::symbol> &inputs, const std::vector<std::string> &wrt);
+
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
 

@@ -181,6 +181,7 @@ private:
 
     // ---- --jacobian with friction under Newton's law (writer_friction_jacobian.cpp)
     void build_candidates_jacobian();
+    void build_candidate_jacobian_stage(std::size_t k);
     std::string candidates_jacobian_selection() const;
     std::string candidates_jacobian_boundary(std::size_t k) const;
     void candidates_jacobian_function();

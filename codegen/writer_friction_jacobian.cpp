@@ -36,7 +36,6 @@ std::string abs_sum(const std::vector<std::string> &terms)
 // fj_pre_), then per candidate its derivatives and conditions.
 void writer::build_candidates_jacobian()
 {
-    const candidates_jacobian &cj = cp_.jacobian;
     const problem &q = q_;
     const int dim = q.dimension;
     for (const char *suffix : {"_jacobian", "_wrt_count", "_wrt_names", "_jacobian_row_count", "_jacobian_row_names"})
@@ -107,45 +106,8 @@ void writer::build_candidates_jacobian()
         fj_mu_ = scope_.claim("j_mu");
         fj_pre_.output(fj_mu_, q.contact().friction());
     }
-    // Per candidate: its derivatives and conditions, c and s of the slide without a closed form
-    // read as the locals above.
-    const std::size_t nw = cj.wrt.size();
-    for (std::size_t k = 0; k < f_.cases.size(); ++k) {
-        const regime_case &c = f_.cases[k];
-        const regime_jacobian &r = cj.jac.regimes[k];
-        const std::string pre = "j" + std::to_string(k) + "_";
-        stage st;
-        std::map<ex, std::string, ex_is_less> in = input_ident_;
-        if (c.needs_angle) {
-            in[c.dir_c] = fj_local_.at("c_d");
-            in[c.dir_s] = fj_local_.at("s_d");
-        }
-        st.pool.set_input_names(in);
-        for (const step &s : c.sol.steps)
-            st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-        for (const step &s : cj.jac.derivative_steps)
-            st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-        for (const step &s : r.derivative_steps)
-            st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-        std::vector<std::string> entries, conds;
-        for (std::size_t i = 0; i < cj.rows.size(); ++i)
-            for (std::size_t w = 0; w < nw; ++w) {
-                entries.push_back(
-                    scope_.claim(pre + "d_" + outs_[cj.rows[i]].field + "_d_" + input_ident_.at(cj.wrt[w])));
-                st.output(entries.back(), r.entries[i][w]);
-            }
-        for (std::size_t j = 0; j < c.conditions.size(); ++j) {
-            if (c.conditions[j].kind == condition_kind::slide_denominator) { // (no boundary: see below)
-                conds.emplace_back();
-                continue;
-            }
-            conds.push_back(scope_.claim(pre + "cond" + std::to_string(j + 1)));
-            st.output(conds.back(), c.conditions[j].value);
-        }
-        fj_entries_.push_back(entries);
-        fj_conds_.push_back(conds);
-        fj_stages_.push_back(std::move(st));
-    }
+    for (std::size_t k = 0; k < f_.cases.size(); ++k)
+        build_candidate_jacobian_stage(k);
     emit_options locals;
     locals.outputs = output_placement::local;
     fj_pre_.em = emit_cpp(fj_pre_.prog, fj_pre_.outs, {}, fj_pre_.names, scope_.names(), locals);
@@ -158,6 +120,47 @@ void writer::build_candidates_jacobian()
             if (!scope_.taken(nm))
                 scope_.claim(nm);
     }
+}
+
+// Candidate k's program: its steps, the derivative steps, the entries and the conditions (c and s
+// of the slide without a closed form read as the locals of the selection).
+void writer::build_candidate_jacobian_stage(std::size_t k)
+{
+    const candidates_jacobian &cj = cp_.jacobian;
+    const std::size_t nw = cj.wrt.size();
+    const regime_case &c = f_.cases[k];
+    const regime_jacobian &r = cj.jac.regimes[k];
+    const std::string pre = "j" + std::to_string(k) + "_";
+    stage st;
+    std::map<ex, std::string, ex_is_less> in = input_ident_;
+    if (c.needs_angle) {
+        in[c.dir_c] = fj_local_.at("c_d");
+        in[c.dir_s] = fj_local_.at("s_d");
+    }
+    st.pool.set_input_names(in);
+    for (const step &s : c.sol.steps)
+        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
+    for (const step &s : cj.jac.derivative_steps)
+        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
+    for (const step &s : r.derivative_steps)
+        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
+    std::vector<std::string> entries, conds;
+    for (std::size_t i = 0; i < cj.rows.size(); ++i)
+        for (std::size_t w = 0; w < nw; ++w) {
+            entries.push_back(scope_.claim(pre + "d_" + outs_[cj.rows[i]].field + "_d_" + input_ident_.at(cj.wrt[w])));
+            st.output(entries.back(), r.entries[i][w]);
+        }
+    for (std::size_t j = 0; j < c.conditions.size(); ++j) {
+        if (c.conditions[j].kind == condition_kind::slide_denominator) { // (no boundary: see below)
+            conds.emplace_back();
+            continue;
+        }
+        conds.push_back(scope_.claim(pre + "cond" + std::to_string(j + 1)));
+        st.output(conds.back(), c.conditions[j].value);
+    }
+    fj_entries_.push_back(entries);
+    fj_conds_.push_back(conds);
+    fj_stages_.push_back(std::move(st));
 }
 
 // Which candidate NAME selected, as C++ statements setting j_candidate (and j_boundary where the
