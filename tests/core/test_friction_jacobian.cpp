@@ -21,12 +21,6 @@ using namespace GiNaC;
 namespace
 {
 
-struct digits_40 {
-    long saved = Digits;
-    digits_40() { Digits = 40; }
-    ~digits_40() { Digits = saved; }
-};
-
 numeric num(const ex &e, const exmap &at)
 {
     const ex v = e.subs(at).evalf();
@@ -149,7 +143,7 @@ bool regime_at(const regime_case &c, std::size_t shared, exmap &at, numeric &the
 // checks every entry of its regime's Jacobian.
 void check_problem(const problem &p, unsigned salt, int per_regime, std::size_t regimes = 0)
 {
-    digits_40 precision;
+    impactgen::testing::digits_40 precision;
     const derivation d = derive(p);
     const impact_solution s = solve_impact(d);
     const friction_jacobian j = friction_jacobian_of(d, s, {});
