@@ -7,6 +7,7 @@
 #include "print/answer.hpp"
 #include "print/canonical.hpp"
 #include "print/formulas.hpp"
+#include "symbolic/friction_jacobian.hpp"
 #include "symbolic/process_jacobian.hpp"
 #include "symbolic/routh.hpp"
 
@@ -239,6 +240,93 @@ nlohmann::ordered_json process_jacobian_json(const process_jacobian &j)
     out["boundary"] = "on a boundary between sequences (a condition = 0) the derivative is one-sided";
     return out;
 }
+
+// The derivatives of one regime: its conditions, its derivative steps, its nonzero entries.
+void regime_jacobian_text(std::ostream &os, const friction_jacobian &j, std::size_t k, bool latex)
+{
+    const regime_jacobian &r = j.regimes[k];
+    const std::string c = latex ? "% " : "";
+    os << "\n" << c << "Regime " << k + 1 << ": " << r.name << "\n";
+    for (const regime_condition &k : r.conditions)
+        os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning << ")\n";
+    if (r.through_angle)
+        os << c << "  " << print::symbol_text(r.dir_c.get_name()) << " = cos(theta), "
+           << print::symbol_text(r.dir_s.get_name())
+           << " = sin(theta): theta a root of the angle equation g = 0, found for the numbers;\n"
+           << c << "  through the implicit function theorem dtheta/dx = -(dg/dx)/(dg/dtheta), where dg/dtheta != 0\n"
+           << c << "  (a simple root; at a double root the sliding direction is not differentiable)\n";
+    for (const step &st : r.derivative_steps)
+        os << c << "  " << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+    std::size_t zeros = 0;
+    for (std::size_t o = 0; o < j.outputs.size(); ++o)
+        for (std::size_t w = 0; w < j.wrt.size(); ++w) {
+            if (r.entries[o][w].is_zero()) {
+                ++zeros;
+                continue;
+            }
+            os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w].get_name()) << " = "
+               << expr(r.entries[o][w], latex) << "\n";
+        }
+    os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
+}
+
+std::string friction_jacobian_text(const friction_jacobian &j, bool latex)
+{
+    std::ostringstream os;
+    const std::string c = latex ? "% " : "";
+    os << "\n"
+       << c << "Jacobian of the impact map per regime, d(output)/d(input) by the chain rule through the regime's\n"
+       << c << "steps (inputs:";
+    for (const symbol &x : j.wrt)
+        os << " " << print::symbol_text(x.get_name());
+    os << "). Inside a regime (every condition strict) the map is smooth; on a boundary between two\n"
+       << c << "regimes (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n"
+       << (j.derivative_steps.empty() ? "" : "\n");
+    for (const step &st : j.derivative_steps)
+        os << c << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+    for (std::size_t k = 0; k < j.regimes.size(); ++k)
+        regime_jacobian_text(os, j, k, latex);
+    return os.str();
+}
+
+nlohmann::ordered_json friction_jacobian_json(const friction_jacobian &j)
+{
+    auto steps_json = [](const std::vector<step> &steps) {
+        nlohmann::ordered_json m = nlohmann::ordered_json::object();
+        for (const step &st : steps)
+            m[st.sym.get_name()] = print::canonical_text(st.value);
+        return m;
+    };
+    nlohmann::ordered_json out, wrt = nlohmann::ordered_json::array(), regimes = nlohmann::ordered_json::array();
+    for (const symbol &x : j.wrt)
+        wrt.push_back(x.get_name());
+    for (const regime_jacobian &r : j.regimes) {
+        nlohmann::ordered_json g, conds = nlohmann::ordered_json::array(), m = nlohmann::ordered_json::object();
+        g["regime"] = r.name;
+        for (const regime_condition &k : r.conditions)
+            conds.push_back({{"value", print::canonical_text(k.value)}, {"strict", k.strict}, {"meaning", k.meaning}});
+        g["conditions"] = conds;
+        g["through_angle"] = r.through_angle;
+        if (r.through_angle) {
+            g["cos_theta"] = r.dir_c.get_name();
+            g["sin_theta"] = r.dir_s.get_name();
+        }
+        g["steps"] = steps_json(r.derivative_steps);
+        for (std::size_t o = 0; o < j.outputs.size(); ++o) {
+            nlohmann::ordered_json row = nlohmann::ordered_json::object();
+            for (std::size_t w = 0; w < j.wrt.size(); ++w)
+                row[j.wrt[w].get_name()] = print::canonical_text(r.entries[o][w]);
+            m[j.outputs[o]] = row;
+        }
+        g["matrix"] = m;
+        regimes.push_back(g);
+    }
+    out["wrt"] = wrt;
+    out["steps"] = steps_json(j.derivative_steps);
+    out["regimes"] = regimes;
+    out["boundary"] = "on a boundary between regimes (a condition = 0) the derivative is one-sided";
+    return out;
+}
 } // namespace
 
 int process_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt)
@@ -255,6 +343,24 @@ int process_jacobian_formulas(const problem &p, const std::string &format, const
     } else {
         std::cout << (format == "latex" ? print::formulas_latex(d, s) : print::formulas_text(d, s))
                   << process_jacobian_text(j, format == "latex");
+    }
+    return 0;
+}
+
+int friction_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt)
+{
+    std::vector<std::string> names;
+    split_wrt(wrt, names);
+    const derivation d = derive(p);
+    const impact_solution s = solve_impact(d);
+    const friction_jacobian j = friction_jacobian_of(d, s, names);
+    if (format == "json") {
+        nlohmann::ordered_json a = print::formulas_json(d, s);
+        a["jacobian"] = friction_jacobian_json(j);
+        std::cout << a.dump(2) << "\n";
+    } else {
+        std::cout << (format == "latex" ? print::formulas_latex(d, s) : print::formulas_text(d, s))
+                  << friction_jacobian_text(j, format == "latex");
     }
     return 0;
 }

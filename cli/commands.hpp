@@ -38,6 +38,9 @@ nlohmann::ordered_json jacobian_json(const codegen::plan &pl);
 /// formulas --jacobian of a problem under Routh's process (poisson, energetic with friction): the
 /// closed form, then the Jacobian of each phase sequence (symbolic/process_jacobian.hpp).
 int process_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt);
+/// formulas --jacobian of a problem with Coulomb friction under Newton's law: the closed form, then
+/// the Jacobian of each regime candidate (symbolic/friction_jacobian.hpp).
+int friction_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt);
 /// formulas --jacobian of a system: its candidates, then each set's Jacobian of the velocities
 /// after impact by the inputs (every symbol, or those --wrt names).
 int system_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt);

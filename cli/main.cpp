@@ -139,6 +139,8 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
     }
     if (jacobian && p.dimension == 2 && p.has_friction() && follows_process(p.contact().law_of_restitution))
         return cli::process_jacobian_formulas(p, format, wrt); // per phase sequence
+    if (jacobian && p.has_friction() && !follows_process(p.contact().law_of_restitution))
+        return cli::friction_jacobian_formulas(p, format, wrt); // per regime
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {
@@ -286,8 +288,10 @@ int main(int argc, char **argv)
     std::string wrt;
     formulas->add_flag("--jacobian", jacobian,
                        "also the derivatives of the impact map d(outputs after impact)/d(inputs), as codegen "
-                       "--jacobian computes them; with friction under \"poisson\" or \"energetic\", per phase "
-                       "sequence of Routh's process; for a system, the velocities after impact per candidate set");
+                       "--jacobian computes them; with Coulomb friction, per regime (stick, each slide; the 3-D "
+                       "slide without a closed form through the implicit function theorem of its angle equation); "
+                       "with friction under \"poisson\" or \"energetic\", per phase sequence of Routh's process; "
+                       "for a system, the velocities after impact per candidate set");
     formulas->add_option("--wrt", wrt,
                          "comma-separated inputs to differentiate by (default: every symbol); implies --jacobian");
 

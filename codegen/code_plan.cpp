@@ -34,9 +34,6 @@ void refuse_options(const options &o)
     if (o.inverse_mass)
         throw option_error(option_error::inverse_mass,
                            "the engine input convention is not offered for problems with friction (give masses)");
-    if (o.jacobian || !o.wrt.empty())
-        throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
-                                                   "selection makes the impact map piecewise)");
 }
 
 // The inputs: the parameters in the order given, else the smooth order with the
@@ -122,6 +119,65 @@ void order_outputs(code_plan &cp)
     }
 }
 
+// The value of output k of candidate c: a velocity, a spin, the normal or a tangential impulse
+// (world axes); false for the others (pivot impulses, approach velocity, energy lost).
+bool candidate_output(const code_plan &cp, std::size_t k, const regime_case &c, ex &value)
+{
+    const code_output &of = cp.outputs[k];
+    const auto a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
+    if (of.tangential)
+        value = c.tangential_impulse[a];
+    else if (of.kind == output_value::velocity)
+        value = c.sol.after[of.index].velocity[a];
+    else if (of.kind == output_value::angular_velocity)
+        value = c.sol.after[of.index].angular_velocity[a];
+    else if (of.kind == output_value::normal_impulse)
+        value = c.sol.normal_impulse;
+    else
+        return false;
+    return true;
+}
+
+// --jacobian with friction: the inputs named (every input when none is), each candidate's
+// velocities and impulses differentiated exactly. A normal given as inputs in 3-D has its tangent
+// basis computed at run time, whose derivatives the closed form does not hold: its components are
+// left out of the default and refused by name.
+void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
+{
+    candidates_jacobian &cj = cp.jacobian;
+    cj.on = true;
+    exset nsyms; // a normal given as inputs, its tangent basis computed at run time
+    if (!cp.deriv.tangent_basis_symbols.empty())
+        for (const ex &c : cp.prob.contact().normal)
+            collect_symbols(c, nsyms);
+    if (wrt.empty())
+        for (const symbol &x : cp.inputs)
+            if (!nsyms.count(x))
+                cj.wrt.push_back(x);
+    if (!wrt.empty())
+        cj.wrt = wrt_inputs(cp.inputs, wrt);
+    if (cj.wrt.empty())
+        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
+    for (const symbol &x : cj.wrt)
+        if (nsyms.count(x))
+            throw option_error(option_error::wrt,
+                               x.get_name() + " is a component of the normal, whose tangent basis the generated code "
+                                              "computes at run time: the Jacobian is offered by the other inputs");
+    ex unused;
+    for (std::size_t k = 0; k < cp.outputs.size(); ++k)
+        if (!cp.candidates.cases.empty() && candidate_output(cp, k, cp.candidates.cases.front(), unused))
+            cj.rows.push_back(k);
+    cj.jac = friction_jacobian_of(cp.candidates, cj.wrt, [&cp, &cj](const regime_case &c) {
+        std::vector<std::pair<std::string, ex>> out;
+        for (std::size_t k : cj.rows) {
+            ex v;
+            candidate_output(cp, k, c, v);
+            out.push_back({cp.outputs[k].field, v});
+        }
+        return out;
+    });
+}
+
 // A law with candidates: the problem specialised with its law, the smooth plan of the same
 // problem without it (the inputs in the smooth headers' order with their meanings, the
 // outputs, the vector views, the state a failed call returns), the candidates.
@@ -159,6 +215,8 @@ code_plan candidates_plan(const problem &p, const options &o)
     options so = o;
     so.set.clear();
     so.params.clear();
+    so.jacobian = false; // (the candidates' Jacobian is planned below)
+    so.wrt.clear();
     for (const std::string &nm : o.params)
         if (!friction_only.count(nm))
             so.params.push_back(nm);
@@ -168,6 +226,10 @@ code_plan candidates_plan(const problem &p, const options &o)
     how.runtime_tangent_basis = true;
     cp.deriv = derive(q, how);
     if (follows_process(q.contact().law_of_restitution)) {
+        if (o.jacobian || !o.wrt.empty())
+            throw option_error(option_error::jacobian,
+                               "the generated code does not offer the Jacobian of Routh's process (poisson, energetic "
+                               "with friction): 'impactgen formulas --jacobian' gives it per phase sequence");
         cp.candidates = process_candidates(cp.deriv);
         cp.rule = selection_rule::process;
         order_inputs(cp, o, friction_only);
@@ -183,10 +245,27 @@ code_plan candidates_plan(const problem &p, const options &o)
         }
     order_inputs(cp, o, friction_only);
     order_outputs(cp);
+    if (o.jacobian || !o.wrt.empty())
+        plan_candidates_jacobian(cp, o.wrt);
     return cp;
 }
 
 } // namespace
+
+std::vector<symbol> wrt_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
+{
+    std::vector<symbol> out;
+    for (const std::string &nm : wrt) {
+        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
+        if (it == inputs.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
+                                                                            "function (name it in --params)");
+        if (std::find(out.begin(), out.end(), *it) != out.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
+        out.push_back(*it);
+    }
+    return out;
+}
 
 bool has_candidates(const problem &p, const options &o)
 {

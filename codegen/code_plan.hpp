@@ -23,6 +23,7 @@
 #include "codegen.hpp"
 
 #include "symbolic/friction.hpp"
+#include "symbolic/friction_jacobian.hpp"
 #include "symbolic/system.hpp"
 
 #include <cstddef>
@@ -83,6 +84,17 @@ struct system_code {
     std::vector<GiNaC::symbol> wrt; ///< the inputs the Jacobian differentiates by, in order
 };
 
+/// With --jacobian and Coulomb friction under Newton's law (rules first_that_holds and
+/// sliding_angle): per candidate, the exact derivatives of the header's velocities and impulses
+/// by the inputs wrt (symbolic/friction_jacobian.hpp; the slide without a closed form through
+/// the implicit function theorem of its angle equation).
+struct candidates_jacobian {
+    bool on = false;
+    std::vector<GiNaC::symbol> wrt; ///< the inputs differentiated by, in order
+    std::vector<std::size_t> rows;  ///< indices in code_plan::outputs, in the order of jac.outputs
+    friction_jacobian jac;          ///< one regime_jacobian per candidate (candidates.cases order)
+};
+
 struct code_plan {
     selection_rule rule = selection_rule::none;
     /// The closed form of the problem without the law's own parameters (with friction: mu
@@ -102,6 +114,8 @@ struct code_plan {
     int angle = -1;
     /// rule system_sets: the system's candidates.
     system_code system;
+    /// --jacobian with friction under Newton's law.
+    candidates_jacobian jacobian;
 };
 
 /// True when the problem, with the options' --set values folded in, has a law with more
@@ -109,6 +123,10 @@ struct code_plan {
 /// the options do not fit (an unknown symbol, say) counts when it has a coefficient at
 /// all, so that make_code_plan reports the error.
 bool has_candidates(const problem &p, const options &o);
+
+/// The inputs --wrt names, in its order; option_error(wrt) for a name that is not an input or one
+/// named twice.
+std::vector<GiNaC::symbol> wrt_inputs(const std::vector<GiNaC::symbol> &inputs, const std::vector<std::string> &wrt);
 
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);

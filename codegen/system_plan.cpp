@@ -174,17 +174,7 @@ void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
 {
     system_code &sc = cp.system;
     sc.has_jacobian = true;
-    if (wrt.empty())
-        sc.wrt = cp.inputs;
-    for (const std::string &nm : wrt) {
-        auto it = std::find_if(cp.inputs.begin(), cp.inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
-        if (it == cp.inputs.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
-                                                                            "function (name it in --params)");
-        if (std::find(sc.wrt.begin(), sc.wrt.end(), *it) != sc.wrt.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
-        sc.wrt.push_back(*it);
-    }
+    sc.wrt = wrt.empty() ? cp.inputs : wrt_inputs(cp.inputs, wrt);
     for (system_code_set &s : sc.sets)
         for (std::size_t j : sc.velocities) {
             std::vector<ex> row;

@@ -79,6 +79,8 @@ header writer::run()
     } else {
         build_stages();
         emit_stages();
+        if (cp_.jacobian.on)
+            build_candidates_jacobian();
     }
     build_rows();
     banner();
@@ -101,6 +103,7 @@ header writer::run()
     forwarding_form(false);
     forwarding_form(true);
     jacobian_function();
+    candidates_jacobian_function();
     rows_function();
     if (straight())
         straight_batch();

@@ -179,6 +179,15 @@ private:
     void system_function();
     void system_jacobian_function();
 
+    // ---- --jacobian with friction under Newton's law (writer_friction_jacobian.cpp)
+    void build_candidates_jacobian();
+    void build_candidate_jacobian_stage(std::size_t k);
+    std::string candidates_jacobian_selection() const;
+    std::string candidates_jacobian_boundary(std::size_t k) const;
+    void candidates_jacobian_function();
+    /// The unit tangent basis computed at run time for a normal given as inputs (else nothing).
+    std::string basis_text() const;
+
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
     std::string args() const;
@@ -277,6 +286,15 @@ private:
     std::vector<stage> sys_jac_;
     std::vector<std::string> sys_jac_names_, sys_unit_mass_;
     stage rows_; // --rows: the primitive values of the rows
+    // ---- --jacobian with friction: names and programs
+    std::map<std::string, std::string> fj_local_;
+    std::vector<std::pair<std::string, std::string>> fj_sel_;   // local of the impulse returned, out.field
+    std::vector<std::string> fj_speed_, fj_slip_, fj_friction_; // u before (world); slip, friction along e_t (, e_b)
+    std::string fj_mu_;
+    bool fj_impulse_scale_ = false, fj_speed_scale_ = false; // a condition of an impulse, of the sliding speed
+    stage fj_pre_;
+    std::vector<stage> fj_stages_;
+    std::vector<std::vector<std::string>> fj_entries_, fj_conds_; // [candidate][row * wrt + column], [candidate][j]
     std::map<std::string, std::string> rows_name_;
 };
 

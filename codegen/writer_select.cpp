@@ -350,16 +350,7 @@ void writer::main_function(bool unchecked)
                                                  "fail(friction_status::invalid_friction);\n";
     if (mu_input)
         h_ << mu_check;
-    if (!basis_names_.empty()) {
-        h_ << "    // The unit tangent basis e_t, e_b of the contact plane for this normal (any direction).\n";
-        h_ << nb_.em.code;
-        h_ << "    T " << basis_t_name_ << "[3], " << basis_b_name_ << "[3];\n";
-        h_ << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", "
-           << nb_.outs[2].first << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
-        for (std::size_t k = 0; k < basis_names_.size(); ++k)
-            h_ << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3
-               << "];\n";
-    }
+    h_ << basis_text();
     h_ << (unchecked ? "    // Shared steps, the checks of the state, the candidates and their conditions.\n"
                      : "    // Shared steps, checks, the candidates and their conditions.\n");
     h_ << (unchecked ? a_unchecked_.code : a_.em.code);
@@ -369,6 +360,22 @@ void writer::main_function(bool unchecked)
     if (!unchecked)
         overflow_check();
     h_ << "    return friction_status::ok;\n}\n\n";
+}
+
+std::string writer::basis_text() const
+{
+    if (basis_names_.empty())
+        return "";
+    std::ostringstream os;
+    os << "    // The unit tangent basis e_t, e_b of the contact plane for this normal (any direction).\n";
+    os << nb_.em.code;
+    os << "    T " << basis_t_name_ << "[3], " << basis_b_name_ << "[3];\n";
+    os << "    detail::tangent_basis<T>(" << nb_.outs[0].first << ", " << nb_.outs[1].first << ", " << nb_.outs[2].first
+       << ", " << basis_t_name_ << ", " << basis_b_name_ << ");\n";
+    for (std::size_t k = 0; k < basis_names_.size(); ++k)
+        os << "    const T " << basis_names_[k] << " = " << (k < 3 ? basis_t_name_ : basis_b_name_) << "[" << k % 3
+           << "];\n";
+    return os.str();
 }
 
 void writer::overflow_check()

@@ -6,16 +6,13 @@ namespace impactgen
 {
 using namespace GiNaC;
 
-namespace
-{
-
-std::vector<symbol> inputs_of(const problem &p, const std::vector<std::string> &wrt)
+std::vector<symbol> jacobian_inputs(const problem &p, const std::vector<std::string> &wrt)
 {
     const std::vector<symbol> all = p.parameters();
     if (wrt.empty()) {
         if (all.empty())
-            throw input_error("--jacobian: the problem has no symbol to differentiate by (its numbers decide one phase "
-                              "sequence: 'impactgen solve' answers it)");
+            throw input_error("--jacobian: the problem has no symbol to differentiate by (its numbers decide one "
+                              "answer: 'impactgen solve' answers it)");
         return all;
     }
     std::vector<symbol> out;
@@ -33,6 +30,9 @@ std::vector<symbol> inputs_of(const problem &p, const std::vector<std::string> &
     }
     return out;
 }
+
+namespace
+{
 
 // The outputs of a candidate: the impulses along n and e_t, then each movable body's velocity
 // after impact (planar: x, y and the spin).
@@ -62,7 +62,7 @@ bool solution_follows_process(const impact_solution &s)
 process_jacobian process_jacobian_of(const derivation &d, const impact_solution &s, const std::vector<std::string> &wrt)
 {
     process_jacobian j;
-    j.wrt = inputs_of(d.prob, wrt);
+    j.wrt = jacobian_inputs(d.prob, wrt);
     j.steps = s.shared.steps;
     const std::size_t nw = j.wrt.size();
     // ds_k/dx_j by the chain rule through the earlier steps; a nonzero one becomes a step symbol.

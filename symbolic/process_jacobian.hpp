@@ -35,6 +35,11 @@ struct process_jacobian {
 process_jacobian process_jacobian_of(const derivation &d, const impact_solution &s,
                                      const std::vector<std::string> &wrt);
 
+/// The inputs a Jacobian differentiates by: those named in `wrt` (each a symbol of the problem,
+/// named once: else input_error naming --wrt), or every symbol of the problem (none: input_error
+/// naming --jacobian).
+std::vector<GiNaC::symbol> jacobian_inputs(const problem &p, const std::vector<std::string> &wrt);
+
 /// True when the solution's candidates are the phase sequences of Routh's process.
 bool solution_follows_process(const impact_solution &s);
 

@@ -8,20 +8,29 @@
 #include <random>
 #include <string>
 
-namespace impactgen::testing {
+namespace impactgen::testing
+{
+
+/// GiNaC's Digits at 40 for the scope: the tests' evaluations of closed forms with CLN.
+struct digits_40 {
+    long saved = GiNaC::Digits;
+    digits_40() { GiNaC::Digits = 40; }
+    ~digits_40() { GiNaC::Digits = saved; }
+};
 
 inline unsigned seed_from_env(unsigned fallback = 20261121u)
 {
-    const char* s = std::getenv("IMPACTGEN_SEED");
+    const char *s = std::getenv("IMPACTGEN_SEED");
     return s ? static_cast<unsigned>(std::strtoul(s, nullptr, 10)) : fallback;
 }
 inline int samples_from_env(int fallback)
 {
-    const char* s = std::getenv("IMPACTGEN_SAMPLES");
+    const char *s = std::getenv("IMPACTGEN_SAMPLES");
     return s ? std::atoi(s) : fallback;
 }
 
-class sampler {
+class sampler
+{
 public:
     explicit sampler(unsigned seed) : rng_(seed) {}
 
@@ -58,8 +67,8 @@ public:
     impactgen::mat3 spd()
     {
         impactgen::mat3 A, M;
-        for (auto& row : A)
-            for (auto& e : row)
+        for (auto &row : A)
+            for (auto &e : row)
                 e = rational(2);
         GiNaC::numeric c = positive(4, 2);
         for (int i = 0; i < 3; ++i)
@@ -71,7 +80,7 @@ public:
             }
         return M;
     }
-    std::mt19937& engine() { return rng_; }
+    std::mt19937 &engine() { return rng_; }
 
 private:
     std::mt19937 rng_;
@@ -80,12 +89,12 @@ private:
 /// Values for every symbol of a named class, by the names the notes use:
 /// m*, e, I* (positive / SPD tensors), l, R* (lengths > 0), the rest in [-3, 3].
 /// Velocities are flipped when the bodies would not approach.
-inline GiNaC::lst sample_class_inputs(const problem& p, sampler& rnd)
+inline GiNaC::lst sample_class_inputs(const problem &p, sampler &rnd)
 {
     GiNaC::lst values;
     impactgen::mat3 I[3] = {rnd.spd(), rnd.spd(), rnd.spd()};
     const std::string ax = "tnb";
-    for (const GiNaC::symbol& s : p.parameters()) {
+    for (const GiNaC::symbol &s : p.parameters()) {
         const std::string n = s.get_name();
         GiNaC::ex v;
         if (n[0] == 'm')

@@ -19,12 +19,6 @@ using namespace GiNaC;
 namespace
 {
 
-struct digits_40 {
-    long saved = Digits;
-    digits_40() { Digits = 40; }
-    ~digits_40() { Digits = saved; }
-};
-
 // value(e) at the point: derivative steps, then steps, then the inputs.
 numeric at(const ex &e, const lst &dsteps, const lst &steps, const lst &point)
 {
@@ -55,9 +49,9 @@ int holding(const process_jacobian &j, const lst &steps, const lst &point)
 
 void jacobian_against_differences(const std::string &law, unsigned salt)
 {
-    digits_40 precision;
-    const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/tests/codegen/laws/rod-rough-floor-" +
-                                        law + ".json");
+    impactgen::testing::digits_40 precision;
+    const problem p =
+        load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/tests/codegen/laws/rod-rough-floor-" + law + ".json");
     const derivation d = derive(p);
     const impact_solution s = solve_impact(d);
     ASSERT_TRUE(solution_follows_process(s));
@@ -69,15 +63,17 @@ void jacobian_against_differences(const std::string &law, unsigned salt)
     for (const impactgen::step &st : j.derivative_steps)
         dsteps.append(st.sym == st.value);
     std::mt19937 g(impactgen::testing::seed_from_env() + salt);
-    auto R = [&](int lo, int hi, int den) { return numeric(std::uniform_int_distribution<int>(lo * den, hi * den)(g), den); };
+    auto R = [&](int lo, int hi, int den) {
+        return numeric(std::uniform_int_distribution<int>(lo * den, hi * den)(g), den);
+    };
     std::vector<int> seen(j.sequences.size(), 0);
     int points = 0, entries = 0;
     const numeric h("1e-12");
     for (int i = 0; i < 400 && points < impactgen::testing::samples_from_env(24); ++i) {
         // (e > 0: at e = 0 the energetic law's sqrt(e^2 ...) is |e ...|, not differentiable)
-        std::map<std::string, numeric> x{{"e", R(1, 16, 1) / 16}, {"mu", R(1, 32, 1) / 16},  {"m", R(1, 4, 4)},
-                                         {"I1", R(1, 4, 48)},  {"x", R(-1, 1, 8)},   {"y", R(0, 1, 8)},
-                                         {"v_t", R(-2, 2, 8)}, {"v_n", R(-2, 0, 8)}, {"w", R(-4, 4, 4)}};
+        std::map<std::string, numeric> x{{"e", R(1, 16, 1) / 16}, {"mu", R(1, 32, 1) / 16}, {"m", R(1, 4, 4)},
+                                         {"I1", R(1, 4, 48)},     {"x", R(-1, 1, 8)},       {"y", R(0, 1, 8)},
+                                         {"v_t", R(-2, 2, 8)},    {"v_n", R(-2, 0, 8)},     {"w", R(-4, 4, 4)}};
         auto point_of = [&](const symbol &moved, const numeric &by) {
             lst l;
             for (const symbol &w : j.wrt)
