@@ -25,7 +25,7 @@ namespace
 {
 
 // The options a law with candidates cannot honour.
-void refuse_options(const options &o)
+void refuse_options(const options &o, bool process)
 {
     if (o.inverse_inertia)
         throw option_error(
@@ -34,9 +34,11 @@ void refuse_options(const options &o)
     if (o.inverse_mass)
         throw option_error(option_error::inverse_mass,
                            "the engine input convention is not offered for problems with friction (give masses)");
-    if (o.jacobian || !o.wrt.empty())
-        throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
-                                                   "selection makes the impact map piecewise)");
+    if ((o.jacobian || !o.wrt.empty()) && !process)
+        throw option_error(option_error::jacobian,
+                           "Jacobians are not offered for friction under Newton's law (the regime "
+                           "selection makes the impact map piecewise); the laws poisson and energetic "
+                           "have them per phase sequence");
 }
 
 // The inputs: the parameters in the order given, else the smooth order with the
@@ -127,7 +129,7 @@ void order_outputs(code_plan &cp)
 // outputs, the vector views, the state a failed call returns), the candidates.
 code_plan candidates_plan(const problem &p, const options &o)
 {
-    refuse_options(o);
+    refuse_options(o, p.dimension == 2 && follows_process(p.contact().law_of_restitution));
     code_plan cp;
     problem p0 = p;
     // --params mu with a numeric coefficient: mu becomes the parameter.
@@ -159,6 +161,8 @@ code_plan candidates_plan(const problem &p, const options &o)
     options so = o;
     so.set.clear();
     so.params.clear();
+    so.jacobian = false; // the process's Jacobian is its own (process_jacobian_plan)
+    so.wrt.clear();
     for (const std::string &nm : o.params)
         if (!friction_only.count(nm))
             so.params.push_back(nm);
@@ -172,6 +176,8 @@ code_plan candidates_plan(const problem &p, const options &o)
         cp.rule = selection_rule::process;
         order_inputs(cp, o, friction_only);
         order_outputs(cp);
+        if (o.jacobian || !o.wrt.empty())
+            process_jacobian_plan(cp, o.wrt);
         return cp;
     }
     cp.candidates = solve_friction(cp.deriv);

@@ -79,6 +79,8 @@ header writer::run()
     } else {
         build_stages();
         emit_stages();
+        if (process_jacobian())
+            build_process_jacobian();
     }
     build_rows();
     banner();
@@ -95,12 +97,16 @@ header writer::run()
         unchecked_function();
     } else {
         unchanged_function(u_.em);
+        if (process_jacobian())
+            system_tolerance();
         main_function(false);
         main_function(true);
     }
     forwarding_form(false);
     forwarding_form(true);
     jacobian_function();
+    if (process_jacobian())
+        process_jacobian_function();
     rows_function();
     if (straight())
         straight_batch();
@@ -162,6 +168,10 @@ void writer::name_everything()
             sc->reserve("boundary");
         } else if (!straight()) {
             sc->reserve("regime");
+            if (process_jacobian()) {
+                sc->reserve("sequence");
+                sc->reserve("boundary");
+            }
         }
     }
     // clang-format off
@@ -177,6 +187,10 @@ void writer::name_everything()
         scope_.reserve(o_.name + suffix);
     if (system())
         for (const char *suffix : {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names"})
+            scope_.reserve(o_.name + suffix);
+    if (process_jacobian())
+        for (const char *suffix : {"_tolerance", "_jacobian", "_wrt_count", "_wrt_names", "_jacobian_output_count",
+                                   "_jacobian_output_names"})
             scope_.reserve(o_.name + suffix);
     for (const symbol &x : cp_.inputs) {
         input_names_.push_back(scope_.claim(x.get_name()));

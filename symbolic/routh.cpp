@@ -326,10 +326,11 @@ std::string contact_where(const problem &p, const std::string &key)
     return (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") + key;
 }
 
-// The two bodies of the contact with their inverse inertia (planar: the [2][2] entry).
 using process_side = contact_side;
 
-std::array<process_side, 2> sides_of(const problem &p)
+} // namespace
+
+std::array<contact_side, 2> process_sides(const problem &p)
 {
     const contact_spec &c = p.contact();
     std::array<process_side, 2> sd;
@@ -341,6 +342,9 @@ std::array<process_side, 2> sides_of(const problem &p)
             x.inv[2][2] = 1 / x.r.inertia[2][2];
     return sd;
 }
+
+namespace
+{
 
 regime_case case_of(const derivation &d, const solution &shared, const process_sequence &q)
 {
@@ -360,7 +364,7 @@ regime_case case_of(const derivation &d, const solution &shared, const process_s
         c.direction[a] = 0;
     }
     c.sliding_speed = q.tangential_velocity;
-    apply_impulse(d, sides_of(d.prob), c, true); // a planar process: no pivot impulse along z
+    apply_impulse(d, process_sides(d.prob), c, true); // a planar process: no pivot impulse along z
     return c;
 }
 
@@ -369,7 +373,7 @@ regime_case case_of(const derivation &d, const solution &shared, const process_s
 process_inputs process_inputs_of(const derivation &d, solution &s)
 {
     const problem &p = d.prob;
-    const std::array<process_side, 2> sd = sides_of(p);
+    const std::array<process_side, 2> sd = process_sides(p);
     const vec3 &n = d.n_hat, &t = d.t_dir;
     auto K = [&](const vec3 &x, const vec3 &y) { // x.K y
         const vec3 Ky = point_velocity_change(sd[0].r, sd[0].inv, y) + point_velocity_change(sd[1].r, sd[1].inv, y);
