@@ -124,6 +124,8 @@ void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
     process_code &pc = cp.process;
     pc.has_jacobian = true;
     pc.wrt = jacobian_inputs(cp.inputs, wrt);
+    if (pc.wrt.empty())
+        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
     impact_solution &f = cp.candidates;
     const process_inputs in = contact_inputs(d, f);
     pc.speed = sqrt(in.ut * in.ut + in.un * in.un);

@@ -55,7 +55,7 @@ private:
     void leaf(walk_state st, const slopes &sl);
     void phase(walk_state st, phase_kind kind, int s);
     void compression(walk_state st, const slopes &sl, bool stops, const ex &xs);
-    void restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero);
+    void restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero, const ex &fresh_xc = 0);
     void slip_stopped(walk_state st, const slopes &sl);
 };
 
@@ -172,6 +172,8 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
         }
         const ex xc = fix(-b.un / sl.b);
         auto compress = [&](walk_state c, bool still_stops, const ex &rest) {
+            // No work before this phase (compression ends in the first): W_c = -b x_c^2 / 2.
+            const ex fresh = c.W.is_zero() ? xc : ex(0);
             advance(c, sl, xc);
             c.un = 0;
             c.compressed = true;
@@ -181,7 +183,7 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
                 leaf(c, sl);
                 return;
             }
-            restitution(c, sl, still_stops, rest, true);
+            restitution(c, sl, still_stops, rest, true, fresh);
         };
         if (!stops) {
             compress(b, false, 0);
@@ -203,7 +205,7 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
 }
 
 // The distance along the phase to the end of restitution, from the state st (compressed).
-void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero)
+void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero, const ex &fresh_xc)
 {
     ex xf;
     if (std::holds_alternative<poisson_restitution>(in_.law)) {
@@ -218,7 +220,9 @@ void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &
                 decide(tidy(value(R))) != decision::zero)
                 throw input_error(where_ + ": the contact sticks with its normal velocity held at 0 (the contact "
                                            "response K is singular): the energetic law's restitution never ends");
-            xf = fix(sqrt(2 * R / sl.b));
+            // Compression in this phase from no work (fresh_xc = x_c): R = e^2 b x_c^2 / 2, so the
+            // root is e x_c exactly (e >= 0, x_c > 0), with no square root or division.
+            xf = from_zero && !fresh_xc.is_zero() ? fix(in_.e * fresh_xc) : fix(sqrt(2 * R / sl.b));
         } else {
             xf = fix(2 * R / (st.un + sqrt(st.un * st.un + 2 * sl.b * R)));
         }
