@@ -550,7 +550,7 @@ namespace {
 
 problem energetic_double_pendulum()
 {
-    const fs::path file = fs::path(IMPACTGEN_SOURCE_DIR) / "tests/explain/double-pendulum-energetic.json";
+    const fs::path file = fs::path(IMPACTGEN_SOURCE_DIR) / "tests/explain/systems/double-pendulum-energetic.json";
     return read_problem(read_file(file), "double-pendulum-energetic.json");
 }
 
