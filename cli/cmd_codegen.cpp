@@ -117,8 +117,9 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
                   "tangents and the bias of restitution, for an iterative (sequential-impulse) solver");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
-                  "(of a system: d(velocities after)/d(inputs) of the set that holds; with Coulomb friction: "
-                  "d(velocities, impulses after)/d(inputs) of the regime that holds, ambiguous on a regime boundary)");
+                  "(of a system: d(velocities after)/d(inputs) of the set that holds; with Coulomb friction under "
+                  "Newton's law: d(velocities, impulses after)/d(inputs) of the regime that holds; under the laws "
+                  "poisson and energetic: the same of the phase sequence that holds; ambiguous on a boundary)");
     auto *wrt = cmd->add_option("--wrt", args->wrt,
                                 "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
                                 "input); implies --jacobian");

@@ -155,7 +155,7 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
             if (!nsyms.count(x))
                 cj.wrt.push_back(x);
     if (!wrt.empty())
-        cj.wrt = wrt_inputs(cp.inputs, wrt);
+        cj.wrt = jacobian_inputs(cp.inputs, wrt);
     if (cj.wrt.empty())
         throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
     for (const symbol &x : cj.wrt)
@@ -215,7 +215,7 @@ code_plan candidates_plan(const problem &p, const options &o)
     options so = o;
     so.set.clear();
     so.params.clear();
-    so.jacobian = false; // (the candidates' Jacobian is planned below)
+    so.jacobian = false; // (the Jacobian is planned below: the candidates' or the process's)
     so.wrt.clear();
     for (const std::string &nm : o.params)
         if (!friction_only.count(nm))
@@ -226,14 +226,12 @@ code_plan candidates_plan(const problem &p, const options &o)
     how.runtime_tangent_basis = true;
     cp.deriv = derive(q, how);
     if (follows_process(q.contact().law_of_restitution)) {
-        if (o.jacobian || !o.wrt.empty())
-            throw option_error(option_error::jacobian,
-                               "the generated code does not offer the Jacobian of Routh's process (poisson, energetic "
-                               "with friction): 'impactgen formulas --jacobian' gives it per phase sequence");
         cp.candidates = process_candidates(cp.deriv);
         cp.rule = selection_rule::process;
         order_inputs(cp, o, friction_only);
         order_outputs(cp);
+        if (o.jacobian || !o.wrt.empty())
+            process_jacobian_plan(cp, o.wrt);
         return cp;
     }
     cp.candidates = solve_friction(cp.deriv);
@@ -251,21 +249,6 @@ code_plan candidates_plan(const problem &p, const options &o)
 }
 
 } // namespace
-
-std::vector<symbol> wrt_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
-{
-    std::vector<symbol> out;
-    for (const std::string &nm : wrt) {
-        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
-        if (it == inputs.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
-                                                                            "function (name it in --params)");
-        if (std::find(out.begin(), out.end(), *it) != out.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
-        out.push_back(*it);
-    }
-    return out;
-}
 
 bool has_candidates(const problem &p, const options &o)
 {

@@ -95,6 +95,21 @@ struct candidates_jacobian {
     friction_jacobian jac;          ///< one regime_jacobian per candidate (candidates.cases order)
 };
 
+/// With --jacobian, Routh's process (rule process): per phase sequence the derivatives of the
+/// velocities and impulses after impact, through the contact's steps (symbolic/process_jacobian.hpp,
+/// the machinery of `formulas --jacobian`), and the scales of its conditions' rounding.
+struct process_code {
+    bool has_jacobian = false;
+    std::vector<GiNaC::symbol> wrt;   ///< the inputs the Jacobian differentiates by, in order
+    std::vector<step> steps;          ///< the shared steps unscaled, then the derivative steps
+    std::vector<std::size_t> outputs; ///< indices in code_plan::outputs that are differentiated
+    /// [candidate][output][input]; same_as[k]: the first candidate with the same closed form
+    std::vector<std::vector<std::vector<GiNaC::ex>>> jacobian;
+    std::vector<std::size_t> same_as;
+    GiNaC::ex speed;    ///< |u| before impact: the scale of a condition on velocities
+    GiNaC::ex response; ///< (1 + mu) (K_tt + K_nn): the scale of one on K (squared for mu^2 K_tt^2 - K_tn^2)
+};
+
 struct code_plan {
     selection_rule rule = selection_rule::none;
     /// The closed form of the problem without the law's own parameters (with friction: mu
@@ -116,6 +131,8 @@ struct code_plan {
     system_code system;
     /// --jacobian with friction under Newton's law.
     candidates_jacobian jacobian;
+    /// rule process with --jacobian.
+    process_code process;
 };
 
 /// True when the problem, with the options' --set values folded in, has a law with more
@@ -123,10 +140,6 @@ struct code_plan {
 /// the options do not fit (an unknown symbol, say) counts when it has a coefficient at
 /// all, so that make_code_plan reports the error.
 bool has_candidates(const problem &p, const options &o);
-
-/// The inputs --wrt names, in its order; option_error(wrt) for a name that is not an input or one
-/// named twice.
-std::vector<GiNaC::symbol> wrt_inputs(const std::vector<GiNaC::symbol> &inputs, const std::vector<std::string> &wrt);
 
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
@@ -136,6 +149,16 @@ void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
 /// sequences left out (none holding is no_solution). Throws input_error when every
 /// sequence wedges.
 impact_solution process_candidates(const derivation &d);
+
+/// --jacobian for rule process (process_plan.cpp): cp.process from the candidates. Throws
+/// option_error naming --wrt for a name that is not an input, --jacobian for a normal given as
+/// inputs.
+void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt);
+
+/// The inputs a Jacobian differentiates by: `wrt` by name among `inputs` (empty: every input);
+/// throws option_error naming --wrt for a name that is not an input or is named twice.
+std::vector<GiNaC::symbol> jacobian_inputs(const std::vector<GiNaC::symbol> &inputs,
+                                           const std::vector<std::string> &wrt);
 
 /// The plan's inputs in order: --params as given, else the symbols in the order of the
 /// problem's quantities, each with its meaning (plan.cpp).

@@ -7,6 +7,7 @@
 
 #include "names/escape.hpp"
 #include "symbolic/decide.hpp"
+#include "symbolic/process_jacobian.hpp"
 #include "symbolic/routh.hpp"
 
 #include <array>
@@ -15,13 +16,14 @@ namespace impactgen::codegen
 {
 using namespace GiNaC;
 
-impact_solution process_candidates(const derivation &d)
+namespace
+{
+
+// The process's inputs from the friction solution's shared steps: K = K_1 + K_2 and u in world
+// axes (steps), read in the contact frame (e_t, n).
+process_inputs contact_inputs(const derivation &d, const impact_solution &f)
 {
     const problem &p = d.prob;
-    impact_solution f = solve_friction(d); // its shared steps: K and u in world axes
-    f.cases.clear();
-    f.no_stick.clear();
-    f.law = p.contact().law_of_restitution;
     mat3 K = zero_mat();
     vec3 u = zero_vec();
     ex un;
@@ -53,6 +55,20 @@ impact_solution process_candidates(const derivation &d)
     in.mu = p.contact().friction();
     in.e = p.restitution;
     in.law = p.contact().law_of_restitution;
+    return in;
+}
+
+} // namespace
+
+impact_solution process_candidates(const derivation &d)
+{
+    const problem &p = d.prob;
+    impact_solution f = solve_friction(d); // its shared steps: K and u in world axes
+    f.cases.clear();
+    f.no_stick.clear();
+    f.law = p.contact().law_of_restitution;
+    const vec3 &n = d.n_hat, &t = d.t_dir;
+    const process_inputs in = contact_inputs(d, f);
     const std::string where =
         (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") + ".friction";
     std::vector<process_sequence> sequences = routh_process(in, where);
@@ -96,6 +112,58 @@ impact_solution process_candidates(const derivation &d)
     if (f.cases.empty())
         throw input_error(where + ": the contact wedges for every value (no finite impulse ends the compression)");
     return f;
+}
+
+void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
+{
+    const derivation &d = cp.deriv;
+    for (const ex &x : d.n_hat)
+        if (!is_constant(x))
+            throw option_error(option_error::jacobian, "a normal given as inputs is not differentiated under a "
+                                                       "restitution law followed through the impact");
+    process_code &pc = cp.process;
+    pc.has_jacobian = true;
+    pc.wrt = jacobian_inputs(cp.inputs, wrt);
+    if (pc.wrt.empty())
+        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
+    impact_solution &f = cp.candidates;
+    const process_inputs in = contact_inputs(d, f);
+    pc.speed = sqrt(in.ut * in.ut + in.un * in.un);
+    pc.response = (1 + in.mu) * (in.Ktt + in.Knn);
+    pc.steps = f.shared.steps;
+    const step_gradients g = differentiate_steps(pc.steps, pc.wrt);
+    for (std::size_t k = 0; k < cp.outputs.size(); ++k) {
+        const code_output &of = cp.outputs[k];
+        if (of.tangential || of.kind == output_value::velocity || of.kind == output_value::angular_velocity ||
+            of.kind == output_value::normal_impulse)
+            pc.outputs.push_back(k);
+    }
+    const std::array<contact_side, 2> sides = process_sides(d.prob);
+    for (std::size_t i = 0; i < f.cases.size(); ++i) {
+        regime_case c = f.cases[i];
+        apply_impulse(d, sides, c, false);
+        std::vector<std::vector<ex>> rows;
+        for (std::size_t k : pc.outputs) {
+            const code_output &of = cp.outputs[k];
+            const std::size_t a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
+            const ex v = of.tangential                             ? c.tangential_scalar * d.t_dir[a]
+                         : of.kind == output_value::normal_impulse ? c.sol.normal_impulse
+                         : of.kind == output_value::velocity       ? c.sol.after[of.index].velocity[a]
+                                                                   : c.sol.after[of.index].angular_velocity[a];
+            std::vector<ex> row;
+            for (std::size_t j = 0; j < pc.wrt.size(); ++j)
+                row.push_back(chain_derivative(v, pc.steps, g, pc.wrt, j));
+            rows.push_back(row);
+        }
+        std::size_t same = i;
+        for (std::size_t k = 0; k < i && same == i; ++k)
+            if (f.cases[k].sol.normal_impulse.is_equal(c.sol.normal_impulse) &&
+                f.cases[k].tangential_scalar.is_equal(c.tangential_scalar))
+                same = k;
+        pc.same_as.push_back(same);
+        pc.jacobian.push_back(std::move(rows));
+    }
+    pc.steps.insert(pc.steps.end(), g.derivative_steps.begin(), g.derivative_steps.end());
 }
 
 } // namespace impactgen::codegen

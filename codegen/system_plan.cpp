@@ -174,7 +174,7 @@ void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
 {
     system_code &sc = cp.system;
     sc.has_jacobian = true;
-    sc.wrt = wrt.empty() ? cp.inputs : wrt_inputs(cp.inputs, wrt);
+    sc.wrt = jacobian_inputs(cp.inputs, wrt);
     for (system_code_set &s : sc.sets)
         for (std::size_t j : sc.velocities) {
             std::vector<ex> row;
@@ -185,6 +185,23 @@ void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
 }
 
 } // namespace
+
+std::vector<symbol> jacobian_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
+{
+    if (wrt.empty())
+        return inputs;
+    std::vector<symbol> out;
+    for (const std::string &nm : wrt) {
+        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
+        if (it == inputs.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
+                                                                            "function (name it in --params)");
+        if (std::find(out.begin(), out.end(), *it) != out.end())
+            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
+        out.push_back(*it);
+    }
+    return out;
+}
 
 code_plan system_code_plan(const problem &p, const options &o)
 {

@@ -81,6 +81,8 @@ header writer::run()
         emit_stages();
         if (cp_.jacobian.on)
             build_candidates_jacobian();
+        if (process_jacobian())
+            build_process_jacobian();
     }
     build_rows();
     banner();
@@ -97,6 +99,8 @@ header writer::run()
         unchecked_function();
     } else {
         unchanged_function(u_.em);
+        if (process_jacobian())
+            system_tolerance();
         main_function(false);
         main_function(true);
     }
@@ -104,6 +108,8 @@ header writer::run()
     forwarding_form(true);
     jacobian_function();
     candidates_jacobian_function();
+    if (process_jacobian())
+        process_jacobian_function();
     rows_function();
     if (straight())
         straight_batch();
@@ -165,6 +171,10 @@ void writer::name_everything()
             sc->reserve("boundary");
         } else if (!straight()) {
             sc->reserve("regime");
+            if (process_jacobian()) {
+                sc->reserve("sequence");
+                sc->reserve("boundary");
+            }
         }
     }
     // clang-format off
@@ -180,6 +190,10 @@ void writer::name_everything()
         scope_.reserve(o_.name + suffix);
     if (system())
         for (const char *suffix : {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names"})
+            scope_.reserve(o_.name + suffix);
+    if (process_jacobian())
+        for (const char *suffix : {"_tolerance", "_jacobian", "_wrt_count", "_wrt_names", "_jacobian_output_count",
+                                   "_jacobian_output_names"})
             scope_.reserve(o_.name + suffix);
     for (const symbol &x : cp_.inputs) {
         input_names_.push_back(scope_.claim(x.get_name()));

@@ -187,6 +187,12 @@ private:
     void candidates_jacobian_function();
     /// The unit tangent basis computed at run time for a normal given as inputs (else nothing).
     std::string basis_text() const;
+    // ---- rule process with --jacobian (writer_process_jacobian.cpp)
+    bool process_jacobian() const;
+    void build_process_jacobian();
+    std::string process_scale(std::size_t i, std::size_t j) const;
+    std::string process_sequence_text(const std::string &ind) const;
+    void process_jacobian_function();
 
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
@@ -285,6 +291,11 @@ private:
     std::map<std::string, std::string> sys_local_;
     std::vector<stage> sys_jac_;
     std::vector<std::string> sys_jac_names_, sys_unit_mass_;
+    // ---- rule process with --jacobian: the selection's locals, the entries, a stage per closed form
+    std::map<std::string, std::string> seq_local_;
+    std::vector<stage> seq_jac_;
+    std::vector<std::string> seq_jac_names_;
+    std::string speed_name_, response_name_;
     stage rows_; // --rows: the primitive values of the rows
     // ---- --jacobian with friction: names and programs
     std::map<std::string, std::string> fj_local_;

@@ -103,6 +103,8 @@ void writer::emit_closed_forms(const std::string &ind)
         h_ << ind << sel_P_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.P[a]; }) << ";\n";
         h_ << ind << sel_F_names_[a] << " = " << first_of([a](const case_names &cn) { return cn.F[a]; }) << ";\n";
     }
+    if (process_jacobian())
+        h_ << process_sequence_text(ind);
 }
 
 // The 3-D slide without closed form: its directions (pass 0: the one direction when the
@@ -289,6 +291,9 @@ const std::string &writer::selection_text()
     for (std::size_t a = 0; a < sel_P_names_.size(); ++a)
         h_ << "    T " << sel_P_names_[a] << " = T(0);\n    T " << sel_F_names_[a] << " = T(0);\n";
     h_ << "    impact_regime " << regime_name_ << " = impact_regime::smooth;\n";
+    if (process_jacobian()) // mu = 0 (the smooth impact) is the edge of mu's domain: no sequence, a boundary
+        h_ << "    int " << seq_local_.at("sequence_now") << " = -1;\n    bool " << seq_local_.at("boundary_now")
+           << " = true;\n";
     if (!mu_name_.empty()) {
         h_ << "    if (" << mu_name_ << " == T(0)) { // the smooth impact\n";
         h_ << indent(s_.em.code, "    ");
@@ -305,6 +310,9 @@ const std::string &writer::selection_text()
     h_ << "    // The post-impact state.\n";
     h_ << c_.em.code;
     h_ << "    out.regime = " << regime_name_ << ";\n";
+    if (process_jacobian())
+        h_ << "    out.sequence = " << seq_local_.at("sequence_now")
+           << ";\n    out.boundary = " << seq_local_.at("boundary_now") << ";\n";
     text.swap(h_);
     selection_ = text.str();
     return selection_;

@@ -106,7 +106,12 @@ void writer::result_struct()
                                          "differentiable here)\n"
                                        : "");
     else if (!straight())
-        h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n";
+        h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n"
+           << (process_jacobian()
+                   ? "    int sequence; ///< the phase sequence selected (the header's list), -1 for mu = 0 "
+                     "or when the status is not ok\n    bool boundary; ///< another phase sequence holds "
+                     "within rounding, or mu = 0 (the map is not differentiable here)\n"
+                   : "");
     for (std::size_t g = 0; g < pl_.output_groups.size(); ++g)
         group_view(out_views_[g], pl_.output_groups[g]);
     if (!straight() && !system()) {
@@ -223,7 +228,8 @@ void writer::conditions_and_steps()
     for (std::size_t i = 0; i < f_.cases.size(); ++i) {
         const regime_case &c = f_.cases[i];
         for (std::size_t j = 0; j < c.conditions.size(); ++j)
-            h_ << "//   " << names::comment_text(c.name) << ": " << names_[i].cond[j] << " "
+            h_ << "//   " << (process_jacobian() ? "sequence " + std::to_string(i) + ", " : std::string())
+               << names::comment_text(c.name) << ": " << names_[i].cond[j] << " "
                << (c.conditions[j].strict ? "> 0" : ">= 0") << "  (" << names::comment_text(c.conditions[j].meaning)
                << ")\n";
     }
@@ -284,7 +290,8 @@ void writer::unchanged_function(const emitted &code)
         h_ << "    out.set = -1;\n    out.impulses_unique = true;\n"
            << (cp_.system.has_jacobian ? "    out.boundary = false;\n" : "");
     else
-        h_ << "    out.regime = impact_regime::smooth;\n";
+        h_ << "    out.regime = impact_regime::smooth;\n"
+           << (process_jacobian() ? "    out.sequence = -1;\n    out.boundary = false;\n" : "");
     h_ << "}\n} // namespace detail\n\n";
 }
 

@@ -49,9 +49,9 @@ process_inputs library_inputs(const explain_input &in)
 
 // The sign s of the first slide: +1 when the contact slips along +e_t. From the candidate's
 // conditions (symbolic) or the numbers.
-int first_slip(const process_inputs &q, const regime_case &c)
+int first_slip(const process_inputs &q, const std::vector<process_condition> &conditions)
 {
-    for (const process_condition &pc : c.process_conditions)
+    for (const process_condition &pc : conditions)
         if (pc.kind == process_test::initial_slip || pc.kind == process_test::slip_direction) {
             const ex s = pc.value.coeff(pc.kind == process_test::initial_slip ? q.ut : q.Ktn, 1);
             if (is_a<numeric>(s) && !s.is_zero())
@@ -143,34 +143,39 @@ void number_rows(section &sec, int first)
         r.tag = std::to_string(first++);
 }
 
+// A sequence's phases as its name says them: "slide, stick".
+std::string phases_name(const process_sequence &q)
+{
+    std::string r;
+    for (const process_phase &ph : q.phases)
+        r += (r.empty() ? "" : ", ") + std::string(phase_name(ph.kind));
+    return r;
+}
+
 class process_chapter_impl : public law_chapter
 {
     const explain_input &in;
-    process_inputs q;
-    std::vector<process_sequence> seqs; // the library's, in the order of the candidates
-    bool numeric;
+    process_teaching t;
     std::unique_ptr<law_chapter> coulomb_parts;
 
 public:
-    explicit process_chapter_impl(const explain_input &i) : in(i), q(library_inputs(i)), numeric(i.d.prob.is_numeric())
+    explicit process_chapter_impl(const explain_input &i) : in(i)
     {
-        for (const process_sequence &s : routh_process(q, "contact.friction"))
+        t.q = library_inputs(i);
+        t.numeric = i.d.prob.is_numeric();
+        for (const process_sequence &s : routh_process(t.q, "contact.friction"))
             if (!s.wedges)
-                seqs.push_back(s);
+                t.seqs.push_back(s);
         coulomb_parts = chapter(coulomb{}, in);
     }
     std::string title() const override { return words_of(in.s.law).title; }
     bool symbols_first() const override { return false; }
     setup_parts setup() const override;
-    std::vector<section> statement() const override;
-    std::vector<section> equations() const override;
-    std::vector<section> solution() const override;
+    std::vector<section> statement() const override { return process_statement(t); }
+    std::vector<section> equations() const override { return process_equations(t); }
+    std::vector<section> solution() const override { return process_sequences(t); }
     std::vector<section> results() const override;
     void finish(document &doc) const override { coulomb_parts->finish(doc); }
-
-private:
-    section sequence_section(std::size_t k) const;
-    std::vector<path_point> path(std::size_t k) const;
 };
 
 setup_parts process_chapter_impl::setup() const
@@ -181,7 +186,9 @@ setup_parts process_chapter_impl::setup() const
     return parts;
 }
 
-std::vector<section> process_chapter_impl::statement() const
+} // namespace
+
+std::vector<section> process_statement(const process_teaching &t)
 {
     section sec;
     sec.title = "Routh's process";
@@ -193,22 +200,24 @@ std::vector<section> process_chapter_impl::statement() const
         "the contact sticks if it can, else it slides back (a reversal)."));
     sec.rows({formula_row("dP_t = -s μ dP_n", "dP_{t} = -s\\,\\mu\\,dP_{n}", "sliding along $s e_t$"),
               formula_row("|dP_t| ≤ μ dP_n", "|dP_{t}| \\le \\mu\\,dP_{n}", "sticking")});
-    number_rows(sec, 1);
+    number_rows(sec, t.first_row);
     sec.para(paragraph().t("Compression ends where $u_n = 0$, at $P_n = P_c$. Restitution ends by the law:"));
-    sec.rows({words_of(in.s.law).end});
-    number_rows(sec, 3);
+    sec.rows({words_of(t.q.law).end});
+    number_rows(sec, t.first_row + 2);
     return {sec};
 }
 
-std::vector<section> process_chapter_impl::equations() const
+std::vector<section> process_equations(const process_teaching &t)
 {
+    const process_inputs &q = t.q;
+    const bool numeric = t.numeric;
     section sec;
     sec.title = "The relative velocity as a function of the impulse";
     sec.para(paragraph().t("The impulse $P = P_t e_t + P_n e_n$ on the second body changes the relative velocity "
                            "of the contact points by the contact response $K$, written in the contact frame:"));
     sec.rows({formula_row("u_t(P) = u_t + K_tt P_t + K_tn P_n", "u_{t}(P) = u_{t} + K_{tt} P_{t} + K_{tn} P_{n}"),
               formula_row("u_n(P) = u_n + K_tn P_t + K_nn P_n", "u_{n}(P) = u_{n} + K_{tn} P_{t} + K_{nn} P_{n}")});
-    number_rows(sec, 4);
+    number_rows(sec, t.first_row + 3);
     sec.para(paragraph().t("with $u_t$, $u_n$ the velocities before impact and"));
     sec.rows({value_of("K_tt", "K_{tt}", shown(q.Ktt, numeric)), value_of("K_tn", "K_{tn}", shown(q.Ktn, numeric)),
               value_of("K_nn", "K_{nn}", shown(q.Knn, numeric)), value_of("u_t", "u_{t}", shown(q.ut, numeric)),
@@ -224,21 +233,26 @@ std::vector<section> process_chapter_impl::equations() const
              "du_t/dP_n = 0,  du_n/dP_n = (K_tt K_nn - K_tn²)/K_tt",
              "\\frac{du_{t}}{dP_{n}} = 0,\\quad \\frac{du_{n}}{dP_{n}} = \\frac{K_{tt}K_{nn} - K_{tn}^{2}}{K_{tt}}",
              "sticking")});
-    number_rows(sec, 6);
+    number_rows(sec, t.first_row + 5);
     return {sec};
 }
 
-section process_chapter_impl::sequence_section(std::size_t k) const
+namespace
 {
-    const regime_case &c = in.s.cases[k];
-    const int s = first_slip(q, c);
+
+section sequence_section(const process_teaching &t, std::size_t k)
+{
+    const process_inputs &q = t.q;
+    const bool numeric = t.numeric;
+    const process_sequence &c = t.seqs[k];
+    const int s = first_slip(q, c.conditions);
     section sec;
-    sec.title = in.s.cases.size() > 1 ? "Phase sequence " + std::to_string(k + 1) + ": " + c.name.substr(9)
-                                      : "The phases: " + c.name.substr(9);
-    if (!c.process_conditions.empty()) {
+    sec.title = t.seqs.size() > 1 ? "Phase sequence " + std::to_string(k + 1) + ": " + phases_name(c)
+                                  : "The phases: " + phases_name(c);
+    if (!c.conditions.empty()) {
         sec.para(paragraph().w("This sequence is the process when:"));
         std::vector<math_row> rows;
-        for (const process_condition &pc : c.process_conditions) {
+        for (const process_condition &pc : c.conditions) {
             math_row r = row(tidy(pc.value), 0);
             r.rel = pc.strict ? ">" : "≥";
             r.note = condition_words(pc);
@@ -247,77 +261,74 @@ section process_chapter_impl::sequence_section(std::size_t k) const
         sec.rows(rows);
     }
     ex start = 0;
-    for (std::size_t j = 0; j < c.process.size(); ++j) {
-        const process_phase &ph = c.process[j];
+    for (std::size_t j = 0; j < c.phases.size(); ++j) {
+        const process_phase &ph = c.phases[j];
         const std::array<ex, 3> r = slopes(q, ph.kind, s);
-        paragraph q;
-        q.w("Phase " + std::to_string(j + 1) + ", ");
-        sec.para(phase_words(q, ph.kind, s).w(", from ").m(shown(start, numeric)).w(" to the normal impulse below:"));
+        paragraph w;
+        w.w("Phase " + std::to_string(j + 1) + ", ");
+        sec.para(phase_words(w, ph.kind, s).w(", from ").m(shown(start, numeric)).w(" to the normal impulse below:"));
         sec.rows({value_of("dP_t/dP_n", "dP_{t}/dP_{n}", shown(r[0], numeric)),
                   value_of("du_t/dP_n", "du_{t}/dP_{n}", shown(r[1], numeric)),
                   value_of("du_n/dP_n", "du_{n}/dP_{n}", shown(r[2], numeric)),
                   value_of("P_n", "P_{n}", shown(ph.normal_impulse_end, numeric),
-                           paragraph().w(j + 1 == c.process.size() ? "restitution ends (the law)"
-                                                                   : "the slip stops (u_t = 0)"))});
+                           paragraph().w(j + 1 == c.phases.size() ? "restitution ends (the law)"
+                                                                  : "the slip stops (u_t = 0)"))});
         start = ph.normal_impulse_end;
     }
-    if (k < seqs.size()) {
-        const process_sequence &sq = seqs[k];
-        sec.para(paragraph().t("Compression ends where $u_n = 0$:"));
-        std::vector<math_row> rows{value_of("P_c", "P_{c}", shown(sq.compression_impulse, numeric))};
-        if (words_of(in.s.law).compression_work)
-            rows.push_back(value_of("W_c", "W_{c}", shown(sq.compression_work, numeric),
-                                    paragraph().w("the normal work of compression")));
-        sec.rows(rows);
-    }
+    sec.para(paragraph().t("Compression ends where $u_n = 0$:"));
+    std::vector<math_row> rows{value_of("P_c", "P_{c}", shown(c.compression_impulse, numeric))};
+    if (words_of(q.law).compression_work)
+        rows.push_back(value_of("W_c", "W_{c}", shown(c.compression_work, numeric),
+                                paragraph().w("the normal work of compression")));
+    sec.rows(rows);
     sec.para(paragraph().w("At the end of the impact:"));
-    sec.rows({value_of("P_n", "P_{n}", shown(c.sol.normal_impulse, numeric)),
-              value_of("P_t", "P_{t}", shown(c.tangential_scalar, numeric)),
-              value_of("u'_t", "u'_{t}", shown(c.sliding_speed, numeric)),
-              value_of("u'_n", "u'_{n}", shown(k < seqs.size() ? seqs[k].normal_velocity : ex(0), numeric))});
+    sec.rows({value_of("P_n", "P_{n}", shown(c.normal_impulse, numeric)),
+              value_of("P_t", "P_{t}", shown(c.tangential_impulse, numeric)),
+              value_of("u'_t", "u'_{t}", shown(c.tangential_velocity, numeric)),
+              value_of("u'_n", "u'_{n}", shown(c.normal_velocity, numeric))});
     return sec;
 }
 
-std::vector<section> process_chapter_impl::solution() const
+std::vector<path_point> path(const process_teaching &t, std::size_t k)
 {
-    std::vector<section> out;
-    for (std::size_t k = 0; k < in.s.cases.size(); ++k)
-        out.push_back(sequence_section(k));
-    return out;
-}
-
-std::vector<path_point> process_chapter_impl::path(std::size_t k) const
-{
-    const regime_case &c = in.s.cases[k];
-    const int s = first_slip(q, c);
+    const process_inputs &q = t.q;
+    const process_sequence &c = t.seqs[k];
+    const int s = first_slip(q, c.conditions);
     std::vector<path_point> pts{{0, num(q.ut), num(q.un), "before impact"}};
-    const double pc = k < seqs.size() ? num(seqs[k].compression_impulse) : -1;
+    const double pc = num(c.compression_impulse);
     ex pn0 = 0, pt0 = 0;
-    for (std::size_t j = 0; j < c.process.size(); ++j) {
-        const ex r = slopes(q, c.process[j].kind, s)[0];
-        const ex pn1 = c.process[j].normal_impulse_end;
+    for (std::size_t j = 0; j < c.phases.size(); ++j) {
+        const ex r = slopes(q, c.phases[j].kind, s)[0];
+        const ex pn1 = c.phases[j].normal_impulse_end;
         if (pc > num(pn0) && pc < num(pn1)) {
-            const ex at = seqs[k].compression_impulse;
+            const ex at = c.compression_impulse;
             const auto u = velocity_at(q, pt0 + r * (at - pn0), at);
             pts.push_back({pc, num(u.first), 0.0, "compression ends"});
         }
         pt0 = pt0 + r * (pn1 - pn0);
         const auto u = velocity_at(q, pt0, pn1);
-        const bool last = j + 1 == c.process.size();
+        const bool last = j + 1 == c.phases.size();
         pts.push_back({num(pn1), num(u.first), num(u.second), last ? "after impact" : "slip stops"});
         pn0 = pn1;
     }
     return pts;
 }
 
-std::vector<section> process_chapter_impl::results() const
+} // namespace
+
+std::vector<section> process_sequences(const process_teaching &t)
 {
-    if (!numeric || in.s.cases.size() != 1)
-        return {};
-    const regime_case &c = in.s.cases.front();
+    std::vector<section> out;
+    for (std::size_t k = 0; k < t.seqs.size(); ++k)
+        out.push_back(sequence_section(t, k));
+    return out;
+}
+
+section process_path_section(const process_teaching &t)
+{
     section sec;
     sec.title = "The path of the relative velocity";
-    const std::vector<path_point> pts = path(0);
+    const std::vector<path_point> pts = path(t, 0);
     sec.para(paragraph().t("The relative velocity $(u_t, u_n)$ moves on a straight line in each phase; the "
                            "numbered points are:"));
     std::vector<paragraph> items;
@@ -329,6 +340,18 @@ std::vector<section> process_chapter_impl::results() const
     }
     sec.list(items);
     sec.picture(process_figure(pts, "The relative velocity of the contact points during the impact"));
+    return sec;
+}
+
+namespace
+{
+
+std::vector<section> process_chapter_impl::results() const
+{
+    if (!t.numeric || in.s.cases.size() != 1)
+        return {};
+    const regime_case &c = in.s.cases.front();
+    const section sec = process_path_section(t);
     section res;
     res.title = "Results";
     const ex before = c.sol.expand_steps(c.sol.energy_before), after = c.sol.expand_steps(c.sol.energy_after);

@@ -7,12 +7,33 @@
 
 #include "explain_law.hpp"
 
+#include "symbolic/routh.hpp"
+
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace impactgen::print::detail
 {
+
+/// Routh's process as the document teaches it, for a contact whose response K and velocities
+/// before impact in (e_t, n) are known: a single contact's (the chapter below) or a system's one
+/// contact with its joints and pivots eliminated (explain_system.cpp).
+struct process_teaching {
+    process_inputs q;                   ///< K, u, mu, e and the law: numbers or the solution's steps
+    std::vector<process_sequence> seqs; ///< the phase sequences that do not wedge, in order
+    bool numeric = false;
+    int first_row = 1; ///< the number of the process's first formula row
+};
+
+/// Routh's process and the law's end of restitution (rows (1) to (3)).
+std::vector<section> process_statement(const process_teaching &t);
+/// The relative velocity as a function of the impulse, K and u, the phases' slopes (rows (4) to (7)).
+std::vector<section> process_equations(const process_teaching &t);
+/// A section per phase sequence: its conditions, its phases, the end of compression and of the impact.
+std::vector<section> process_sequences(const process_teaching &t);
+/// The path of (u_t, u_n) of the first sequence, listed and drawn (a numeric problem's one).
+section process_path_section(const process_teaching &t);
 
 /// The chapter of a contact with friction and law poisson or energetic.
 std::unique_ptr<law_chapter> process_chapter(const explain_input &in);

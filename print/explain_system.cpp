@@ -10,6 +10,7 @@
 #include "explain_system.hpp"
 #include "explain.hpp"
 #include "explain_detail.hpp"
+#include "explain_process.hpp"
 #include "title.hpp"
 
 #include "figure/system.hpp"
@@ -120,6 +121,11 @@ std::vector<paragraph> link_items(const problem &p)
             q.w(", Coulomb friction with the coefficient ").m(c.friction());
         else
             q.w(", smooth");
+        if (!c.rough && !c.friction().is_zero() && std::holds_alternative<poisson_restitution>(c.law_of_restitution))
+            q.w("; restitution measured by impulses through the impact (Poisson)");
+        else if (!c.rough && !c.friction().is_zero() &&
+                 std::holds_alternative<energetic_restitution>(c.law_of_restitution))
+            q.w("; restitution measured by work through the impact (energetic)");
         items.push_back(q);
     }
     return items;
@@ -316,18 +322,100 @@ void candidate_values(section &s, const derivation &d, const system_candidate &c
     s.rows(rows);
 }
 
+// The one contact's rows of the Delassus matrix as its response K in the contact frame, and the
+// process run on them (as system_process_candidates runs it).
+process_teaching contact_process(const derivation &d, const system_delassus &D)
+{
+    const problem &p = d.prob;
+    std::size_t n = 0, t = 1;
+    if (D.rows[0] != "n0")
+        std::swap(n, t);
+    process_teaching pt;
+    pt.first_row = static_cast<int>(d.equations.size()) + 1; // after the bodies' and joints' equations
+    pt.q.Ktt = D.W[t][t];
+    pt.q.Ktn = D.W[t][n];
+    pt.q.Knn = D.W[n][n];
+    pt.q.ut = D.u[t];
+    pt.q.un = D.u[n];
+    pt.q.mu = p.contacts[0].friction();
+    pt.q.e = p.restitution_of(0);
+    pt.q.law = p.contacts[0].law_of_restitution;
+    pt.numeric = p.is_numeric();
+    if (pt.numeric && !is_a<numeric>(pt.q.un.evalf()))
+        return pt;
+    if (pt.numeric && !ex_to<numeric>(pt.q.un.evalf()).is_negative())
+        return pt; // the contact does not approach: no process
+    for (const process_sequence &q : routh_process(pt.q, "contacts[0].friction"))
+        if (!q.wedges)
+            pt.seqs.push_back(q);
+    return pt;
+}
+
+section contact_frame_section(const problem &p)
+{
+    section s{"The contact's response in its frame", {}};
+    const ex L2 = tidy(dot(p.contacts[0].normal, p.contacts[0].normal));
+    if (L2.is_equal(1))
+        s.para(paragraph().t("The normal $n_0$ has unit length, so the contact's rows $t_0$, $n_0$ are its frame "
+                             "$(e_t, e_n)$, and the Delassus matrix on them is the contact's response $K$: with "
+                             "the joints and pivots eliminated, the impulse $P = P_t e_t + P_n e_n$ on the second "
+                             "body changes the relative velocity of the contact points by $K P$."));
+    else
+        s.para(paragraph().t("The rows $t_0$, $n_0$ are the contact's frame $(e_t, e_n)$ scaled by the length of "
+                             "its normal as given; in the rows' units the Delassus matrix on them is the "
+                             "contact's response $K$ (Coulomb's cone, the ratio of normal impulses and the normal "
+                             "work are the same in either units), and the impulses below are the rows' impulses."));
+    s.rows({formula_row("K_tt = W[t0,t0],  K_tn = W[t0,n0],  K_nn = W[n0,n0]",
+                        "K_{tt} = W_{t0\\,t0},\\quad K_{tn} = W_{t0\\,n0},\\quad K_{nn} = W_{n0\\,n0}"),
+            formula_row("u_t = u[t0],  u_n = u[n0]", "u_{t} = u_{t0},\\quad u_{n} = u_{n0}")});
+    return s;
+}
+
+// A system whose one contact follows Routh's process: the bodies' impulse-momentum with every
+// impulse, the Delassus matrix, the contact's 2x2 response from it, then the process as the
+// single contact's chapter teaches it, and for numbers the path and the answer.
+document process_system(const derivation &d, const worked_example *example)
+{
+    const problem &p = d.prob;
+    const system_delassus D = system_delassus_of(p);
+    const process_teaching t = contact_process(d, D);
+    document doc;
+    doc.title = document_title(p, "System impact");
+    doc.description = p.description;
+    doc.sections.push_back(setup(d, example));
+    doc.sections.push_back(unknowns(d));
+    for (section &s : equation_sections(d))
+        doc.sections.push_back(s);
+    doc.sections.push_back(delassus_section(p, D));
+    doc.sections.push_back(contact_frame_section(p));
+    for (const auto &part : {process_statement(t), process_equations(t), process_sequences(t)})
+        for (const section &s : part)
+            doc.sections.push_back(s);
+    if (t.numeric && t.seqs.size() == 1) {
+        doc.sections.push_back(process_path_section(t));
+        for (const system_candidate &c : system_process_candidates(p))
+            if (!c.process.empty()) {
+                section res{"Results", {}};
+                res.para(paragraph().w("The impulses and the velocities after impact (every joint and pivot "
+                                       "impulse follows from them):"));
+                candidate_values(res, d, c);
+                doc.sections.push_back(res);
+            }
+    }
+    for (std::size_t k = 0; k < doc.sections.size(); ++k)
+        doc.sections[k].title = std::to_string(k + 1) + ". " + doc.sections[k].title;
+    return doc;
+}
+
 } // namespace
 
 document explain_system(const derivation &d, const worked_example *example, level depth)
 {
     const problem &p = d.prob;
-    if (system_follows_process(p))
-        throw input_error(std::string("contacts[0].law: \"") + law_name(p.contacts[0].law_of_restitution) +
-                          "\" with friction in a system (joints, pivots) is answered by 'impactgen solve' and "
-                          "'impactgen formulas' but not explained yet (explain teaches Routh's process for a "
-                          "\"contact\" file); use \"newton\" to explain the system");
     if (p.is_numeric() || (example && example->values.nops() == 0))
         example = nullptr;
+    if (system_follows_process(p) && depth != level::summary)
+        return process_system(d, example);
     if (depth == level::summary)
         return detail::system_summary(d, setup(d, example, true), example);
     document doc;

@@ -59,36 +59,54 @@ bool solution_follows_process(const impact_solution &s)
     return !s.cases.empty() && !s.cases.front().process.empty();
 }
 
+step_gradients differentiate_steps(const std::vector<step> &steps, const std::vector<symbol> &wrt)
+{
+    step_gradients g;
+    const std::size_t nw = wrt.size();
+    g.of_step.assign(steps.size(), std::vector<ex>(nw, 0));
+    for (std::size_t k = 0; k < steps.size(); ++k)
+        for (std::size_t w = 0; w < nw; ++w) {
+            ex v = steps[k].value.diff(wrt[w]);
+            for (std::size_t i = 0; i < k; ++i)
+                if (!g.of_step[i][w].is_zero())
+                    v += steps[k].value.diff(steps[i].sym) * g.of_step[i][w];
+            v = tidy(v);
+            if (v.is_zero() || is_a<numeric>(v)) {
+                g.of_step[k][w] = v;
+                continue;
+            }
+            const std::string name = "d" + steps[k].sym.get_name() + "_d" + wrt[w].get_name();
+            step st{
+                symbol_named(name, "\\partial " + steps[k].sym.get_TeX_name() + "/\\partial " + wrt[w].get_TeX_name()),
+                v,
+                "derivative of " + steps[k].sym.get_name() + " by " + wrt[w].get_name(),
+                steps[k].role,
+                steps[k].body,
+                steps[k].row,
+                steps[k].column};
+            g.derivative_steps.push_back(st);
+            g.of_step[k][w] = st.sym;
+        }
+    return g;
+}
+
+ex chain_derivative(const ex &v, const std::vector<step> &steps, const step_gradients &g,
+                    const std::vector<symbol> &wrt, std::size_t j)
+{
+    ex d = v.diff(wrt[j]);
+    for (std::size_t k = 0; k < steps.size(); ++k)
+        if (!g.of_step[k][j].is_zero())
+            d += v.diff(steps[k].sym) * g.of_step[k][j];
+    return tidy(d);
+}
+
 process_jacobian process_jacobian_of(const derivation &d, const impact_solution &s, const std::vector<std::string> &wrt)
 {
     process_jacobian j;
     j.wrt = jacobian_inputs(d.prob, wrt);
     j.steps = s.shared.steps;
-    const std::size_t nw = j.wrt.size();
-    // ds_k/dx_j by the chain rule through the earlier steps; a nonzero one becomes a step symbol.
-    std::vector<std::vector<ex>> ds(j.steps.size(), std::vector<ex>(nw, 0));
-    for (std::size_t k = 0; k < j.steps.size(); ++k)
-        for (std::size_t w = 0; w < nw; ++w) {
-            ex v = j.steps[k].value.diff(j.wrt[w]);
-            for (std::size_t i = 0; i < k; ++i)
-                v += j.steps[k].value.diff(j.steps[i].sym) * ds[i][w];
-            v = tidy(v);
-            if (v.is_zero() || is_a<numeric>(v)) {
-                ds[k][w] = v;
-                continue;
-            }
-            const std::string name = "d" + j.steps[k].sym.get_name() + "_d" + j.wrt[w].get_name();
-            step st{symbol_named(name, "\\partial " + j.steps[k].sym.get_TeX_name() + "/\\partial " +
-                                           j.wrt[w].get_TeX_name()),
-                    v,
-                    "derivative of " + j.steps[k].sym.get_name() + " by " + j.wrt[w].get_name(),
-                    j.steps[k].role,
-                    j.steps[k].body,
-                    j.steps[k].row,
-                    j.steps[k].column};
-            j.derivative_steps.push_back(st);
-            ds[k][w] = st.sym;
-        }
+    const step_gradients g = differentiate_steps(j.steps, j.wrt);
+    j.derivative_steps = g.derivative_steps;
     for (const regime_case &c : s.cases) {
         sequence_jacobian q;
         q.sequence = c.name;
@@ -99,13 +117,8 @@ process_jacobian process_jacobian_of(const derivation &d, const impact_solution 
                 j.outputs.push_back(o.first);
         for (const auto &o : outs) {
             std::vector<ex> row;
-            for (std::size_t w = 0; w < nw; ++w) {
-                ex v = o.second.diff(j.wrt[w]);
-                for (std::size_t k = 0; k < j.steps.size(); ++k)
-                    if (!ds[k][w].is_zero())
-                        v += o.second.diff(j.steps[k].sym) * ds[k][w];
-                row.push_back(tidy(v));
-            }
+            for (std::size_t w = 0; w < j.wrt.size(); ++w)
+                row.push_back(chain_derivative(o.second, j.steps, g, j.wrt, w));
             q.entries.push_back(row);
         }
         j.sequences.push_back(q);

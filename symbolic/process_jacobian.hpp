@@ -29,6 +29,20 @@ struct process_jacobian {
     std::vector<sequence_jacobian> sequences; ///< one per phase sequence of the solution
 };
 
+/// The derivatives of a chain of steps by the inputs (forward mode, exact): d s_k / d x_j by the
+/// chain rule through the earlier steps, each nonzero one that is not a number a step of its own
+/// (named d<s_k>_d<x_j>), so that outputs differentiated with chain_derivative share them.
+struct step_gradients {
+    std::vector<step> derivative_steps;   ///< in order of evaluation
+    std::vector<std::vector<ex>> of_step; ///< [step][input]: 0, a number, or a derivative step's symbol
+};
+step_gradients differentiate_steps(const std::vector<step> &steps, const std::vector<GiNaC::symbol> &wrt);
+
+/// d v / d wrt[j] for a value v in inputs and the steps: its partial derivatives, plus through
+/// each step the chain rule's term (tidied).
+ex chain_derivative(const ex &v, const std::vector<step> &steps, const step_gradients &g,
+                    const std::vector<GiNaC::symbol> &wrt, std::size_t j);
+
 /// The Jacobian of each phase sequence of a solution whose candidates follow Routh's process.
 /// `wrt` names inputs (empty: every symbol of the problem). Throws input_error naming --wrt for a
 /// name that is not a symbol of the problem, or --jacobian when there is none.

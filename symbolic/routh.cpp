@@ -58,7 +58,7 @@ private:
     void leaf(walk_state st, const slopes &sl);
     void phase(walk_state st, phase_kind kind, int s);
     void compression(walk_state st, const slopes &sl, bool stops, const ex &xs);
-    void restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero);
+    void restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero, const ex &fresh_xc = 0);
     void slip_stopped(walk_state st, const slopes &sl);
 };
 
@@ -175,6 +175,8 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
         }
         const ex xc = fix(-b.un / sl.b);
         auto compress = [&](walk_state c, bool still_stops, const ex &rest) {
+            // No work before this phase (compression ends in the first): W_c = -b x_c^2 / 2.
+            const ex fresh = c.W.is_zero() ? xc : ex(0);
             advance(c, sl, xc);
             c.un = 0;
             c.compressed = true;
@@ -184,7 +186,7 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
                 leaf(c, sl);
                 return;
             }
-            restitution(c, sl, still_stops, rest, true);
+            restitution(c, sl, still_stops, rest, true, fresh);
         };
         if (!stops) {
             compress(b, false, 0);
@@ -206,7 +208,7 @@ void walker::compression(walk_state st, const slopes &sl, bool stops, const ex &
 }
 
 // The distance along the phase to the end of restitution, from the state st (compressed).
-void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero)
+void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &xs, bool from_zero, const ex &fresh_xc)
 {
     // The law's own end of restitution (one case per law: restitution_law.hpp, law_cases).
     const ex xf = std::visit(
@@ -226,7 +228,9 @@ void walker::restitution(walk_state st, const slopes &sl, bool stops, const ex &
                         throw input_error(where_ + ": the contact sticks with its normal velocity held at 0 (the "
                                                    "contact response K is singular): the energetic law's "
                                                    "restitution never ends");
-                    return fix(sqrt(2 * R / sl.b));
+                    // Compression in this phase from no work (fresh_xc = x_c): R = e^2 b x_c^2 / 2, so
+                    // the root is e x_c exactly (e >= 0, x_c > 0), with no square root or division.
+                    return from_zero && !fresh_xc.is_zero() ? fix(in_.e * fresh_xc) : fix(sqrt(2 * R / sl.b));
                 }
                 return fix(2 * R / (st.un + sqrt(st.un * st.un + 2 * sl.b * R)));
             },
@@ -335,10 +339,11 @@ std::string contact_where(const problem &p, const std::string &key)
     return (p.source.empty() ? std::string("contact") : names::display_text(p.source) + ": contact") + key;
 }
 
-// The two bodies of the contact with their inverse inertia (planar: the [2][2] entry).
 using process_side = contact_side;
 
-std::array<process_side, 2> sides_of(const problem &p)
+} // namespace
+
+std::array<contact_side, 2> process_sides(const problem &p)
 {
     const contact_spec &c = p.contact();
     std::array<process_side, 2> sd;
@@ -350,6 +355,9 @@ std::array<process_side, 2> sides_of(const problem &p)
             x.inv[2][2] = 1 / x.r.inertia[2][2];
     return sd;
 }
+
+namespace
+{
 
 regime_case case_of(const derivation &d, const solution &shared, const process_sequence &q)
 {
@@ -369,7 +377,7 @@ regime_case case_of(const derivation &d, const solution &shared, const process_s
         c.direction[a] = 0;
     }
     c.sliding_speed = q.tangential_velocity;
-    apply_impulse(d, sides_of(d.prob), c, true); // a planar process: no pivot impulse along z
+    apply_impulse(d, process_sides(d.prob), c, true); // a planar process: no pivot impulse along z
     return c;
 }
 
@@ -378,7 +386,7 @@ regime_case case_of(const derivation &d, const solution &shared, const process_s
 process_inputs process_inputs_of(const derivation &d, solution &s)
 {
     const problem &p = d.prob;
-    const std::array<process_side, 2> sd = sides_of(p);
+    const std::array<process_side, 2> sd = process_sides(p);
     const vec3 &n = d.n_hat, &t = d.t_dir;
     auto K = [&](const vec3 &x, const vec3 &y) { // x.K y
         const vec3 Ky = point_velocity_change(sd[0].r, sd[0].inv, y) + point_velocity_change(sd[1].r, sd[1].inv, y);

@@ -81,6 +81,10 @@ void refuse_wedging(const derivation &d);
 /// the process with `values` set for deciding.
 process_inputs process_inputs_of(const derivation &d, solution &s);
 
+/// The two bodies of the contact with their inverse inertia (planar: the [2][2] entry), as
+/// apply_impulse takes them.
+std::array<contact_side, 2> process_sides(const problem &p);
+
 /// A one-line refusal for the outputs that do not teach or generate the process yet: throws
 /// input_error naming contact.law when the problem's contact has friction and a law other than
 /// newton. `what` names the output ("explain", "codegen").

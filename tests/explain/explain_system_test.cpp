@@ -6,6 +6,7 @@
 #include "symbolic/derivation.hpp"
 #include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
+#include "symbolic/system_process.hpp"
 
 #include "latex_tools.hpp"
 
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 using namespace impactgen;
 using namespace impactgen::print;
@@ -542,4 +544,86 @@ TEST(SystemExplain, HostileBodyNamesAreEscapedInTheUnknowns)
     EXPECT_EQ(tex.find("st%a"), std::string::npos);
     EXPECT_NE(tex.find("v'_{x,\\text{st\\%a\\_n\\#c}}"), std::string::npos);
     EXPECT_NO_THROW(explain_html(doc));
+}
+
+namespace {
+
+problem energetic_double_pendulum()
+{
+    const fs::path file = fs::path(IMPACTGEN_SOURCE_DIR) / "tests/explain/systems/double-pendulum-energetic.json";
+    return read_problem(read_file(file), "double-pendulum-energetic.json");
+}
+
+} // namespace
+
+// A system whose one contact follows Routh's process (a struck double pendulum, friction, the
+// energetic law) is taught: the bodies' impulse-momentum, the Delassus matrix, the contact's
+// response K in (t, n) from it, then the process as for one contact. Its phases and numbers are
+// the library's answer (system_process_candidates, what `solve` prints), its equations numbered
+// on from the bodies' and joints', and its golden files in every format.
+TEST(SystemProcess, EnergeticDoublePendulumIsTaught)
+{
+    const problem p = energetic_double_pendulum();
+    const derivation d = derive(p);
+    const document doc = explain_system(d);
+    const std::string text = explain_text(doc);
+    std::vector<std::string> titles;
+    for (const section& s : doc.sections)
+        titles.push_back(s.title.substr(s.title.find(". ") + 2));
+    auto at = [&](const std::string& t) { return std::find(titles.begin(), titles.end(), t) - titles.begin(); };
+    for (const char* t : {"Impulse and momentum of each body", "The Delassus matrix",
+                          "The contact's response in its frame", "Routh's process",
+                          "The relative velocity as a function of the impulse", "Results"})
+        EXPECT_LT(at(t), static_cast<long>(titles.size())) << t;
+    EXPECT_LT(at("Impulse and momentum of each body"), at("The Delassus matrix"));
+    EXPECT_LT(at("The Delassus matrix"), at("The contact's response in its frame"));
+    EXPECT_LT(at("The contact's response in its frame"), at("Routh's process"));
+    // The phases and the answer are the library's.
+    const std::vector<system_candidate> cs = system_process_candidates(p);
+    const system_candidate* c = nullptr;
+    for (const system_candidate& k : cs)
+        if (!k.process.empty())
+            c = &k;
+    ASSERT_NE(c, nullptr);
+    std::string phases;
+    for (const process_phase& ph : c->process)
+        phases += (phases.empty() ? "" : ", ") + std::string(phase_name(ph.kind));
+    EXPECT_LT(at("The phases: " + phases), static_cast<long>(titles.size())) << phases;
+    std::ostringstream pn;
+    pn << "P_0 = " << c->normal_impulse[0];
+    EXPECT_NE(text.find(pn.str()), std::string::npos) << pn.str();
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+        std::ostringstream v;
+        v << "v′_x," << p.bodies[b].name << " = " << c->velocity[b][0];
+        EXPECT_NE(text.find(v.str()), std::string::npos) << v.str();
+    }
+    // The process's rows are numbered after the bodies' and joints' equations.
+    EXPECT_NE(text.find("(" + std::to_string(d.equations.size()) + ")"), std::string::npos);
+    EXPECT_NE(text.find("(" + std::to_string(d.equations.size() + 1) + ")  dP_t = -s μ dP_n"), std::string::npos);
+    EXPECT_EQ(text.find("(1)  dP_t"), std::string::npos);
+    // Golden files.
+    const bool regenerate = std::getenv("IMPACTGEN_REGENERATE_GOLDEN") != nullptr;
+    for (const std::string format : {"text", "markdown", "latex", "html"}) {
+        const fs::path file = fs::path(IMPACTGEN_GOLDEN_DIR) / ("system-double-pendulum-energetic." + extension(format));
+        const std::string out = print_as(doc, format);
+        if (regenerate) {
+            if (!fs::exists(file) || read_file(file) != out)
+                std::ofstream(file, std::ios::binary) << out;
+            continue;
+        }
+        ASSERT_TRUE(fs::exists(file)) << file << " is missing: run make regenerate-golden-explain";
+        EXPECT_EQ(read_file(file), out) << file << " differs from the output: regenerate and review the diff";
+    }
+}
+
+// Its LaTeX compiles with pdflatex, with no overfull box.
+TEST(SystemProcess, EnergeticDoublePendulumLatexCompiles)
+{
+    if (!latex_tools::have_pdflatex())
+        GTEST_SKIP() << latex_tools::no_pdflatex_message();
+    const latex_tools::compiled out =
+        latex_tools::compile(explain_latex(explain_system(derive(energetic_double_pendulum()))), "system-process");
+    ASSERT_EQ(out.status, 0);
+    EXPECT_EQ(out.overfull_hbox, 0) << latex_tools::around(out.log, "Overfull \\hbox");
+    EXPECT_EQ(out.undefined_refs, 0);
 }
