@@ -250,13 +250,13 @@ void regime_jacobian_text(std::ostream &os, const friction_jacobian &j, std::siz
     for (const regime_condition &k : r.conditions)
         os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning << ")\n";
     if (r.through_angle)
-        os << c << "  " << print::symbol_text(r.dir_c.get_name()) << " = cos(theta), "
-           << print::symbol_text(r.dir_s.get_name())
+        os << c << "  " << print::symbol_text(r.dir_c) << " = cos(theta), "
+           << print::symbol_text(r.dir_s)
            << " = sin(theta): theta a root of the angle equation g = 0, found for the numbers;\n"
            << c << "  through the implicit function theorem dtheta/dx = -(dg/dx)/(dg/dtheta), where dg/dtheta != 0\n"
            << c << "  (a simple root; at a double root the sliding direction is not differentiable)\n";
     for (const step &st : r.derivative_steps)
-        os << c << "  " << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+        os << c << "  " << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
     std::size_t zeros = 0;
     for (std::size_t o = 0; o < j.outputs.size(); ++o)
         for (std::size_t w = 0; w < j.wrt.size(); ++w) {
@@ -264,7 +264,7 @@ void regime_jacobian_text(std::ostream &os, const friction_jacobian &j, std::siz
                 ++zeros;
                 continue;
             }
-            os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w].get_name()) << " = "
+            os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w]) << " = "
                << expr(r.entries[o][w], latex) << "\n";
         }
     os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
@@ -278,12 +278,12 @@ std::string friction_jacobian_text(const friction_jacobian &j, bool latex)
        << c << "Jacobian of the impact map per regime, d(output)/d(input) by the chain rule through the regime's\n"
        << c << "steps (inputs:";
     for (const symbol &x : j.wrt)
-        os << " " << print::symbol_text(x.get_name());
+        os << " " << print::symbol_text(x);
     os << "). Inside a regime (every condition strict) the map is smooth; on a boundary between two\n"
        << c << "regimes (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n"
        << (j.derivative_steps.empty() ? "" : "\n");
     for (const step &st : j.derivative_steps)
-        os << c << print::symbol_text(st.sym.get_name()) << " = " << expr(st.value, latex) << "\n";
+        os << c << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
     for (std::size_t k = 0; k < j.regimes.size(); ++k)
         regime_jacobian_text(os, j, k, latex);
     return os.str();
