@@ -27,12 +27,11 @@ namespace impactgen::exercises
 {
 
 struct options {
-    int count = 10;          ///< 1 .. 99 variants
-    std::uint64_t seed = 1;  ///< the same seed, the same sheet
-    std::string regime;      ///< "" (any), "smooth", "stick" or "slide"
-    int attempts = 400;      ///< tries per variant before the sheet is refused
-    int seconds = 5;         ///< time for the tries before the sheet is refused when no draw kept the regime
-    int fallback_draws = 12; ///< draws per variant when none has short answers: the shortest serves
+    int count = 10;         ///< 1 .. 99 variants
+    std::uint64_t seed = 1; ///< the same seed, the same sheet
+    std::string regime;     ///< "" (any), "smooth", "stick" or "slide"
+    int attempts = 400;     ///< tries per variant before the sheet is refused
+    int seconds = 5;        ///< time for all the tries before the sheet is refused
 };
 
 /// One asked quantity of an exercise: a scalar of the answer.

@@ -367,10 +367,9 @@ std::string two_digits(std::size_t k)
 }
 
 /// The search for the variants of one sheet: draws until one has short answers, the regime
-/// asked for, and is new on the sheet. When none of the first fallback_draws draws that keep the
-/// regime has short answers, the one with the shortest answers serves (its answers are then
-/// given as decimals); only when no draw kept the regime (within the attempts or the time) is the
-/// sheet refused.
+/// asked for, and is new on the sheet. When the attempts or the time run out first, the variant
+/// with the shortest answers among those drawn serves (its answers are then given as decimals);
+/// only when no draw kept the regime is the sheet refused.
 struct variant_search {
     const problem &base;
     const problem &p0;
@@ -407,11 +406,7 @@ struct variant_search {
         std::string fallback_key;
         std::size_t fallback_length = 0;
         int attempt = 0;
-        // Draws, not time, end the search when a fallback is held, so that the same seed gives the
-        // same sheet however loaded the machine is; time ends only a search that found nothing yet.
-        for (; attempt < opt.attempts && !(fallback && attempt >= opt.fallback_draws) &&
-               (fallback || attempt < 8 || !out_of_time());
-             ++attempt) {
+        for (; attempt < opt.attempts && (attempt < 8 || !out_of_time()); ++attempt) { // 8 draws at least
             problem q = draw_values(base, p0, opt.regime, g);
             q.units = base.units.empty() ? "SI" : base.units;
             if (!q.is_system())
