@@ -1,6 +1,8 @@
 // impactgen: the command-line face of the library. Each subcommand parses its
 // arguments, builds a problem, calls the library and chooses a printer.
+#include "cli/address_layout.hpp"
 #include "cli/commands.hpp"
+#include "exercises/exercises.hpp"
 #include "names/escape.hpp"
 #include "print/answer.hpp"
 #include "print/expression.hpp"
@@ -246,8 +248,11 @@ void start_time_budget(CLI::App &app, CLI::App *bench, double time_limit)
     // second; a run past the budget is stopped with a message, never left to hang.
     const bool limited = time_limit > 0 && (!*bench || app.get_option("--time-limit")->count() > 0);
     // A sheet explains every exercise: its default budget grows with --count (2 s each).
-    if (CLI::App *sheet = app.get_subcommand("exercises"); *sheet && app.get_option("--time-limit")->count() == 0)
-        time_limit += 2 * sheet->get_option("--count")->as<double>();
+    if (CLI::App *sheet = app.get_subcommand("exercises"); *sheet && app.get_option("--time-limit")->count() == 0) {
+        const CLI::Option *count = sheet->get_option("--count");
+        // --count not given: its default
+        time_limit += 2 * (count->count() > 0 ? count->as<double>() : exercises::options{}.count);
+    }
     if (limited)
         std::thread([time_limit] {
             std::this_thread::sleep_for(std::chrono::duration<double>(time_limit));
@@ -261,6 +266,8 @@ void start_time_budget(CLI::App &app, CLI::App *bench, double time_limit)
 
 int main(int argc, char **argv)
 {
+    // The same output in every run, whatever the address layout (docs/architecture.md).
+    impactgen::cli::fix_address_layout(argv);
     // A closed pipe (impactgen explain ... | head) is a failed write, reported
     // like any other, not a death by SIGPIPE.
     std::signal(SIGPIPE, SIG_IGN);

@@ -500,20 +500,9 @@ paragraph &vector_span(paragraph &p, const vec3 &v, int n)
     return p.w(")");
 }
 
-namespace
-{
-int count_nodes(const ex &e, int limit)
-{
-    int n = 0;
-    for (const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end() && n < limit; ++it)
-        ++n;
-    return n;
-}
-} // namespace
-
 bool printable(const ex &e, int limit)
 {
-    return count_nodes(e, limit) < limit;
+    return expression_size(e, limit) < limit; // the same choice in every run (GiNaC's signs not counted)
 }
 
 math_row row(const ex &lhs, const ex &rhs, const std::string &tag, const paragraph &note)

@@ -350,7 +350,7 @@ void planar_threshold_rows(const context &c, const regime_case &st, const ex &mu
     }
     if (small) {
         ex r = (kvals[2] * k.ut - one_e * kvals[1] * k.un) / (kvals[1] * k.ut - one_e * kvals[0] * k.un);
-        r = factor(normal(r));
+        r = factored(normal(r));
         const ex shown = abs_split(r, c.e);
         if (printable(shown, 60) && short_denominator(shown) && !(shown - abs(num) / den).is_zero()) {
             math_row mr = row(mu_star, shown);
@@ -365,7 +365,7 @@ void planar_threshold_rows(const context &c, const regime_case &st, const ex &mu
     }
     ex ratio = tidy(st.sol.expand_steps(st.tangential_scalar / st.sol.normal_impulse));
     if (!is_constant(ratio) && printable(ratio, 60)) { // factor() is slow on large rational functions
-        const ex shown = abs_split(factor(normal(ratio)), c.e);
+        const ex shown = abs_split(factored(normal(ratio)), c.e);
         if (printable(shown, 80) && short_denominator(shown))
             thr.push_back(row(mu_star, shown, "", "in the inputs"));
     }

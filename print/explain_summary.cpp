@@ -55,10 +55,10 @@ ex gathered(const ex &x, const std::vector<ex> &velocities)
         const ex c = num.coeff(v, 1);
         if (c.is_zero())
             continue;
-        out += factor(c) * v;
+        out += factored(c) * v;
         rest -= c * v;
     }
-    return (out + factor(expand(rest))) / factor(denom(q));
+    return (out + factored(expand(rest))) / factored(denom(q));
 }
 
 // The rows of one candidate: its normal impulse and each unknown, closed or in steps; `used`
@@ -150,6 +150,14 @@ paragraph case_heading(const regime_case &c)
     return q.w(":");
 }
 
+bool has_float(const ex &v)
+{
+    for (const_preorder_iterator it = v.preorder_begin(); it != v.preorder_end(); ++it)
+        if (is_a<numeric>(*it) && !ex_to<numeric>(*it).is_rational())
+            return true;
+    return false;
+}
+
 // The numbers: every unknown of the numeric problem's regime that holds, or of the worked example.
 void numbers(section &sec, const explain_input &in)
 {
@@ -187,6 +195,15 @@ void numbers(section &sec, const explain_input &in)
     }
     for (std::size_t i = 0; i < unknowns.size() && i < sol.unknown_values.nops(); ++i) {
         const ex v = surd_form(impactgen::tidy(sol.expand_steps(sol.unknown_values.op(i).rhs()).subs(values)));
+        if (has_float(v)) {
+            // a root found numerically (3-D sliding): its last digits follow GiNaC's run-to-run
+            // order of evaluation, so it is given to 15 digits, as the full document gives it
+            const std::string dec = decimal(v), u = unit(p, quantity_of(unknowns[i].kind));
+            rows.push_back(formula_row(canonical_text(unknowns[i].sym) + " ≈ " + dec + u,
+                                       canonical_latex(unknowns[i].sym) + " \\approx " + dec +
+                                           (u.empty() ? "" : "\\text{" + u + "}")));
+            continue;
+        }
         math_row r = row(unknowns[i].sym, v, "", decimal_note(v));
         r.note.w(unit(p, quantity_of(unknowns[i].kind)));
         rows.push_back(r);
@@ -399,7 +416,10 @@ section summary_results(const explain_input &in)
     sec.para(legend.t("; the subscripts name the axis and the body."));
     // several candidates: the unknowns once in the impulse's components where they read the same
     const bool by_impulse = several && candidates_by_impulse(parts, in);
-    for (std::size_t k = 0; k < in.s.cases.size() && !by_impulse; ++k) {
+    // A problem worked with its numbers only (Routh's process is not taught in symbols first):
+    // its candidates' rows are the values numbers() boxes below with their decimals.
+    const bool numbers_only = !in.numeric_d && in.d.prob.is_numeric();
+    for (std::size_t k = 0; k < in.s.cases.size() && !by_impulse && !numbers_only; ++k) {
         const regime_case &c = in.s.cases[k];
         std::vector<bool> used(c.sol.steps.size(), false);
         const std::vector<math_row> rows = candidate_rows(in.d, c.sol, used);

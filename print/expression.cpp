@@ -87,4 +87,25 @@ ex tidy(const ex &e)
     return impactgen::tidy(e);
 }
 
+namespace
+{
+ex expanded_factor(const ex &f)
+{
+    if (is_a<power>(f))
+        return pow(f.op(0).expand(), f.op(1));
+    return is_a<add>(f) ? f.expand() : f;
+}
+} // namespace
+
+ex factored(const ex &e)
+{
+    const ex f = factor(e);
+    if (!is_a<mul>(f))
+        return expanded_factor(f);
+    ex out = 1;
+    for (std::size_t k = 0; k < f.nops(); ++k)
+        out *= expanded_factor(f.op(k));
+    return out;
+}
+
 } // namespace impactgen::print

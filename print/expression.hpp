@@ -25,5 +25,9 @@ GiNaC::ex evaluated_constant(const GiNaC::ex &e);
 double to_double(const GiNaC::ex &e);
 /// Fully expanded steps may still be large: normalise only what is cheap.
 GiNaC::ex tidy(const GiNaC::ex &e);
+/// factor(e) with every factor expanded: GiNaC's factor() returns a factor partly collected
+/// in whichever variable its run-to-run order puts first ((7 + (2 a + b) c) in one run,
+/// 7 + 2 a c + b c in the next); expanded, the factors are the same in every run.
+GiNaC::ex factored(const GiNaC::ex &e);
 
 } // namespace impactgen::print

@@ -405,11 +405,7 @@ namespace
 std::string sys_expr(const ex &e, bool latex)
 {
     const ex v = surd_form(tidy(e));
-    if (!latex)
-        return parser_syntax(v);
-    std::ostringstream os;
-    os << GiNaC::latex << v;
-    return os.str();
+    return latex ? canonical_latex(v) : parser_syntax(v);
 }
 
 // The quantities a system candidate reports, each with its name.

@@ -259,18 +259,53 @@ std::string constant_parts_problem(const ex &e)
 namespace
 {
 
-// Node count up to a limit, and whether some power of a sum has |exponent| > 2.
-bool small_and_tame(const ex &e, int &budget)
+bool is_sign(const ex &f)
 {
+    return is_a<numeric>(f) && abs(ex_to<numeric>(f)).is_equal(1);
+}
+
+// Counts the nodes of e against budget (see expression_size); with tame, fails on a power
+// of a sum with |exponent| > 2 as well.
+bool within(const ex &e, int &budget, bool tame)
+{
+    if (is_a<mul>(e)) {
+        std::size_t factors = 0;
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            if (!is_sign(e.op(k)))
+                ++factors;
+        if (factors > 1 && --budget < 0)
+            return false;
+        for (std::size_t k = 0; k < e.nops(); ++k)
+            if (!is_sign(e.op(k)) && !within(e.op(k), budget, tame))
+                return false;
+        return true;
+    }
     if (--budget < 0)
         return false;
-    if (is_a<power>(e) && is_a<add>(e.op(0)) && is_a<numeric>(e.op(1)) && abs(ex_to<numeric>(e.op(1))) > 2)
+    if (tame && is_a<power>(e) && is_a<add>(e.op(0)) && is_a<numeric>(e.op(1)) && abs(ex_to<numeric>(e.op(1))) > 2)
         return false;
     for (std::size_t k = 0; k < e.nops(); ++k)
-        if (!small_and_tame(e.op(k), budget))
+        if (!within(e.op(k), budget, tame))
             return false;
     return true;
 }
+
+// Small (expression_size) and without powers of sums beyond the square.
+bool small_and_tame(const ex &e, int &budget)
+{
+    return within(e, budget, true);
+}
+
+} // namespace
+
+int expression_size(const ex &e, int limit)
+{
+    int budget = limit;
+    return within(e, budget, false) ? limit - budget : limit;
+}
+
+namespace
+{
 
 // The distinct irrational atoms of a constant (Pi, exp(1), 2^(1/2)): normal() treats
 // each as a variable, and its gcds grow fast with their number.

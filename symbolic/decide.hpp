@@ -59,6 +59,14 @@ double log10_magnitude_bound(const GiNaC::ex &e, const GiNaC::exmap &values = {}
 /// ("not real", "cannot be decided", ...).
 std::string constant_parts_problem(const GiNaC::ex &e);
 
+/// The nodes of e, up to limit (limit when there are as many or more), counted so that
+/// GiNaC's run-to-run term order cannot change the count: a factor -1 and a product that
+/// only negates a term count nothing, so a - b and b - a, -(a - b) c and (b - a) c -- the
+/// forms normal() and factor() return in different runs -- are the same size. Every choice
+/// between forms by size (tidy() below, the documents' "short enough to print") uses it,
+/// so that the choice is the same in every run.
+int expression_size(const GiNaC::ex &e, int limit);
+
 /// e put over a common denominator (normal()) when that is cheap: a constant,
 /// or a small expression without powers of sums beyond the square. Otherwise e
 /// as it is: normal() of a symbolic expression can expand (a + b + ...)^12 into

@@ -258,6 +258,10 @@ TEST(ExerciseSheet, SystemSheetKeepsTheSetOfRegimesAndAnswersAreItsFilesSolved)
             const nlohmann::json answer = nlohmann::json::parse(files.at("answers/" + nn + ".json"));
             for (const exercises::quantity &q : e.asked) {
                 const double v = GiNaC::ex_to<GiNaC::numeric>(q.exact.evalf()).to_double();
+                // The answer file holds the exact value as a double: only the round trip through
+                // its decimal text (and this 17-digit evalf against the file's finer evaluation)
+                // separates the two, a few units in the last place; 1e-12 relative (absolute
+                // below 1) is far above that and far below any wrong set or formula.
                 EXPECT_NEAR(answer.at(nlohmann::json::json_pointer(q.pointer)).get<double>(), v,
                             1e-12 * std::max(1.0, std::abs(v)))
                     << q.pointer;

@@ -2,7 +2,9 @@
 // direct central impact, the numbers equal to the full document's, one page of LaTeX for
 // every named class, and golden files of every named class's summary (golden/summary/).
 #include "print/explain.hpp"
+#include "symbolic/decide.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/problem.hpp"
 
 #include "latex_tools.hpp"
 
@@ -11,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 using namespace impactgen;
 using namespace impactgen::print;
@@ -289,5 +292,30 @@ TEST(Summary, FullLatexOfATwoParticleClassCompilesToTwoPages)
         ASSERT_EQ(out.status, 0) << name;
         EXPECT_LE(out.pages, 2) << name;
         EXPECT_EQ(out.overfull_hbox, 0) << name << latex_tools::around(out.log, "Overfull \\hbox");
+    }
+}
+
+// A numeric problem under a process law (Poisson's or the energetic law) is worked with its
+// numbers only: its summary boxes each result once, exact with its decimal beside it (the
+// results were boxed twice, exact and then again with decimals).
+TEST(Summary, NumericProcessLawBoxesEachResultOnce)
+{
+    for (const char *file : {"/examples/laws/rod-slip-reverses.json", "/tests/codegen/laws/rod-slip-reverses-poisson.json"}) {
+        SCOPED_TRACE(file);
+        const problem p = load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + file);
+        ASSERT_TRUE(p.is_numeric());
+        const derivation d = derive(p);
+        const impact_solution s = solve_impact(d);
+        ASSERT_TRUE(s.cases.front().process.size() > 0) << "a process law";
+        const document doc = explain(d, s, nullptr, level::summary);
+        std::map<std::string, int> boxed;
+        for (const math_row &r : boxed_rows(doc))
+            if (is_a<symbol>(r.lhs))
+                ++boxed[ex_to<symbol>(r.lhs).get_name()];
+        EXPECT_EQ(boxed.size(), 3u) << "v'_x, v'_y and w' of the rod";
+        for (const auto &[name, times] : boxed)
+            EXPECT_EQ(times, 1) << name;
+        for (const math_row &r : boxed_rows(doc))
+            EXPECT_TRUE(is_a<numeric>(r.rhs) || is_constant(r.rhs)) << r.rhs;
     }
 }
