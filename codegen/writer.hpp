@@ -178,6 +178,14 @@ private:
     void system_select();
     void system_function();
     void system_jacobian_function();
+    void system_input_checks();
+
+    // ---- a system's sequential impacts: the chain of single-contact impacts (writer_sequence.cpp)
+    bool sequential() const { return system() && cp_.system.sequential; }
+    void build_sequence();
+    void sequence_formulas();
+    void sequence_step(std::size_t k);
+    void sequence_function();
 
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
@@ -276,6 +284,10 @@ private:
     std::map<std::string, std::string> sys_local_;
     std::vector<stage> sys_jac_;
     std::vector<std::string> sys_jac_names_, sys_unit_mass_;
+    // sequential: the state, its speeds' stage, one stage per contact's step
+    std::vector<std::string> seq_state_, seq_sum_, seq_speed_, seq_before_;
+    stage seq_speeds_;
+    std::vector<stage> seq_steps_;
     stage rows_; // --rows: the primitive values of the rows
     std::map<std::string, std::string> rows_name_;
 };
