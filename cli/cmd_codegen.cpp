@@ -117,7 +117,7 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
                   "tangents and the bias of restitution, for an iterative (sequential-impulse) solver");
     cmd->add_flag("--jacobian", args->jacobian,
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
-                  "(of a system: d(velocities after)/d(inputs) of the set that holds)");
+                  "(of a system: d(velocities after)/d(inputs) of the set that holds; not for sequential impacts)");
     auto *wrt = cmd->add_option("--wrt", args->wrt,
                                 "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
                                 "input); implies --jacobian");
