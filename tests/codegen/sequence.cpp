@@ -2,11 +2,13 @@
 // impacts in a bounded loop) against the exact chain (solve_system, CLN) and against an
 // independent numeric chain written here: one contact at a time, each step the Eigen reference
 // (numeric/system_reference.hpp's solve_reference) of the system with that contact alone.
-// The cases -- three balls and Newton's cradles of 4 and 5 balls, the inputs chosen with --params
+// The cases -- three balls, Newton's cradles of 4 and 5 balls, and a double pendulum on a pivot
+// struck by a ball, whose upper rod then strikes a second ball (a joint and a pivot acting in
+// every step), the inputs chosen with --params
 // -- are listed once in tests/codegen/CMakeLists.txt (SEQUENCE_CASES), which writes
 // sequence_cases.inc.
 //
-// Inputs: masses log-uniform in [1e-2, 1e2] (mass ratios up to 1e4), velocities uniform in
+// Inputs: masses and moments of inertia log-uniform in [1e-2, 1e2] (mass ratios up to 1e4), velocities uniform in
 // [-2, 2], each coefficient of restitution uniform in [0, 1] with one draw in ten exactly 0 and
 // one in five exactly 1 (e = 0 gives the longest chains: often without end, which solve refuses
 // after 64 exact steps, the costliest samples).
@@ -223,7 +225,7 @@ public:
         std::vector<double> x;
         for (const GiNaC::symbol &s : symbols_) {
             const std::string n = s.get_name();
-            if (n[0] == 'm')
+            if (n[0] == 'm' || n[0] == 'I')
                 x.push_back(std::pow(10.0, -2 + 4 * u(rng)));
             else if (n[0] == 'v')
                 x.push_back(-2 + 4 * u(rng));
@@ -252,15 +254,20 @@ public:
         int set = -1, steps = -1;
         const int status = g_.call(x.data(), out.data(), set, steps);
         const std::size_t nc = p.contacts.size();
-        std::vector<double> before;
-        for (const body &b : p.bodies)
-            if (!b.infinite_mass)
-                before.push_back(print::to_double(b.velocity[0]));
+        std::vector<ref::vec3> v0, w0;
         double scale = 0;
-        for (double v : before)
-            scale = std::max(scale, std::abs(v));
-        std::vector<double> vel(out.begin(), out.end() - static_cast<long>(nc) - 1);
-        std::vector<double> imp(out.end() - static_cast<long>(nc) - 1, out.end() - 1);
+        for (const body &b : p.bodies) {
+            v0.push_back(dv(b.velocity));
+            w0.push_back(dv(b.angular_velocity));
+            if (!b.infinite_mass)
+                scale = std::max({scale, v0.back().cwiseAbs().maxCoeff(), w0.back().cwiseAbs().maxCoeff()});
+        }
+        // The outputs: velocities, each contact's normal impulse, the joints' and pivots' impulses
+        // (world components), the energy lost.
+        const auto nv = static_cast<long>(velocities(p, v0, w0).size());
+        std::vector<double> vel(out.begin(), out.begin() + nv);
+        std::vector<double> imp(out.begin() + nv, out.begin() + nv + static_cast<long>(nc));
+        std::vector<double> links(out.begin() + nv + static_cast<long>(nc), out.end() - 1);
         system_answer a;
         try {
             a = solve_system(p);
@@ -324,6 +331,16 @@ public:
             pscale = std::max(pscale, std::abs(P));
             perr = std::max(perr, std::abs(P - imp[i]));
         }
+        std::vector<double> exact_links;
+        for (const std::vector<vec3> *list : {&a.result.joint_impulses, &a.result.pivot_impulses})
+            for (const vec3 &J : *list)
+                for (int c = 0; c < p.dimension; ++c)
+                    exact_links.push_back(print::to_double(J[c]));
+        EXPECT_EQ(exact_links.size(), links.size());
+        for (std::size_t i = 0; i < std::min(exact_links.size(), links.size()); ++i) {
+            pscale = std::max(pscale, std::abs(exact_links[i]));
+            perr = std::max(perr, std::abs(exact_links[i] - links[i]));
+        }
         if (steps == static_cast<int>(a.sequence.size()))
             t.exact_error = std::max({t.exact_error, err / scale, pscale > 0 ? perr / pscale : perr});
         // A step the header does not take (its approach below tol times the speeds before) changes
@@ -385,12 +402,17 @@ TEST(SequenceHeaders, AgreeWithTheExactChainAndTheReferenceChain)
                     g.name.c_str(), t.samples, t.exact_ok, t.repeated, t.exact_endless, t.endless_header_limit,
                     t.endless_header_ended, t.not_approaching, t.steps_differ, t.reference_steps_differ, t.exact_error,
                     t.reference_error);
-        EXPECT_GE(t.exact_ok, t.samples / 2);
-        EXPECT_GE(t.repeated, 5) << "chains of several passes";
-        EXPECT_GE(t.exact_endless, 1);
+        // Coverage: the balls' chains often repeat a contact and, with e = 0, reach the limit; the
+        // pendulum's ball approaches in half the samples (its velocity's sign) and rarely repeats.
+        const bool balls = g.name.rfind("pendulum", 0) != 0;
+        EXPECT_GE(t.exact_ok, balls ? t.samples / 2 : t.samples / 3);
+        EXPECT_GE(t.repeated, balls ? 5 : 1) << "chains of several passes";
         EXPECT_LE(t.steps_differ, t.samples / 20);
         EXPECT_LE(t.reference_steps_differ, t.samples / 20);
-        EXPECT_GE(t.endless_header_limit, 1) << "chains that reach the step limit";
+        if (balls) {
+            EXPECT_GE(t.exact_endless, 1);
+            EXPECT_GE(t.endless_header_limit, 1) << "chains that reach the step limit";
+        }
     }
 }
 
