@@ -66,6 +66,17 @@ struct system_code_set {
     std::vector<std::vector<GiNaC::ex>> jacobian;
 };
 
+/// Sequential impacts (a system with "impacts": "sequential", frictionless contacts): the
+/// chain's state and, per contact, its single-contact impact in that state.
+struct system_sequence {
+    std::vector<GiNaC::symbol> state; ///< per output: its value before a step (velocities; else unused)
+    std::vector<GiNaC::ex> speeds;    ///< per contact: its normal speed u_k in the state (along n_k as given)
+    /// Per contact k: contact k acting alone (system_step_candidates' acting candidate), the
+    /// outputs in inputs and state (velocities after the step, this step's impulses) and the
+    /// condition P_k >= 0; no values where contact k has none (it cannot take an impulse).
+    std::vector<system_code_set> steps;
+};
+
 /// What a system's header computes besides its outputs' fields.
 struct system_code {
     std::vector<system_code_set> sets;
@@ -82,6 +93,8 @@ struct system_code {
     std::vector<std::pair<GiNaC::ex, std::string>> checks; ///< value >= 0 or > 0 checks: (value, kind)
     bool has_jacobian = false;
     std::vector<GiNaC::symbol> wrt; ///< the inputs the Jacobian differentiates by, in order
+    bool sequential = false;        ///< the chain of single-contact impacts (sequence), not the sets
+    system_sequence sequence;
 };
 
 /// With --jacobian and Coulomb friction under Newton's law (rules first_that_holds and
@@ -165,8 +178,9 @@ std::vector<GiNaC::symbol> jacobian_inputs(const std::vector<GiNaC::symbol> &inp
 void order_plan_inputs(plan &pl, const options &o);
 
 /// The code plan of a system (system_plan.cpp): its candidates' values and conditions in the
-/// inputs the options choose. Throws input_error naming `impacts` for sequential impacts, and
-/// option_error for the options a system does not take.
+/// inputs the options choose; for sequential impacts the chain's steps (system_sequence).
+/// Throws input_error naming the key for sequential impacts with friction, and option_error
+/// for the options a system does not take.
 code_plan system_code_plan(const problem &p, const options &o);
 
 /// The code plan of a problem under the options (the names of generate()).

@@ -25,10 +25,10 @@ std::string label_suffix(const std::string &label)
 // The options a system does not take, each refused naming its option.
 void refuse_system_options(const problem &p, const options &o)
 {
-    if (p.sequential)
-        throw input_error((p.source.empty() ? std::string() : names::display_text(p.source) + ": ") +
-                          "impacts: sequential impacts are not generated (which contact acts next depends on the "
-                          "numbers; 'impactgen solve' follows the chain); generate \"impacts\": \"simultaneous\"");
+    if (p.sequential && (o.jacobian || !o.wrt.empty()))
+        throw option_error(o.jacobian ? option_error::jacobian : option_error::wrt,
+                           "the Jacobian is not offered for sequential impacts (the chain's steps depend on the "
+                           "inputs)");
     const std::string why = " is not offered for systems (give masses and inertia)";
     if (o.inverse_inertia)
         throw option_error(option_error::inverse_inertia, "the engine input convention" + why);
@@ -184,6 +184,54 @@ void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
         }
 }
 
+// Sequential impacts with friction are refused naming the contact's key (the problem
+// specialised: a coefficient --set to 0 is frictionless).
+void refuse_sequential_friction(const problem &q)
+{
+    for (std::size_t k = 0; k < q.contacts.size(); ++k)
+        if (q.contacts[k].rough || !q.contacts[k].friction().is_zero())
+            throw input_error((q.source.empty() ? std::string() : names::display_text(q.source) + ": ") + "contacts[" +
+                              std::to_string(k) +
+                              "].friction: sequential impacts are generated for frictionless contacts only ('impactgen "
+                              "solve' follows the chain with friction)");
+}
+
+// The chain of sequential impacts: the velocity outputs become the state symbols, and per
+// contact its single-contact impact in that state (the acting candidate: smooth).
+void sequence_plan(code_plan &cp, const std::vector<output_source> &src)
+{
+    system_code &sc = cp.system;
+    sc.sequential = true;
+    problem s = cp.prob;
+    sc.sequence.state.assign(cp.outputs.size(), symbol("state_unused"));
+    for (std::size_t j : sc.velocities) {
+        const code_output &of = cp.outputs[j];
+        const symbol x("state_" + of.field);
+        sc.sequence.state[j] = x;
+        vec3 &v = of.kind == output_value::velocity ? s.bodies[of.index].velocity : s.bodies[of.index].angular_velocity;
+        v[static_cast<std::size_t>(of.component)] = x;
+    }
+    const system_delassus del = system_delassus_of(s);
+    for (std::size_t i = 0; i < s.contacts.size(); ++i) {
+        const auto at = std::find(del.rows.begin(), del.rows.end(), "n" + std::to_string(i)) - del.rows.begin();
+        sc.sequence.speeds.push_back(del.u[static_cast<std::size_t>(at)]);
+        system_code_set st;
+        st.name = "{" + std::to_string(i) + " smooth}";
+        for (const system_candidate &c : system_step_candidates(s, i)) {
+            if (c.regimes[i] != contact_regime::smooth)
+                continue;
+            st.name = c.name();
+            for (const output_source &os : src)
+                st.values.push_back(os.value ? os.value(c) : ex(0));
+            for (const system_condition &k : c.conditions)
+                st.conditions.push_back({k.value, k.velocity, k.contact, k.meaning, k.value.is_zero(), k.strict});
+            break;
+        }
+        sc.sequence.steps.push_back(st);
+    }
+    sc.sets = sc.sequence.steps;
+}
+
 } // namespace
 
 std::vector<symbol> jacobian_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
@@ -230,7 +278,11 @@ code_plan system_code_plan(const problem &p, const options &o)
         const ex w = del.W[static_cast<std::size_t>(at)][static_cast<std::size_t>(at)];
         sc.unit_mass.push_back(w.is_zero() ? ex(0) : normal(1 / w));
     }
-    for (const system_candidate &c : system_candidates(q)) {
+    if (q.sequential) {
+        refuse_sequential_friction(q);
+        sequence_plan(cp, src);
+    }
+    for (const system_candidate &c : q.sequential ? std::vector<system_candidate>() : system_candidates(q)) {
         system_code_set s;
         s.name = c.name();
         for (const output_source &os : src)

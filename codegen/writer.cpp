@@ -129,14 +129,23 @@ header writer::run()
 // A system's header: the same sections around its own function.
 header writer::run_system()
 {
-    build_system();
+    if (sequential())
+        build_sequence();
+    else
+        build_system();
     banner();
     preamble();
     result_struct();
-    system_formulas();
+    if (sequential())
+        sequence_formulas();
+    else
+        system_formulas();
     unchanged_function(u_.em);
     system_tolerance();
-    system_function();
+    if (sequential())
+        sequence_function();
+    else
+        system_function();
     forwarding_form(false);
     forwarding_form(true);
     system_jacobian_function();
@@ -169,6 +178,8 @@ void writer::name_everything()
             sc->reserve("set");
             sc->reserve("impulses_unique");
             sc->reserve("boundary");
+            if (sequential())
+                sc->reserve("steps");
         } else if (!straight()) {
             sc->reserve("regime");
             if (process_jacobian()) {
@@ -189,7 +200,8 @@ void writer::name_everything()
     for (const char *suffix : straight() ? straight_suffixes : candidate_suffixes)
         scope_.reserve(o_.name + suffix);
     if (system())
-        for (const char *suffix : {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names"})
+        for (const char *suffix :
+             {"_set_count", "_set_names", "_tolerance", "_jacobian", "_wrt_count", "_wrt_names", "_max_steps"})
             scope_.reserve(o_.name + suffix);
     if (process_jacobian())
         for (const char *suffix : {"_tolerance", "_jacobian", "_wrt_count", "_wrt_names", "_jacobian_output_count",

@@ -178,6 +178,14 @@ private:
     void system_select();
     void system_function();
     void system_jacobian_function();
+    void system_input_checks();
+
+    // ---- a system's sequential impacts: the chain of single-contact impacts (writer_sequence.cpp)
+    bool sequential() const { return system() && cp_.system.sequential; }
+    void build_sequence();
+    void sequence_formulas();
+    void sequence_step(std::size_t k);
+    void sequence_function();
 
     // ---- --jacobian with friction under Newton's law (writer_friction_jacobian.cpp)
     void build_candidates_jacobian();
@@ -296,6 +304,10 @@ private:
     std::vector<stage> seq_jac_;
     std::vector<std::string> seq_jac_names_;
     std::string speed_name_, response_name_;
+    // sequential: the state, its speeds' stage, one stage per contact's step
+    std::vector<std::string> seq_state_, seq_sum_, seq_speed_, seq_before_;
+    stage seq_speeds_;
+    std::vector<stage> seq_steps_;
     stage rows_; // --rows: the primitive values of the rows
     // ---- --jacobian with friction: names and programs
     std::map<std::string, std::string> fj_local_;

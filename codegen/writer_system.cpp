@@ -25,11 +25,10 @@ std::string nested_max(const std::vector<std::string> &terms)
 
 } // namespace
 
-// Names of the sets' locals, the speeds, the selection's locals; the programs.
-void writer::build_system()
+// The checks of the inputs (stage A): e in [0, 1], masses and inertia > 0; the mu's names.
+void writer::system_input_checks()
 {
     const system_code &sc = cp_.system;
-    a_.pool.set_input_names(input_ident_);
     for (const auto &[value, kind] : sc.checks) {
         if (kind == "invalid_friction") {
             if (is_a<numeric>(value))
@@ -47,6 +46,14 @@ void writer::build_system()
                                                                : "moment of inertia > 0, finite";
         add_check(a_, value, k, kind, what);
     }
+}
+
+// Names of the sets' locals, the speeds, the selection's locals; the programs.
+void writer::build_system()
+{
+    const system_code &sc = cp_.system;
+    a_.pool.set_input_names(input_ident_);
+    system_input_checks();
     for (std::size_t r = 0; r < sc.speeds.size(); ++r) {
         sys_speed_.push_back(scope_.claim("u_row" + std::to_string(r)));
         a_.output(sys_speed_.back(), sc.speeds[r]);
@@ -126,10 +133,17 @@ void writer::system_banner()
 {
     h_ << "// Closed forms of the impact of a system (" << q_.bodies.size() << " bodies, " << q_.contacts.size()
        << " contact" << (q_.contacts.size() == 1 ? "" : "s") << ", " << q_.joints.size() << " joint"
-       << (q_.joints.size() == 1 ? "" : "s") << "), specialised; the set of\n";
-    h_ << "// acting contacts and their regimes selected by the derived inequalities. Plain C++17, no\n";
-    h_ << "// dependency, no allocation.\n";
-    h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula) << " (every candidate set);\n";
+       << (q_.joints.size() == 1 ? "" : "s") << "), specialised; "
+       << (sequential() ? "the contacts acting one at\n// a time (sequential impacts), each step's contact and its "
+                          "impact chosen as the law's chain chooses\n// them. Plain C++17, no dependency, no "
+                          "allocation.\n"
+                        : "the set of\n// acting contacts and their regimes selected by the derived inequalities. "
+                          "Plain C++17, no\n// dependency, no allocation.\n");
+    if (sequential())
+        h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula) << " (before the chain); "
+           << counts_text(seq_speeds_.em.formula) << " (each pass's speeds);\n";
+    else
+        h_ << "// Arithmetic of the straight-line parts: " << counts_text(a_.em.formula) << " (every candidate set);\n";
     h_ << "//   " << counts_text(c_.em.formula) << " (energy lost).\n";
     h_ << "#pragma once\n\n#include <cmath>\n#include <limits>\n\n";
 }

@@ -104,7 +104,9 @@ void writer::result_struct()
            << "    bool impulses_unique; ///< false: the velocities are unique, the impulses one valid choice\n"
            << (cp_.system.has_jacobian ? "    bool boundary; ///< another set holds within rounding (the map is not "
                                          "differentiable here)\n"
-                                       : "");
+                                       : "")
+           << (sequential() ? "    int steps; ///< the single-contact impacts of the chain (set: the last one's)\n"
+                            : "");
     else if (!straight())
         h_ << "    impact_regime regime; ///< smooth (mu = 0), stick or slide; smooth when the status is not ok\n"
            << (process_jacobian()
@@ -288,7 +290,8 @@ void writer::unchanged_function(const emitted &code)
     }
     if (system())
         h_ << "    out.set = -1;\n    out.impulses_unique = true;\n"
-           << (cp_.system.has_jacobian ? "    out.boundary = false;\n" : "");
+           << (cp_.system.has_jacobian ? "    out.boundary = false;\n" : "")
+           << (sequential() ? "    out.steps = 0;\n" : "");
     else
         h_ << "    out.regime = impact_regime::smooth;\n"
            << (process_jacobian() ? "    out.sequence = -1;\n    out.boundary = false;\n" : "");

@@ -867,16 +867,15 @@ system_candidate system_candidate_of_impulses(const problem &p, const std::vecto
     return finish(m, choice, all, gv, w);
 }
 
-std::vector<system_candidate> system_candidates(const problem &p)
+namespace
 {
-    if (p.sequential)
-        throw input_error("impacts: sequential impacts have no closed-form candidates (which contact acts next "
-                          "depends on the numbers); 'impactgen solve' follows the chain of a numeric problem");
-    if (system_follows_process(p))
-        return system_process_candidates(p);
+
+// The candidates with the contacts `considered` acting (the others open), in the order
+// solve_system tries them.
+std::vector<system_candidate> candidates_considering(const problem &p, const std::vector<bool> &considered)
+{
     const model m = build_model(p);
     const std::vector<ex> q = contact_velocities(m, m.gv0);
-    const std::vector<bool> considered(p.contacts.size(), true);
     std::vector<system_candidate> out;
     for_each_choice(p, considered, [&](const std::vector<option> &choice) {
         core start;
@@ -891,6 +890,27 @@ std::vector<system_candidate> system_candidates(const problem &p)
         }
     });
     return out;
+}
+
+} // namespace
+
+std::vector<system_candidate> system_candidates(const problem &p)
+{
+    if (p.sequential)
+        throw input_error("impacts: sequential impacts have no closed-form candidates (which contact acts next "
+                          "depends on the numbers); 'impactgen solve' follows the chain of a numeric problem");
+    if (system_follows_process(p))
+        return system_process_candidates(p);
+    return candidates_considering(p, std::vector<bool>(p.contacts.size(), true));
+}
+
+std::vector<system_candidate> system_step_candidates(const problem &p, std::size_t k)
+{
+    if (system_follows_process(p))
+        return system_process_candidates(p);
+    std::vector<bool> considered(p.contacts.size(), false);
+    considered.at(k) = true;
+    return candidates_considering(p, considered);
 }
 
 system_answer solve_system(const problem &p)

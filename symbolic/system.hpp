@@ -93,6 +93,12 @@ struct system_answer {
 /// depends on the numbers).
 std::vector<system_candidate> system_candidates(const problem &p);
 
+/// One step of sequential impacts: the candidates with contact k alone acting (every other
+/// contact open), in the order solve_system's chain tries them, for the problem's velocities
+/// before that step (sequential or not: the chain's step is decided as a simultaneous law of
+/// one contact). Throws input_error as system_candidates does (k out of range: std::out_of_range).
+std::vector<system_candidate> system_step_candidates(const problem &p, std::size_t k);
+
 /// A numeric problem's answer: the candidate that holds, decided exactly (simultaneous), or
 /// the chain of single-contact impacts (sequential, at most 64 steps). Refuses, naming the
 /// key, when no candidate holds, when two hold with different velocities (naming the sets),

@@ -24,6 +24,13 @@ execute_process(COMMAND ${IMPACTGEN} codegen planar --name planar_engine --inver
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "impactgen codegen planar --inverse-inertia --inverse-mass failed")
 endif()
+execute_process(COMMAND ${IMPACTGEN} codegen examples/systems/three-balls-sequential.json --params
+                        e,ma,v_xa,mb,v_xb,mc,v_xc --name three_balls_sequential
+                        --output ${WORK}/three_balls_sequential.hpp
+                WORKING_DIRECTORY ${GENERATED}/.. RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "impactgen codegen examples/systems/three-balls-sequential.json failed")
+endif()
 file(GLOB fresh RELATIVE ${WORK} ${WORK}/*.hpp)
 file(GLOB checked_in RELATIVE ${GENERATED} ${GENERATED}/*.hpp)
 foreach(h IN LISTS fresh)
