@@ -119,7 +119,8 @@ void impactgen::cli::register_codegen(CLI::App &app, std::function<int()> &actio
                   "also emit NAME_jacobian: the values and the dense Jacobian d(outputs)/d(inputs), derived exactly "
                   "(of a system: d(velocities after)/d(inputs) of the set that holds; with Coulomb friction under "
                   "Newton's law: d(velocities, impulses after)/d(inputs) of the regime that holds; under the laws "
-                  "poisson and energetic: the same of the phase sequence that holds; ambiguous on a boundary; not for sequential impacts)");
+                  "poisson and energetic: the same of the phase sequence that holds; ambiguous on a boundary; not for "
+                  "sequential impacts)");
     auto *wrt = cmd->add_option("--wrt", args->wrt,
                                 "comma-separated inputs the Jacobian differentiates by, in this order (default: every "
                                 "input); implies --jacobian");

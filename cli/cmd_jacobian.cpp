@@ -250,8 +250,7 @@ void regime_jacobian_text(std::ostream &os, const friction_jacobian &j, std::siz
     for (const regime_condition &k : r.conditions)
         os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning << ")\n";
     if (r.through_angle)
-        os << c << "  " << print::symbol_text(r.dir_c) << " = cos(theta), "
-           << print::symbol_text(r.dir_s)
+        os << c << "  " << print::symbol_text(r.dir_c) << " = cos(theta), " << print::symbol_text(r.dir_s)
            << " = sin(theta): theta a root of the angle equation g = 0, found for the numbers;\n"
            << c << "  through the implicit function theorem dtheta/dx = -(dg/dx)/(dg/dtheta), where dg/dtheta != 0\n"
            << c << "  (a simple root; at a double root the sliding direction is not differentiable)\n";
