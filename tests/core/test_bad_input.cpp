@@ -960,10 +960,16 @@ TEST(Friction, ObliqueNormalsWrittenAnyWayGiveOneAnswer)
         }
 }
 
-TEST(Friction, PiecewiseMapHasNoJacobianAndSmoothOnlyCommandsRefuseOrAnswer)
+TEST(Friction, PiecewiseMapHasAJacobianPerRegimeAndOtherCommandsAnswerOrRefuse)
 {
     const std::string text = floor_particle("0.3", "\"v\"");
-    expect_refusal(run_on(text, "formulas --jacobian --format json"), "--jacobian with friction", "friction");
+    // The map is piecewise: its Jacobian is given per regime (stick, the two slides).
+    const run_result jr = run_on(text, "formulas --jacobian --format json");
+    ASSERT_EQ(jr.code, 0) << jr.err;
+    const json jj = json::parse(jr.out);
+    ASSERT_TRUE(jj.contains("regimes")) << jr.out;
+    ASSERT_EQ(jj.at("regimes").size(), 3u) << jr.out;
+    EXPECT_EQ(jj.at("regimes").at(0).at("regime"), "stick");
     const run_result f = run_on(text, "formulas --format json");
     ASSERT_EQ(f.code, 0) << f.err;
     const json j = json::parse(f.out);
