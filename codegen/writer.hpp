@@ -36,6 +36,8 @@ bool depends_on(const ex &e, const exset &syms);
 std::vector<check> state_checks(const std::vector<check> &checks);
 /// The `using std::sqrt;` (and std::cos, std::sin) lines a function body needs for the code of `e`.
 std::string math_usings(const emitted &e);
+/// The C++ text of max |t| over the terms (T(0) for none), as nested detail::max_of calls.
+std::string nested_abs_max(const std::vector<std::string> &terms);
 std::string position_text(const problem &q); // the convention of position vectors, as comment lines
 
 // One straight-line program of the function: its pool, its ops, the names of its steps'

@@ -15,16 +15,6 @@ namespace impactgen::codegen::writer_detail
 namespace
 {
 
-std::string nested_abs_max(const std::vector<std::string> &terms)
-{
-    if (terms.empty())
-        return "T(0)";
-    std::string r = "detail::abs_of(" + terms[0] + ")";
-    for (std::size_t i = 1; i < terms.size(); ++i)
-        r = "detail::max_of(" + r + ", detail::abs_of(" + terms[i] + "))";
-    return r;
-}
-
 bool is_velocity(const code_output &of)
 {
     return of.kind == output_value::velocity || of.kind == output_value::angular_velocity;

@@ -10,10 +10,7 @@
 namespace impactgen::codegen::writer_detail
 {
 
-namespace
-{
-
-std::string nested_max(const std::vector<std::string> &terms)
+std::string nested_abs_max(const std::vector<std::string> &terms)
 {
     if (terms.empty())
         return "T(0)";
@@ -22,8 +19,6 @@ std::string nested_max(const std::vector<std::string> &terms)
         r = "detail::max_of(" + r + ", detail::abs_of(" + terms[i] + "))";
     return r;
 }
-
-} // namespace
 
 // The checks of the inputs (stage A): e in [0, 1], masses and inertia > 0; the mu's names.
 void writer::system_input_checks()
@@ -243,7 +238,7 @@ std::string writer::system_holds(std::size_t k) const
     bool scaled = !s.rough_sticks.empty();
     for (const auto &c : s.conditions)
         scaled = scaled || (!c.velocity && !c.identically_zero);
-    std::string r = scaled ? "    const T " + is + " = " + nested_max(imp) + ";\n" : std::string();
+    std::string r = scaled ? "    const T " + is + " = " + nested_abs_max(imp) + ";\n" : std::string();
     r += "    const bool h" + kt + " = " + (holds.empty() ? "true" : join(holds, " && ")) + ";\n";
     r += "    const bool g" + kt + " = " + (clear.empty() ? "true" : join(clear, " && ")) + ";\n";
     if (cp_.system.has_jacobian) {
@@ -301,7 +296,7 @@ void writer::system_select()
                       &j = sys_local_.at("j"), &x1 = sys_local_.at("x1"), &x2 = sys_local_.at("x2"),
                       &scale = sys_local_.at("scale");
     h_ << "    const T " << tol << " = detail::" << o_.name << "_tolerance<T>();\n";
-    h_ << "    const T " << vs << " = " << nested_max(sys_speed_) << ";\n";
+    h_ << "    const T " << vs << " = " << nested_abs_max(sys_speed_) << ";\n";
     for (std::size_t i = 0; i < nsets; ++i)
         h_ << system_holds(i);
     for (const auto &[arr, flag] : {std::pair{holds, "h"}, std::pair{clear, "g"}}) {

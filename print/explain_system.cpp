@@ -371,6 +371,19 @@ section contact_frame_section(const problem &p)
     return s;
 }
 
+// A system document's opening: its title, the set-up, the unknowns and each body's equations.
+document opening(const derivation &d, const worked_example *example)
+{
+    document doc;
+    doc.title = document_title(d.prob, "System impact");
+    doc.description = d.prob.description;
+    doc.sections.push_back(setup(d, example));
+    doc.sections.push_back(unknowns(d));
+    for (section &s : equation_sections(d))
+        doc.sections.push_back(s);
+    return doc;
+}
+
 // A system whose one contact follows Routh's process: the bodies' impulse-momentum with every
 // impulse, the Delassus matrix, the contact's 2x2 response from it, then the process as the
 // single contact's chapter teaches it, and for numbers the path and the answer.
@@ -379,13 +392,7 @@ document process_system(const derivation &d, const worked_example *example)
     const problem &p = d.prob;
     const system_delassus D = system_delassus_of(p);
     const process_teaching t = contact_process(d, D);
-    document doc;
-    doc.title = document_title(p, "System impact");
-    doc.description = p.description;
-    doc.sections.push_back(setup(d, example));
-    doc.sections.push_back(unknowns(d));
-    for (section &s : equation_sections(d))
-        doc.sections.push_back(s);
+    document doc = opening(d, example);
     doc.sections.push_back(delassus_section(p, D));
     doc.sections.push_back(contact_frame_section(p));
     for (const auto &part : {process_statement(t), process_equations(t), process_sequences(t)})
@@ -418,13 +425,7 @@ document explain_system(const derivation &d, const worked_example *example, leve
         return process_system(d, example);
     if (depth == level::summary)
         return detail::system_summary(d, setup(d, example, true), example);
-    document doc;
-    doc.title = document_title(p, "System impact");
-    doc.description = p.description;
-    doc.sections.push_back(setup(d, example));
-    doc.sections.push_back(unknowns(d));
-    for (section &s : equation_sections(d))
-        doc.sections.push_back(s);
+    document doc = opening(d, example);
     doc.sections.push_back(law_section(d));
     doc.sections.push_back(delassus_section(p, system_delassus_of(p)));
     for (section &s : detail::system_solution_sections(d, example))
