@@ -5,6 +5,7 @@
 #include "print/answer.hpp"
 #include "print/title.hpp"
 #include "symbolic/decide.hpp"
+#include "symbolic/named_systems.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -132,6 +133,10 @@ problem numeric_base(const problem &base)
     exmap values = figure::schematic_values(base);
     for (auto &kv : values)
         kv.second = exact(kv.second);
+    // A named system class has a worked example (numbers for every symbol, velocities
+    // included): the schematic values of its figure alone leave it at rest.
+    for (const ex &eq : system_class_example_values(base.source))
+        values[eq.lhs()] = exact(eq.rhs());
     auto put = [&](ex &x) {
         if (!values.empty())
             x = x.subs(values);

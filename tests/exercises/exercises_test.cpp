@@ -8,6 +8,7 @@
 #include "print/answer.hpp"
 #include "symbolic/system.hpp"
 #include "symbolic/named_classes.hpp"
+#include "symbolic/named_systems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -282,6 +283,27 @@ TEST(ExerciseSheet, SystemSheetKeepsTheSetOfRegimesAndAnswersAreItsFilesSolved)
         const std::string m = e.what();
         EXPECT_NE(m.find("--regime"), std::string::npos) << m;
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+}
+
+// Every named system class makes a sheet from its own worked example (its figure's schematic
+// values alone left the bodies at rest: "not an impact" in every draw), and keeps its set.
+TEST(ExerciseSheet, EveryNamedSystemClassMakesASheet)
+{
+    for (const named_class &c : system_classes()) {
+        SCOPED_TRACE(c.name);
+        const problem base = c.build();
+        const exercises::sheet s = sheet_of(base, 2, 3, "", 2);
+        ASSERT_EQ(s.exercises.size(), 2u);
+        const auto files = exercises::sheet_files(s);
+        for (std::size_t k = 0; k < 2; ++k) {
+            const std::string nn = "0" + std::to_string(k + 1);
+            const problem back = read_problem(files.at("problems/" + nn + ".json"), nn);
+            ASSERT_TRUE(back.is_system());
+            EXPECT_EQ(back.contacts.size(), base.contacts.size());
+            EXPECT_EQ(print::system_answer_json(back, solve_system(back)).dump(2) + "\n",
+                      files.at("answers/" + nn + ".json"));
+        }
     }
 }
 
