@@ -54,7 +54,9 @@ void register_exercises(CLI::App &app, std::function<int()> &action)
         "exercises", "Exercise sheet of variants with simple numbers: answers, worked solutions, Moodle quiz");
     cmd->add_option("problem", opt->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     cmd->add_option("--count", opt->count, "number of exercises, 1 to 99 (default 10)");
-    cmd->add_option("--seed", opt->seed, "seed of the variants (default 1): the same seed, the same files");
+    cmd->add_option("--seed", opt->seed,
+                    "seed of the variants (default 1): the same seed, the same files (unless the search runs "
+                    "out of time: a note on stderr says so)");
     cmd->add_option("--regime", opt->regime,
                     "keep every variant in this regime: smooth, stick or slide (default: any, away from boundaries)");
     cmd->add_option("--out", opt->out,
@@ -72,6 +74,11 @@ void register_exercises(CLI::App &app, std::function<int()> &action)
             std::cout << "impactgen: " << s.exercises.size() << " exercise" << (s.exercises.size() == 1 ? "" : "s")
                       << " written to " << names::display_text(opt->out, 120)
                       << " (sheet.tex, sheet.html, quiz.xml, problems/, answers/, solutions/)\n";
+            if (s.cut_by_time > 0)
+                std::cerr << "impactgen: note: the search for variants ran out of its " << o.seconds << " s for "
+                          << s.cut_by_time << " exercise" << (s.cut_by_time == 1 ? "" : "s")
+                          << ": each is the best of the draws made in the time, so the same seed may give "
+                             "other variants on a machine of another speed\n";
             return 0;
         };
     });

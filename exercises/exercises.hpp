@@ -53,6 +53,9 @@ struct sheet {
     std::string title;  ///< the problem's title (or a person's name for it)
     bool units = false; ///< SI units printed
     std::vector<exercise> exercises;
+    /// Exercises whose search ran out of options::seconds before its draws: each is the best of
+    /// the draws made in the time, so the same seed may give another on a machine of another speed.
+    int cut_by_time = 0;
 };
 
 /// The sheet of `base` (a named class or a problem file). Throws input_error with one line

@@ -383,6 +383,7 @@ struct variant_search {
     std::set<std::string> seen;
     std::chrono::steady_clock::time_point start;
     std::string set_key; ///< a system: the key of the problem's own set of regimes, kept by every variant
+    int cut_by_time = 0; ///< exercises whose draws the time cut short
 
     bool out_of_time() const
     {
@@ -438,6 +439,8 @@ struct variant_search {
                 fallback_length = length;
             }
         }
+        if (attempt < opt.attempts && out_of_time())
+            ++cut_by_time;
         if (fallback)
             if (std::optional<exercise> ex = make(*fallback, k)) {
                 seen.insert(fallback_key);
@@ -482,12 +485,13 @@ sheet make_sheet(const problem &base, const options &opt)
         out.title = print::source_stem(base.source);
     out.units = true;
     generator g(opt.seed);
-    variant_search search{base, p0, opt, g, {}, std::chrono::steady_clock::now(), {}};
+    variant_search search{base, p0, opt, g, {}, std::chrono::steady_clock::now(), {}, 0};
     if (base.is_system())
         if (const std::optional<detail::outcome> own = outcome_of(p0))
             search.set_key = own->key;
     for (int k = 1; k <= opt.count; ++k)
         out.exercises.push_back(search.next(k, out.title));
+    out.cut_by_time = search.cut_by_time;
     out.units = out.exercises.front().prob.units == "SI";
     return out;
 }

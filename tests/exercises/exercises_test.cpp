@@ -232,6 +232,16 @@ TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
     }
 }
 
+// The same seed gives the same files unless the time cuts a search short: the sheet says how many
+// exercises that happened to (the CLI prints a note), so a sheet that may differ elsewhere is never
+// silently presented as reproducible.
+TEST(ExerciseSheet, ASearchCutByTheTimeIsReported)
+{
+    EXPECT_EQ(sheet_of(hinged_rod(), 3, 1).cut_by_time, 0) << "short answers found in a few draws";
+    // No time at all: each exercise gets its 8 draws, then the best of them.
+    EXPECT_EQ(sheet_of(find_named_class("noncentral-3d-friction")->build(), 2, 1, "", 0).cut_by_time, 2);
+}
+
 // A system's sheet (issue 25: "keep the regime or active set"): every variant keeps the set of
 // regimes of the problem as given, its answer file is solve_system of its own problem file read
 // back, and every asked value is where the answer file holds it. --regime is refused for a system.
