@@ -4,6 +4,7 @@
 #include "code_plan.hpp"
 
 #include "names/escape.hpp"
+#include "symbolic/friction_jacobian.hpp"
 #include "symbolic/named_classes.hpp"
 
 #include <algorithm>
@@ -167,7 +168,7 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
     for (std::size_t k = 0; k < cp.outputs.size(); ++k)
         if (!cp.candidates.cases.empty() && candidate_output(cp, k, cp.candidates.cases.front(), unused))
             cj.rows.push_back(k);
-    cj.jac = friction_jacobian_of(cp.candidates, cj.wrt, [&cp, &cj](const regime_case &c) {
+    const friction_jacobian jac = friction_jacobian_of(cp.candidates, cj.wrt, [&cp, &cj](const regime_case &c) {
         std::vector<std::pair<std::string, ex>> out;
         for (std::size_t k : cj.rows) {
             ex v;
@@ -176,6 +177,19 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
         }
         return out;
     });
+    for (std::size_t k = 0; k < jac.regimes.size(); ++k) { // each its own program: the candidate's steps first
+        const regime_case &c = cp.candidates.cases[k];
+        candidate_jacobian cand;
+        cand.steps = c.sol.steps;
+        cand.steps.insert(cand.steps.end(), jac.derivative_steps.begin(), jac.derivative_steps.end());
+        cand.steps.insert(cand.steps.end(), jac.regimes[k].derivative_steps.begin(),
+                          jac.regimes[k].derivative_steps.end());
+        cand.entries = jac.regimes[k].entries;
+        cand.same_as = k;
+        if (c.needs_angle)
+            cand.angle = {c.dir_c, c.dir_s};
+        cj.candidates.push_back(std::move(cand));
+    }
 }
 
 // A law with candidates: the problem specialised with its law, the smooth plan of the same

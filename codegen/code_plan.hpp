@@ -23,10 +23,10 @@
 #include "codegen.hpp"
 
 #include "symbolic/friction.hpp"
-#include "symbolic/friction_jacobian.hpp"
 #include "symbolic/system.hpp"
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace impactgen::codegen
@@ -62,8 +62,6 @@ struct system_code_set {
     /// Perfectly rough contacts that stick: (normal impulse output, tangential outputs); with
     /// no normal impulse they carry no tangential one.
     std::vector<std::pair<std::size_t, std::vector<std::size_t>>> rough_sticks;
-    /// With a Jacobian: d(velocity output)/d(wrt), per velocity output (system_code::velocities).
-    std::vector<std::vector<GiNaC::ex>> jacobian;
 };
 
 /// Sequential impacts (a system with "impacts": "sequential", frictionless contacts): the
@@ -91,36 +89,41 @@ struct system_code {
     GiNaC::ex energy_lost;                 ///< in inputs and the symbols sel (below)
     std::vector<GiNaC::symbol> sel;        ///< per output, the selected value
     std::vector<std::pair<GiNaC::ex, std::string>> checks; ///< value >= 0 or > 0 checks: (value, kind)
-    bool has_jacobian = false;
-    std::vector<GiNaC::symbol> wrt; ///< the inputs the Jacobian differentiates by, in order
-    bool sequential = false;        ///< the chain of single-contact impacts (sequence), not the sets
+    bool sequential = false; ///< the chain of single-contact impacts (sequence), not the sets
     system_sequence sequence;
 };
 
-/// With --jacobian and Coulomb friction under Newton's law (rules first_that_holds and
-/// sliding_angle): per candidate, the exact derivatives of the header's velocities and impulses
-/// by the inputs wrt (symbolic/friction_jacobian.hpp; the slide without a closed form through
-/// the implicit function theorem of its angle equation).
-struct candidates_jacobian {
-    bool on = false;
-    std::vector<GiNaC::symbol> wrt; ///< the inputs differentiated by, in order
-    std::vector<std::size_t> rows;  ///< indices in code_plan::outputs, in the order of jac.outputs
-    friction_jacobian jac;          ///< one regime_jacobian per candidate (candidates.cases order)
+/// One candidate's Jacobian in the header: the steps its program binds after the shared ones
+/// (candidates_jacobian::steps) and the derivatives of the rows.
+struct candidate_jacobian {
+    std::vector<step> steps;                     ///< its own steps and derivative steps, in order of evaluation
+    std::vector<std::vector<GiNaC::ex>> entries; ///< [row][wrt]: d(row)/d(wrt), in inputs and steps
+    std::size_t same_as = 0; ///< the first candidate with the same closed form: one program serves both
+    /// The 3-D slide without a closed form (Coulomb friction): cos and sin of its sliding angle,
+    /// which the program reads from the direction the function found (the derivatives through
+    /// the implicit function theorem of its angle equation); else empty.
+    std::vector<GiNaC::symbol> angle;
 };
 
-/// With --jacobian, Routh's process (rule process): per phase sequence the derivatives of the
-/// velocities and impulses after impact, through the contact's steps (symbolic/process_jacobian.hpp,
-/// the machinery of `formulas --jacobian`), and the scales of its conditions' rounding.
-struct process_code {
-    bool has_jacobian = false;
-    std::vector<GiNaC::symbol> wrt;   ///< the inputs the Jacobian differentiates by, in order
-    std::vector<step> steps;          ///< the shared steps unscaled, then the derivative steps
-    std::vector<std::size_t> outputs; ///< indices in code_plan::outputs that are differentiated
-    /// [candidate][output][input]; same_as[k]: the first candidate with the same closed form
-    std::vector<std::vector<std::vector<GiNaC::ex>>> jacobian;
-    std::vector<std::size_t> same_as;
-    GiNaC::ex speed;    ///< |u| before impact: the scale of a condition on velocities
-    GiNaC::ex response; ///< (1 + mu) (K_tt + K_nn): the scale of one on K (squared for mu^2 K_tt^2 - K_tn^2)
+/// With --jacobian, a law with candidates: per candidate the exact derivatives of the header's
+/// velocities (and impulses) by the inputs wrt, its closed form differentiated by the chain rule
+/// through its steps. One type for Coulomb friction under Newton's law (rules first_that_holds and
+/// sliding_angle: code_plan.cpp, symbolic/friction_jacobian.hpp), Routh's process (rule process:
+/// process_plan.cpp, symbolic/process_jacobian.hpp) and a system's candidate sets (rule
+/// system_sets: system_plan.cpp); the one writer (writer_jacobian.cpp) emits NAME_jacobian from it.
+struct candidates_jacobian {
+    bool on = false;
+    std::vector<GiNaC::symbol> wrt;             ///< the inputs differentiated by, in order (the columns)
+    std::vector<std::size_t> rows;              ///< indices in code_plan::outputs, in order (the rows)
+    std::vector<step> steps;                    ///< bound first in every candidate's program (shared, derivatives)
+    std::vector<candidate_jacobian> candidates; ///< per candidate (impact_solution::cases, system_code::sets)
+    /// Routh's process: the scales of its conditions' rounding, which the function needs to tell
+    /// whether another sequence holds within rounding (its out.boundary).
+    struct rounding {
+        GiNaC::ex speed;    ///< |u| before impact: the scale of a condition on velocities
+        GiNaC::ex response; ///< (1 + mu) (K_tt + K_nn): of one on K (squared for mu^2 K_tt^2 - K_tn^2)
+    };
+    std::optional<rounding> process;
 };
 
 struct code_plan {
@@ -142,10 +145,8 @@ struct code_plan {
     int angle = -1;
     /// rule system_sets: the system's candidates.
     system_code system;
-    /// --jacobian with friction under Newton's law.
+    /// --jacobian with a selection rule (the candidates' or the system's sets' Jacobians).
     candidates_jacobian jacobian;
-    /// rule process with --jacobian.
-    process_code process;
 };
 
 /// True when the problem, with the options' --set values folded in, has a law with more
@@ -163,7 +164,7 @@ void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
 /// sequence wedges.
 impact_solution process_candidates(const derivation &d);
 
-/// --jacobian for rule process (process_plan.cpp): cp.process from the candidates. Throws
+/// --jacobian for rule process (process_plan.cpp): cp.jacobian from the candidates. Throws
 /// option_error naming --wrt for a name that is not an input, --jacobian for a normal given as
 /// inputs.
 void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt);

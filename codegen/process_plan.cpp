@@ -121,29 +121,28 @@ void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
         if (!is_constant(x))
             throw option_error(option_error::jacobian, "a normal given as inputs is not differentiated under a "
                                                        "restitution law followed through the impact");
-    process_code &pc = cp.process;
-    pc.has_jacobian = true;
-    pc.wrt = jacobian_inputs(cp.inputs, wrt);
-    if (pc.wrt.empty())
+    candidates_jacobian &cj = cp.jacobian;
+    cj.on = true;
+    cj.wrt = jacobian_inputs(cp.inputs, wrt);
+    if (cj.wrt.empty())
         throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
     impact_solution &f = cp.candidates;
     const process_inputs in = contact_inputs(d, f);
-    pc.speed = sqrt(in.ut * in.ut + in.un * in.un);
-    pc.response = (1 + in.mu) * (in.Ktt + in.Knn);
-    pc.steps = f.shared.steps;
-    const step_gradients g = differentiate_steps(pc.steps, pc.wrt);
+    cj.process = candidates_jacobian::rounding{sqrt(in.ut * in.ut + in.un * in.un), (1 + in.mu) * (in.Ktt + in.Knn)};
+    cj.steps = f.shared.steps;
+    const step_gradients g = differentiate_steps(cj.steps, cj.wrt);
     for (std::size_t k = 0; k < cp.outputs.size(); ++k) {
         const code_output &of = cp.outputs[k];
         if (of.tangential || of.kind == output_value::velocity || of.kind == output_value::angular_velocity ||
             of.kind == output_value::normal_impulse)
-            pc.outputs.push_back(k);
+            cj.rows.push_back(k);
     }
     const std::array<contact_side, 2> sides = process_sides(d.prob);
     for (std::size_t i = 0; i < f.cases.size(); ++i) {
         regime_case c = f.cases[i];
         apply_impulse(d, sides, c, false);
-        std::vector<std::vector<ex>> rows;
-        for (std::size_t k : pc.outputs) {
+        candidate_jacobian cand;
+        for (std::size_t k : cj.rows) {
             const code_output &of = cp.outputs[k];
             const std::size_t a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
             const ex v = of.tangential                             ? c.tangential_scalar * d.t_dir[a]
@@ -151,19 +150,18 @@ void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
                          : of.kind == output_value::velocity       ? c.sol.after[of.index].velocity[a]
                                                                    : c.sol.after[of.index].angular_velocity[a];
             std::vector<ex> row;
-            for (std::size_t j = 0; j < pc.wrt.size(); ++j)
-                row.push_back(chain_derivative(v, pc.steps, g, pc.wrt, j));
-            rows.push_back(row);
+            for (std::size_t j = 0; j < cj.wrt.size(); ++j)
+                row.push_back(chain_derivative(v, cj.steps, g, cj.wrt, j));
+            cand.entries.push_back(row);
         }
-        std::size_t same = i;
-        for (std::size_t k = 0; k < i && same == i; ++k)
+        cand.same_as = i;
+        for (std::size_t k = 0; k < i && cand.same_as == i; ++k)
             if (f.cases[k].sol.normal_impulse.is_equal(c.sol.normal_impulse) &&
                 f.cases[k].tangential_scalar.is_equal(c.tangential_scalar))
-                same = k;
-        pc.same_as.push_back(same);
-        pc.jacobian.push_back(std::move(rows));
+                cand.same_as = k;
+        cj.candidates.push_back(std::move(cand));
     }
-    pc.steps.insert(pc.steps.end(), g.derivative_steps.begin(), g.derivative_steps.end());
+    cj.steps.insert(cj.steps.end(), g.derivative_steps.begin(), g.derivative_steps.end());
 }
 
 } // namespace impactgen::codegen

@@ -172,16 +172,22 @@ void system_checks(code_plan &cp)
 // per set: each set's closed form differentiated exactly.
 void system_jacobian(code_plan &cp, const std::vector<std::string> &wrt)
 {
-    system_code &sc = cp.system;
-    sc.has_jacobian = true;
-    sc.wrt = jacobian_inputs(cp.inputs, wrt);
-    for (system_code_set &s : sc.sets)
+    const system_code &sc = cp.system;
+    candidates_jacobian &cj = cp.jacobian;
+    cj.on = true;
+    cj.wrt = jacobian_inputs(cp.inputs, wrt);
+    cj.rows = sc.velocities;
+    for (const system_code_set &s : sc.sets) {
+        candidate_jacobian cand;
+        cand.same_as = cj.candidates.size();
         for (std::size_t j : sc.velocities) {
             std::vector<ex> row;
-            for (const symbol &x : sc.wrt)
+            for (const symbol &x : cj.wrt)
                 row.push_back(normal(s.values[j].diff(x)));
-            s.jacobian.push_back(row);
+            cand.entries.push_back(row);
         }
+        cj.candidates.push_back(std::move(cand));
+    }
 }
 
 // Sequential impacts with friction are refused naming the contact's key (the problem

@@ -79,10 +79,7 @@ header writer::run()
     } else {
         build_stages();
         emit_stages();
-        if (cp_.jacobian.on)
-            build_candidates_jacobian();
-        if (process_jacobian())
-            build_process_jacobian();
+        build_jacobian();
     }
     build_rows();
     banner();
@@ -108,8 +105,6 @@ header writer::run()
     forwarding_form(true);
     jacobian_function();
     candidates_jacobian_function();
-    if (process_jacobian())
-        process_jacobian_function();
     rows_function();
     if (straight())
         straight_batch();
@@ -133,6 +128,7 @@ header writer::run_system()
         build_sequence();
     else
         build_system();
+    build_jacobian();
     banner();
     preamble();
     result_struct();
@@ -148,7 +144,7 @@ header writer::run_system()
         system_function();
     forwarding_form(false);
     forwarding_form(true);
-    system_jacobian_function();
+    candidates_jacobian_function();
     loop_batch();
     tables();
     header out;

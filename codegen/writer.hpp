@@ -83,6 +83,28 @@ struct case_names {
     std::vector<std::string> cond;
 };
 
+// What a law's NAME_jacobian writes around its candidates' programs (writer_jacobian.cpp), filled
+// by the law's part: how the function finds the candidate it selected, its names and comments.
+struct jacobian_form {
+    std::string fn, wrt_count, wrt_names, wrt_comment; // the function, the columns' table and its comment
+    std::string row_count, row_names, row_comment;     // the rows' table (none when empty: the first outputs)
+    std::string doc;                                   // the function's comment
+    std::string jac, status, k;                        // its locals
+    std::string program_prefix;       // each candidate's locals prefixed <prefix><k>_ (else named once, shared)
+    std::string angle_c, angle_s;     // the locals of cos and sin of the sliding angle found (friction)
+    bool sqrt_always = false;         // `using std::sqrt;` whether or not the programs need it
+    bool trig = false;                // the selection needs std::cos and std::sin
+    std::string select;               // after the status check: the statements that find the candidate
+    std::string selector;             // the switch's value
+    std::vector<std::size_t> selects; // per value of the selector: the candidate it selects
+    bool labels_apart = false;        // each `case v:` on its own line (several values share a program)
+    bool case_names = false;          // each case commented with its candidate's name
+    std::function<std::string(std::size_t)> case_tail; // after a case's entries (its boundary tests)
+    std::string after_switch;
+    std::string boundary;    // the condition of the status ambiguous
+    bool array_form = false; // also NAME_jacobian(const T* in, out, jac)
+};
+
 class writer
 {
 public:
@@ -179,7 +201,6 @@ private:
     std::string system_scale(std::size_t k, std::size_t j) const;
     void system_select();
     void system_function();
-    void system_jacobian_function();
     void system_input_checks();
 
     // ---- a system's sequential impacts: the chain of single-contact impacts (writer_sequence.cpp)
@@ -189,20 +210,26 @@ private:
     void sequence_step(std::size_t k);
     void sequence_function();
 
-    // ---- --jacobian with friction under Newton's law (writer_friction_jacobian.cpp)
-    void build_candidates_jacobian();
-    void build_candidate_jacobian_stage(std::size_t k);
-    std::string candidates_jacobian_selection() const;
-    std::string candidates_jacobian_boundary(std::size_t k) const;
+    // ---- --jacobian with a selection rule: NAME_jacobian from the plan's candidates_jacobian
+    // (writer_jacobian.cpp), the law's part filling jacobian_form
+    void build_jacobian();
+    void build_jacobian_programs(const std::function<void(std::size_t, stage &)> &more);
+    void emit_jacobian_programs();
+    void jacobian_tables();
     void candidates_jacobian_function();
-    /// The unit tangent basis computed at run time for a normal given as inputs (else nothing).
-    std::string basis_text() const;
-    // ---- rule process with --jacobian (writer_process_jacobian.cpp)
     bool process_jacobian() const;
-    void build_process_jacobian();
+    void process_jacobian_form();
     std::string process_scale(std::size_t i, std::size_t j) const;
     std::string process_sequence_text(const std::string &ind) const;
-    void process_jacobian_function();
+    void system_jacobian_form();
+    // ---- Coulomb friction under Newton's law: which candidate NAME selected (writer_jacobian_friction.cpp)
+    void friction_jacobian_form();
+    void friction_jacobian_pre();
+    std::string candidates_jacobian_selection() const;
+    std::string candidates_jacobian_boundary(std::size_t k) const;
+    void friction_jacobian_text();
+    /// The unit tangent basis computed at run time for a normal given as inputs (else nothing).
+    std::string basis_text() const;
 
     // ---- the sections every header has (writer_text.cpp)
     std::string params() const;
@@ -299,27 +326,27 @@ private:
     std::vector<std::string> sys_mu_, sys_speed_, sys_sel_;
     std::vector<std::vector<std::string>> sys_vals_, sys_conds_;
     std::map<std::string, std::string> sys_local_;
-    std::vector<stage> sys_jac_;
-    std::vector<std::string> sys_jac_names_, sys_unit_mass_;
-    // ---- rule process with --jacobian: the selection's locals, the entries, a stage per closed form
+    std::vector<std::string> sys_unit_mass_;
+    // ---- rule process with --jacobian: the selection's locals, the scales of its rounding
     std::map<std::string, std::string> seq_local_;
-    std::vector<stage> seq_jac_;
-    std::vector<std::string> seq_jac_names_;
     std::string speed_name_, response_name_;
     // sequential: the state, its speeds' stage, one stage per contact's step
     std::vector<std::string> seq_state_, seq_sum_, seq_speed_, seq_before_;
     stage seq_speeds_;
     std::vector<stage> seq_steps_;
     stage rows_; // --rows: the primitive values of the rows
-    // ---- --jacobian with friction: names and programs
+    // ---- --jacobian with a selection rule: the form, per candidate its program and entries' names
+    jacobian_form jf_;
+    std::vector<stage> jac_stages_;
+    std::vector<std::vector<std::string>> jac_entries_; // [candidate][row * wrt + column]
+    // with friction: names and the program of the slip after impact
     std::map<std::string, std::string> fj_local_;
     std::vector<std::pair<std::string, std::string>> fj_sel_;   // local of the impulse returned, out.field
     std::vector<std::string> fj_speed_, fj_slip_, fj_friction_; // u before (world); slip, friction along e_t (, e_b)
     std::string fj_mu_;
     bool fj_impulse_scale_ = false, fj_speed_scale_ = false; // a condition of an impulse, of the sliding speed
     stage fj_pre_;
-    std::vector<stage> fj_stages_;
-    std::vector<std::vector<std::string>> fj_entries_, fj_conds_; // [candidate][row * wrt + column], [candidate][j]
+    std::vector<std::vector<std::string>> fj_conds_; // [candidate][j]
     std::map<std::string, std::string> rows_name_;
 };
 

@@ -531,9 +531,9 @@ void writer::build_stage_a()
     }
     if (process_jacobian()) { // the scales of the conditions' rounding
         speed_name_ = scope_.claim("scale_speed");
-        a_.output(speed_name_, cp_.process.speed);
+        a_.output(speed_name_, cp_.jacobian.process->speed);
         response_name_ = scope_.claim("scale_response");
-        a_.output(response_name_, cp_.process.response);
+        a_.output(response_name_, cp_.jacobian.process->response);
     }
     // Candidates in closed form and the conditions of each.
     for (std::size_t i = 0; i < f_.cases.size(); ++i) {

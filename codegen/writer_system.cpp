@@ -97,31 +97,12 @@ void writer::build_system()
     u_.pool.set_input_names(input_ident_);
     for (std::size_t j = 0; j < outs_.size(); ++j)
         u_.output(outs_[j].field, sc.unchanged[j]);
-    if (sc.has_jacobian) {
-        sys_jac_.resize(sc.sets.size());
-        const std::size_t nw = sc.wrt.size();
-        for (std::size_t i = 0; i < sc.velocities.size(); ++i)
-            for (std::size_t w = 0; w < nw; ++w)
-                sys_jac_names_.push_back(
-                    scope_.claim("d_" + outs_[sc.velocities[i]].field + "_d_" + input_ident_.at(sc.wrt[w])));
-        for (std::size_t k = 0; k < sc.sets.size(); ++k) {
-            stage &st = sys_jac_[k];
-            st.pool.set_input_names(input_ident_);
-            for (std::size_t i = 0; i < sc.sets[k].jacobian.size(); ++i)
-                for (std::size_t w = 0; w < nw; ++w)
-                    st.output(sys_jac_names_[i * nw + w], sc.sets[k].jacobian[i][w]);
-        }
-    }
     emit_options locals, result;
     locals.outputs = output_placement::local;
     result.energy_output = static_cast<int>(outs_.size() - 1);
     emit_one(a_, locals);
     emit_one(c_, result);
     u_.em = emit_cpp(u_.prog, u_.outs, {}, {}, scope_.names());
-    emit_options jac_locals;
-    jac_locals.outputs = output_placement::local;
-    for (stage &st : sys_jac_)
-        emit_one(st, jac_locals);
 }
 
 void writer::system_banner()
@@ -241,7 +222,7 @@ std::string writer::system_holds(std::size_t k) const
     std::string r = scaled ? "    const T " + is + " = " + nested_abs_max(imp) + ";\n" : std::string();
     r += "    const bool h" + kt + " = " + (holds.empty() ? "true" : join(holds, " && ")) + ";\n";
     r += "    const bool g" + kt + " = " + (clear.empty() ? "true" : join(clear, " && ")) + ";\n";
-    if (cp_.system.has_jacobian) {
+    if (cp_.jacobian.on) {
         std::vector<std::string> near;
         for (std::size_t j = 0; j < s.conditions.size(); ++j)
             if (!s.conditions[j].identically_zero)
@@ -313,7 +294,7 @@ void writer::system_select()
     h_ << "    for (int " << k << " = 0; " << k << " < " << nsets << " && " << sel << " < 0; ++" << k << ")\n";
     h_ << "        if (" << holds << "[" << k << "])\n            " << sel << " = " << k << ";\n";
     const std::string &boundary = sys_local_.at("boundary");
-    if (sc.has_jacobian)
+    if (cp_.jacobian.on)
         h_ << "    bool " << boundary << " = " << sel << " < 0;\n";
     h_ << system_nearest();
     h_ << "    if (" << sel << " < 0)\n        return fail(friction_status::no_solution);\n";
@@ -321,7 +302,7 @@ void writer::system_select()
     h_ << "        return !(detail::abs_of(" << x1 << " - " << x2 << ") <= " << tol << " * (" << scale
        << " + detail::abs_of(" << x1 << ") + detail::abs_of(" << x2 << ")));\n    };\n";
     h_ << "    bool " << unique << " = " << (sc.redundant_joints ? "false" : "true") << ";\n";
-    if (sc.has_jacobian) {
+    if (cp_.jacobian.on) {
         h_ << "    const bool " << sys_local_.at("near_sets") << "[" << nsets << "] = {";
         for (std::size_t i = 0; i < nsets; ++i)
             h_ << (i ? ", " : "") << "n" << i;
@@ -370,52 +351,10 @@ void writer::system_function()
     for (std::size_t j = 0; j + 1 < nout; ++j)
         h_ << "    out." << outs_[j].field << " = " << sys_sel_[j] << ";\n";
     h_ << "    out.set = " << sel << ";\n    out.impulses_unique = " << unique << ";\n";
-    if (cp_.system.has_jacobian)
+    if (cp_.jacobian.on)
         h_ << "    out.boundary = " << sys_local_.at("boundary") << ";\n";
     overflow_check();
     h_ << "    return friction_status::ok;\n}\n\n";
-}
-
-// NAME_jacobian: NAME, then the derivatives of the selected set's velocities (its closed form
-// differentiated exactly).
-void writer::system_jacobian_function()
-{
-    const system_code &sc = cp_.system;
-    if (!sc.has_jacobian)
-        return;
-    const std::size_t nw = sc.wrt.size(), nv = sc.velocities.size();
-    const std::string &jac = sys_local_.at("jac"), &status = sys_local_.at("status");
-    h_ << "inline constexpr int " << o_.name << "_wrt_count = " << nw << ";\n";
-    h_ << "/// The inputs the Jacobian differentiates by, in the order of its columns.\n";
-    h_ << "inline constexpr const char* " << o_.name << "_wrt_names[] = {";
-    for (const symbol &x : sc.wrt)
-        h_ << names::cpp_string_literal(input_ident_.at(x)) << ", ";
-    h_ << "nullptr};\n\n";
-    h_ << "/// " << o_.name << " and the Jacobian of the velocities after impact (the first " << nv << " of " << o_.name
-       << "_output_names)\n";
-    h_ << "/// by the inputs " << o_.name << "_wrt_names: " << jac << "[i * " << nw
-       << " + j] = d(velocity i)/d(input j), the selected set's\n";
-    h_ << "/// closed form differentiated exactly. Returns the status of " << o_.name
-       << " (jac zero unless ok), or ambiguous\n";
-    h_ << "/// where another set holds within rounding (out.boundary): the impact map is not differentiable\n";
-    h_ << "/// there; out and jac then hold the selected set's values and its one-sided derivatives.\n";
-    h_ << "template <typename T>\nIMPACTGEN_FUNC friction_status " << o_.name << "_jacobian(" << params() << result()
-       << "<T>& out, T* " << jac << ") noexcept\n{\n";
-    h_ << "    const friction_status " << status << " = " << o_.name << "<T>(" << args() << "out);\n";
-    const std::string &k = sys_local_.at("k");
-    h_ << "    for (int " << k << " = 0; " << k << " < " << nv * nw << "; ++" << k << ")\n        " << jac << "[" << k
-       << "] = T(0);\n";
-    h_ << "    if (" << status << " != friction_status::ok)\n        return " << status << ";\n";
-    h_ << "    using std::sqrt;\n";
-    h_ << "    switch (out.set) {\n";
-    for (std::size_t k = 0; k < sys_jac_.size(); ++k) {
-        h_ << "    case " << k << ": {\n" << indent(sys_jac_[k].em.code, "    ");
-        for (std::size_t i = 0; i < sys_jac_names_.size(); ++i)
-            h_ << "        " << jac << "[" << i << "] = " << sys_jac_names_[i] << ";\n";
-        h_ << "        break;\n    }\n";
-    }
-    h_ << "    default:\n        break;\n    }\n";
-    h_ << "    return out.boundary ? friction_status::ambiguous : friction_status::ok;\n}\n\n";
 }
 
 } // namespace impactgen::codegen::writer_detail

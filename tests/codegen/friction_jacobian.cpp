@@ -231,18 +231,17 @@ TEST(friction_jacobian, agrees_with_the_symbolic_jacobian)
             evaluate(cp.candidates.shared.steps, at);
             const int k = selected(cp, regime, at, out, h);
             ASSERT_GE(k, 0) << h.problem << ": no candidate holds where the header answered";
-            const auto &r = cp.jacobian.jac.regimes[static_cast<std::size_t>(k)];
-            if (cp.candidates.cases[static_cast<std::size_t>(k)].kind == impactgen::regime::stick)
-                evaluate(cp.candidates.cases[static_cast<std::size_t>(k)].sol.steps, at);
-            evaluate(cp.jacobian.jac.derivative_steps, at);
-            evaluate(r.derivative_steps, at);
+            const auto &r = cp.jacobian.candidates[static_cast<std::size_t>(k)];
+            const std::string &name = cp.candidates.cases[static_cast<std::size_t>(k)].name;
+            evaluate(cp.jacobian.steps, at);
+            evaluate(r.steps, at); // the candidate's steps, then the derivative steps
             for (int i = 0; i < h.n_rows; ++i)
                 for (int w = 0; w < h.n_wrt; ++w) {
                     const double exact = num(r.entries[static_cast<std::size_t>(i)][static_cast<std::size_t>(w)], at)
                                              .to_double(),
                                  got = jac[static_cast<std::size_t>(i * h.n_wrt + w)];
                     EXPECT_NEAR(got, exact, 1e-7 * (1 + std::fabs(exact)))
-                        << h.problem << " " << r.name << ": d " << h.row_names[i] << " / d " << h.wrt_names[w];
+                        << h.problem << " " << name << ": d " << h.row_names[i] << " / d " << h.wrt_names[w];
                 }
             ++compared;
         }

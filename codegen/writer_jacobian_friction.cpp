@@ -1,5 +1,5 @@
-// The one header writer (writer.hpp): NAME_jacobian of a header with Coulomb friction under
-// Newton's law (rules first_that_holds and sliding_angle, --jacobian).
+// The one header writer (writer.hpp): the part of NAME_jacobian (writer_jacobian.cpp) that is
+// Coulomb friction's under Newton's law (rules first_that_holds and sliding_angle, --jacobian).
 //
 // NAME_jacobian calls NAME (its values, status and regime unchanged), then finds the candidate
 // NAME selected from what it returned: stick when out.regime is stick; otherwise the slide whose
@@ -7,7 +7,7 @@
 // P = N n + F the impulse returned (the planar slide along +e_t or -e_t by its sign, the isotropic
 // 3-D slide, or the 3-D slide without a closed form at c = u'_t.e_t/|u'_t|, s = u'_t.e_b/|u'_t|, the
 // root NAME found). One straight-line program per candidate (its steps, the derivative steps of
-// symbolic/friction_jacobian.hpp and its conditions, CSE inside it) runs in a switch. The map is
+// symbolic/friction_jacobian.hpp and its conditions) runs in a switch. The map is
 // not differentiable where a condition of the selected candidate is 0 (a regime boundary): within
 // rounding -- |condition| <= eps^(2/3) of its scale, the tolerance NAME merges stick and slide
 // with -- the status is ambiguous, out and jac then hold the candidate's values and its
@@ -32,9 +32,8 @@ std::string abs_sum(const std::vector<std::string> &terms)
 
 } // namespace
 
-// The names and programs of NAME_jacobian: the selected impulse's slip after impact (stage
-// fj_pre_), then per candidate its derivatives and conditions.
-void writer::build_candidates_jacobian()
+// The names of NAME_jacobian and the program of the selected impulse's slip after impact (fj_pre_).
+void writer::friction_jacobian_pre()
 {
     const problem &q = q_;
     const int dim = q.dimension;
@@ -106,61 +105,37 @@ void writer::build_candidates_jacobian()
         fj_mu_ = scope_.claim("j_mu");
         fj_pre_.output(fj_mu_, q.contact().friction());
     }
-    for (std::size_t k = 0; k < f_.cases.size(); ++k)
-        build_candidate_jacobian_stage(k);
+}
+
+// The form: the candidates' programs with their conditions (the entries by the one writer), the
+// selection of the candidate from the impulse returned, the boundary tests, the overflow check.
+void writer::friction_jacobian_form()
+{
+    friction_jacobian_pre();
+    jf_.program_prefix = "j";
+    jf_.angle_c = fj_local_.at("c_d");
+    jf_.angle_s = fj_local_.at("s_d");
+    build_jacobian_programs([this](std::size_t k, stage &st) {
+        const regime_case &c = f_.cases[k];
+        std::vector<std::string> conds;
+        for (std::size_t j = 0; j < c.conditions.size(); ++j) {
+            if (c.conditions[j].kind == condition_kind::slide_denominator) { // (no boundary: see below)
+                conds.emplace_back();
+                continue;
+            }
+            conds.push_back(scope_.claim("j" + std::to_string(k) + "_cond" + std::to_string(j + 1)));
+            st.output(conds.back(), c.conditions[j].value);
+        }
+        fj_conds_.push_back(conds);
+    });
     emit_options locals;
     locals.outputs = output_placement::local;
     fj_pre_.em = emit_cpp(fj_pre_.prog, fj_pre_.outs, {}, fj_pre_.names, scope_.names(), locals);
     for (const std::string &nm : fj_pre_.em.declared)
         if (!scope_.taken(nm))
             scope_.claim(nm);
-    for (stage &st : fj_stages_) {
-        st.em = emit_cpp(st.prog, st.outs, {}, st.names, scope_.names(), locals);
-        for (const std::string &nm : st.em.declared)
-            if (!scope_.taken(nm))
-                scope_.claim(nm);
-    }
-}
-
-// Candidate k's program: its steps, the derivative steps, the entries and the conditions (c and s
-// of the slide without a closed form read as the locals of the selection).
-void writer::build_candidate_jacobian_stage(std::size_t k)
-{
-    const candidates_jacobian &cj = cp_.jacobian;
-    const std::size_t nw = cj.wrt.size();
-    const regime_case &c = f_.cases[k];
-    const regime_jacobian &r = cj.jac.regimes[k];
-    const std::string pre = "j" + std::to_string(k) + "_";
-    stage st;
-    std::map<ex, std::string, ex_is_less> in = input_ident_;
-    if (c.needs_angle) {
-        in[c.dir_c] = fj_local_.at("c_d");
-        in[c.dir_s] = fj_local_.at("s_d");
-    }
-    st.pool.set_input_names(in);
-    for (const step &s : c.sol.steps)
-        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-    for (const step &s : cj.jac.derivative_steps)
-        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-    for (const step &s : r.derivative_steps)
-        st.bind_step(s, scope_.claim(pre + s.sym.get_name()));
-    std::vector<std::string> entries, conds;
-    for (std::size_t i = 0; i < cj.rows.size(); ++i)
-        for (std::size_t w = 0; w < nw; ++w) {
-            entries.push_back(scope_.claim(pre + "d_" + outs_[cj.rows[i]].field + "_d_" + input_ident_.at(cj.wrt[w])));
-            st.output(entries.back(), r.entries[i][w]);
-        }
-    for (std::size_t j = 0; j < c.conditions.size(); ++j) {
-        if (c.conditions[j].kind == condition_kind::slide_denominator) { // (no boundary: see below)
-            conds.emplace_back();
-            continue;
-        }
-        conds.push_back(scope_.claim(pre + "cond" + std::to_string(j + 1)));
-        st.output(conds.back(), c.conditions[j].value);
-    }
-    fj_entries_.push_back(entries);
-    fj_conds_.push_back(conds);
-    fj_stages_.push_back(std::move(st));
+    emit_jacobian_programs();
+    friction_jacobian_text();
 }
 
 // Which candidate NAME selected, as C++ statements setting j_candidate (and j_boundary where the
@@ -246,88 +221,64 @@ std::string writer::candidates_jacobian_boundary(std::size_t k) const
     return r;
 }
 
-void writer::candidates_jacobian_function()
+// The names, comment and texts of NAME_jacobian around the candidates' programs.
+void writer::friction_jacobian_text()
 {
     const candidates_jacobian &cj = cp_.jacobian;
-    if (!cj.on)
-        return;
-    const std::size_t nw = cj.wrt.size(), nr = cj.rows.size();
-    const std::string &fn = fj_local_.at("_jacobian"), &jac = fj_local_.at("jac"), &status = fj_local_.at("status"),
-                      &k = fj_local_.at("k"), &cand = fj_local_.at("candidate"), &bd = fj_local_.at("boundary"),
-                      &tol = fj_local_.at("tol"), &sum = fj_local_.at("check_sum");
-    h_ << "inline constexpr int " << fj_local_.at("_wrt_count") << " = " << nw << ";\n";
-    h_ << "/// The inputs " << fn << " differentiates by, in the order of its columns.\n";
-    h_ << "inline constexpr const char* " << fj_local_.at("_wrt_names") << "[] = {";
-    for (const symbol &x : cj.wrt)
-        h_ << names::cpp_string_literal(input_ident_.at(x)) << ", ";
-    h_ << "nullptr};\n";
-    h_ << "inline constexpr int " << fj_local_.at("_jacobian_row_count") << " = " << nr << ";\n";
-    h_ << "/// The outputs " << fn << " differentiates (velocities, spins and impulses after impact), the rows.\n";
-    h_ << "inline constexpr const char* " << fj_local_.at("_jacobian_row_names") << "[] = {";
-    for (std::size_t i : cj.rows)
-        h_ << names::cpp_string_literal(outs_[i].field) << ", ";
-    h_ << "nullptr};\n\n";
-    h_ << "/// " << o_.name << " and the Jacobian of its velocities and impulses after impact by the inputs\n";
-    h_ << "/// " << fj_local_.at("_wrt_names") << ": " << jac << "[i * " << nw << " + j] = d("
-       << fj_local_.at("_jacobian_row_names") << "[i])/d(input j), the selected regime's\n";
-    h_ << "/// closed form differentiated exactly (the 3-D slide without a closed form through the implicit\n";
-    h_ << "/// function theorem of its angle equation). Returns the status of " << o_.name << " (jac zero unless\n";
-    h_ << "/// ok); ambiguous where the input lies on a regime boundary within rounding (a condition of the\n";
-    h_ << "/// regime within eps^(2/3) of 0): the impact map is not differentiable there, out and jac then hold\n";
-    h_ << "/// the regime's values and its one-sided derivatives; overflow where a derivative is not finite\n";
-    h_ << "/// (at a double root of the angle equation the sliding direction's derivative is unbounded).\n";
-    h_ << "/// mu = 0 (regime smooth): the derivatives of the slide, by mu one-sided (mu >= 0).\n";
-    h_ << "template <typename T>\nIMPACTGEN_FUNC friction_status " << fn << "(" << params() << result()
-       << "<T>& out, T* " << jac << ") noexcept\n{\n";
-    h_ << "    const friction_status " << status << " = " << o_.name << "<T>(" << args() << "out);\n";
-    h_ << "    for (int " << k << " = 0; " << k << " < " << nr * nw << "; ++" << k << ")\n        " << jac << "[" << k
-       << "] = T(0);\n";
-    h_ << "    if (" << status << " != friction_status::ok)\n        return " << status << ";\n";
-    h_ << "    using std::sqrt;\n";
-    bool trig = fj_pre_.em.uses_trig || nb_.em.uses_trig;
-    for (const stage &st : fj_stages_)
-        trig = trig || st.em.uses_trig;
-    if (trig)
-        h_ << "    using std::cos;\n    using std::sin;\n";
-    h_ << basis_text();
-    for (const auto &[local, field] : fj_sel_)
-        h_ << "    const T " << local << " = " << field << ";\n";
-    h_ << "    // The slip after impact for the impulse returned: which candidate it is.\n";
-    h_ << fj_pre_.em.code;
-    h_ << candidates_jacobian_selection();
+    const std::size_t nw = cj.wrt.size();
+    jf_.fn = fj_local_.at("_jacobian");
+    jf_.wrt_count = fj_local_.at("_wrt_count");
+    jf_.wrt_names = fj_local_.at("_wrt_names");
+    jf_.wrt_comment = "The inputs " + jf_.fn + " differentiates by, in the order of its columns.";
+    jf_.row_count = fj_local_.at("_jacobian_row_count");
+    jf_.row_names = fj_local_.at("_jacobian_row_names");
+    jf_.row_comment =
+        "The outputs " + jf_.fn + " differentiates (velocities, spins and impulses after impact), the rows.";
+    jf_.jac = fj_local_.at("jac");
+    jf_.status = fj_local_.at("status");
+    jf_.k = fj_local_.at("k");
+    std::ostringstream doc;
+    doc << "/// " << o_.name << " and the Jacobian of its velocities and impulses after impact by the inputs\n";
+    doc << "/// " << jf_.wrt_names << ": " << jf_.jac << "[i * " << nw << " + j] = d(" << jf_.row_names
+        << "[i])/d(input j), the selected regime's\n";
+    doc << "/// closed form differentiated exactly (the 3-D slide without a closed form through the implicit\n";
+    doc << "/// function theorem of its angle equation). Returns the status of " << o_.name << " (jac zero unless\n";
+    doc << "/// ok); ambiguous where the input lies on a regime boundary within rounding (a condition of the\n";
+    doc << "/// regime within eps^(2/3) of 0): the impact map is not differentiable there, out and jac then hold\n";
+    doc << "/// the regime's values and its one-sided derivatives; overflow where a derivative is not finite\n";
+    doc << "/// (at a double root of the angle equation the sliding direction's derivative is unbounded).\n";
+    doc << "/// mu = 0 (regime smooth): the derivatives of the slide, by mu one-sided (mu >= 0).\n";
+    jf_.doc = doc.str();
+    jf_.sqrt_always = true;
+    jf_.trig = fj_pre_.em.uses_trig || nb_.em.uses_trig;
+    std::string select = basis_text();
     std::vector<std::string> impulse;
-    for (const auto &[local, field] : fj_sel_)
+    for (const auto &[local, field] : fj_sel_) {
+        select += "    const T " + local + " = " + field + ";\n";
         impulse.push_back(local);
-    h_ << "    const T " << tol << " = detail::boundary_tolerance<T>();\n";
-    if (fj_impulse_scale_)
-        h_ << "    const T " << fj_local_.at("impulse_scale") << " = (T(1) + detail::abs_of<T>(" << fj_mu_ << ")) * ("
-           << abs_sum(impulse) << ");\n";
-    if (fj_speed_scale_)
-        h_ << "    const T " << fj_local_.at("speed_scale") << " = " << abs_sum(fj_speed_) << ";\n";
-    h_ << "    switch (" << cand << ") {\n";
-    for (std::size_t c = 0; c < fj_stages_.size(); ++c) {
-        h_ << "    case " << c << ": { // " << names::comment_text(f_.cases[c].name) << "\n"
-           << indent(fj_stages_[c].em.code, "    ");
-        for (std::size_t i = 0; i < fj_entries_[c].size(); ++i)
-            h_ << "        " << jac << "[" << i << "] = " << fj_entries_[c][i] << ";\n";
-        h_ << candidates_jacobian_boundary(c);
-        h_ << "        break;\n    }\n";
     }
-    h_ << "    default:\n        break;\n    }\n";
-    h_ << "    T " << sum << " = T(0);\n";
-    h_ << "    for (int " << k << " = 0; " << k << " < " << nr * nw << "; ++" << k << ")\n        " << sum << " = "
-       << sum << " + " << jac << "[" << k << "];\n";
-    h_ << "    if (!detail::finite<T>(" << sum << ")) {\n";
-    h_ << "        for (int " << k << " = 0; " << k << " < " << nr * nw << "; ++" << k << ")\n            " << jac
-       << "[" << k << "] = T(0);\n";
-    h_ << "        return friction_status::overflow;\n    }\n";
-    h_ << "    return " << bd << " ? friction_status::ambiguous : friction_status::ok;\n}\n\n";
-    h_ << "/// " << fn << " with the inputs in an array, in the order of " << o_.name << "_input_names.\n";
-    h_ << "template <typename T>\nIMPACTGEN_FUNC friction_status " << fn << "(const T* in, " << result()
-       << "<T>& out, T* " << jac << ") noexcept\n{\n    return " << fn << "<T>(";
-    for (std::size_t i = 0; i < input_names_.size(); ++i)
-        h_ << "in[" << i << "], ";
-    h_ << "out, " << jac << ");\n}\n\n";
+    select += "    // The slip after impact for the impulse returned: which candidate it is.\n";
+    select += fj_pre_.em.code + candidates_jacobian_selection();
+    select += "    const T " + fj_local_.at("tol") + " = detail::boundary_tolerance<T>();\n";
+    if (fj_impulse_scale_)
+        select += "    const T " + fj_local_.at("impulse_scale") + " = (T(1) + detail::abs_of<T>(" + fj_mu_ + ")) * (" +
+                  abs_sum(impulse) + ");\n";
+    if (fj_speed_scale_)
+        select += "    const T " + fj_local_.at("speed_scale") + " = " + abs_sum(fj_speed_) + ";\n";
+    jf_.select = select;
+    jf_.selector = fj_local_.at("candidate");
+    for (std::size_t k = 0; k < f_.cases.size(); ++k)
+        jf_.selects.push_back(k);
+    jf_.case_names = true;
+    jf_.case_tail = [this](std::size_t k) { return candidates_jacobian_boundary(k); };
+    const std::string &sum = fj_local_.at("check_sum"), &k = jf_.k, &jac = jf_.jac,
+                      n = std::to_string(cj.rows.size() * nw);
+    jf_.after_switch = "    T " + sum + " = T(0);\n    for (int " + k + " = 0; " + k + " < " + n + "; ++" + k +
+                       ")\n        " + sum + " = " + sum + " + " + jac + "[" + k + "];\n    if (!detail::finite<T>(" +
+                       sum + ")) {\n        for (int " + k + " = 0; " + k + " < " + n + "; ++" + k + ")\n            " +
+                       jac + "[" + k + "] = T(0);\n        return friction_status::overflow;\n    }\n";
+    jf_.boundary = fj_local_.at("boundary");
+    jf_.array_form = true;
 }
 
 } // namespace impactgen::codegen::writer_detail
