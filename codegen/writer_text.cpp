@@ -103,8 +103,8 @@ void writer::result_struct()
            << "_set_names), -1 when the status is not ok\n"
            << "    bool impulses_unique; ///< false: the velocities are unique, the impulses one valid choice\n"
            << (cp_.jacobian.on ? "    bool boundary; ///< another set holds within rounding (the map is not "
-                                         "differentiable here)\n"
-                                       : "")
+                                 "differentiable here)\n"
+                               : "")
            << (sequential() ? "    int steps; ///< the single-contact impacts of the chain (set: the last one's)\n"
                             : "");
     else if (!straight())
@@ -290,8 +290,7 @@ void writer::unchanged_function(const emitted &code)
     }
     if (system())
         h_ << "    out.set = -1;\n    out.impulses_unique = true;\n"
-           << (cp_.jacobian.on ? "    out.boundary = false;\n" : "")
-           << (sequential() ? "    out.steps = 0;\n" : "");
+           << (cp_.jacobian.on ? "    out.boundary = false;\n" : "") << (sequential() ? "    out.steps = 0;\n" : "");
     else
         h_ << "    out.regime = impact_regime::smooth;\n"
            << (process_jacobian() ? "    out.sequence = -1;\n    out.boundary = false;\n" : "");
