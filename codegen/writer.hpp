@@ -218,6 +218,8 @@ private:
     void jacobian_tables();
     void candidates_jacobian_function();
     bool process_jacobian() const;
+    void named_jacobian_form(const std::map<std::string, std::string> &locals, const std::string &what,
+                             const std::string &rows, const std::string &row, const std::string &which);
     void process_jacobian_form();
     std::string process_scale(std::size_t i, std::size_t j) const;
     std::string process_sequence_text(const std::string &ind) const;

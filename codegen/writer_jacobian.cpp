@@ -39,8 +39,8 @@ void writer::build_jacobian_programs(const std::function<void(std::size_t, stage
 {
     const candidates_jacobian &cj = cp_.jacobian;
     const std::size_t nw = cj.wrt.size();
-    std::map<ex, std::string, ex_is_less> step_once;
-    std::vector<std::string> entry_once;
+    std::map<ex, std::string, ex_is_less> step_once; // without a prefix: each name claimed once
+    std::map<std::string, std::string> entry_once;
     jac_stages_.resize(cj.candidates.size());
     jac_entries_.resize(cj.candidates.size());
     for (std::size_t k = 0; k < cj.candidates.size(); ++k) {
@@ -48,6 +48,13 @@ void writer::build_jacobian_programs(const std::function<void(std::size_t, stage
         if (cand.same_as != k)
             continue;
         const std::string pre = jf_.program_prefix.empty() ? "" : jf_.program_prefix + std::to_string(k) + "_";
+        auto named = [&](auto &once, const auto &key, const std::string &base) -> std::string {
+            if (!pre.empty())
+                return scope_.claim(pre + base);
+            if (!once.count(key))
+                once.emplace(key, scope_.claim(base));
+            return once.at(key);
+        };
         stage &st = jac_stages_[k];
         std::map<ex, std::string, ex_is_less> in = input_ident_;
         if (!cand.angle.empty()) {
@@ -55,24 +62,13 @@ void writer::build_jacobian_programs(const std::function<void(std::size_t, stage
             in[cand.angle[1]] = jf_.angle_s;
         }
         st.pool.set_input_names(in);
-        auto bind = [&](const step &s) {
-            if (pre.empty() && !step_once.count(s.sym))
-                step_once[s.sym] = scope_.claim(s.sym.get_name());
-            st.bind_step(s, pre.empty() ? step_once.at(s.sym) : scope_.claim(pre + s.sym.get_name()));
-        };
-        for (const step &s : cj.steps)
-            bind(s);
-        for (const step &s : cand.steps)
-            bind(s);
+        for (const std::vector<step> *steps : {&cj.steps, &cand.steps})
+            for (const step &s : *steps)
+                st.bind_step(s, named(step_once, s.sym, s.sym.get_name()));
         for (std::size_t i = 0; i < cj.rows.size(); ++i)
             for (std::size_t w = 0; w < nw; ++w) {
                 const std::string base = "d_" + outs_[cj.rows[i]].field + "_d_" + input_ident_.at(cj.wrt[w]);
-                if (!pre.empty())
-                    jac_entries_[k].push_back(scope_.claim(pre + base));
-                else if (entry_once.size() <= i * nw + w)
-                    entry_once.push_back(scope_.claim(base));
-                if (pre.empty())
-                    jac_entries_[k].push_back(entry_once[i * nw + w]);
+                jac_entries_[k].push_back(named(entry_once, base, base));
                 st.output(jac_entries_[k].back(), cand.entries[i][w]);
             }
         if (more)
@@ -170,39 +166,46 @@ void writer::candidates_jacobian_function()
 
 // ---- Routh's process: NAME reports the sequence and whether another holds within rounding.
 
-void writer::process_jacobian_form()
+// The names of NAME_jacobian and its tables that come from NAME (a process's, a system's), its
+// locals, and the start of its comment: the Jacobian of `what` after impact (`rows`), d(`row`
+// i)/d(input j), the selected `which` closed form.
+void writer::named_jacobian_form(const std::map<std::string, std::string> &locals, const std::string &what,
+                                 const std::string &rows, const std::string &row, const std::string &which)
 {
-    for (const char *nm : {"sequence_now", "boundary_now", "near_sequence", "form_of", "tol", "jac", "status", "k"})
-        seq_local_[nm] = scope_.claim(nm);
-    const std::size_t nw = cp_.jacobian.wrt.size();
     jf_.fn = o_.name + "_jacobian";
     jf_.wrt_count = o_.name + "_wrt_count";
     jf_.wrt_names = o_.name + "_wrt_names";
     jf_.wrt_comment = "The inputs the Jacobian differentiates by, in the order of its columns.";
+    jf_.jac = locals.at("jac");
+    jf_.status = locals.at("status");
+    jf_.k = locals.at("k");
+    jf_.doc = "/// " + o_.name + " and the Jacobian of the " + what + " after impact (" + rows +
+              ")\n/// by the inputs " + o_.name + "_wrt_names: " + jf_.jac + "[i * " +
+              std::to_string(cp_.jacobian.wrt.size()) + " + j] = d(" + row + " i)/d(input j), the selected " + which +
+              "\n/// closed form differentiated exactly. Returns " + "the status of " + o_.name +
+              " (jac zero unless ok), or ambiguous";
+    jf_.boundary = "out.boundary";
+}
+
+void writer::process_jacobian_form()
+{
+    for (const char *nm : {"sequence_now", "boundary_now", "near_sequence", "form_of", "tol", "jac", "status", "k"})
+        seq_local_[nm] = scope_.claim(nm);
+    named_jacobian_form(seq_local_, "velocities and impulses", o_.name + "_jacobian_output_names", "output",
+                        "phase sequence's");
     jf_.row_count = o_.name + "_jacobian_output_count";
     jf_.row_names = o_.name + "_jacobian_output_names";
     jf_.row_comment =
         "The outputs the Jacobian differentiates, in the order of its rows (members of " + result() + ").";
-    jf_.jac = seq_local_.at("jac");
-    jf_.status = seq_local_.at("status");
-    jf_.k = seq_local_.at("k");
-    std::ostringstream doc;
-    doc << "/// " << o_.name << " and the Jacobian of the velocities and impulses after impact (" << o_.name
-        << "_jacobian_output_names)\n";
-    doc << "/// by the inputs " << o_.name << "_wrt_names: " << jf_.jac << "[i * " << nw
-        << " + j] = d(output i)/d(input j), the selected phase sequence's\n";
-    doc << "/// closed form differentiated exactly. Returns the status of " << o_.name
-        << " (jac zero unless ok), or ambiguous where\n";
-    doc << "/// the impact map is not differentiable (out.boundary): another phase sequence with a different\n";
-    doc << "/// closed form holds within rounding (out and jac then hold the selected sequence's values and\n";
-    doc << "/// its one-sided derivatives), or mu = 0, the edge of mu's domain (the smooth impact; jac zero).\n";
-    jf_.doc = doc.str();
+    jf_.doc += " where\n/// the impact map is not differentiable (out.boundary): another phase sequence with a "
+               "different\n/// closed form holds within rounding (out and jac then hold the selected sequence's "
+               "values and\n/// its one-sided derivatives), or mu = 0, the edge of mu's domain (the smooth impact; "
+               "jac zero).\n";
     jf_.selector = "out.sequence";
     for (std::size_t i = 0; i < f_.cases.size(); ++i) // out.sequence numbers the closed forms (closed_)
         if (static_cast<int>(i) != angle_)
             jf_.selects.push_back(i);
     jf_.labels_apart = true;
-    jf_.boundary = "out.boundary";
     build_jacobian_programs({});
     emit_jacobian_programs();
 }
@@ -263,29 +266,16 @@ std::string writer::process_sequence_text(const std::string &ind) const
 
 void writer::system_jacobian_form()
 {
-    const std::size_t nw = cp_.jacobian.wrt.size(), nv = cp_.jacobian.rows.size();
-    jf_.fn = o_.name + "_jacobian";
-    jf_.wrt_count = o_.name + "_wrt_count";
-    jf_.wrt_names = o_.name + "_wrt_names";
-    jf_.wrt_comment = "The inputs the Jacobian differentiates by, in the order of its columns.";
-    jf_.jac = sys_local_.at("jac");
-    jf_.status = sys_local_.at("status");
-    jf_.k = sys_local_.at("k");
-    std::ostringstream doc;
-    doc << "/// " << o_.name << " and the Jacobian of the velocities after impact (the first " << nv << " of "
-        << o_.name << "_output_names)\n";
-    doc << "/// by the inputs " << o_.name << "_wrt_names: " << jf_.jac << "[i * " << nw
-        << " + j] = d(velocity i)/d(input j), the selected set's\n";
-    doc << "/// closed form differentiated exactly. Returns the status of " << o_.name
-        << " (jac zero unless ok), or ambiguous\n";
-    doc << "/// where another set holds within rounding (out.boundary): the impact map is not differentiable\n";
-    doc << "/// there; out and jac then hold the selected set's values and its one-sided derivatives.\n";
-    jf_.doc = doc.str();
+    named_jacobian_form(sys_local_, "velocities",
+                        "the first " + std::to_string(cp_.jacobian.rows.size()) + " of " + o_.name + "_output_names",
+                        "velocity", "set's");
+    jf_.doc += "\n/// where another set holds within rounding (out.boundary): the impact map is not "
+               "differentiable\n/// there; out and jac then hold the selected set's values and its one-sided "
+               "derivatives.\n";
     jf_.sqrt_always = true;
     jf_.selector = "out.set";
     for (std::size_t k = 0; k < cp_.jacobian.candidates.size(); ++k)
         jf_.selects.push_back(k);
-    jf_.boundary = "out.boundary";
     build_jacobian_programs({});
     emit_jacobian_programs();
 }

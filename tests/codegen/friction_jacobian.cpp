@@ -1,5 +1,5 @@
 // NAME_jacobian of the headers with Coulomb friction (codegen --jacobian; writer
-// codegen/writer_friction_jacobian.cpp), on seeded random impacts of planar-friction,
+// codegen/writer_jacobian*.cpp), on seeded random impacts of planar-friction,
 // ball-floor-friction, noncentral-3d-friction, a sphere on a floor in 3-D, a box on a floor whose
 // normal is an input (its tangent basis computed at run time) and a pinned rod without a stick
 // candidate:
