@@ -22,6 +22,28 @@ void collect_symbols(const ex &e, exset &out)
             out.insert(*it);
 }
 
+std::vector<std::size_t> candidate_rows(const code_plan &cp)
+{
+    std::vector<std::size_t> rows;
+    for (std::size_t k = 0; k < cp.outputs.size() && !cp.candidates.cases.empty(); ++k) {
+        const code_output &of = cp.outputs[k];
+        if (of.tangential || of.kind == output_value::velocity || of.kind == output_value::angular_velocity ||
+            of.kind == output_value::normal_impulse)
+            rows.push_back(k);
+    }
+    return rows;
+}
+
+ex candidate_output(const code_plan &cp, std::size_t k, const regime_case &c)
+{
+    const code_output &of = cp.outputs[k];
+    const auto a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
+    return of.tangential                               ? c.tangential_impulse[a]
+           : of.kind == output_value::velocity         ? c.sol.after[of.index].velocity[a]
+           : of.kind == output_value::angular_velocity ? c.sol.after[of.index].angular_velocity[a]
+                                                       : c.sol.normal_impulse;
+}
+
 namespace
 {
 
@@ -120,25 +142,6 @@ void order_outputs(code_plan &cp)
     }
 }
 
-// The value of output k of candidate c: a velocity, a spin, the normal or a tangential impulse
-// (world axes); false for the others (pivot impulses, approach velocity, energy lost).
-bool candidate_output(const code_plan &cp, std::size_t k, const regime_case &c, ex &value)
-{
-    const code_output &of = cp.outputs[k];
-    const auto a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
-    if (of.tangential)
-        value = c.tangential_impulse[a];
-    else if (of.kind == output_value::velocity)
-        value = c.sol.after[of.index].velocity[a];
-    else if (of.kind == output_value::angular_velocity)
-        value = c.sol.after[of.index].angular_velocity[a];
-    else if (of.kind == output_value::normal_impulse)
-        value = c.sol.normal_impulse;
-    else
-        return false;
-    return true;
-}
-
 // --jacobian with friction: the inputs named (every input when none is), each candidate's
 // velocities and impulses differentiated exactly. A normal given as inputs in 3-D has its tangent
 // basis computed at run time, whose derivatives the closed form does not hold: its components are
@@ -164,17 +167,11 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
             throw option_error(option_error::wrt,
                                x.get_name() + " is a component of the normal, whose tangent basis the generated code "
                                               "computes at run time: the Jacobian is offered by the other inputs");
-    ex unused;
-    for (std::size_t k = 0; k < cp.outputs.size(); ++k)
-        if (!cp.candidates.cases.empty() && candidate_output(cp, k, cp.candidates.cases.front(), unused))
-            cj.rows.push_back(k);
+    cj.rows = candidate_rows(cp);
     const friction_jacobian jac = friction_jacobian_of(cp.candidates, cj.wrt, [&cp, &cj](const regime_case &c) {
         std::vector<std::pair<std::string, ex>> out;
-        for (std::size_t k : cj.rows) {
-            ex v;
-            candidate_output(cp, k, c, v);
-            out.push_back({cp.outputs[k].field, v});
-        }
+        for (std::size_t k : cj.rows)
+            out.push_back({cp.outputs[k].field, candidate_output(cp, k, c)});
         return out;
     });
     for (std::size_t k = 0; k < jac.regimes.size(); ++k) { // each its own program: the candidate's steps first

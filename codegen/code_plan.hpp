@@ -158,6 +158,13 @@ bool has_candidates(const problem &p, const options &o);
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);
 
+/// The outputs a candidates' Jacobian differentiates, in order: velocities, spins, the normal and
+/// the tangential impulse (world axes); not pivot impulses, approach velocity, energy lost.
+std::vector<std::size_t> candidate_rows(const code_plan &cp);
+
+/// The value of output k (one of candidate_rows) for candidate c, its impulse applied.
+GiNaC::ex candidate_output(const code_plan &cp, std::size_t k, const regime_case &c);
+
 /// The candidates of Routh's process (process_plan.cpp): the phase sequences of the
 /// derivation's contact, in the shared steps of its friction solution; the wedging
 /// sequences left out (none holding is no_solution). Throws input_error when every

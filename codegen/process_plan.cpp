@@ -131,24 +131,14 @@ void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
     cj.process = candidates_jacobian::rounding{sqrt(in.ut * in.ut + in.un * in.un), (1 + in.mu) * (in.Ktt + in.Knn)};
     cj.steps = f.shared.steps;
     const step_gradients g = differentiate_steps(cj.steps, cj.wrt);
-    for (std::size_t k = 0; k < cp.outputs.size(); ++k) {
-        const code_output &of = cp.outputs[k];
-        if (of.tangential || of.kind == output_value::velocity || of.kind == output_value::angular_velocity ||
-            of.kind == output_value::normal_impulse)
-            cj.rows.push_back(k);
-    }
+    cj.rows = candidate_rows(cp);
     const std::array<contact_side, 2> sides = process_sides(d.prob);
     for (std::size_t i = 0; i < f.cases.size(); ++i) {
         regime_case c = f.cases[i];
         apply_impulse(d, sides, c, false);
         candidate_jacobian cand;
         for (std::size_t k : cj.rows) {
-            const code_output &of = cp.outputs[k];
-            const std::size_t a = static_cast<std::size_t>(of.tangential ? of.axis : of.component);
-            const ex v = of.tangential                             ? c.tangential_scalar * d.t_dir[a]
-                         : of.kind == output_value::normal_impulse ? c.sol.normal_impulse
-                         : of.kind == output_value::velocity       ? c.sol.after[of.index].velocity[a]
-                                                                   : c.sol.after[of.index].angular_velocity[a];
+            const ex v = candidate_output(cp, k, c);
             std::vector<ex> row;
             for (std::size_t j = 0; j < cj.wrt.size(); ++j)
                 row.push_back(chain_derivative(v, cj.steps, g, cj.wrt, j));
