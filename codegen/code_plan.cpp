@@ -154,14 +154,11 @@ void plan_candidates_jacobian(code_plan &cp, const std::vector<std::string> &wrt
     if (!cp.deriv.tangent_basis_symbols.empty())
         for (const ex &c : cp.prob.contact().normal)
             collect_symbols(c, nsyms);
-    if (wrt.empty())
-        for (const symbol &x : cp.inputs)
-            if (!nsyms.count(x))
-                cj.wrt.push_back(x);
-    if (!wrt.empty())
-        cj.wrt = jacobian_inputs(cp.inputs, wrt);
-    if (cj.wrt.empty())
-        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
+    std::vector<symbol> inputs; // by default not the normal's
+    for (const symbol &x : cp.inputs)
+        if (!wrt.empty() || !nsyms.count(x))
+            inputs.push_back(x);
+    cj.wrt = jacobian_inputs(inputs, wrt);
     for (const symbol &x : cj.wrt)
         if (nsyms.count(x))
             throw option_error(option_error::wrt,

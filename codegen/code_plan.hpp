@@ -176,8 +176,9 @@ impact_solution process_candidates(const derivation &d);
 /// inputs.
 void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt);
 
-/// The inputs a Jacobian differentiates by: `wrt` by name among `inputs` (empty: every input);
-/// throws option_error naming --wrt for a name that is not an input or is named twice.
+/// The inputs a Jacobian differentiates by (jacobian.cpp): `wrt` by name among `inputs` (empty:
+/// every input); throws option_error naming --wrt for a name that is not an input (listing them)
+/// or is named twice, and naming --jacobian when there is none.
 std::vector<GiNaC::symbol> jacobian_inputs(const std::vector<GiNaC::symbol> &inputs,
                                            const std::vector<std::string> &wrt);
 

@@ -2,10 +2,11 @@
 // step by step to the solution's straight-line closed form (forward mode, exact,
 // by GiNaC's diff), so the Jacobian costs a multiple of the values, not of the
 // fully expanded formulas.
-#include "codegen.hpp"
+#include "code_plan.hpp"
 
 #include "names/escape.hpp"
 
+#include <algorithm>
 #include <set>
 
 namespace impactgen::codegen
@@ -29,35 +30,33 @@ std::string tex(const symbol &s)
 
 } // namespace
 
+std::vector<symbol> jacobian_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
+{
+    std::vector<symbol> out = wrt.empty() ? inputs : std::vector<symbol>{};
+    for (const std::string &name : wrt) {
+        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == name; });
+        if (it == inputs.end()) {
+            std::string all;
+            for (const symbol &x : inputs)
+                all += (all.empty() ? "" : ", ") + x.get_name();
+            throw option_error(
+                option_error::wrt,
+                names::display_text(name) + " is not an input of the generated function (its inputs: " +
+                    (all.empty() ? std::string("none: name it in --params") : names::display_text(all, 400)) + ")");
+        }
+        if (std::find(out.begin(), out.end(), *it) != out.end())
+            throw option_error(option_error::wrt, names::display_text(name) + " is named twice");
+        out.push_back(*it);
+    }
+    if (out.empty())
+        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
+    return out;
+}
+
 jacobian_plan plan_jacobian(const plan &pl, const std::vector<std::string> &wrt)
 {
     jacobian_plan jp;
-    if (wrt.empty()) {
-        jp.wrt = pl.inputs;
-    } else {
-        std::set<std::string> seen;
-        for (const std::string &name : wrt) {
-            if (!seen.insert(name).second)
-                throw option_error(option_error::wrt, names::display_text(name) + " is named twice");
-            const symbol *found = nullptr;
-            for (const symbol &x : pl.inputs)
-                if (x.get_name() == name)
-                    found = &x;
-            if (!found) {
-                std::string all;
-                for (const symbol &x : pl.inputs)
-                    all += (all.empty() ? "" : ", ") + x.get_name();
-                throw option_error(option_error::wrt,
-                                   names::display_text(name) +
-                                       " is not an input of the generated function (its inputs: " +
-                                       names::display_text(all.empty() ? std::string("none") : all, 400) + ")");
-            }
-            jp.wrt.push_back(*found);
-        }
-    }
-    if (jp.wrt.empty())
-        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
-
+    jp.wrt = jacobian_inputs(pl.inputs, wrt);
     const std::vector<step> &steps = pl.sol.steps;
     const std::size_t nw = jp.wrt.size();
     // Derivative steps are named d<step>_d<input>, clear of every name the problem and

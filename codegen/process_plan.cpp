@@ -124,8 +124,6 @@ void process_jacobian_plan(code_plan &cp, const std::vector<std::string> &wrt)
     candidates_jacobian &cj = cp.jacobian;
     cj.on = true;
     cj.wrt = jacobian_inputs(cp.inputs, wrt);
-    if (cj.wrt.empty())
-        throw option_error(option_error::jacobian, "the generated function has no input to differentiate by");
     impact_solution &f = cp.candidates;
     const process_inputs in = contact_inputs(d, f);
     cj.process = candidates_jacobian::rounding{sqrt(in.ut * in.ut + in.un * in.un), (1 + in.mu) * (in.Ktt + in.Knn)};

@@ -240,23 +240,6 @@ void sequence_plan(code_plan &cp, const std::vector<output_source> &src)
 
 } // namespace
 
-std::vector<symbol> jacobian_inputs(const std::vector<symbol> &inputs, const std::vector<std::string> &wrt)
-{
-    if (wrt.empty())
-        return inputs;
-    std::vector<symbol> out;
-    for (const std::string &nm : wrt) {
-        auto it = std::find_if(inputs.begin(), inputs.end(), [&](const symbol &x) { return x.get_name() == nm; });
-        if (it == inputs.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is not an input of the generated "
-                                                                            "function (name it in --params)");
-        if (std::find(out.begin(), out.end(), *it) != out.end())
-            throw option_error(option_error::wrt, names::display_text(nm) + " is named twice");
-        out.push_back(*it);
-    }
-    return out;
-}
-
 code_plan system_code_plan(const problem &p, const options &o)
 {
     refuse_system_options(p, o);
