@@ -167,7 +167,8 @@ private:
     void build_stage_s();
     void build_stage_c();
     void build_unchanged();
-    void emit_one(stage &s, const emit_options &how);
+    /// Emits a stage, its names claimed; counted: its arithmetic in the header's (not a Jacobian's).
+    void emit_one(stage &s, const emit_options &how, bool counted = true);
     void emit_stages();
 
     // ---- a selection rule: the text of the candidates (writer_select.cpp, writer_text.cpp)

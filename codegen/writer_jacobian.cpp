@@ -83,11 +83,7 @@ void writer::emit_jacobian_programs()
     for (std::size_t k = 0; k < jac_stages_.size(); ++k) {
         if (cp_.jacobian.candidates[k].same_as != k)
             continue;
-        stage &st = jac_stages_[k];
-        st.em = emit_cpp(st.prog, st.outs, st.checks, st.names, scope_.names(), locals);
-        for (const std::string &nm : st.em.declared)
-            if (!scope_.taken(nm))
-                scope_.claim(nm);
+        emit_one(jac_stages_[k], locals, false);
     }
 }
 

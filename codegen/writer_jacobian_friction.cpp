@@ -130,10 +130,7 @@ void writer::friction_jacobian_form()
     });
     emit_options locals;
     locals.outputs = output_placement::local;
-    fj_pre_.em = emit_cpp(fj_pre_.prog, fj_pre_.outs, {}, fj_pre_.names, scope_.names(), locals);
-    for (const std::string &nm : fj_pre_.em.declared)
-        if (!scope_.taken(nm))
-            scope_.claim(nm);
+    emit_one(fj_pre_, locals, false);
     emit_jacobian_programs();
     friction_jacobian_text();
 }

@@ -723,13 +723,14 @@ void writer::build_unchanged()
 
 // A stage's code with its outputs placed as the function uses them; the names it
 // declares are claimed.
-void writer::emit_one(stage &s, const emit_options &how)
+void writer::emit_one(stage &s, const emit_options &how, bool counted)
 {
     s.em = emit_cpp(s.prog, s.outs, s.checks, s.names, scope_.names(), how);
     for (const std::string &nm : s.em.declared)
         if (!scope_.taken(nm))
             scope_.claim(nm);
-    add_counts(total_, s.em.formula);
+    if (counted)
+        add_counts(total_, s.em.formula);
 }
 
 // Stages A, B and the normal's basis declare their outputs as locals; stage S assigns
