@@ -149,13 +149,23 @@ std::string ok_flag(const std::string &ind, const emitted &form, const std::vect
     std::string last_part; // the part that waits for the last values: tested last
     // Each argument converted to T: with an autodiff T, T(1) - e is an expression type
     // that would not deduce.
+    // A balanced tree of mins of two: its depth is the logarithm of the number of terms, not
+    // the number (the flag waits for fewer dependent mins).
     auto min_of = [](const std::vector<std::string> &v) {
         if (v.size() == 1)
             return v[0];
-        std::vector<std::string> args;
+        std::vector<std::string> level;
         for (const std::string &x : v)
-            args.push_back("T(" + x + ")");
-        return "detail::min_of(" + join(args, ", ") + ")";
+            level.push_back("T(" + x + ")");
+        while (level.size() > 1) {
+            std::vector<std::string> next;
+            for (std::size_t i = 0; i + 1 < level.size(); i += 2)
+                next.push_back("detail::min_of(" + level[i] + ", " + level[i + 1] + ")");
+            if (level.size() % 2)
+                next.push_back(level.back());
+            level = next;
+        }
+        return level[0];
     };
     // The sums converted to T too: with an autodiff T a sum of values is an expression
     // type, and finite(x) would deduce it (AutoDiffScalar<CwiseBinaryOp<...>>: no T(0)).

@@ -214,6 +214,8 @@ public:
                 emit_checks(c.op_id);
         emit_values();
         emit_outputs();
+        if (branchless_)
+            prune_implied_finite_terms();
         for (std::size_t i = 0; i < n_; ++i)
             if ((needed_[i] || reach_[i]) && prog_.at(static_cast<int>(i)).kind == op::input)
                 out_.inputs_read.insert(prog_.at(static_cast<int>(i)).name);
@@ -444,6 +446,49 @@ private:
         return {id, numeric(1)};
     }
 
+    // Branchless: value id (text x) must be finite: a term of the one sum.
+    void add_finite(int id, const std::string &x, int precedence)
+    {
+        add_unique(out_.finite_terms, x, precedence);
+        finite_id_.emplace(x, id);
+    }
+
+    // Branchless: a term of the finiteness sum whose value is an operand of another term's
+    // value (through +, -, *, negation, sqrt, a numerator, as mark_covered), however deep, is
+    // finite when that one is: it leaves the sum (a minor of an inertia tensor that its
+    // determinant is computed from, a diagonal entry of a minor). Each term left out has one
+    // above it in the sum, as the values form a DAG.
+    void prune_implied_finite_terms()
+    {
+        std::vector<bool> below(n_, false);
+        std::vector<int> stack;
+        auto operands = [&](int id) {
+            const op &o = prog_.at(id);
+            if (o.a >= 0)
+                stack.push_back(o.a);
+            if (o.b >= 0 && o.kind != op::div)
+                stack.push_back(o.b);
+        };
+        for (const code_term &t : out_.finite_terms)
+            if (auto f = finite_id_.find(t.text); f != finite_id_.end())
+                operands(f->second);
+        while (!stack.empty()) {
+            const int id = stack.back();
+            stack.pop_back();
+            if (below[static_cast<std::size_t>(id)])
+                continue;
+            below[static_cast<std::size_t>(id)] = true;
+            operands(id);
+        }
+        std::vector<code_term> kept;
+        for (const code_term &t : out_.finite_terms) {
+            auto f = finite_id_.find(t.text);
+            if (f == finite_id_.end() || !below[static_cast<std::size_t>(f->second)])
+                kept.push_back(t);
+        }
+        out_.finite_terms = kept;
+    }
+
     // Branchless: the checks of value id folded into the lists the one flag is made of
     // (signs through a min, finiteness through one sum).
     void fold_check(const check &c, int id, const std::string &x, int p)
@@ -452,7 +497,7 @@ private:
             // x > 0 follows from the positive terms before it (k = w_1 + w_2 of
             // reciprocals > 0 and squares): no term of the min; its finiteness as any other.
             if (!covered_[static_cast<std::size_t>(id)])
-                add_unique(out_.finite_terms, x, p);
+                add_finite(id, x, p);
             out_.check_comments.push_back(c.comment);
             return;
         }
@@ -470,7 +515,7 @@ private:
                 positive_ids_.insert(rid);
                 add_unique(out_.positive_terms, var_.at(rid));
                 if (!covered_[static_cast<std::size_t>(rid)])
-                    add_unique(out_.finite_terms, var_.at(rid), 4);
+                    add_finite(rid, var_.at(rid), 4);
                 out_.check_comments.push_back(c.comment);
                 return;
             }
@@ -499,7 +544,7 @@ private:
         }
         // (unless the finiteness of the outputs implies it)
         if (!covered_[static_cast<std::size_t>(id)])
-            add_unique(out_.finite_terms, x, p);
+            add_finite(id, x, p);
         out_.check_comments.push_back(c.comment);
     }
 
@@ -539,7 +584,7 @@ private:
             positive_ids_.insert(rid);
             add_unique(out_.positive_terms, var_.at(rid));
             if (!covered_[static_cast<std::size_t>(rid)])
-                add_unique(out_.finite_terms, var_.at(rid), 4);
+                add_finite(rid, var_.at(rid), 4);
             prefolded_comments_[rid].push_back(c.comment);
             reach_[xi] = false;
             materialised_[xi] = false;
@@ -776,8 +821,9 @@ private:
     std::map<int, std::string> var_;
     std::map<int, std::vector<int>> group_at_; // first member -> members
     std::set<int> grouped_;
-    std::set<int> positive_ids_; // branchless: values the flag proves > 0 (fold_check)
-    std::vector<int> pending_;   // values only checks use, not yet emitted, in program order
+    std::set<int> positive_ids_;           // branchless: values the flag proves > 0 (fold_check)
+    std::map<std::string, int> finite_id_; // branchless: a term of the finiteness sum -> its value
+    std::vector<int> pending_;             // values only checks use, not yet emitted, in program order
     emitted out_;
     op_counts uncounted_;
 };

@@ -139,6 +139,7 @@ private:
     void straight_formulas();
     void checked_function();
     void fast_function();
+    void straight_slow_paths();
     void unchecked_function();
     void jacobian_function();
     // ---- --rows: the contact's rows for an iterative solver (writer_rows.cpp)

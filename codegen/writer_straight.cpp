@@ -245,32 +245,65 @@ void writer::checked_function()
     h_ << "    return impact_status::ok;\n}\n} // namespace detail\n\n";
 }
 
-// The function: every check folded into a few tests, then one slow path.
+// The fast path in namespace detail: every check folded into a few tests, then slow()
+// for the inputs that fail one. Each entry point passes its own slow path: the function
+// with the inputs as values calls the checked version with them; the array and struct
+// forms pass one that reads the inputs from memory out of line (straight_slow_paths), so
+// that the hot path need not keep all of them alive until the flag (g++ spilled them).
 void writer::fast_function()
 {
+    h_ << "namespace detail {\n";
+    h_ << "/// The fast path of " << o_.name << ": every check folded into a few tests (signs through\n";
+    h_ << "/// a min, the finiteness of every value through sums times 0 added to it); the inputs that\n";
+    h_ << "/// fail one of them return slow() (the checked version, which says which check failed).\n";
+    h_ << "template <typename T, bool with_energy_lost, typename Slow>\n";
+    h_ << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "_fast(" << params() << result()
+       << "<T>& out, Slow slow) noexcept\n{\n";
+    h_ << math_usings(em_);
+    h_ << fast_.code;
+    h_ << ok_flag("    ", fast_, fast_terms_, true);
+    h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
+    h_ << "        return slow();\n";
+    for (const code_output &ov : outs_)
+        h_ << "    out." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
+    h_ << "    return impact_status::ok;\n}\n\n";
+    straight_slow_paths();
+    h_ << "} // namespace detail\n\n";
     h_ << "/// Post-impact state for the inputs below; returns impact_status::ok, or why not\n";
     h_ << "/// (then out holds the state unchanged: velocities as before, impulses zero).\n";
     h_ << "/// T: float, double, long double or alike (an autodiff scalar).\n";
-    h_ << "/// The checks do not branch one by one: they are folded into a few tests (signs\n";
-    h_ << "/// through a min, the finiteness of every value through sums times 0 added to\n";
-    h_ << "/// it), and only inputs that fail one of them take the slow path (detail::" << checked() << ") that\n";
+    h_ << "/// The checks do not branch one by one: they are folded into a few tests (detail::" << o_.name
+       << "_fast),\n";
+    h_ << "/// and only inputs that fail one of them take the slow path (detail::" << checked() << ") that\n";
     h_ << "/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,\n";
     h_ << "/// neither computed nor checked (the rest is the same).\n";
     for (std::size_t i = 0; i < input_names_.size(); ++i)
         h_ << "///   " << input_names_[i] << ": " << names::comment_text(cp_.input_meaning[i]) << "\n";
     h_ << tparams << "IMPACTGEN_HOT IMPACTGEN_FUNC impact_status " << o_.name << "(" << params() << result()
        << "<T>& out) noexcept\n{\n";
-    h_ << math_usings(em_);
-    h_ << fast_.code;
-    h_ << ok_flag("    ", fast_, fast_terms_, true);
-    h_ << "    if (!ok) // some check failed (or a value is not finite): find which\n";
-    h_ << "        return detail::" << checked() << "<T, with_energy_lost>(";
-    for (const std::string &nm : input_names_)
-        h_ << nm << ", ";
-    h_ << "out);\n";
-    for (const code_output &ov : outs_)
-        h_ << "    out." << ov.field << " = " << local_of_.at(ov.field) << ";\n";
-    h_ << "    return impact_status::ok;\n}\n\n";
+    // The inputs captured by value (see fail_lambda: by reference g++ keeps them in memory).
+    h_ << "    return detail::" << o_.name << "_fast<T, with_energy_lost>(" << args()
+       << "out, [=, &out]() noexcept { return detail::" << checked() << "<T, with_energy_lost>(" << args()
+       << "out); });\n}\n\n";
+}
+
+// The slow paths of the array and struct forms: the checked version with the inputs read
+// from memory, out of line (cold).
+void writer::straight_slow_paths()
+{
+    for (bool by_name : {false, true}) {
+        h_ << "/// The slow path of " << o_.name << " with the inputs " << (by_name ? "by name" : "in an array")
+           << ", out of line.\n";
+        h_ << "template <typename T, bool with_energy_lost>\nIMPACTGEN_COLD IMPACTGEN_FUNC impact_status " << checked()
+           << "_in(" << (by_name ? "const " + input_struct() + "<T>& in, " : std::string("const T* in, ")) << result()
+           << "<T>& out) noexcept\n{\n";
+        if (input_names_.empty())
+            h_ << "    (void)in;\n";
+        h_ << "    return " << checked() << "<T, with_energy_lost>(";
+        for (std::size_t i = 0; i < input_names_.size(); ++i)
+            h_ << (by_name ? "in." + input_names_[i] : "in[" + std::to_string(i) + "]") << ", ";
+        h_ << "out);\n}\n\n";
+    }
 }
 
 // The unchecked variant: the checked form's arithmetic with only the checks of the state.

@@ -327,12 +327,18 @@ void writer::forwarding_form(bool by_name)
     h_ << "template <typename T, bool with_energy_lost = true>\nIMPACTGEN_HOT IMPACTGEN_FUNC " << status_type() << " "
        << o_.name << (by_name ? "(const " + input_struct() + "<T>& in, " : std::string("(const T* in, ")) << result()
        << "<T>& out) noexcept\n{\n";
-    if (input_names_.empty())
+    if (input_names_.empty() && !straight())
         h_ << "    (void)in;\n";
-    h_ << "    return " << o_.name << "<T, with_energy_lost>(";
+    // A straight header's fast path with the slow path that reads the inputs from in (see
+    // fast_function); any other header's function with the inputs.
+    h_ << "    return " << (straight() ? "detail::" + o_.name + "_fast" : o_.name) << "<T, with_energy_lost>(";
     for (std::size_t i = 0; i < input_names_.size(); ++i)
         h_ << (by_name ? "in." + input_names_[i] : "in[" + std::to_string(i) + "]") << ", ";
-    h_ << "out);\n}\n\n";
+    if (straight())
+        h_ << "out, [" << (by_name ? "&in" : "in") << ", &out]() noexcept { return detail::" << checked()
+           << "_in<T, with_energy_lost>(in, out); });\n}\n\n";
+    else
+        h_ << "out);\n}\n\n";
 }
 
 void writer::loop_batch()

@@ -322,27 +322,12 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status central_oblique_checked(T e, T m1, T
 }
 } // namespace detail
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then out holds the state unchanged: velocities as before, impulses zero).
-/// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::central_oblique_checked) that
-/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
-/// neither computed nor checked (the rest is the same).
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   R1: appears in r_n1
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   v_b1: velocity of the centre of mass of 1 before impact, b
-///   m2: mass of 2 (> 0)
-///   R2: position of the centre of mass of 2 from the origin, n
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   v_b2: velocity of the centre of mass of 2 before impact, b
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+namespace detail {
+/// The fast path of central_oblique: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique_fast(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out, Slow slow) noexcept
 {
     const T w_1 = T(1) / m1;
     const T w_2 = T(1) / m2;
@@ -361,9 +346,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(w_1), T(w_2), T(-u)) + T(((R1 + R2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) * T(0)) + T(with_energy_lost ? T((o_v_n1 + o_v_n2) + o_energy_lost) : T(o_v_n1 + o_v_n2)) * T(0)) > T(0));
+                    (T(T(detail::min_of(detail::min_of(T(w_1), T(w_2)), T(-u)) + T(((R1 + R2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) * T(0)) + T(with_energy_lost ? T((o_v_n1 + o_v_n2) + o_energy_lost) : T(o_v_n1 + o_v_n2)) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::central_oblique_checked<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out);
+        return slow();
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.v_b1 = o_v_b1;
@@ -374,6 +359,46 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
     return impact_status::ok;
+}
+
+/// The slow path of central_oblique with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status central_oblique_checked_in(const T* in, central_oblique_result<T>& out) noexcept
+{
+    return central_oblique_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
+}
+
+/// The slow path of central_oblique with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status central_oblique_checked_in(const central_oblique_input<T>& in, central_oblique_result<T>& out) noexcept
+{
+    return central_oblique_checked<T, with_energy_lost>(in.e, in.m1, in.R1, in.v_t1, in.v_n1, in.v_b1, in.m2, in.R2, in.v_t2, in.v_n2, in.v_b2, out);
+}
+
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
+/// The checks do not branch one by one: they are folded into a few tests (detail::central_oblique_fast),
+/// and only inputs that fail one of them take the slow path (detail::central_oblique_checked) that
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   R1: appears in r_n1
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   v_b1: velocity of the centre of mass of 1 before impact, b
+///   m2: mass of 2 (> 0)
+///   R2: position of the centre of mass of 2 from the origin, n
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   v_b2: velocity of the centre of mass of 2 before impact, b
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(T e, T m1, T R1, T v_t1, T v_n1, T v_b1, T m2, T R2, T v_t2, T v_n2, T v_b2, central_oblique_result<T>& out) noexcept
+{
+    return detail::central_oblique_fast<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out, [=, &out]() noexcept { return detail::central_oblique_checked<T, with_energy_lost>(e, m1, R1, v_t1, v_n1, v_b1, m2, R2, v_t2, v_n2, v_b2, out); });
 }
 
 /// central_oblique without the per-call validation, for inputs the caller validated once
@@ -417,14 +442,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique_unchecked(T e, T m1, 
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(const T* in, central_oblique_result<T>& out) noexcept
 {
-    return central_oblique<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out);
+    return detail::central_oblique_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], out, [in, &out]() noexcept { return detail::central_oblique_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: central_oblique_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status central_oblique(const central_oblique_input<T>& in, central_oblique_result<T>& out) noexcept
 {
-    return central_oblique<T, with_energy_lost>(in.e, in.m1, in.R1, in.v_t1, in.v_n1, in.v_b1, in.m2, in.R2, in.v_t2, in.v_n2, in.v_b2, out);
+    return detail::central_oblique_fast<T, with_energy_lost>(in.e, in.m1, in.R1, in.v_t1, in.v_n1, in.v_b1, in.m2, in.R2, in.v_t2, in.v_n2, in.v_b2, out, [&in, &out]() noexcept { return detail::central_oblique_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -476,7 +501,7 @@ IMPACTGEN_FUNC unsigned central_oblique_batch_pass(long n, const T* IMPACTGEN_RE
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= detail::smallest_normal<T>()) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(w_1), T(w_2), T(-u)) + T(((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (R1 + R2))) + k) * T(0)) + T(with_energy_lost ? T((o_v_n1 + o_v_n2) + o_energy_lost) : T(o_v_n1 + o_v_n2)) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(detail::min_of(T(w_1), T(w_2)), T(-u)) + T(((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (R1 + R2))) + k) * T(0)) + T(with_energy_lost ? T((o_v_n1 + o_v_n2) + o_energy_lost) : T(o_v_n1 + o_v_n2)) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -373,12 +373,76 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status massive_3d_checked(T e, T m1, T I1_t
 }
 } // namespace detail
 
+namespace detail {
+/// The fast path of massive_3d: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d_fast(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out, Slow slow) noexcept
+{
+    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
+    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
+    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
+    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
+    const T inv_D_1 = T(1) / D_1;
+    const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
+    const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
+    const T g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn;
+    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1);
+    const T inv_m1 = T(1) / m1;
+    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    const T u_p1 = r_t1 * w_b1;
+    const T u_p2 = r_b1 * w_t1;
+    const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
+    const T N = -(u * (T(1) + e) / w_1);
+    const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - inv_m1 * N;
+    const T o_v_b1 = v_b1;
+    const T o_w_t1 = w_t1 - g_t1 * N;
+    const T o_w_n1 = w_n1 - g_n1 * N;
+    const T o_w_b1 = w_b1 - g_b1 * N;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
+    // checks: 0 <= e <= 1; mass of 1 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
+    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
+                    (T(T(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(I1_tt)), detail::min_of(T(inv_D_1), T(g_b1_p1))), detail::min_of(T(w_1), T(-u))) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return slow();
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.v_b1 = o_v_b1;
+    out.w_t1 = o_w_t1;
+    out.w_n1 = o_w_n1;
+    out.w_b1 = o_w_b1;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// The slow path of massive_3d with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status massive_3d_checked_in(const T* in, massive_3d_result<T>& out) noexcept
+{
+    return massive_3d_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out);
+}
+
+/// The slow path of massive_3d with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status massive_3d_checked_in(const massive_3d_input<T>& in, massive_3d_result<T>& out) noexcept
+{
+    return massive_3d_checked<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+}
+
+} // namespace detail
+
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::massive_3d_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (detail::massive_3d_fast),
+/// and only inputs that fail one of them take the slow path (detail::massive_3d_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -410,46 +474,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status massive_3d_checked(T e, T m1, T I1_t
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, massive_3d_result<T>& out) noexcept
 {
-    const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
-    const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
-    const T D_1_p3 = I1_bb * I1_tn - I1_nb * I1_tb;
-    const T D_1 = D_1_p1 * I1_tt + I1_tb * D_1_p2 - I1_tn * D_1_p3;
-    const T inv_D_1 = T(1) / D_1;
-    const T g_t1 = (D_1_p1 * r_b1 - D_1_p2 * r_t1) * inv_D_1;
-    const T g_n1 = -(inv_D_1 * (D_1_p3 * r_b1 - r_t1 * (I1_nb * I1_tt - I1_tn * I1_tb)));
-    const T g_b1_p1 = I1_nn * I1_tt - I1_tn * I1_tn;
-    const T g_b1 = inv_D_1 * (D_1_p2 * r_b1 - r_t1 * g_b1_p1);
-    const T inv_m1 = T(1) / m1;
-    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-    const T u_p1 = r_t1 * w_b1;
-    const T u_p2 = r_b1 * w_t1;
-    const T u = r_b2 * w_t2 + u_p1 + v_n2 - u_p2 - r_t2 * w_b2 - v_n1;
-    const T N = -(u * (T(1) + e) / w_1);
-    const T T_lost = N * (u_p2 + v_n1 - u_p1) - w_1 * N * N * (T(1) / T(2));
-    const T o_v_t1 = v_t1;
-    const T o_v_n1 = v_n1 - inv_m1 * N;
-    const T o_v_b1 = v_b1;
-    const T o_w_t1 = w_t1 - g_t1 * N;
-    const T o_w_n1 = w_n1 - g_n1 * N;
-    const T o_w_b1 = w_b1 - g_b1 * N;
-    const T o_normal_impulse = N;
-    const T o_approach_velocity = u;
-    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; mass of 1 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
-    const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0));
-    if (!ok) // some check failed (or a value is not finite): find which
-        return detail::massive_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
-    out.v_t1 = o_v_t1;
-    out.v_n1 = o_v_n1;
-    out.v_b1 = o_v_b1;
-    out.w_t1 = o_w_t1;
-    out.w_n1 = o_w_n1;
-    out.w_b1 = o_w_b1;
-    out.normal_impulse = o_normal_impulse;
-    out.approach_velocity = o_approach_velocity;
-    out.energy_lost = o_energy_lost;
-    return impact_status::ok;
+    return detail::massive_3d_fast<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out, [=, &out]() noexcept { return detail::massive_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out); });
 }
 
 /// massive_3d without the per-call validation, for inputs the caller validated once
@@ -502,14 +527,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d_unchecked(T e, T m1, T I1_
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(const T* in, massive_3d_result<T>& out) noexcept
 {
-    return massive_3d<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out);
+    return detail::massive_3d_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], out, [in, &out]() noexcept { return detail::massive_3d_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: massive_3d_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status massive_3d(const massive_3d_input<T>& in, massive_3d_result<T>& out) noexcept
 {
-    return massive_3d<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+    return detail::massive_3d_fast<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out, [&in, &out]() noexcept { return detail::massive_3d_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -582,7 +607,7 @@ IMPACTGEN_FUNC unsigned massive_3d_batch_pass(long n, const T* IMPACTGEN_RESTRIC
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; effective inverse mass k > 0, finite; the contact points approach: u < 0; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(I1_tt), T(inv_D_1), T(g_b1_p1), T(w_1), T(-u)) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(I1_tt)), detail::min_of(T(inv_D_1), T(g_b1_p1))), detail::min_of(T(w_1), T(-u))) + T(((w_n2 + (o_v_t1 + o_v_b1)) + ((r_n1 + r_n2) + (v_t2 + v_b2))) + w_1) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + o_energy_lost) : T((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

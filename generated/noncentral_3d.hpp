@@ -441,49 +441,12 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked(T e, T m1, T I
 }
 } // namespace detail
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then out holds the state unchanged: velocities as before, impulses zero).
-/// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::noncentral_3d_checked) that
-/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
-/// neither computed nor checked (the rest is the same).
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   I1_tt: inertia tensor of 1 about its centre of mass, tt entry
-///   I1_tn: inertia tensor of 1 about its centre of mass, tn entry
-///   I1_tb: inertia tensor of 1 about its centre of mass, tb entry
-///   I1_nn: inertia tensor of 1 about its centre of mass, nn entry
-///   I1_nb: inertia tensor of 1 about its centre of mass, nb entry
-///   I1_bb: inertia tensor of 1 about its centre of mass, bb entry
-///   r_t1: position of the centre of mass of 1 from the origin, t
-///   r_n1: position of the centre of mass of 1 from the origin, n
-///   r_b1: position of the centre of mass of 1 from the origin, b
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   v_b1: velocity of the centre of mass of 1 before impact, b
-///   w_t1: angular velocity of 1 before impact, t
-///   w_n1: angular velocity of 1 before impact, n
-///   w_b1: angular velocity of 1 before impact, b
-///   m2: mass of 2 (> 0)
-///   I2_tt: inertia tensor of 2 about its centre of mass, tt entry
-///   I2_tn: inertia tensor of 2 about its centre of mass, tn entry
-///   I2_tb: inertia tensor of 2 about its centre of mass, tb entry
-///   I2_nn: inertia tensor of 2 about its centre of mass, nn entry
-///   I2_nb: inertia tensor of 2 about its centre of mass, nb entry
-///   I2_bb: inertia tensor of 2 about its centre of mass, bb entry
-///   r_t2: position of the centre of mass of 2 from the origin, t
-///   r_n2: position of the centre of mass of 2 from the origin, n
-///   r_b2: position of the centre of mass of 2 from the origin, b
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   v_b2: velocity of the centre of mass of 2 before impact, b
-///   w_t2: angular velocity of 2 before impact, t
-///   w_n2: angular velocity of 2 before impact, n
-///   w_b2: angular velocity of 2 before impact, b
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
+namespace detail {
+/// The fast path of noncentral_3d: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_fast(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out, Slow slow) noexcept
 {
     const T D_1_p1 = I1_bb * I1_nn - I1_nb * I1_nb;
     const T D_1_p2 = I1_nb * I1_tn - I1_nn * I1_tb;
@@ -528,9 +491,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) + T(((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0));
+                    (T(T(detail::min_of(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(inv_m2)), detail::min_of(T(I1_tt), T(I2_tt))), detail::min_of(detail::min_of(T(inv_D_1), T(g_b1_p1)), detail::min_of(T(inv_D_2), T(g_b2_p1)))), detail::min_of(T(-u), T(k))) + T(((r_n1 + r_n2) + ((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::noncentral_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
+        return slow();
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.v_b1 = o_v_b1;
@@ -547,6 +510,68 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
     return impact_status::ok;
+}
+
+/// The slow path of noncentral_3d with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked_in(const T* in, noncentral_3d_result<T>& out) noexcept
+{
+    return noncentral_3d_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
+}
+
+/// The slow path of noncentral_3d with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_checked_in(const noncentral_3d_input<T>& in, noncentral_3d_result<T>& out) noexcept
+{
+    return noncentral_3d_checked<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.m2, in.I2_tt, in.I2_tn, in.I2_tb, in.I2_nn, in.I2_nb, in.I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+}
+
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
+/// The checks do not branch one by one: they are folded into a few tests (detail::noncentral_3d_fast),
+/// and only inputs that fail one of them take the slow path (detail::noncentral_3d_checked) that
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   I1_tt: inertia tensor of 1 about its centre of mass, tt entry
+///   I1_tn: inertia tensor of 1 about its centre of mass, tn entry
+///   I1_tb: inertia tensor of 1 about its centre of mass, tb entry
+///   I1_nn: inertia tensor of 1 about its centre of mass, nn entry
+///   I1_nb: inertia tensor of 1 about its centre of mass, nb entry
+///   I1_bb: inertia tensor of 1 about its centre of mass, bb entry
+///   r_t1: position of the centre of mass of 1 from the origin, t
+///   r_n1: position of the centre of mass of 1 from the origin, n
+///   r_b1: position of the centre of mass of 1 from the origin, b
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   v_b1: velocity of the centre of mass of 1 before impact, b
+///   w_t1: angular velocity of 1 before impact, t
+///   w_n1: angular velocity of 1 before impact, n
+///   w_b1: angular velocity of 1 before impact, b
+///   m2: mass of 2 (> 0)
+///   I2_tt: inertia tensor of 2 about its centre of mass, tt entry
+///   I2_tn: inertia tensor of 2 about its centre of mass, tn entry
+///   I2_tb: inertia tensor of 2 about its centre of mass, tb entry
+///   I2_nn: inertia tensor of 2 about its centre of mass, nn entry
+///   I2_nb: inertia tensor of 2 about its centre of mass, nb entry
+///   I2_bb: inertia tensor of 2 about its centre of mass, bb entry
+///   r_t2: position of the centre of mass of 2 from the origin, t
+///   r_n2: position of the centre of mass of 2 from the origin, n
+///   r_b2: position of the centre of mass of 2 from the origin, b
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   v_b2: velocity of the centre of mass of 2 before impact, b
+///   w_t2: angular velocity of 2 before impact, t
+///   w_n2: angular velocity of 2 before impact, n
+///   w_b2: angular velocity of 2 before impact, b
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(T e, T m1, T I1_tt, T I1_tn, T I1_tb, T I1_nn, T I1_nb, T I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T m2, T I2_tt, T I2_tn, T I2_tb, T I2_nn, T I2_nb, T I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_result<T>& out) noexcept
+{
+    return detail::noncentral_3d_fast<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out, [=, &out]() noexcept { return detail::noncentral_3d_checked<T, with_energy_lost>(e, m1, I1_tt, I1_tn, I1_tb, I1_nn, I1_nb, I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, m2, I2_tt, I2_tn, I2_tb, I2_nn, I2_nb, I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out); });
 }
 
 /// noncentral_3d without the per-call validation, for inputs the caller validated once
@@ -614,14 +639,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_unchecked(T e, T m1, T 
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(const T* in, noncentral_3d_result<T>& out) noexcept
 {
-    return noncentral_3d<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
+    return detail::noncentral_3d_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out, [in, &out]() noexcept { return detail::noncentral_3d_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: noncentral_3d_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d(const noncentral_3d_input<T>& in, noncentral_3d_result<T>& out) noexcept
 {
-    return noncentral_3d<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.m2, in.I2_tt, in.I2_tn, in.I2_tb, in.I2_nn, in.I2_nb, in.I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+    return detail::noncentral_3d_fast<T, with_energy_lost>(in.e, in.m1, in.I1_tt, in.I1_tn, in.I1_tb, in.I1_nn, in.I1_nb, in.I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.m2, in.I2_tt, in.I2_tn, in.I2_tb, in.I2_nn, in.I2_nb, in.I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out, [&in, &out]() noexcept { return detail::noncentral_3d_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -721,7 +746,7 @@ IMPACTGEN_FUNC unsigned noncentral_3d_batch_pass(long n, const T* IMPACTGEN_REST
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; inertia tensor of 1 positive definite: tt entry > 0, finite; inertia tensor of 2 positive definite: tt entry > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 1 positive definite: minor tt nn - tn^2 > 0, finite; determinant of the inertia tensor > 0, finite; inertia tensor of 2 positive definite: minor tt nn - tn^2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
                          static_cast<unsigned>(rcp_q1 >= detail::smallest_normal<T>()) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(inv_m2), T(I1_tt), T(I2_tt), T(inv_D_1), T(g_b1_p1), T(inv_D_2), T(g_b2_p1), T(-u), T(k)) + T(((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(inv_m2)), detail::min_of(T(I1_tt), T(I2_tt))), detail::min_of(detail::min_of(T(inv_D_1), T(g_b1_p1)), detail::min_of(T(inv_D_2), T(g_b2_p1)))), detail::min_of(T(-u), T(k))) + T(((rcp_q1 + (o_v_t1 + o_v_b1)) + ((o_v_t2 + o_v_b2) + (r_n1 + r_n2))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -3,8 +3,8 @@
 // Closed form of the smooth impact, specialised; plain C++17, no dependency, no allocation.
 // Arithmetic per call: 40 add/sub, 59 mul, 1 div, 0 sqrt (closed form);
 //   validity checks: 0 add/sub, 0 mul, 0 div, 0 sqrt + 16 add (finiteness of the result), and comparisons;
-//   fast path (inputs that pass every check): 40 add/sub, 59 mul, 1 div, 0 sqrt + 25 add, 2 fma, 18 min (checks), 2 tests;
-//   batch loop: 40 add/sub, 59 mul, 1 div, 0 sqrt + 25 add, 2 fma, 18 min (checks) per impact, no branch.
+//   fast path (inputs that pass every check): 40 add/sub, 59 mul, 1 div, 0 sqrt + 21 add, 2 fma, 18 min (checks), 2 tests;
+//   batch loop: 40 add/sub, 59 mul, 1 div, 0 sqrt + 21 add, 2 fma, 18 min (checks) per impact, no branch.
 #pragma once
 
 #include <limits>
@@ -449,12 +449,92 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked(T e, T 
 }
 } // namespace detail
 
+namespace detail {
+/// The fast path of noncentral_3d_engine: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine_fast(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out, Slow slow) noexcept
+{
+    const T check_p1 = inv_I1_tt * inv_I1_nn - inv_I1_tn * inv_I1_tn;
+    const T check_p2 = inv_I1_tt * inv_I1_bb - inv_I1_tb * inv_I1_tb;
+    const T check_p3 = inv_I1_bb * inv_I1_nn - inv_I1_nb * inv_I1_nb;
+    const T check_p4 = inv_I1_tt * check_p3 + inv_I1_tb * (inv_I1_tn * inv_I1_nb - inv_I1_tb * inv_I1_nn) - inv_I1_tn * (inv_I1_tn * inv_I1_bb - inv_I1_tb * inv_I1_nb);
+    const T check_p5 = inv_I2_tt * inv_I2_nn - inv_I2_tn * inv_I2_tn;
+    const T check_p6 = inv_I2_tt * inv_I2_bb - inv_I2_tb * inv_I2_tb;
+    const T check_p7 = inv_I2_bb * inv_I2_nn - inv_I2_nb * inv_I2_nb;
+    const T check_p8 = inv_I2_tt * check_p7 + inv_I2_tb * (inv_I2_tn * inv_I2_nb - inv_I2_tb * inv_I2_nn) - inv_I2_tn * (inv_I2_tn * inv_I2_bb - inv_I2_tb * inv_I2_nb);
+    const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
+    const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
+    const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
+    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
+    const T g_t2 = inv_I2_tt * r_b2 - inv_I2_tb * r_t2;
+    const T g_n2 = r_b2 * inv_I2_tn - r_t2 * inv_I2_nb;
+    const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
+    const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
+    const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
+    const T k = w_1 + w_2;
+    const T N = -(u * (e + T(1)) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - inv_m1 * N;
+    const T o_v_b1 = v_b1;
+    const T o_w_t1 = w_t1 - g_t1 * N;
+    const T o_w_n1 = w_n1 - g_n1 * N;
+    const T o_w_b1 = w_b1 - g_b1 * N;
+    const T o_v_t2 = v_t2;
+    const T o_v_n2 = v_n2 + inv_m2 * N;
+    const T o_v_b2 = v_b2;
+    const T o_w_t2 = w_t2 + g_t2 * N;
+    const T o_w_n2 = g_n2 * N + w_n2;
+    const T o_w_b2 = w_b2 + g_b2 * N;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
+    // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: determinant >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: determinant >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (detail::min_of(detail::min_of(detail::min_of(detail::min_of(detail::min_of(T(e), T(T(1) - e)), detail::min_of(T(inv_m1), T(inv_m2))), detail::min_of(detail::min_of(T(inv_I1_tt), T(inv_I1_nn)), detail::min_of(T(inv_I1_bb), T(inv_I2_tt)))), detail::min_of(detail::min_of(detail::min_of(T(inv_I2_nn), T(inv_I2_bb)), detail::min_of(T(check_p1), T(check_p2))), detail::min_of(detail::min_of(T(check_p3), T(check_p4)), detail::min_of(T(check_p5), T(check_p6))))), detail::min_of(T(check_p7), T(check_p8))) >= T(0)) &&
+                    (T(T(detail::min_of(T(-u), T(k)) + T((((check_p4 + check_p5) + (check_p6 + check_p8)) + (((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)) + ((r_n1 + r_n2) + (check_p1 + check_p2)))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return slow();
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.v_b1 = o_v_b1;
+    out.w_t1 = o_w_t1;
+    out.w_n1 = o_w_n1;
+    out.w_b1 = o_w_b1;
+    out.v_t2 = o_v_t2;
+    out.v_n2 = o_v_n2;
+    out.v_b2 = o_v_b2;
+    out.w_t2 = o_w_t2;
+    out.w_n2 = o_w_n2;
+    out.w_b2 = o_w_b2;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// The slow path of noncentral_3d_engine with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked_in(const T* in, noncentral_3d_engine_result<T>& out) noexcept
+{
+    return noncentral_3d_engine_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
+}
+
+/// The slow path of noncentral_3d_engine with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked_in(const noncentral_3d_engine_input<T>& in, noncentral_3d_engine_result<T>& out) noexcept
+{
+    return noncentral_3d_engine_checked<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1_tt, in.inv_I1_tn, in.inv_I1_tb, in.inv_I1_nn, in.inv_I1_nb, in.inv_I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.inv_m2, in.inv_I2_tt, in.inv_I2_tn, in.inv_I2_tb, in.inv_I2_nn, in.inv_I2_nb, in.inv_I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+}
+
+} // namespace detail
+
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::noncentral_3d_engine_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (detail::noncentral_3d_engine_fast),
+/// and only inputs that fail one of them take the slow path (detail::noncentral_3d_engine_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -493,62 +573,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status noncentral_3d_engine_checked(T e, T 
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(T e, T inv_m1, T inv_I1_tt, T inv_I1_tn, T inv_I1_tb, T inv_I1_nn, T inv_I1_nb, T inv_I1_bb, T r_t1, T r_n1, T r_b1, T v_t1, T v_n1, T v_b1, T w_t1, T w_n1, T w_b1, T inv_m2, T inv_I2_tt, T inv_I2_tn, T inv_I2_tb, T inv_I2_nn, T inv_I2_nb, T inv_I2_bb, T r_t2, T r_n2, T r_b2, T v_t2, T v_n2, T v_b2, T w_t2, T w_n2, T w_b2, noncentral_3d_engine_result<T>& out) noexcept
 {
-    const T check_p1 = inv_I1_tt * inv_I1_nn - inv_I1_tn * inv_I1_tn;
-    const T check_p2 = inv_I1_tt * inv_I1_bb - inv_I1_tb * inv_I1_tb;
-    const T check_p3 = inv_I1_bb * inv_I1_nn - inv_I1_nb * inv_I1_nb;
-    const T check_p4 = inv_I1_tt * check_p3 + inv_I1_tb * (inv_I1_tn * inv_I1_nb - inv_I1_tb * inv_I1_nn) - inv_I1_tn * (inv_I1_tn * inv_I1_bb - inv_I1_tb * inv_I1_nb);
-    const T check_p5 = inv_I2_tt * inv_I2_nn - inv_I2_tn * inv_I2_tn;
-    const T check_p6 = inv_I2_tt * inv_I2_bb - inv_I2_tb * inv_I2_tb;
-    const T check_p7 = inv_I2_bb * inv_I2_nn - inv_I2_nb * inv_I2_nb;
-    const T check_p8 = inv_I2_tt * check_p7 + inv_I2_tb * (inv_I2_tn * inv_I2_nb - inv_I2_tb * inv_I2_nn) - inv_I2_tn * (inv_I2_tn * inv_I2_bb - inv_I2_tb * inv_I2_nb);
-    const T g_t1 = inv_I1_tt * r_b1 - inv_I1_tb * r_t1;
-    const T g_n1 = r_b1 * inv_I1_tn - r_t1 * inv_I1_nb;
-    const T g_b1 = r_b1 * inv_I1_tb - r_t1 * inv_I1_bb;
-    const T w_1 = r_b1 * g_t1 + inv_m1 - r_t1 * g_b1;
-    const T g_t2 = inv_I2_tt * r_b2 - inv_I2_tb * r_t2;
-    const T g_n2 = r_b2 * inv_I2_tn - r_t2 * inv_I2_nb;
-    const T g_b2 = r_b2 * inv_I2_tb - r_t2 * inv_I2_bb;
-    const T w_2 = r_b2 * g_t2 + inv_m2 - r_t2 * g_b2;
-    const T u = r_b2 * w_t2 + r_t1 * w_b1 + v_n2 - r_b1 * w_t1 - r_t2 * w_b2 - v_n1;
-    const T k = w_1 + w_2;
-    const T N = -(u * (e + T(1)) / k);
-    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
-    const T o_v_t1 = v_t1;
-    const T o_v_n1 = v_n1 - inv_m1 * N;
-    const T o_v_b1 = v_b1;
-    const T o_w_t1 = w_t1 - g_t1 * N;
-    const T o_w_n1 = w_n1 - g_n1 * N;
-    const T o_w_b1 = w_b1 - g_b1 * N;
-    const T o_v_t2 = v_t2;
-    const T o_v_n2 = v_n2 + inv_m2 * N;
-    const T o_v_b2 = v_b2;
-    const T o_w_t2 = w_t2 + g_t2 * N;
-    const T o_w_n2 = g_n2 * N + w_n2;
-    const T o_w_b2 = w_b2 + g_b2 * N;
-    const T o_normal_impulse = N;
-    const T o_approach_velocity = u;
-    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: determinant >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: determinant >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_m2), T(inv_I1_tt), T(inv_I1_nn), T(inv_I1_bb), T(inv_I2_tt), T(inv_I2_nn), T(inv_I2_bb), T(check_p1), T(check_p2), T(check_p3), T(check_p4), T(check_p5), T(check_p6), T(check_p7), T(check_p8)) >= T(0)) &&
-                    (T(T(detail::min_of(T(-u), T(k)) + T(((((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)) + ((r_n1 + r_n2) + (inv_I1_nn + inv_I2_nn))) + (((check_p1 + check_p2) + (check_p3 + check_p4)) + ((check_p5 + check_p6) + (check_p7 + check_p8)))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0));
-    if (!ok) // some check failed (or a value is not finite): find which
-        return detail::noncentral_3d_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out);
-    out.v_t1 = o_v_t1;
-    out.v_n1 = o_v_n1;
-    out.v_b1 = o_v_b1;
-    out.w_t1 = o_w_t1;
-    out.w_n1 = o_w_n1;
-    out.w_b1 = o_w_b1;
-    out.v_t2 = o_v_t2;
-    out.v_n2 = o_v_n2;
-    out.v_b2 = o_v_b2;
-    out.w_t2 = o_w_t2;
-    out.w_n2 = o_w_n2;
-    out.w_b2 = o_w_b2;
-    out.normal_impulse = o_normal_impulse;
-    out.approach_velocity = o_approach_velocity;
-    out.energy_lost = o_energy_lost;
-    return impact_status::ok;
+    return detail::noncentral_3d_engine_fast<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out, [=, &out]() noexcept { return detail::noncentral_3d_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1_tt, inv_I1_tn, inv_I1_tb, inv_I1_nn, inv_I1_nb, inv_I1_bb, r_t1, r_n1, r_b1, v_t1, v_n1, v_b1, w_t1, w_n1, w_b1, inv_m2, inv_I2_tt, inv_I2_tn, inv_I2_tb, inv_I2_nn, inv_I2_nb, inv_I2_bb, r_t2, r_n2, r_b2, v_t2, v_n2, v_b2, w_t2, w_n2, w_b2, out); });
 }
 
 /// noncentral_3d_engine without the per-call validation, for inputs the caller validated once
@@ -604,14 +629,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine_unchecked(T e, T
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(const T* in, noncentral_3d_engine_result<T>& out) noexcept
 {
-    return noncentral_3d_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out);
+    return detail::noncentral_3d_engine_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], in[15], in[16], in[17], in[18], in[19], in[20], in[21], in[22], in[23], in[24], in[25], in[26], in[27], in[28], in[29], in[30], in[31], in[32], out, [in, &out]() noexcept { return detail::noncentral_3d_engine_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: noncentral_3d_engine_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status noncentral_3d_engine(const noncentral_3d_engine_input<T>& in, noncentral_3d_engine_result<T>& out) noexcept
 {
-    return noncentral_3d_engine<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1_tt, in.inv_I1_tn, in.inv_I1_tb, in.inv_I1_nn, in.inv_I1_nb, in.inv_I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.inv_m2, in.inv_I2_tt, in.inv_I2_tn, in.inv_I2_tb, in.inv_I2_nn, in.inv_I2_nb, in.inv_I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out);
+    return detail::noncentral_3d_engine_fast<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1_tt, in.inv_I1_tn, in.inv_I1_tb, in.inv_I1_nn, in.inv_I1_nb, in.inv_I1_bb, in.r_t1, in.r_n1, in.r_b1, in.v_t1, in.v_n1, in.v_b1, in.w_t1, in.w_n1, in.w_b1, in.inv_m2, in.inv_I2_tt, in.inv_I2_tn, in.inv_I2_tb, in.inv_I2_nn, in.inv_I2_nb, in.inv_I2_bb, in.r_t2, in.r_n2, in.r_b2, in.v_t2, in.v_n2, in.v_b2, in.w_t2, in.w_n2, in.w_b2, out, [&in, &out]() noexcept { return detail::noncentral_3d_engine_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -700,8 +725,8 @@ IMPACTGEN_FUNC unsigned noncentral_3d_engine_batch_pass(long n, const T* IMPACTG
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: tt entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: nn entry >= 0, finite; inverse inertia tensor of 2 positive semidefinite: bb entry >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 1 positive semidefinite: determinant >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt nn - tn^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor tt bb - tb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: minor nn bb - nb^2 >= 0, finite; inverse inertia tensor of 2 positive semidefinite: determinant >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_m2), T(inv_I1_tt), T(inv_I1_nn), T(inv_I1_bb), T(inv_I2_tt), T(inv_I2_nn), T(inv_I2_bb), T(check_p1), T(check_p2), T(check_p3), T(check_p4), T(check_p5), T(check_p6), T(check_p7), T(check_p8)) >= T(0)) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(-u), T(k)) + T(((((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)) + ((r_n1 + r_n2) + (inv_I1_nn + inv_I2_nn))) + (((check_p1 + check_p2) + (check_p3 + check_p4)) + ((check_p5 + check_p6) + (check_p7 + check_p8)))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0))) != 0u;
+        const bool ok = (static_cast<unsigned>(detail::min_of(detail::min_of(detail::min_of(detail::min_of(detail::min_of(T(e), T(T(1) - e)), detail::min_of(T(inv_m1), T(inv_m2))), detail::min_of(detail::min_of(T(inv_I1_tt), T(inv_I1_nn)), detail::min_of(T(inv_I1_bb), T(inv_I2_tt)))), detail::min_of(detail::min_of(detail::min_of(T(inv_I2_nn), T(inv_I2_bb)), detail::min_of(T(check_p1), T(check_p2))), detail::min_of(detail::min_of(T(check_p3), T(check_p4)), detail::min_of(T(check_p5), T(check_p6))))), detail::min_of(T(check_p7), T(check_p8))) >= T(0)) &
+                         static_cast<unsigned>(T(T(detail::min_of(T(-u), T(k)) + T((((check_p4 + check_p5) + (check_p6 + check_p8)) + (((o_v_t1 + o_v_b1) + (o_v_t2 + o_v_b2)) + ((r_n1 + r_n2) + (check_p1 + check_p2)))) + k) * T(0)) + T(with_energy_lost ? T((((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2))) + o_energy_lost) : T(((o_v_n1 + o_w_t1) + (o_w_n1 + o_w_b1)) + ((o_v_n2 + o_w_t2) + (o_w_n2 + o_w_b2)))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_v_b1[i] = o_v_b1;

@@ -330,21 +330,12 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked(T e, T m1, T l
 }
 } // namespace detail
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then out holds the state unchanged: velocities as before, impulses zero).
-/// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
-/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
-/// neither computed nor checked (the rest is the same).
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   l: appears in r_y1, I2, r_y2, O_y
-///   v1: velocity of the centre of mass of 1 before impact, x
-///   m2: mass of 2 (> 0)
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+namespace detail {
+/// The fast path of pinned_planar: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar_fast(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out, Slow slow) noexcept
 {
     const T w_1 = T(1) / m1;
     const T I_E2_p1 = l * l;
@@ -369,9 +360,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(inv_I_E2), T(w_1), T(m2), T(-u)) + T((k + o_v_x1) + (o_v_x2 + o_w_z2)) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0));
+                    (T(T(detail::min_of(detail::min_of(T(inv_I_E2), T(w_1)), detail::min_of(T(m2), T(-u))) + T((k + o_v_x1) + (o_v_x2 + o_w_z2)) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out);
+        return slow();
     out.v_x1 = o_v_x1;
     out.v_y1 = o_v_y1;
     out.v_x2 = o_v_x2;
@@ -383,6 +374,40 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
     return impact_status::ok;
+}
+
+/// The slow path of pinned_planar with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked_in(const T* in, pinned_planar_result<T>& out) noexcept
+{
+    return pinned_planar_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
+}
+
+/// The slow path of pinned_planar with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status pinned_planar_checked_in(const pinned_planar_input<T>& in, pinned_planar_result<T>& out) noexcept
+{
+    return pinned_planar_checked<T, with_energy_lost>(in.e, in.m1, in.l, in.v1, in.m2, out);
+}
+
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
+/// The checks do not branch one by one: they are folded into a few tests (detail::pinned_planar_fast),
+/// and only inputs that fail one of them take the slow path (detail::pinned_planar_checked) that
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   l: appears in r_y1, I2, r_y2, O_y
+///   v1: velocity of the centre of mass of 1 before impact, x
+///   m2: mass of 2 (> 0)
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(T e, T m1, T l, T v1, T m2, pinned_planar_result<T>& out) noexcept
+{
+    return detail::pinned_planar_fast<T, with_energy_lost>(e, m1, l, v1, m2, out, [=, &out]() noexcept { return detail::pinned_planar_checked<T, with_energy_lost>(e, m1, l, v1, m2, out); });
 }
 
 /// pinned_planar without the per-call validation, for inputs the caller validated once
@@ -431,14 +456,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar_unchecked(T e, T m1, T 
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(const T* in, pinned_planar_result<T>& out) noexcept
 {
-    return pinned_planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out);
+    return detail::pinned_planar_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], out, [in, &out]() noexcept { return detail::pinned_planar_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: pinned_planar_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status pinned_planar(const pinned_planar_input<T>& in, pinned_planar_result<T>& out) noexcept
 {
-    return pinned_planar<T, with_energy_lost>(in.e, in.m1, in.l, in.v1, in.m2, out);
+    return detail::pinned_planar_fast<T, with_energy_lost>(in.e, in.m1, in.l, in.v1, in.m2, out, [&in, &out]() noexcept { return detail::pinned_planar_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -486,7 +511,7 @@ IMPACTGEN_FUNC unsigned pinned_planar_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(inv_I_E2), T(w_1), T(m2), T(-u)) + T((k + o_v_x1) + (o_v_x2 + o_w_z2)) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(T(T(detail::min_of(detail::min_of(T(inv_I_E2), T(w_1)), detail::min_of(T(m2), T(-u))) + T((k + o_v_x1) + (o_v_x2 + o_w_z2)) * T(0)) + T(with_energy_lost ? T(o_R_x2 + o_energy_lost) : T(o_R_x2)) * T(0)) > T(0))) != 0u;
         out_v_x1[i] = o_v_x1;
         out_v_y1[i] = o_v_y1;
         out_v_x2[i] = o_v_x2;

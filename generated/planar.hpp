@@ -341,31 +341,12 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_checked(T e, T m1, T I1, T r_
 }
 } // namespace detail
 
-/// Post-impact state for the inputs below; returns impact_status::ok, or why not
-/// (then out holds the state unchanged: velocities as before, impulses zero).
-/// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::planar_checked) that
-/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
-/// neither computed nor checked (the rest is the same).
-///   e: coefficient of restitution, 0 <= e <= 1
-///   m1: mass of 1 (> 0)
-///   I1: moment of inertia of 1 about its centre of mass (> 0)
-///   r_t1: position of the centre of mass of 1 from the origin, t
-///   r_n1: position of the centre of mass of 1 from the origin, n
-///   v_t1: velocity of the centre of mass of 1 before impact, t
-///   v_n1: velocity of the centre of mass of 1 before impact, n
-///   w_b1: angular velocity of 1 before impact, b
-///   m2: mass of 2 (> 0)
-///   I2: moment of inertia of 2 about its centre of mass (> 0)
-///   r_t2: position of the centre of mass of 2 from the origin, t
-///   r_n2: position of the centre of mass of 2 from the origin, n
-///   v_t2: velocity of the centre of mass of 2 before impact, t
-///   v_n2: velocity of the centre of mass of 2 before impact, n
-///   w_b2: angular velocity of 2 before impact, b
-template <typename T, bool with_energy_lost = true>
-IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
+namespace detail {
+/// The fast path of planar: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_fast(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out, Slow slow) noexcept
 {
     const T inv_I1 = T(1) / I1;
     const T inv_m1 = T(1) / m1;
@@ -388,9 +369,9 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n
     const T o_energy_lost = with_energy_lost ? T_lost : T(0);
     // checks: 0 <= e <= 1; mass of 1 > 0, finite; moment of inertia of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
     const bool ok = (detail::min_of(T(e), T(T(1) - e)) >= T(0)) &&
-                    (T(T(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
+                    (T(T(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(inv_I1)), detail::min_of(T(inv_m2), T(inv_I2))), T(-u)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
     if (!ok) // some check failed (or a value is not finite): find which
-        return detail::planar_checked<T, with_energy_lost>(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
+        return slow();
     out.v_t1 = o_v_t1;
     out.v_n1 = o_v_n1;
     out.w_b1 = o_w_b1;
@@ -401,6 +382,50 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n
     out.approach_velocity = o_approach_velocity;
     out.energy_lost = o_energy_lost;
     return impact_status::ok;
+}
+
+/// The slow path of planar with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_checked_in(const T* in, planar_result<T>& out) noexcept
+{
+    return planar_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+}
+
+/// The slow path of planar with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_checked_in(const planar_input<T>& in, planar_result<T>& out) noexcept
+{
+    return planar_checked<T, with_energy_lost>(in.e, in.m1, in.I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.m2, in.I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out);
+}
+
+} // namespace detail
+
+/// Post-impact state for the inputs below; returns impact_status::ok, or why not
+/// (then out holds the state unchanged: velocities as before, impulses zero).
+/// T: float, double, long double or alike (an autodiff scalar).
+/// The checks do not branch one by one: they are folded into a few tests (detail::planar_fast),
+/// and only inputs that fail one of them take the slow path (detail::planar_checked) that
+/// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
+/// neither computed nor checked (the rest is the same).
+///   e: coefficient of restitution, 0 <= e <= 1
+///   m1: mass of 1 (> 0)
+///   I1: moment of inertia of 1 about its centre of mass (> 0)
+///   r_t1: position of the centre of mass of 1 from the origin, t
+///   r_n1: position of the centre of mass of 1 from the origin, n
+///   v_t1: velocity of the centre of mass of 1 before impact, t
+///   v_n1: velocity of the centre of mass of 1 before impact, n
+///   w_b1: angular velocity of 1 before impact, b
+///   m2: mass of 2 (> 0)
+///   I2: moment of inertia of 2 about its centre of mass (> 0)
+///   r_t2: position of the centre of mass of 2 from the origin, t
+///   r_n2: position of the centre of mass of 2 from the origin, n
+///   v_t2: velocity of the centre of mass of 2 before impact, t
+///   v_n2: velocity of the centre of mass of 2 before impact, n
+///   w_b2: angular velocity of 2 before impact, b
+template <typename T, bool with_energy_lost = true>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(T e, T m1, T I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T m2, T I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_result<T>& out) noexcept
+{
+    return detail::planar_fast<T, with_energy_lost>(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out, [=, &out]() noexcept { return detail::planar_checked<T, with_energy_lost>(e, m1, I1, r_t1, r_n1, v_t1, v_n1, w_b1, m2, I2, r_t2, r_n2, v_t2, v_n2, w_b2, out); });
 }
 
 /// planar without the per-call validation, for inputs the caller validated once
@@ -448,14 +473,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_unchecked(T e, T m1, T I1, T r
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(const T* in, planar_result<T>& out) noexcept
 {
-    return planar<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+    return detail::planar_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out, [in, &out]() noexcept { return detail::planar_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: planar_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar(const planar_input<T>& in, planar_result<T>& out) noexcept
 {
-    return planar<T, with_energy_lost>(in.e, in.m1, in.I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.m2, in.I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out);
+    return detail::planar_fast<T, with_energy_lost>(in.e, in.m1, in.I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.m2, in.I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out, [&in, &out]() noexcept { return detail::planar_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -518,8 +543,8 @@ IMPACTGEN_FUNC unsigned planar_batch_pass(long n, const T* IMPACTGEN_RESTRICT in
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; mass of 1 > 0, finite; moment of inertia of 1 > 0, finite; mass of 2 > 0, finite; moment of inertia of 2 > 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; shared reciprocals in range; every value finite
         const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e)) >= T(0)) &
-                         static_cast<unsigned>(detail::min_of(T(rcp_q1), T(rcp_q2), T(rcp_p)) >= detail::smallest_normal<T>()) &
-                         static_cast<unsigned>(T(T(detail::min_of(T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2), T(-u)) + T(((r_n1 + r_n2) + (rcp_p + (o_v_t1 + o_v_t2))) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0))) != 0u;
+                         static_cast<unsigned>(detail::min_of(detail::min_of(T(rcp_q1), T(rcp_q2)), T(rcp_p)) >= detail::smallest_normal<T>()) &
+                         static_cast<unsigned>(T(T(detail::min_of(detail::min_of(detail::min_of(T(inv_m1), T(inv_I1)), detail::min_of(T(inv_m2), T(inv_I2))), T(-u)) + T(((r_n1 + r_n2) + (rcp_p + (o_v_t1 + o_v_t2))) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;
         out_w_b1[i] = o_w_b1;

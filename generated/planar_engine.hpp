@@ -335,12 +335,66 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1,
 }
 } // namespace detail
 
+namespace detail {
+/// The fast path of planar_engine: every check folded into a few tests (signs through
+/// a min, the finiteness of every value through sums times 0 added to it); the inputs that
+/// fail one of them return slow() (the checked version, which says which check failed).
+template <typename T, bool with_energy_lost, typename Slow>
+IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine_fast(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out, Slow slow) noexcept
+{
+    const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
+    const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
+    const T u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
+    const T k = w_1 + w_2;
+    const T N = -(u * (e + T(1)) / k);
+    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
+    const T o_v_t1 = v_t1;
+    const T o_v_n1 = v_n1 - inv_m1 * N;
+    const T o_w_b1 = w_b1 + r_t1 * inv_I1 * N;
+    const T o_v_t2 = v_t2;
+    const T o_v_n2 = v_n2 + inv_m2 * N;
+    const T o_w_b2 = w_b2 - r_t2 * inv_I2 * N;
+    const T o_normal_impulse = N;
+    const T o_approach_velocity = u;
+    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
+    // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse moment of inertia of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse moment of inertia of 2 >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
+    const bool ok = (detail::min_of(detail::min_of(detail::min_of(T(e), T(T(1) - e)), detail::min_of(T(inv_m1), T(inv_I1))), detail::min_of(T(inv_m2), T(inv_I2))) >= T(0)) &&
+                    (T(T(detail::min_of(T(-u), T(k)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
+    if (!ok) // some check failed (or a value is not finite): find which
+        return slow();
+    out.v_t1 = o_v_t1;
+    out.v_n1 = o_v_n1;
+    out.w_b1 = o_w_b1;
+    out.v_t2 = o_v_t2;
+    out.v_n2 = o_v_n2;
+    out.w_b2 = o_w_b2;
+    out.normal_impulse = o_normal_impulse;
+    out.approach_velocity = o_approach_velocity;
+    out.energy_lost = o_energy_lost;
+    return impact_status::ok;
+}
+
+/// The slow path of planar_engine with the inputs in an array, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked_in(const T* in, planar_engine_result<T>& out) noexcept
+{
+    return planar_engine_checked<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+}
+
+/// The slow path of planar_engine with the inputs by name, out of line.
+template <typename T, bool with_energy_lost>
+IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked_in(const planar_engine_input<T>& in, planar_engine_result<T>& out) noexcept
+{
+    return planar_engine_checked<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.inv_m2, in.inv_I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out);
+}
+
+} // namespace detail
+
 /// Post-impact state for the inputs below; returns impact_status::ok, or why not
 /// (then out holds the state unchanged: velocities as before, impulses zero).
 /// T: float, double, long double or alike (an autodiff scalar).
-/// The checks do not branch one by one: they are folded into a few tests (signs
-/// through a min, the finiteness of every value through sums times 0 added to
-/// it), and only inputs that fail one of them take the slow path (detail::planar_engine_checked) that
+/// The checks do not branch one by one: they are folded into a few tests (detail::planar_engine_fast),
+/// and only inputs that fail one of them take the slow path (detail::planar_engine_checked) that
 /// says which check failed. with_energy_lost = false: out.energy_lost is left 0,
 /// neither computed nor checked (the rest is the same).
 ///   e: coefficient of restitution, 0 <= e <= 1
@@ -361,36 +415,7 @@ IMPACTGEN_COLD IMPACTGEN_FUNC impact_status planar_engine_checked(T e, T inv_m1,
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(T e, T inv_m1, T inv_I1, T r_t1, T r_n1, T v_t1, T v_n1, T w_b1, T inv_m2, T inv_I2, T r_t2, T r_n2, T v_t2, T v_n2, T w_b2, planar_engine_result<T>& out) noexcept
 {
-    const T w_1 = r_t1 * inv_I1 * r_t1 + inv_m1;
-    const T w_2 = r_t2 * inv_I2 * r_t2 + inv_m2;
-    const T u = r_t1 * w_b1 + v_n2 - r_t2 * w_b2 - v_n1;
-    const T k = w_1 + w_2;
-    const T N = -(u * (e + T(1)) / k);
-    const T T_lost = -(u * N + k * N * N * (T(1) / T(2)));
-    const T o_v_t1 = v_t1;
-    const T o_v_n1 = v_n1 - inv_m1 * N;
-    const T o_w_b1 = w_b1 + r_t1 * inv_I1 * N;
-    const T o_v_t2 = v_t2;
-    const T o_v_n2 = v_n2 + inv_m2 * N;
-    const T o_w_b2 = w_b2 - r_t2 * inv_I2 * N;
-    const T o_normal_impulse = N;
-    const T o_approach_velocity = u;
-    const T o_energy_lost = with_energy_lost ? T_lost : T(0);
-    // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse moment of inertia of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse moment of inertia of 2 >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-    const bool ok = (detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2)) >= T(0)) &&
-                    (T(T(detail::min_of(T(-u), T(k)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0));
-    if (!ok) // some check failed (or a value is not finite): find which
-        return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out);
-    out.v_t1 = o_v_t1;
-    out.v_n1 = o_v_n1;
-    out.w_b1 = o_w_b1;
-    out.v_t2 = o_v_t2;
-    out.v_n2 = o_v_n2;
-    out.w_b2 = o_w_b2;
-    out.normal_impulse = o_normal_impulse;
-    out.approach_velocity = o_approach_velocity;
-    out.energy_lost = o_energy_lost;
-    return impact_status::ok;
+    return detail::planar_engine_fast<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out, [=, &out]() noexcept { return detail::planar_engine_checked<T, with_energy_lost>(e, inv_m1, inv_I1, r_t1, r_n1, v_t1, v_n1, w_b1, inv_m2, inv_I2, r_t2, r_n2, v_t2, v_n2, w_b2, out); });
 }
 
 /// planar_engine without the per-call validation, for inputs the caller validated once
@@ -434,14 +459,14 @@ IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine_unchecked(T e, T inv_m1
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(const T* in, planar_engine_result<T>& out) noexcept
 {
-    return planar_engine<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out);
+    return detail::planar_engine_fast<T, with_energy_lost>(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12], in[13], in[14], out, [in, &out]() noexcept { return detail::planar_engine_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same with the inputs by name: planar_engine_input<T> in{}; in.e = ...;
 template <typename T, bool with_energy_lost = true>
 IMPACTGEN_HOT IMPACTGEN_FUNC impact_status planar_engine(const planar_engine_input<T>& in, planar_engine_result<T>& out) noexcept
 {
-    return planar_engine<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.inv_m2, in.inv_I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out);
+    return detail::planar_engine_fast<T, with_energy_lost>(in.e, in.inv_m1, in.inv_I1, in.r_t1, in.r_n1, in.v_t1, in.v_n1, in.w_b1, in.inv_m2, in.inv_I2, in.r_t2, in.r_n2, in.v_t2, in.v_n2, in.w_b2, out, [&in, &out]() noexcept { return detail::planar_engine_checked_in<T, with_energy_lost>(in, out); });
 }
 
 /// The same over n impacts in structure-of-arrays form: in[j][i] is input j
@@ -492,7 +517,7 @@ IMPACTGEN_FUNC unsigned planar_engine_batch_pass(long n, const T* IMPACTGEN_REST
         const T o_approach_velocity = u;
         const T o_energy_lost = with_energy_lost ? T_lost : T(0);
         // checks: 0 <= e <= 1; inverse mass of 1 >= 0, finite; inverse moment of inertia of 1 >= 0, finite; inverse mass of 2 >= 0, finite; inverse moment of inertia of 2 >= 0, finite; the contact points approach: u < 0; effective inverse mass k > 0, finite; every value finite
-        const bool ok = (static_cast<unsigned>(detail::min_of(T(e), T(T(1) - e), T(inv_m1), T(inv_I1), T(inv_m2), T(inv_I2)) >= T(0)) &
+        const bool ok = (static_cast<unsigned>(detail::min_of(detail::min_of(detail::min_of(T(e), T(T(1) - e)), detail::min_of(T(inv_m1), T(inv_I1))), detail::min_of(T(inv_m2), T(inv_I2))) >= T(0)) &
                          static_cast<unsigned>(T(T(detail::min_of(T(-u), T(k)) + T(((o_v_t1 + o_v_t2) + (r_n1 + r_n2)) + k) * T(0)) + T(with_energy_lost ? T(((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2)) + o_energy_lost) : T((o_v_n1 + o_w_b1) + (o_v_n2 + o_w_b2))) * T(0)) > T(0))) != 0u;
         out_v_t1[i] = o_v_t1;
         out_v_n1[i] = o_v_n1;

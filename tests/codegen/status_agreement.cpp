@@ -3,8 +3,11 @@
 // the masses of 1e308 included), and invalid values (0, < 0, NaN, infinite, e out
 // of [0, 1], separating velocities): the smooth planar header, the planar friction header
 // with mu = 0 (the same impact) and with mu = 0.3 (the same validity and the same
-// overflow), the engine convention where its inverses are finite; the same in 3-D.
+// overflow), the engine convention where its inverses are finite; the same in 3-D. The
+// entry points of the 3-D engine header (inputs as values, in an array, by name) against its
+// checked path on every input and pair of tensor entries set to a value that breaks a check.
 #include "noncentral_3d.hpp"
+#include "noncentral_3d_engine.hpp"
 #include "noncentral_3d_friction.hpp"
 #include "planar.hpp"
 #include "planar_engine.hpp"
@@ -13,7 +16,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace gen = impactgen::generated;
@@ -137,6 +143,86 @@ TEST(CodegenStatusAgreement, ThreeDimensionalOverTheWholeRange)
                 2 * I, -0.3, 0.4, 0.1, -0.5, -1.0, z, 0.125, z, z, b));
             EXPECT_EQ(s, f) << "m " << m << ", I " << I;
         }
+}
+
+// The entry points of one engine header on the same inputs: the fast path called with the
+// inputs as values, in an array and by name (the last two with a slow path of their own that
+// reads the inputs again), and the checked path. Same status and the same result bit for bit.
+template <typename T, typename Result, typename Input, std::size_t... I, typename Value, typename Array, typename Named,
+          typename Checked>
+void forms_agree(const T* x, std::index_sequence<I...>, Value value, Array array, Named named, Checked checked,
+                 int (&count)[16], const std::string& what)
+{
+    Result a{}, b{}, c{}, d{};
+    const Input in{x[I]...};
+    const int sa = int(value(x[I]..., a)), sb = int(array(x, b)), sc = int(named(in, c)), sd = int(checked(x[I]..., d));
+    ++count[sd & 15];
+    EXPECT_EQ(sa, sd) << what << ": the value form and the checked path";
+    EXPECT_EQ(sb, sd) << what << ": the array form and the checked path";
+    EXPECT_EQ(sc, sd) << what << ": the struct form and the checked path";
+    EXPECT_EQ(std::memcmp(&a, &d, sizeof a), 0) << what << ": the value form's result";
+    EXPECT_EQ(std::memcmp(&b, &d, sizeof b), 0) << what << ": the array form's result";
+    EXPECT_EQ(std::memcmp(&c, &d, sizeof c), 0) << what << ": the struct form's result";
+}
+
+// Every entry of the inverse inertia tensors (and every other input) set to a value that
+// breaks a check or sits on its edge, one entry and every pair of tensor entries: a
+// non-finite diagonal entry that only a minor sees, a minor that overflows, a determinant
+// that cancels. The fast path's finiteness sum leaves out the values that another value in
+// it implies (a diagonal entry its minors are made of, the minor its determinant is made
+// of): the statuses must stay those of the checked path.
+template <typename T> void noncentral_engine_forms_agree()
+{
+    constexpr int n = gen::noncentral_3d_engine_input_count;
+    const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    const T big = std::sqrt(std::numeric_limits<T>::max()) * T(2), tiny = std::numeric_limits<T>::denorm_min();
+    const std::vector<T> special = {nan, inf, -inf, T(-1), T(-0.0), T(0), tiny, T(1e-3), big, -big, std::numeric_limits<T>::max()};
+    // a valid impact: I^-1 positive definite, the contact points approaching
+    const T base[n] = {T(0.5), T(1),    T(2),    T(0.3), T(-0.2), T(1.5),  T(0.1), T(1.2),  T(0.1),  T(-0.2), T(0.05),
+                       T(0.25), T(1),   T(0),    T(0.1), T(0),    T(0.2),  T(0.5), T(0.8),  T(-0.1), T(0.2),  T(0.9),
+                       T(0.3),  T(1.1), T(-0.3), T(0.4), T(0.1),  T(-0.5), T(-1),  T(0),    T(0.125), T(0),   T(0)};
+    using R = gen::noncentral_3d_engine_result<T>;
+    using In = gen::noncentral_3d_engine_input<T>;
+    int count[16] = {};
+    auto run = [&](const T* x, const std::string& what) {
+        forms_agree<T, R, In>(
+            x, std::make_index_sequence<n>{}, [](auto&&... v) { return gen::noncentral_3d_engine<T>(v...); },
+            [](const T* p, R& r) { return gen::noncentral_3d_engine<T>(p, r); },
+            [](const In& p, R& r) { return gen::noncentral_3d_engine<T>(p, r); },
+            [](auto&&... v) { return gen::detail::noncentral_3d_engine_checked<T, true>(v...); }, count, what);
+    };
+    run(base, "the valid impact");
+    const int tensor[12] = {2, 3, 4, 5, 6, 7, 18, 19, 20, 21, 22, 23};
+    T x[n];
+    for (int j = 0; j < n; ++j)
+        for (T v : special) {
+            std::copy(base, base + n, x);
+            x[j] = v;
+            run(x, "input " + std::to_string(j) + " = " + std::to_string(double(v)));
+        }
+    for (int j : tensor)
+        for (int k : tensor)
+            for (T v : special)
+                for (T w : special) {
+                    if (k <= j)
+                        continue;
+                    std::copy(base, base + n, x);
+                    x[j] = v;
+                    x[k] = w;
+                    run(x, "inputs " + std::to_string(j) + ", " + std::to_string(k) + " = " + std::to_string(double(v)) +
+                               ", " + std::to_string(double(w)));
+                }
+    // each way of failing is reached (a check left out of the fast path would show as ok)
+    for (gen::impact_status s : {gen::impact_status::ok, gen::impact_status::non_finite_input,
+                                 gen::impact_status::invalid_inertia, gen::impact_status::invalid_restitution,
+                                 gen::impact_status::invalid_mass, gen::impact_status::not_approaching})
+        EXPECT_GT(count[int(s)], 0) << gen::to_string(s);
+}
+
+TEST(CodegenStatusAgreement, EngineFormsAgreeOnBrokenTensors)
+{
+    noncentral_engine_forms_agree<double>();
+    noncentral_engine_forms_agree<float>();
 }
 
 } // namespace
