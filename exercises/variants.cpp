@@ -233,9 +233,9 @@ problem draw_values(const problem &orig, const problem &p0, const std::string &r
         }
     }
     q.restitution = g.pick(restitutions());
-    if (!q.contact()
-             .friction()
-             .is_zero()) { // sticking needs mu above a threshold, sliding below it: drawn from that end
+    // With a coefficient of friction: sticking needs mu above a threshold, sliding below it, so mu is
+    // drawn from that end.
+    if (!q.contact().friction().is_zero()) {
         const std::vector<numeric> &all = frictions();
         const std::vector<numeric> high(all.begin() + 4, all.end()), low(all.begin(), all.begin() + 4);
         q.contact().set_friction(g.pick(regime == "stick" ? high : regime == "slide" ? low : all));
