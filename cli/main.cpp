@@ -7,6 +7,7 @@
 #include "print/answer.hpp"
 #include "print/expression.hpp"
 #include "print/formulas.hpp"
+#include "symbolic/contact_law.hpp"
 #include "symbolic/named_classes.hpp"
 #include "symbolic/named_systems.hpp"
 #include "symbolic/system.hpp"
@@ -139,10 +140,11 @@ int cmd_formulas(const std::string &what, const std::string &format, bool jacobi
                                        : print::system_formulas_text(p, format == "latex"));
         return 0;
     }
-    if (jacobian && p.dimension == 2 && p.has_friction() && follows_process(p.contact().law_of_restitution))
-        return cli::process_jacobian_formulas(p, format, wrt); // per phase sequence
-    if (jacobian && p.has_friction() && !follows_process(p.contact().law_of_restitution))
-        return cli::friction_jacobian_formulas(p, format, wrt); // per regime
+    const jacobian_route route = law_traits_of(p).jacobian; // the contact law's (symbolic/contact_law.hpp)
+    if (jacobian && route == jacobian_route::per_phase_sequence)
+        return cli::process_jacobian_formulas(p, format, wrt);
+    if (jacobian && route == jacobian_route::per_regime)
+        return cli::friction_jacobian_formulas(p, format, wrt);
     if (jacobian) { // the closed form and its derivatives, from one plan (the same symbols)
         codegen::plan pl = cli::jacobian_plan_for(p, wrt);
         if (format == "json") {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <variant>
 
 namespace impactgen::codegen
 {
@@ -205,7 +206,7 @@ code_plan candidates_plan(const problem &p, const options &o)
     }
     cp.prob = specialise(p0, o);
     const problem &q = cp.prob;
-    if (!q.has_friction())
+    if (q.contact().friction().is_zero()) // --params or --set made mu 0
         throw input_error(
             (q.source.empty() ? std::string("contact") : names::display_text(q.source) + ": contact") +
             ".friction: the coefficient of friction is 0: generate the smooth header (codegen::generate)");
@@ -258,26 +259,13 @@ code_plan candidates_plan(const problem &p, const options &o)
 
 } // namespace
 
-bool has_candidates(const problem &p, const options &o)
+code_plan law_code_plan(const coulomb &, const problem &p, const options &o)
 {
-    if (!p.has_friction())
-        return false;
-    try {
-        options so = o;
-        so.params_given = false; // only --set can make mu 0
-        so.params.clear();
-        return specialise(p, so).has_friction();
-    } catch (const std::exception &) {
-        return true;
-    }
+    return candidates_plan(p, o);
 }
 
-code_plan make_code_plan(const problem &p, const options &o)
+code_plan law_code_plan(const frictionless &, const problem &p, const options &o)
 {
-    if (p.is_system())
-        return system_code_plan(p, o);
-    if (has_candidates(p, o))
-        return candidates_plan(p, o);
     code_plan cp;
     cp.base = make_plan(p, o);
     cp.prob = cp.base.prob;
@@ -285,6 +273,22 @@ code_plan make_code_plan(const problem &p, const options &o)
     cp.input_meaning = cp.base.input_meaning;
     order_outputs(cp);
     return cp;
+}
+
+code_plan make_code_plan(const problem &p, const options &o)
+{
+    if (p.is_system())
+        return system_code_plan(p, o);
+    contact_law law = p.contact().law;
+    try {
+        options so = o;
+        so.params_given = false; // only --set can make mu 0
+        so.params.clear();
+        law = specialise(p, so).contact().law;
+    } catch (const std::exception &) {
+        // the options do not fit: the plan of the problem's own law reports it
+    }
+    return std::visit([&](const auto &l) { return law_code_plan(l, p, o); }, law);
 }
 
 } // namespace impactgen::codegen

@@ -149,11 +149,14 @@ struct code_plan {
     candidates_jacobian jacobian;
 };
 
-/// True when the problem, with the options' --set values folded in, has a law with more
-/// than one candidate (Coulomb friction whose coefficient is not identically 0). A problem
-/// the options do not fit (an unknown symbol, say) counts when it has a coefficient at
-/// all, so that make_code_plan reports the error.
-bool has_candidates(const problem &p, const options &o);
+/// A contact law's code plan: one overload per alternative of contact_law (the law's other
+/// hooks: symbolic/contact_law.hpp). make_code_plan calls the overload of the contact's law
+/// with the options' --set values folded in (a coefficient of friction set to 0 is the smooth
+/// law); of the problem's own law when the options do not fit it, so that the plan reports the
+/// error. frictionless: the smooth plan alone; coulomb: the candidates (stick and the slides,
+/// or the phase sequences of Routh's process) and their selection rule.
+code_plan law_code_plan(const frictionless &, const problem &p, const options &o);
+code_plan law_code_plan(const coulomb &, const problem &p, const options &o);
 
 /// Every symbol in e, added to out.
 void collect_symbols(const GiNaC::ex &e, GiNaC::exset &out);

@@ -6,6 +6,7 @@
 
 #include "names/escape.hpp"
 #include "names/identifier.hpp"
+#include "symbolic/contact_law.hpp"
 #include "symbolic/decide.hpp"
 
 #include <algorithm>
@@ -778,7 +779,7 @@ plan make_plan(const problem &p, const options &o)
 {
     plan pl;
     pl.prob = specialise(p, o);
-    if ((o.jacobian || !o.wrt.empty()) && pl.prob.has_friction())
+    if ((o.jacobian || !o.wrt.empty()) && law_traits_of(pl.prob).jacobian != jacobian_route::closed_form)
         throw option_error(option_error::jacobian, "Jacobians are not offered for problems with friction (the regime "
                                                    "selection makes the impact map piecewise)");
     if (o.unit_normal)

@@ -2,6 +2,7 @@
 // holds them.
 #include "exercises/detail.hpp"
 #include "exercises/exercises.hpp"
+#include "symbolic/contact_law.hpp"
 
 #include "symbolic/decide.hpp"
 
@@ -63,7 +64,7 @@ std::vector<quantity> asked_quantities(const derivation &d, const regime_case &c
                       s.after[i].angular_velocity[k], !b.angular_velocity[k].is_zero());
     }
     q.add("/normal_impulse", "normal impulse", "N s", s.normal_impulse, true);
-    if (p.has_friction())
+    if (law_traits_of(p).tangential_impulse)
         for (int k = 0; k < dim; ++k)
             q.add("/tangential_impulse/" + std::to_string(k),
                   "friction impulse on " + p.bodies[p.contact().body2].name + ", " + p.axes[k] + " component", "N s",

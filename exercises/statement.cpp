@@ -1,5 +1,6 @@
 // The statement of an exercise, its short answers and its figure, in LaTeX and HTML.
 #include "exercises/detail.hpp"
+#include "symbolic/contact_law.hpp"
 
 #include "figure/figure.hpp"
 #include "figure/system.hpp"
@@ -235,7 +236,7 @@ std::vector<std::string> statement(const problem &p, format f, bool si)
         .sym("e", "e")
         .w(" = ")
         .num(p.restitution);
-    if (p.has_friction())
+    if (!c.friction().is_zero())
         contact.w("; the coefficient of friction is ").sym("\\mu", "μ").w(" = ").num(c.friction());
     else
         contact.w("; the contact is smooth");
@@ -253,7 +254,7 @@ std::string find_sentence(const problem &p, format f)
         spins = spins || (!p.immovable(i) && !p.bodies[i].particle);
     std::string s = std::string("Find the velocities") + (spins ? " and angular velocities" : "") +
                     " after impact, the normal impulse";
-    if (p.has_friction())
+    if (law_traits_of(p).tangential_impulse)
         s += ", the friction impulse (does the contact stick or slide?)";
     if (!p.pivots.empty())
         s += p.pivots.size() == 1 ? ", the impulse of the pivot" : ", the impulses of the pivots";
@@ -274,7 +275,7 @@ std::vector<std::string> short_answers(const exercise &e, format f)
     std::vector<std::string> out;
     if (e.prob.is_system())
         out.push_back(system_regimes_in_words(e, f));
-    else if (e.prob.has_friction())
+    else if (!law_traits_of(e.prob).single_candidate)
         out.push_back(text(f).w("the contact " + std::string(e.regime == "stick" ? "sticks" : "slides")).str());
     for (const quantity &q : e.asked) {
         text t(f);

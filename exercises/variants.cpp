@@ -1,5 +1,6 @@
 // make_sheet(): the variants of a problem (see exercises.hpp for the rules).
 #include "exercises/detail.hpp"
+#include "symbolic/contact_law.hpp"
 
 #include "figure/figure.hpp"
 #include "print/answer.hpp"
@@ -232,7 +233,9 @@ problem draw_values(const problem &orig, const problem &p0, const std::string &r
         }
     }
     q.restitution = g.pick(restitutions());
-    if (q.has_friction()) { // sticking needs mu above a threshold, sliding below it: drawn from that end
+    // With a coefficient of friction: sticking needs mu above a threshold, sliding below it, so mu is
+    // drawn from that end.
+    if (!q.contact().friction().is_zero()) {
         const std::vector<numeric> &all = frictions();
         const std::vector<numeric> high(all.begin() + 4, all.end()), low(all.begin(), all.begin() + 4);
         q.contact().set_friction(g.pick(regime == "stick" ? high : regime == "slide" ? low : all));
@@ -358,7 +361,7 @@ std::size_t answer_length(const detail::outcome &o)
 std::set<std::string> possible_regimes(const problem &p0)
 {
     std::set<std::string> out;
-    if (!p0.has_friction())
+    if (law_traits_of(p0).single_candidate)
         return {"smooth"};
     const derivation d = derive(p0);
     for (const regime_case &c : solve_impact(d).cases)
@@ -473,9 +476,10 @@ sheet make_sheet(const problem &base, const options &opt)
             std::string list;
             for (const std::string &r : can)
                 list += (list.empty() ? "" : ", ") + r;
-            throw input_error("--regime " + opt.regime + ": this problem cannot have it (" +
-                              (p0.has_friction() ? "its regimes are " : "it has no friction; its regime is ") + list +
-                              ")");
+            throw input_error(
+                "--regime " + opt.regime + ": this problem cannot have it (" +
+                (law_traits_of(p0).single_candidate ? "it has no friction; its regime is " : "its regimes are ") +
+                list + ")");
         }
     }
     sheet out;

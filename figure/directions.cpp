@@ -1,6 +1,7 @@
 // The directions of the figure's impulses and spins (see directions.hpp).
 #include "figure/directions.hpp"
 
+#include "symbolic/contact_law.hpp"
 #include "symbolic/friction.hpp"
 
 #include <cmath>
@@ -69,7 +70,7 @@ bool answer_of(const derivation &d, std::vector<vec> &pivot, vec &friction)
         pivot.clear();
         for (const vec3 &r : c.sol.pivot_impulses)
             pivot.push_back(numbers(r));
-        friction = d.prob.has_friction() ? numbers(c.tangential_impulse) : vec{};
+        friction = law_traits_of(d.prob).tangential_impulse ? numbers(c.tangential_impulse) : vec{};
         return true;
     } catch (const std::exception &) {
         return false; // no single regime, or a decision the numbers cannot make
@@ -102,7 +103,7 @@ void positive_senses(const derivation &d, const exmap &values, const std::vector
                                                               : "the impulse of pivot " + std::to_string(j + 1)) +
                                    " towards " + axes);
     }
-    if (!d.prob.has_friction())
+    if (!law_traits_of(d.prob).tangential_impulse)
         return;
     const vec et = values_of(d.e_t, values, dim), eb = dim == 3 ? values_of(d.e_b, values, dim) : vec{};
     const double ft = et[0] * friction_at_values[0] + et[1] * friction_at_values[1] + et[2] * friction_at_values[2];

@@ -4,6 +4,7 @@
 #include "expression.hpp"
 #include "names/escape.hpp"
 
+#include "symbolic/contact_law.hpp"
 #include "symbolic/decide.hpp"
 
 #include <sstream>
@@ -125,7 +126,7 @@ nlohmann::ordered_json answer_json(const derivation &d, const solution &s, bool 
 
 nlohmann::ordered_json answer_json(const derivation &d, const regime_case &c, bool symbolic)
 {
-    if (!d.prob.has_friction()) // a smooth contact's one candidate: its closed form as it is
+    if (!law_traits_of(d.prob).tangential_impulse) // the one candidate of a smooth contact: its closed form as it is
         return answer_json(d, c.sol, symbolic);
     nlohmann::ordered_json out = answer_json(d, c.sol, symbolic);
     valuer val{c.sol, symbolic};
@@ -145,7 +146,7 @@ std::string answer_text(const derivation &d, const solution &s)
 
 std::string answer_text(const derivation &d, const regime_case &c)
 {
-    return answer_text(d, c.sol, d.prob.has_friction() ? &c : nullptr);
+    return answer_text(d, c.sol, law_traits_of(d.prob).tangential_impulse ? &c : nullptr);
 }
 
 std::string answer_text(const derivation &d, const solution &s, const regime_case *friction)

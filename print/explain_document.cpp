@@ -4,7 +4,6 @@
 // results. The sections are numbered here, in the order they come.
 #include "explain.hpp"
 #include "explain_law.hpp"
-#include "explain_process.hpp"
 #include "title.hpp"
 
 #include <exception>
@@ -20,8 +19,6 @@ using namespace detail;
 
 std::unique_ptr<law_chapter> chapter_of(const explain_input &in)
 {
-    if (follows_process(in.s.law) && in.d.prob.has_friction()) // Routh's process (explain_process.cpp)
-        return process_chapter(in);
     return std::visit([&](const auto &law) { return chapter(law, in); }, in.d.prob.contact().law);
 }
 
@@ -51,7 +48,6 @@ document build(const explain_input &in, const law_chapter &law)
     if (in.s.cases.size() > 1)
         append(doc, law.regimes());
     append(doc, law.results());
-    append(doc, laws_compared(in)); // Newton with friction: the energy, the three laws (explain_laws_compared.cpp)
     for (std::size_t k = 0; k < doc.sections.size(); ++k)
         doc.sections[k].title = std::to_string(k + 1) + ". " + doc.sections[k].title;
     law.finish(doc);

@@ -76,6 +76,10 @@ public:
 /// The chapters, one per alternative of contact_law (one file each).
 std::unique_ptr<law_chapter> chapter(const frictionless &, const explain_input &in);
 std::unique_ptr<law_chapter> chapter(const coulomb &, const explain_input &in);
+/// Coulomb's chapter under Newton's law of restitution (the process chapter takes its set-up
+/// from it; chapter(coulomb) gives the process chapter when the restitution law is followed
+/// through the impact).
+std::unique_ptr<law_chapter> newton_coulomb_chapter(const explain_input &in);
 
 /// Section 1, the set-up: bodies, contact frame, unknowns and their count, with the law's parts.
 section setup_section(const derivation &d, const setup_parts &law);

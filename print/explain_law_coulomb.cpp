@@ -6,6 +6,7 @@
 // sliding speed are written mu and lambda where no other symbol prints so.
 #include "explain_friction_detail.hpp"
 #include "explain_law.hpp"
+#include "explain_process.hpp"
 
 #include "canonical.hpp"
 
@@ -157,7 +158,13 @@ public:
     {
         return {c.has_stick() ? regimes_section(c) : slide_regimes_section(c), existence_section(c)};
     }
-    std::vector<section> results() const override { return c.numeric ? numbers_sections(c) : std::vector<section>{}; }
+    std::vector<section> results() const override
+    {
+        std::vector<section> out = c.numeric ? numbers_sections(c) : std::vector<section>{};
+        for (section &s : laws_compared(in)) // the energy, the three restitution laws (explain_laws_compared.cpp)
+            out.push_back(std::move(s));
+        return out;
+    }
     void finish(document &doc) const override { rename(doc, shown); }
 };
 
@@ -207,9 +214,16 @@ setup_parts coulomb_chapter::setup() const
 namespace impactgen::print::detail
 {
 
-std::unique_ptr<law_chapter> chapter(const coulomb &, const explain_input &in)
+std::unique_ptr<law_chapter> newton_coulomb_chapter(const explain_input &in)
 {
     return std::make_unique<friction_detail::coulomb_chapter>(in);
+}
+
+std::unique_ptr<law_chapter> chapter(const coulomb &, const explain_input &in)
+{
+    if (follows_process(in.s.law)) // Routh's process (explain_process.cpp)
+        return process_chapter(in);
+    return newton_coulomb_chapter(in);
 }
 
 } // namespace impactgen::print::detail

@@ -146,7 +146,7 @@ std::vector<section> laws_compared(const explain_input &in)
 {
     const derivation &nd = in.numeric_d ? *in.numeric_d : in.d;
     const problem &p = nd.prob;
-    if (!p.is_numeric() || p.dimension != 2 || p.contacts.size() != 1 || !p.has_friction() ||
+    if (!p.is_numeric() || p.dimension != 2 || p.contacts.size() != 1 ||
         follows_process(p.contact().law_of_restitution))
         return {};
     const std::vector<law_answer> laws = three_laws(nd);

@@ -166,7 +166,7 @@ public:
         for (const process_sequence &s : routh_process(t.q, "contact.friction"))
             if (!s.wedges)
                 t.seqs.push_back(s);
-        coulomb_parts = chapter(coulomb{}, in);
+        coulomb_parts = newton_coulomb_chapter(in);
     }
     std::string title() const override { return words_of(in.s.law).title; }
     bool symbols_first() const override { return false; }

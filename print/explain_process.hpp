@@ -59,9 +59,9 @@ struct path_point {
 /// The path of (u_t, u_n), piecewise linear in P_n, drawn in TikZ and SVG with its points marked.
 figure_art process_figure(const std::vector<path_point> &path, const std::string &caption);
 
-/// After the results of a numeric planar problem with friction under Newton's law: why it gains
-/// energy (when it does) and the three laws side by side, each solved by the library. Empty
-/// otherwise.
+/// After the results of a numeric planar problem with friction under Newton's law (the end of
+/// Coulomb's chapter, explain_law_coulomb.cpp): why it gains energy (when it does) and the three
+/// laws side by side, each solved by the library. Empty otherwise.
 std::vector<section> laws_compared(const explain_input &in);
 
 } // namespace impactgen::print::detail

@@ -4,6 +4,7 @@
 #include "canonical.hpp"
 #include "explain_system.hpp"
 #include "expression.hpp"
+#include "symbolic/contact_law.hpp"
 #include "symbolic/decide.hpp"
 #include "symbolic/system_process.hpp"
 
@@ -125,7 +126,7 @@ namespace
 
 bool is_process(const derivation &d, const friction_solution &f)
 {
-    return d.prob.has_friction() && follows_process(f.law);
+    return law_traits_of(d.prob).process && follows_process(f.law);
 }
 
 std::string phases_text(const regime_case &c)
@@ -242,7 +243,7 @@ ex stick_threshold(const derivation &d, const friction_solution &f)
 
 std::string formulas_text(const derivation &d, const friction_solution &f)
 {
-    if (!d.prob.has_friction()) // a smooth contact: its one candidate
+    if (law_traits_of(d.prob).single_candidate) // a smooth contact: its one candidate
         return formulas_text(d, f.cases.front().sol);
     if (is_process(d, f))
         return process_text(d, f);
@@ -292,7 +293,7 @@ std::string formulas_text(const derivation &d, const friction_solution &f)
 
 std::string formulas_latex(const derivation &d, const friction_solution &f)
 {
-    if (!d.prob.has_friction()) // a smooth contact: its one candidate
+    if (law_traits_of(d.prob).single_candidate) // a smooth contact: its one candidate
         return formulas_latex(d, f.cases.front().sol);
     if (is_process(d, f))
         return process_latex(d, f);
@@ -329,7 +330,7 @@ std::string formulas_latex(const derivation &d, const friction_solution &f)
 
 nlohmann::ordered_json formulas_json(const derivation &d, const friction_solution &f)
 {
-    if (!d.prob.has_friction()) // a smooth contact: its one candidate, as solve --json writes it
+    if (law_traits_of(d.prob).single_candidate) // a smooth contact: its one candidate, as solve --json writes it
         return answer_json(d, f.cases.front().sol, true);
     if (is_process(d, f))
         return process_json(d, f);

@@ -91,7 +91,7 @@ struct derivation {
     std::vector<unknown> unknowns;
     std::vector<equation> equations;
     std::vector<remark> remarks; ///< principles that give no usable equation, and why
-    /// With friction (problem::has_friction): the equations of its law (`equations` above are
+    /// With Coulomb's law (law_coulomb.cpp): the equations of its law (`equations` above are
     /// those of the smooth impact, which the friction solution reduces to for mu = 0).
     friction_equations friction;
 

@@ -1,4 +1,5 @@
 #include "friction.hpp"
+#include "contact_law.hpp"
 #include "system.hpp"
 
 #include "decide.hpp"
@@ -529,31 +530,7 @@ const regime_case *impact_solution::stick() const
 impact_solution solve_impact(const derivation &d)
 {
     refuse_system_for(d.prob, "the one-contact solver (explain, codegen)");
-    if (d.prob.has_friction()) {
-        if (follows_process(d.prob.contact().law_of_restitution))
-            return solve_routh(d); // Poisson's or the energetic law: Routh's process (routh.hpp)
-        refuse_wedging(d);
-        return solve_friction(d);
-    }
-    impact_solution s;
-    s.mu = 0;
-    s.n_hat = d.n_hat;
-    s.e_t = d.e_t;
-    s.e_b = d.e_b;
-    regime_case c;
-    c.kind = regime::smooth;
-    c.name = "smooth";
-    c.sol = solve(d);
-    s.shared = c.sol;
-    for (int a = 0; a < 3; ++a) {
-        c.impulse[a] = c.sol.normal_impulse * d.n_hat[a];
-        c.tangential_impulse[a] = 0;
-        c.direction[a] = 0;
-    }
-    c.tangential_scalar = 0;
-    c.sliding_speed = 0;
-    s.cases.push_back(c);
-    return s;
+    return solve_law_of(d); // the contact law's candidates (contact_law.hpp)
 }
 
 decision decide_condition(const ex &value)

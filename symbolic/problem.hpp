@@ -142,8 +142,6 @@ struct problem {
     /// Every symbol the problem's values contain, sorted by name.
     std::vector<GiNaC::symbol> parameters() const;
     bool is_numeric() const { return parameters().empty(); }
-    /// True when the contact has a friction coefficient that is not identically 0.
-    bool has_friction() const { return !contact().friction().is_zero(); }
     /// A system (format version 3): several contacts, joints, sequential impacts or a perfectly
     /// rough contact. Systems are solved by symbolic/system.hpp; every other problem by the
     /// one-contact pipeline, unchanged.

@@ -439,7 +439,7 @@ impact_solution solve_routh(const derivation &d)
 void refuse_wedging(const derivation &d)
 {
     const problem &p = d.prob;
-    if (p.dimension != 2 || !p.has_friction() || !p.is_numeric())
+    if (p.dimension != 2 || !p.is_numeric())
         return;
     solution unused;
     (void)routh_process(process_inputs_of(d, unused), contact_where(p, ".friction"), true);

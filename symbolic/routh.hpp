@@ -73,7 +73,7 @@ std::vector<process_sequence> routh_process(const process_inputs &in, const std:
 /// bodies after impact through the response layer. 2-D only (the reader refuses 3-D).
 impact_solution solve_routh(const derivation &d);
 
-/// Newton's law with friction in 2-D: refuses (input_error naming contact.friction) a numeric
+/// Newton's law with Coulomb friction (law_coulomb.cpp) in 2-D: refuses (input_error naming contact.friction) a numeric
 /// problem whose contact wedges. Symbolic problems and 3-D pass.
 void refuse_wedging(const derivation &d);
 

@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <variant>
 
 namespace impactgen
 {
@@ -306,7 +307,7 @@ solution solve(const derivation &d)
 {
     const problem &p = d.prob;
     refuse_system_for(p, "the one-contact solver (explain, codegen)");
-    if (p.has_friction()) {
+    if (!std::holds_alternative<frictionless>(p.contact().law)) { // the other laws' candidates: solve_impact
         std::ostringstream mu;
         mu << p.contact().friction();
         throw input_error(

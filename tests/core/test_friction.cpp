@@ -288,13 +288,13 @@ TEST_P(FrictionClass, ExactAnswersObeyTheLaw)
         ++regimes[static_cast<int>(c.kind)];
         check_law(q, c, GetParam() + " sample " + std::to_string(k));
         agree_with_reference(q, c, GetParam() + " sample " + std::to_string(k));
-        if (q.has_friction()) {
+        if (!q.contact().friction().is_zero()) {
             double scale = mag(c.sol.normal_impulse) + mag(c.tangential_impulse) + 1e-300;
             for (const body& b : q.bodies)
                 scale = std::max({scale, mag(b.velocity), mag(b.angular_velocity), mag(b.mass)});
             check_derived_equations(d, c, scale, GetParam() + " sample " + std::to_string(k));
         }
-        if (!q.has_friction()) { // mu = 0: the smooth impact, exactly
+        if (q.contact().friction().is_zero()) { // mu = 0: the smooth impact, exactly
             EXPECT_EQ(c.kind, regime::smooth);
             solution s = solve(d);
             lst steps = s.step_values(lst{});
@@ -560,7 +560,7 @@ TEST(Smooth, ZeroFrictionIsTheSmoothImpact)
           "contact": {"bodies": ["a", "b"], "point": [0, 0], "normal": [1, 2])";
     for (const std::string mu : {"0", "\"0\"", "\"sqrt(2) - 2^(1/2)\"", "0.0"}) {
         problem p = from_json(base + ", \"friction\": " + mu + "}}");
-        EXPECT_FALSE(p.has_friction()) << mu;
+        EXPECT_TRUE(std::holds_alternative<frictionless>(p.contact().law)) << mu; // mu 0 is the smooth law
     }
     // A small mu slides (the relative tangential velocity here is not zero) and tends to the smooth answer.
     problem smooth = from_json(base + "}}");
@@ -656,7 +656,7 @@ TEST(BadInput, FrictionValuesAreRefused)
     }
     // A symbolic mu is a formula, not an answer: select_regime cannot decide it.
     problem p = from_json(head + "\"mu\"}}");
-    EXPECT_TRUE(p.has_friction());
+    EXPECT_TRUE(std::holds_alternative<coulomb>(p.contact().law));
     derivation d = derive(p);
     EXPECT_THROW(select_regime(d, solve_friction(d)), input_error);
     // Smooth-only paths refuse friction rather than ignore it.

@@ -6,6 +6,7 @@
 #include "numeric/process_integrator.hpp"
 #include "print/answer.hpp"
 #include "sampling.hpp"
+#include "symbolic/contact_law.hpp"
 #include "symbolic/named_classes.hpp"
 #include "symbolic/routh.hpp"
 
@@ -21,6 +22,7 @@
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <variant>
 
 using namespace impactgen;
 using namespace GiNaC;
@@ -386,7 +388,7 @@ TEST(Laws, SmoothContactsAnswerTheSameUnderEveryLaw)
                              "wall-oblique-3d"}) {
         const std::string path = std::string(IMPACTGEN_SOURCE_DIR "/examples/problems/") + name + ".json";
         const problem base = with_law(path, "newton");
-        ASSERT_FALSE(base.has_friction());
+        ASSERT_TRUE(std::holds_alternative<frictionless>(base.contact().law));
         // numbers: solve's answer; symbols: the closed form as formulas --format json writes it
         auto answer = [](const problem &p) {
             const derivation d = derive(p);
@@ -746,4 +748,48 @@ TEST(LawsCli, WedgingContactIsRefusedUnderEveryLaw)
             expect_one_line_refusal(r, "contact.friction: the contact wedges");
             std::remove(path.c_str());
         }
+}
+
+// ---- a contact law's hooks (symbolic/contact_law.hpp): what the pipeline asks of each law ------
+
+TEST(ContactLaw, EachLawAnswersWhatThePipelineAsks)
+{
+    const std::string dir = IMPACTGEN_SOURCE_DIR "/examples/";
+    // A smooth contact: one unconditioned candidate, no equation beside the smooth impact's,
+    // under every restitution law.
+    for (const char *law : {"newton", "poisson", "energetic"}) {
+        const problem p = with_law(dir + "problems/hinged-rod.json", law);
+        ASSERT_TRUE(std::holds_alternative<frictionless>(p.contact().law)) << law;
+        const law_traits t = law_traits_of(p);
+        EXPECT_FALSE(t.tangential_impulse) << law;
+        EXPECT_TRUE(t.single_candidate) << law;
+        EXPECT_FALSE(t.process) << law;
+        EXPECT_EQ(t.jacobian, jacobian_route::closed_form) << law;
+        const derivation d = derive(p);
+        EXPECT_TRUE(d.friction.equations.empty()) << law;
+        const impact_solution s = solve_impact(d);
+        ASSERT_EQ(s.cases.size(), 1u) << law;
+        EXPECT_EQ(s.cases.front().kind, regime::smooth) << law;
+    }
+    // Coulomb's law under Newton's restitution: stick and the slides, differentiated per regime.
+    const problem rod = with_law(dir + "friction/rod-slips.json", "newton");
+    ASSERT_TRUE(std::holds_alternative<coulomb>(rod.contact().law));
+    law_traits t = law_traits_of(rod);
+    EXPECT_TRUE(t.tangential_impulse);
+    EXPECT_FALSE(t.single_candidate);
+    EXPECT_FALSE(t.process);
+    EXPECT_EQ(t.jacobian, jacobian_route::per_regime);
+    const derivation d = derive(rod);
+    EXPECT_FALSE(d.friction.stick_law.empty());
+    EXPECT_FALSE(d.friction.slide_law.empty());
+    EXPECT_GE(solve_impact(d).cases.size(), 2u);
+    // Under Poisson's law in 2-D: the phase sequences of Routh's process.
+    t = law_traits_of(with_law(dir + "friction/rod-slips.json", "poisson"));
+    EXPECT_TRUE(t.process);
+    EXPECT_EQ(t.jacobian, jacobian_route::per_phase_sequence);
+    // In 3-D (which the reader refuses under a process law) no Jacobian is offered.
+    problem box = with_law(dir + "friction/box-corner-3d.json", "newton");
+    EXPECT_EQ(law_traits_of(box).jacobian, jacobian_route::per_regime);
+    box.contact().law_of_restitution = poisson_restitution{};
+    EXPECT_EQ(law_traits_of(box).jacobian, jacobian_route::not_offered);
 }

@@ -131,7 +131,7 @@ TEST(FigureDirections, EveryNumericImpulseAlongItsAnswer)
             EXPECT_GT(got.x * want.x + got.y * want.y, 0.999);
             ++pivots;
         }
-        if (!d.prob.has_friction())
+        if (d.prob.contact().friction().is_zero())
             continue;
         const point want = drawn(c.sol, c.tangential_impulse, d.prob.dimension);
         const item *f2 = arrow(g, "F2"), *f1 = arrow(g, "F1");
