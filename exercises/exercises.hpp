@@ -34,7 +34,7 @@ struct options {
     std::string regime;     ///< "" (any), "smooth", "stick" or "slide"
     int attempts = 400;     ///< most draws per exercise
     /// Work units for the draws of the whole sheet past the 8 every exercise gets; a draw costs
-    /// draw_units(problem) (its usual time here, in ms). 0: sheet_units, 5 to 7 s of searching.
+    /// draw_units(problem) (its usual time here, in ms). 0: sheet_units, about 5 s of searching here.
     int units = 0;
     /// Safety net only: a search still running after this many seconds is refused with an
     /// input_error (never cut to a sheet that depends on the machine's speed). 0: none.
@@ -43,7 +43,7 @@ struct options {
 };
 
 /// The default work units of a sheet's search (options::units 0).
-constexpr int sheet_units = 7000;
+constexpr int sheet_units = 6000;
 /// What one draw of a variant of `p` costs in work units: about its time in ms on the machine that
 /// sized them (a system 1, one contact 3, with friction 6, in 3-D with friction 100).
 int draw_units(const problem &p);

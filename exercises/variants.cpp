@@ -383,9 +383,9 @@ struct variant_search {
     generator &g;
     std::set<std::string> seen;
     std::chrono::steady_clock::time_point start;
-    std::string set_key;   ///< a system: the key of the problem's own set of regimes, kept by every variant
-    long units_left = 0;   ///< work units for draws past the 8 of each exercise
-    long draw_cost = 1;    ///< draw_units(p0)
+    std::string set_key;    ///< a system: the key of the problem's own set of regimes, kept by every variant
+    long units_left = 0;    ///< work units for draws past the 8 of each exercise
+    long draw_cost = 1;     ///< draw_units(p0)
     int short_of_draws = 0; ///< exercises whose draws ran out before short answers
 
     /// Another draw for this exercise: its first 8, then while the attempts and the units last.
