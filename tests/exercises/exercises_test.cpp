@@ -214,7 +214,7 @@ TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
                                  ? load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) +
                                                      "/examples/problems/plate-struck-obliquely.json")
                                  : find_named_class(what)->build();
-        const exercises::sheet s = sheet_of(base, 2, 1, "", 1000); // a short search, then the shortest
+        const exercises::sheet s = sheet_of(base, 2, 1, "", 500); // a short search, then the shortest
         ASSERT_EQ(s.exercises.size(), 2u);
         const auto files = exercises::sheet_files(s);
         bool some_long = false;
