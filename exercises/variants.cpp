@@ -396,8 +396,8 @@ struct variant_search {
             std::ostringstream s;
             s << opt.seconds;
             throw input_error("exercises: the search for variants ran past its safety net of " + s.str() +
-                              " s; no sheet is written, since a shorter search would give other variants "
-                              "than this --seed gives elsewhere");
+                              " s (options::seconds); no sheet is given, since a shorter search would "
+                              "give other variants than the same seed gives elsewhere");
         }
         if (attempt >= opt.attempts)
             return false;
