@@ -55,10 +55,11 @@ void register_exercises(CLI::App &app, std::function<int()> &action)
         "exercises", "Exercise sheet of variants with simple numbers: answers, worked solutions, Moodle quiz");
     cmd->add_option("problem", opt->what, "CLASS (see 'impactgen list') or PROBLEM.json")->required();
     cmd->add_option("--count", opt->count, "number of exercises, 1 to 99 (default 10)");
-    cmd->add_option("--seed", opt->seed,
-                    "seed of the variants (default 1): the same seed, the same files on every machine (the "
-                    "search for short answers makes a number of draws sized for the problem, never cut by "
-                    "the clock; a search past --time-limit is an error, no sheet)");
+    cmd->add_option(
+        "--seed", opt->seed,
+        "seed of the variants (default 1): the same seed, the same files however fast or loaded the machine (the "
+        "search for short answers makes a number of draws sized for the problem, never cut by "
+        "the clock; a search past --time-limit is an error, no sheet)");
     cmd->add_option("--regime", opt->regime,
                     "keep every variant in this regime: smooth, stick or slide (default: any, away from boundaries)");
     cmd->add_option("--out", opt->out,

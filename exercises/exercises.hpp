@@ -12,7 +12,7 @@
 // short fraction, its regime is the one asked for, and it stays so when mu is made a third
 // larger or smaller (not near a regime boundary). The generator is seeded (a 64-bit xorshift
 // of its own, no library distribution), and the search is bounded by a count of draws, never by
-// the clock, so the same seed gives the same sheet byte for byte on every machine.
+// the clock, so the same seed gives the same sheet byte for byte however fast or loaded the machine.
 #pragma once
 
 #include "symbolic/friction.hpp"
