@@ -11,7 +11,8 @@
 // the velocity of approach within a regime). A variant is kept only when every answer is a
 // short fraction, its regime is the one asked for, and it stays so when mu is made a third
 // larger or smaller (not near a regime boundary). The generator is seeded (a 64-bit xorshift
-// of its own, no library distribution), so the same seed gives the same sheet byte for byte.
+// of its own, no library distribution), and the search is bounded by a count of draws, never by
+// the clock, so the same seed gives the same sheet byte for byte however fast or loaded the machine.
 #pragma once
 
 #include "symbolic/friction.hpp"
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -30,9 +32,21 @@ struct options {
     int count = 10;         ///< 1 .. 99 variants
     std::uint64_t seed = 1; ///< the same seed, the same sheet
     std::string regime;     ///< "" (any), "smooth", "stick" or "slide"
-    int attempts = 400;     ///< tries per variant before the sheet is refused
-    int seconds = 5;        ///< time for all the tries before the sheet is refused
+    int attempts = 400;     ///< most draws per exercise
+    /// Work units for the draws of the whole sheet past the 8 every exercise gets; a draw costs
+    /// draw_units(problem) (its usual time here, in ms). 0: sheet_units, about 5 s of searching here.
+    int units = 0;
+    /// Safety net only: a search still running after this many seconds is refused with an
+    /// input_error (never cut to a sheet that depends on the machine's speed). 0: none.
+    double seconds = 120;
+    std::function<void()> before_draw; ///< called before every draw (tests slow the search with it)
 };
+
+/// The default work units of a sheet's search (options::units 0).
+constexpr int sheet_units = 6000;
+/// What one draw of a variant of `p` costs in work units: about its time in ms on the machine that
+/// sized them (a system 1, one contact 3, with friction 6, in 3-D with friction 100).
+int draw_units(const problem &p);
 
 /// One asked quantity of an exercise: a scalar of the answer.
 struct quantity {
@@ -53,9 +67,9 @@ struct sheet {
     std::string title;  ///< the problem's title (or a person's name for it)
     bool units = false; ///< SI units printed
     std::vector<exercise> exercises;
-    /// Exercises whose search ran out of options::seconds before its draws: each is the best of
-    /// the draws made in the time, so the same seed may give another on a machine of another speed.
-    int cut_by_time = 0;
+    /// Exercises whose search ran out of its draws (options::attempts or options::units) before
+    /// short answers: each is the best of its draws (long answers as decimals), the same everywhere.
+    int short_of_draws = 0;
 };
 
 /// The sheet of `base` (a named class or a problem file). Throws input_error with one line

@@ -30,6 +30,15 @@ std::string xml(const std::string &s)
     return names::xml_text(s);
 }
 
+/// The feedback of an answer: its exact value, or for a root found numerically (3-D sliding) its
+/// 15 significant digits: its further digits follow the order of evaluation, not the seed.
+std::string feedback_of(const GiNaC::ex &v)
+{
+    if (GiNaC::is_a<GiNaC::numeric>(v) && !GiNaC::ex_to<GiNaC::numeric>(v).is_rational())
+        return "value " + print::decimal(v) + " (a root found numerically)";
+    return "exact value " + print::parser_syntax(v);
+}
+
 } // namespace
 
 std::string quiz_xml(const sheet &s)
@@ -56,7 +65,7 @@ std::string quiz_xml(const sheet &s)
                << "<defaultgrade>1.0000000</defaultgrade>\n<penalty>0.3333333</penalty>\n<hidden>0</hidden>\n"
                << "<idnumber>" << xml(nn + q.pointer) << "</idnumber>\n"
                << "<answer fraction=\"100\" format=\"moodle_auto_format\">\n<text>" << print::decimal(q.exact)
-               << "</text>\n<feedback format=\"html\"><text>" << xml("exact value " + print::parser_syntax(q.exact))
+               << "</text>\n<feedback format=\"html\"><text>" << xml(feedback_of(q.exact))
                << "</text></feedback>\n<tolerance>" << tolerance_of(q.exact) << "</tolerance>\n</answer>\n"
                << "<unitgradingtype>0</unitgradingtype>\n<unitpenalty>0.1000000</unitpenalty>\n"
                << "<showunits>3</showunits>\n<unitsleft>0</unitsleft>\n</question>\n";

@@ -6,18 +6,20 @@
 // IMPACTGEN_REGENERATE_GOLDEN=1 (or make regenerate-golden-exercises) rewrites the golden files.
 #include "exercises/exercises.hpp"
 #include "print/answer.hpp"
-#include "symbolic/system.hpp"
 #include "symbolic/named_classes.hpp"
 #include "symbolic/named_systems.hpp"
+#include "symbolic/system.hpp"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace fs = std::filesystem;
 using namespace impactgen;
@@ -30,11 +32,12 @@ problem hinged_rod()
     return load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/problems/hinged-rod.json");
 }
 
+// units: the work units of the search (options::units; 0 the default, sized for a sheet)
 exercises::sheet sheet_of(const problem &p, int count, std::uint64_t seed, const std::string &regime = "",
-                          int seconds = 5)
+                          int units = 0)
 {
     exercises::options o;
-    o.seconds = seconds;
+    o.units = units;
     o.count = count;
     o.seed = seed;
     o.regime = regime;
@@ -211,7 +214,7 @@ TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
                                  ? load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) +
                                                      "/examples/problems/plate-struck-obliquely.json")
                                  : find_named_class(what)->build();
-        const exercises::sheet s = sheet_of(base, 2, 1, "", 1); // a second's search, then the shortest
+        const exercises::sheet s = sheet_of(base, 2, 1, "", 500); // a short search, then the shortest
         ASSERT_EQ(s.exercises.size(), 2u);
         const auto files = exercises::sheet_files(s);
         bool some_long = false;
@@ -232,14 +235,36 @@ TEST(ExerciseSheet, ProblemWhoseAnswersAreSeldomShortGetsDecimalAnswers)
     }
 }
 
-// The same seed gives the same files unless the time cuts a search short: the sheet says how many
-// exercises that happened to (the CLI prints a note), so a sheet that may differ elsewhere is never
-// silently presented as reproducible.
-TEST(ExerciseSheet, ASearchCutByTheTimeIsReported)
+// The search is bounded by draws, never by the clock: a search slowed down draw by draw writes
+// the same files byte for byte, also where its draws run out before short answers (which a time
+// limit used to cut at another draw on a loaded machine). A search that passes the safety net of
+// options::seconds is refused, never cut to another sheet.
+TEST(ExerciseSheet, ASlowSearchGivesTheSameSheetOrNone)
 {
-    EXPECT_EQ(sheet_of(hinged_rod(), 3, 1).cut_by_time, 0) << "short answers found in a few draws";
-    // No time at all: each exercise gets its 8 draws, then the best of them.
-    EXPECT_EQ(sheet_of(find_named_class("noncentral-3d-friction")->build(), 2, 1, "", 0).cut_by_time, 2);
+    EXPECT_EQ(sheet_of(hinged_rod(), 3, 1).short_of_draws, 0) << "short answers found in a few draws";
+    const problem rod = find_named_class("rod-rough-floor")->build(); // seldom short answers
+    exercises::options o;
+    o.count = 2;
+    o.units = 300; // 8 draws for each exercise, then 50 more for the sheet
+    const exercises::sheet fast = exercises::make_sheet(rod, o);
+    EXPECT_EQ(fast.short_of_draws, 2) << "the draws run out: each exercise is the best of its draws";
+    int draws = 0;
+    o.before_draw = [&draws] {
+        ++draws;
+        std::this_thread::sleep_for(std::chrono::milliseconds(4));
+    };
+    const exercises::sheet slow = exercises::make_sheet(rod, o);
+    EXPECT_EQ(draws, 2 * 8 + 300 / exercises::draw_units(rod));
+    EXPECT_EQ(exercises::sheet_files(slow), exercises::sheet_files(fast));
+    o.seconds = 0.05; // past the net after a few slow draws: an error naming it, no sheet
+    try {
+        exercises::make_sheet(rod, o);
+        ADD_FAILURE() << "a search past its safety net gave a sheet";
+    } catch (const input_error &e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("safety net of 0.05 s"), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
 }
 
 // A system's sheet (issue 25: "keep the regime or active set"): every variant keeps the set of
@@ -252,7 +277,7 @@ TEST(ExerciseSheet, SystemSheetKeepsTheSetOfRegimesAndAnswersAreItsFilesSolved)
         const problem base =
             load_problem_file(std::string(IMPACTGEN_SOURCE_DIR) + "/examples/systems/" + file + ".json");
         const system_answer own = solve_system(base);
-        const exercises::sheet s = sheet_of(base, 3, 7, "", 2);
+        const exercises::sheet s = sheet_of(base, 3, 7, "", 1000);
         ASSERT_EQ(s.exercises.size(), 3u);
         const auto files = exercises::sheet_files(s);
         for (std::size_t k = 0; k < 3; ++k) {
@@ -303,7 +328,7 @@ TEST(ExerciseSheet, EveryNamedSystemClassMakesASheet)
     for (const named_class &c : system_classes()) {
         SCOPED_TRACE(c.name);
         const problem base = c.build();
-        const exercises::sheet s = sheet_of(base, 2, 3, "", 2);
+        const exercises::sheet s = sheet_of(base, 2, 3, "", 1000);
         ASSERT_EQ(s.exercises.size(), 2u);
         const auto files = exercises::sheet_files(s);
         for (std::size_t k = 0; k < 2; ++k) {
@@ -321,7 +346,7 @@ TEST(ExerciseSheet, EveryNamedSystemClassMakesASheet)
 // problem files, answered under that law.
 TEST(ExerciseSheet, RestitutionLawIsKeptInTheProblemFiles)
 {
-    const exercises::sheet s = sheet_of(find_named_class("rod-rough-floor")->build(), 2, 1, "", 2);
+    const exercises::sheet s = sheet_of(find_named_class("rod-rough-floor")->build(), 2, 1, "", 1000);
     for (const exercises::exercise &e : s.exercises) {
         EXPECT_TRUE(std::holds_alternative<energetic_restitution>(e.prob.contact().law_of_restitution));
         EXPECT_EQ(exercises::problem_json(e.prob).at("contact").at("law"), "energetic");
