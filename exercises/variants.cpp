@@ -485,7 +485,7 @@ int draw_units(const problem &p)
     // solved through an angle equation) 10 to 85 ms.
     if (p.is_system())
         return 1;
-    if (!p.has_friction())
+    if (law_traits_of(p).single_candidate)
         return 3;
     return p.dimension == 3 ? 100 : 6;
 }
