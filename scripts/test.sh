@@ -10,15 +10,15 @@
 #   IMPACTGEN_SANITIZE_ALL=1   the sanitizer pass over every test program (about 8 more
 #                              minutes on 2 cores), after the release pass
 #
-# Time (2 cores): almost all of it is compiling, and the release pass alone leaves a core idle
-# for a good part of its ctest run (fixtures run one after another, the longest tests finish
-# alone) and at the end of its build. So the sanitizer build runs beside the release pass, in
-# the background at a lower priority (nice 10): it takes the cycles the release pass leaves
-# idle, and the release pass keeps the machine first. Its tests run after both, on an idle
-# machine (the fuzzer's children have timeouts). Its output is printed when it is done.
-# Both builds use Ninja when it is installed (install-deps.sh --tests installs ninja-build; a
-# build directory already configured keeps its generator): it starts a test's objects
-# before the libraries it links are archived, where make waits target by target.
+# Time (2 cores): almost all of it is compiling. The sanitizer build runs beside the release
+# pass, in the background at a lower priority (nice 10): it takes the cycles the release pass
+# leaves idle (the end of its build, the fixtures of its ctest run that run one after another,
+# its last tests), and the release pass keeps the machine first. The sanitizer tests run after
+# both, alone (the fuzzer's children have timeouts). The background build's output is printed
+# when the release pass is done. Both builds use Ninja when it is installed (install-deps.sh
+# --tests installs ninja-build; a build directory already configured keeps its generator): it
+# compiles a target's objects before the libraries it links are archived, where make waits
+# target by target.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --tests
