@@ -20,11 +20,6 @@ namespace impactgen::cli
 {
 using namespace GiNaC;
 
-namespace
-{
-
-} // namespace
-
 void split_wrt(const std::string &s, std::vector<std::string> &out)
 {
     if (s.empty())
@@ -170,164 +165,6 @@ nlohmann::ordered_json jacobian_json(const codegen::plan &pl)
     return r;
 }
 
-namespace
-{
-std::string expr(const ex &e, bool latex)
-{
-    return latex ? print::canonical_latex(e) : print::canonical_text(e);
-}
-
-std::string process_jacobian_text(const process_jacobian &j, bool latex)
-{
-    std::ostringstream os;
-    const std::string c = latex ? "% " : "";
-    os << "\n"
-       << c << "Jacobian of the impact map per phase sequence of Routh's process, d(output)/d(input) by the chain\n"
-       << c << "rule through the contact's steps (inputs:";
-    for (const symbol &x : j.wrt)
-        os << " " << print::symbol_text(x);
-    os << "). Inside a sequence (every condition strict) the map is smooth; on a boundary between two\n"
-       << c << "sequences (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n\n";
-    for (const step &st : j.derivative_steps)
-        os << c << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
-    for (const sequence_jacobian &q : j.sequences) {
-        os << "\n" << c << "Sequence " << q.sequence << (q.conditions.empty() ? " (the one that holds)" : "") << ":\n";
-        for (const process_condition &k : q.conditions)
-            os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning
-               << ")\n";
-        std::size_t zeros = 0;
-        for (std::size_t o = 0; o < j.outputs.size(); ++o)
-            for (std::size_t w = 0; w < j.wrt.size(); ++w) {
-                if (q.entries[o][w].is_zero()) {
-                    ++zeros;
-                    continue;
-                }
-                os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w]) << " = "
-                   << expr(q.entries[o][w], latex) << "\n";
-            }
-        os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size()
-           << " entries are 0 and not listed)\n";
-    }
-    return os.str();
-}
-
-nlohmann::ordered_json process_jacobian_json(const process_jacobian &j)
-{
-    nlohmann::ordered_json out, wrt = nlohmann::ordered_json::array(), steps = nlohmann::ordered_json::object(),
-                                seqs = nlohmann::ordered_json::array();
-    for (const symbol &x : j.wrt)
-        wrt.push_back(x.get_name());
-    for (const step &st : j.derivative_steps)
-        steps[st.sym.get_name()] = print::canonical_text(st.value);
-    for (const sequence_jacobian &q : j.sequences) {
-        nlohmann::ordered_json s, conds = nlohmann::ordered_json::array(), m = nlohmann::ordered_json::object();
-        s["sequence"] = q.sequence;
-        for (const process_condition &k : q.conditions)
-            conds.push_back({{"value", print::canonical_text(k.value)}, {"strict", k.strict}, {"meaning", k.meaning}});
-        s["conditions"] = conds;
-        for (std::size_t o = 0; o < j.outputs.size(); ++o) {
-            nlohmann::ordered_json row = nlohmann::ordered_json::object();
-            for (std::size_t w = 0; w < j.wrt.size(); ++w)
-                row[j.wrt[w].get_name()] = print::canonical_text(q.entries[o][w]);
-            m[j.outputs[o]] = row;
-        }
-        s["matrix"] = m;
-        seqs.push_back(s);
-    }
-    out["wrt"] = wrt;
-    out["steps"] = steps;
-    out["sequences"] = seqs;
-    out["boundary"] = "on a boundary between sequences (a condition = 0) the derivative is one-sided";
-    return out;
-}
-
-// The derivatives of one regime: its conditions, its derivative steps, its nonzero entries.
-void regime_jacobian_text(std::ostream &os, const friction_jacobian &j, std::size_t k, bool latex)
-{
-    const regime_jacobian &r = j.regimes[k];
-    const std::string c = latex ? "% " : "";
-    os << "\n" << c << "Regime " << k + 1 << ": " << r.name << "\n";
-    for (const regime_condition &k : r.conditions)
-        os << c << "  where " << expr(k.value, false) << (k.strict ? " > 0" : " >= 0") << "  (" << k.meaning << ")\n";
-    if (r.through_angle)
-        os << c << "  " << print::symbol_text(r.dir_c) << " = cos(theta), " << print::symbol_text(r.dir_s)
-           << " = sin(theta): theta a root of the angle equation g = 0, found for the numbers;\n"
-           << c << "  through the implicit function theorem dtheta/dx = -(dg/dx)/(dg/dtheta), where dg/dtheta != 0\n"
-           << c << "  (a simple root; at a double root the sliding direction is not differentiable)\n";
-    for (const step &st : r.derivative_steps)
-        os << c << "  " << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
-    std::size_t zeros = 0;
-    for (std::size_t o = 0; o < j.outputs.size(); ++o)
-        for (std::size_t w = 0; w < j.wrt.size(); ++w) {
-            if (r.entries[o][w].is_zero()) {
-                ++zeros;
-                continue;
-            }
-            os << c << "  d " << j.outputs[o] << " / d " << print::symbol_text(j.wrt[w]) << " = "
-               << expr(r.entries[o][w], latex) << "\n";
-        }
-    os << c << "  (" << zeros << " of the " << j.outputs.size() * j.wrt.size() << " entries are 0 and not listed)\n";
-}
-
-std::string friction_jacobian_text(const friction_jacobian &j, bool latex)
-{
-    std::ostringstream os;
-    const std::string c = latex ? "% " : "";
-    os << "\n"
-       << c << "Jacobian of the impact map per regime, d(output)/d(input) by the chain rule through the regime's\n"
-       << c << "steps (inputs:";
-    for (const symbol &x : j.wrt)
-        os << " " << print::symbol_text(x);
-    os << "). Inside a regime (every condition strict) the map is smooth; on a boundary between two\n"
-       << c << "regimes (a condition = 0) it is continuous and its derivative one-sided: each neighbour's own.\n"
-       << (j.derivative_steps.empty() ? "" : "\n");
-    for (const step &st : j.derivative_steps)
-        os << c << print::symbol_text(st.sym) << " = " << expr(st.value, latex) << "\n";
-    for (std::size_t k = 0; k < j.regimes.size(); ++k)
-        regime_jacobian_text(os, j, k, latex);
-    return os.str();
-}
-
-nlohmann::ordered_json friction_jacobian_json(const friction_jacobian &j)
-{
-    auto steps_json = [](const std::vector<step> &steps) {
-        nlohmann::ordered_json m = nlohmann::ordered_json::object();
-        for (const step &st : steps)
-            m[st.sym.get_name()] = print::canonical_text(st.value);
-        return m;
-    };
-    nlohmann::ordered_json out, wrt = nlohmann::ordered_json::array(), regimes = nlohmann::ordered_json::array();
-    for (const symbol &x : j.wrt)
-        wrt.push_back(x.get_name());
-    for (const regime_jacobian &r : j.regimes) {
-        nlohmann::ordered_json g, conds = nlohmann::ordered_json::array(), m = nlohmann::ordered_json::object();
-        g["regime"] = r.name;
-        for (const regime_condition &k : r.conditions)
-            conds.push_back({{"value", print::canonical_text(k.value)}, {"strict", k.strict}, {"meaning", k.meaning}});
-        g["conditions"] = conds;
-        g["through_angle"] = r.through_angle;
-        if (r.through_angle) {
-            g["cos_theta"] = r.dir_c.get_name();
-            g["sin_theta"] = r.dir_s.get_name();
-        }
-        g["steps"] = steps_json(r.derivative_steps);
-        for (std::size_t o = 0; o < j.outputs.size(); ++o) {
-            nlohmann::ordered_json row = nlohmann::ordered_json::object();
-            for (std::size_t w = 0; w < j.wrt.size(); ++w)
-                row[j.wrt[w].get_name()] = print::canonical_text(r.entries[o][w]);
-            m[j.outputs[o]] = row;
-        }
-        g["matrix"] = m;
-        regimes.push_back(g);
-    }
-    out["wrt"] = wrt;
-    out["steps"] = steps_json(j.derivative_steps);
-    out["regimes"] = regimes;
-    out["boundary"] = "on a boundary between regimes (a condition = 0) the derivative is one-sided";
-    return out;
-}
-} // namespace
-
 int process_jacobian_formulas(const problem &p, const std::string &format, const std::string &wrt)
 {
     std::vector<std::string> names;
@@ -337,11 +174,11 @@ int process_jacobian_formulas(const problem &p, const std::string &format, const
     const process_jacobian j = process_jacobian_of(d, s, names);
     if (format == "json") {
         nlohmann::ordered_json a = print::formulas_json(d, s);
-        a["jacobian"] = process_jacobian_json(j);
+        a["jacobian"] = print::process_jacobian_json(j);
         std::cout << a.dump(2) << "\n";
     } else {
         std::cout << (format == "latex" ? print::formulas_latex(d, s) : print::formulas_text(d, s))
-                  << process_jacobian_text(j, format == "latex");
+                  << print::process_jacobian_text(j, format == "latex");
     }
     return 0;
 }
@@ -355,11 +192,11 @@ int friction_jacobian_formulas(const problem &p, const std::string &format, cons
     const friction_jacobian j = friction_jacobian_of(d, s, names);
     if (format == "json") {
         nlohmann::ordered_json a = print::formulas_json(d, s);
-        a["jacobian"] = friction_jacobian_json(j);
+        a["jacobian"] = print::friction_jacobian_json(j);
         std::cout << a.dump(2) << "\n";
     } else {
         std::cout << (format == "latex" ? print::formulas_latex(d, s) : print::formulas_text(d, s))
-                  << friction_jacobian_text(j, format == "latex");
+                  << print::friction_jacobian_text(j, format == "latex");
     }
     return 0;
 }

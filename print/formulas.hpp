@@ -3,6 +3,8 @@
 #pragma once
 
 #include "symbolic/friction.hpp"
+#include "symbolic/friction_jacobian.hpp"
+#include "symbolic/process_jacobian.hpp"
 #include "symbolic/system_jacobian.hpp"
 
 #include <nlohmann/json.hpp>
@@ -42,5 +44,16 @@ nlohmann::ordered_json system_formulas_json(const problem &p);
 std::string system_jacobian_text(const problem &p, const system_jacobian &j, bool latex);
 /// {"wrt": [..], "sets": [{"set", "conditions", "matrix": {output: {input: d}}}]}
 nlohmann::ordered_json system_jacobian_json(const problem &p, const system_jacobian &j);
+
+/// formulas --jacobian under Routh's process: each phase sequence's conditions and its
+/// derivatives (symbolic/process_jacobian.hpp); with latex, every line a LaTeX comment.
+std::string process_jacobian_text(const process_jacobian &j, bool latex);
+/// {"wrt", "steps", "sequences": [{"sequence", "conditions", "matrix": {output: {input: d}}}], "boundary"}
+nlohmann::ordered_json process_jacobian_json(const process_jacobian &j);
+/// formulas --jacobian with Coulomb friction under Newton's law: each regime's conditions and
+/// derivatives (symbolic/friction_jacobian.hpp), the 3-D slide without a closed form through its angle.
+std::string friction_jacobian_text(const friction_jacobian &j, bool latex);
+/// {"wrt", "steps", "regimes": [{"regime", "conditions", "through_angle", "steps", "matrix"}], "boundary"}
+nlohmann::ordered_json friction_jacobian_json(const friction_jacobian &j);
 
 } // namespace impactgen::print

@@ -10,15 +10,12 @@
 #   IMPACTGEN_SANITIZE_ALL=1   the sanitizer pass over every test program (about 8 more
 #                              minutes on 2 cores), after the release pass
 #
-# Time (2 cores): almost all of it is compiling. The sanitizer build runs beside the release
-# pass, in the background at a lower priority (nice 10): it takes the cycles the release pass
-# leaves idle (the end of its build, the fixtures of its ctest run that run one after another,
-# its last tests), and the release pass keeps the machine first. The sanitizer tests run after
-# both, alone (the fuzzer's children have timeouts). The background build's output is printed
-# when the release pass is done. Both builds use Ninja when it is installed (install-deps.sh
-# --tests installs ninja-build; a build directory already configured keeps its generator): it
-# compiles a target's objects before the libraries it links are archived, where make waits
-# target by target.
+# Time (2 cores): almost all of it is compiling. The two passes run one after the other: the
+# sanitizer build run beside the release pass in the background (nice 10) made the whole run
+# slower on a fresh 2-core machine (995 s against 852 s: four compilers on two cores), so it was
+# taken back. Both builds use Ninja when it is installed (install-deps.sh --tests installs
+# ninja-build; a build directory already configured keeps its generator): one graph of every
+# target's objects, where make goes target by target.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --tests
@@ -34,50 +31,8 @@ generator() {
   fi
 }
 
-sanitize=1
-[[ "${IMPACTGEN_SKIP_SANITIZE:-0}" == "1" ]] && sanitize=0
-set=library
-[[ "${IMPACTGEN_SANITIZE_ALL:-0}" == "1" ]] && set=all
-# Test discovery runs the test programs at build time: the sanitizer options hold for the
-# build as well as for ctest.
-sanitizer_env() {
-  export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
-  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-  # clang's runtimes symbolize stack traces (and LeakSanitizer's suppressed leaks at every
-  # exit) with llvm-symbolizer (package llvm-14): without it each sanitized program warns
-  # on stderr, which the command-line tests (one line of error) see.
-  if [[ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]]; then
-    export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer UBSAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
-  fi
-}
-sanitize_pid=""
-if [[ "$sanitize" == "1" ]]; then
-  # -O1 -g1 (line tables: stack traces with file and line) compiles in half the time
-  # of -O2 -g with the sanitizers on, and the sanitized tests run nearly as fast.
-  # clang++ compiles the sanitized build in about 60 % of g++'s time (4 against 6.3
-  # minutes on 2 cores here).
-  sanitize_build() {
-    local start
-    start=$(date +%s)
-    sanitizer_env
-    generator build-sanitize
-    cmake -S . -B build-sanitize "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-          -DIMPACTGEN_SANITIZE=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DIMPACTGEN_TEST_SET="$set" \
-          -DIMPACTGEN_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
-    nice -n 10 cmake --build build-sanitize -j"$jobs"
-    echo "impactgen: sanitizer build (clang++, in the background) took $(( $(date +%s) - start )) s"
-  }
-  mkdir -p build-sanitize
-  # A job of its own process group (set -m), so that a failure of the release pass stops it too.
-  set -m
-  sanitize_build > build-sanitize/background.log 2>&1 < /dev/null &
-  sanitize_pid=$!
-  set +m
-  trap '[[ -n "$sanitize_pid" ]] && kill -- -"$sanitize_pid" 2>/dev/null || true' EXIT
-fi
-
 release_set=rest
-[[ "$sanitize" == "0" ]] && release_set=all
+[[ "${IMPACTGEN_SKIP_SANITIZE:-0}" == "1" ]] && release_set=all
 # -O2, not CMake's -O3 for Release: 10-20 % less compile time for the same tests (the
 # benchmarks are measured from scripts/bench builds, bench/run_ratios.sh).
 generator build
@@ -87,22 +42,32 @@ cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure -j"$jobs")
 echo "impactgen: release build (g++) and tests ($release_set) took $(( $(date +%s) - start )) s"
 
-if [[ "$sanitize" == "1" ]]; then
+if [[ "${IMPACTGEN_SKIP_SANITIZE:-0}" != "1" ]]; then
   start=$(date +%s)
-  status=0
-  wait "$sanitize_pid" || status=$?
-  sanitize_pid=""
-  cat build-sanitize/background.log
-  if [[ "$status" != "0" ]]; then
-    echo "impactgen: the sanitizer build failed (exit $status)"
-    exit "$status"
+  # Test discovery runs the test programs at build time: the sanitizer options
+  # hold for the build as well as for ctest.
+  export ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # clang's runtimes symbolize stack traces (and LeakSanitizer's suppressed leaks at every
+  # exit) with llvm-symbolizer (package llvm-14): without it each sanitized program warns
+  # on stderr, which the command-line tests (one line of error) see.
+  if [[ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]]; then
+    export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer UBSAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
   fi
-  echo "impactgen: waited $(( $(date +%s) - start )) s for the sanitizer build after the release pass"
-  start=$(date +%s)
-  sanitizer_env
+  # -O1 -g1 (line tables: stack traces with file and line) compiles in half the time
+  # of -O2 -g with the sanitizers on, and the sanitized tests run nearly as fast.
+  # clang++ compiles the sanitized build in about 60 % of g++'s time (4 against 6.3
+  # minutes on 2 cores here).
   # The library's tests (label "sanitize": tests/names, core, explain, figure and the
   # fuzzer, which drives every subcommand, codegen included, on random and hostile
-  # problems) with their full sample counts: under the sanitizers they take 90 s here.
+  # problems) with their full sample counts.
+  set=library
+  [[ "${IMPACTGEN_SANITIZE_ALL:-0}" == "1" ]] && set=all
+  generator build-sanitize
+  cmake -S . -B build-sanitize "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DIMPACTGEN_SANITIZE=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DIMPACTGEN_TEST_SET="$set" \
+        -DIMPACTGEN_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="-Werror" >/dev/null
+  cmake --build build-sanitize -j"$jobs"
   if [[ "$set" == "all" ]]; then
     # Every test program; fewer random samples in the verification suites (sanitized code
     # runs 5-10x slower). The tests labelled "headers" compile generated headers with the
@@ -112,5 +77,5 @@ if [[ "$sanitize" == "1" ]]; then
   else
     (cd build-sanitize && ctest --output-on-failure -j"$jobs")
   fi
-  echo "impactgen: sanitizer tests (clang++, $set) took $(( $(date +%s) - start )) s"
+  echo "impactgen: sanitizer build (clang++) and tests ($set) took $(( $(date +%s) - start )) s"
 fi
